@@ -1,0 +1,9 @@
+"""Anvil geometry -> axisymmetric FE -> free-free modes -> Mode Displacement Method ROM."""
+
+from .geometry import AnvilSpec, Interfaces, Material, load_anvil
+from .inputs import InputError
+from .modalfile import ModalData, load_modal_data, save_modal_data
+from .rom import ModalAnvil
+
+__all__ = ["AnvilSpec", "Interfaces", "InputError", "Material", "ModalAnvil", "ModalData",
+           "load_anvil", "load_modal_data", "save_modal_data"]

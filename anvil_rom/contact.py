@@ -1,0 +1,25 @@
+"""Compression-only contact between the anvil and its neighbours (ram, pile)."""
+
+from __future__ import annotations
+
+from numba import njit
+
+
+@njit(cache=True)
+def contact_force(penetration, penetration_rate, stiffness, damping):
+    """Force of a compression-only penalty contact [N], positive in compression.
+
+    F = max(0, k d + c d') while the bodies overlap (d > 0), else 0; the dashpot may only push,
+    never pull, so the contact releases without adhesion and lift-off and re-impact are possible.
+
+    Parameters
+    ----------
+    penetration : overlap d = u_upper - u_lower of the two faces [m] (z down).
+    penetration_rate : d' [m/s].
+    stiffness : contact stiffness k [N/m].
+    damping : contact dashpot c [N s/m].
+    """
+    if penetration <= 0.0:
+        return 0.0
+    force = stiffness * penetration + damping * penetration_rate
+    return force if force > 0.0 else 0.0

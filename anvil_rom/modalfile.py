@@ -1,0 +1,162 @@
+"""The modal-data file: the Mode Displacement Method anvil as data (``.npz``).
+
+Format ``anvilwave-modal``, version 1. Every array is stored without pickling; the file is read
+with ``allow_pickle=False`` and each key is checked on load. Keys (units in brackets):
+
+=========================  ========  ==============================================================
+key                        shape     meaning
+=========================  ========  ==============================================================
+format                     ()        the string ``"anvilwave-modal"``
+version                    ()        integer format version (1)
+frequencies                (n,)      natural frequencies [Hz], ascending; index 0 is the axial
+                                     rigid-body mode (0 Hz)
+participation_ram          (n,)      b_ram^T phi_j, mass-normalised modes [kg^-1/2]
+participation_pile         (n,)      b_pile^T phi_j [kg^-1/2]
+participation_gravity      (n,)      phi_j^T M e_z [kg^1/2] (only the rigid mode is non-zero)
+elastic_flexibility        (2, 2)    inertia-relief flexibility between the ram face and the pile
+                                     ring, all flexible modes [m/N] (for the static correction)
+total_mass                 ()        [kg]
+fmax                       ()        frequency content the modes were computed for [Hz]
+damping_ratio              ()        default modal damping ratio [-]
+material                   (3,)      Young's modulus [Pa], Poisson's ratio [-], density [kg/m^3]
+interfaces                 (3,)      ram contact radius, pile contact radius, pile contact width [m]
+interface_areas            (2,)      ram face area, pile ring area [m^2]
+n_dof                      ()        DOFs of the FE model the modes came from
+geometry_hash              ()        SHA-256 of the geometry / mesh and material
+source                     ()        who computed the modes ("anvilwave", "calculix", ...)
+=========================  ========  ==============================================================
+"""
+
+from __future__ import annotations
+
+import zipfile
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from .inputs import InputError
+
+FORMAT = "anvilwave-modal"
+VERSION = 1
+
+
+@dataclass(frozen=True)
+class ModalData:
+    """Modal description of an anvil between its two interfaces (see the module docstring)."""
+
+    frequencies: np.ndarray
+    participation_ram: np.ndarray
+    participation_pile: np.ndarray
+    participation_gravity: np.ndarray
+    elastic_flexibility: np.ndarray
+    total_mass: float
+    fmax: float
+    damping_ratio: float
+    material: np.ndarray
+    interfaces: np.ndarray
+    interface_areas: np.ndarray
+    n_dof: int
+    geometry_hash: str
+    source: str
+
+    @property
+    def n_modes(self) -> int:
+        return len(self.frequencies)
+
+    def __post_init__(self):
+        check_modal_data(self, "<modal data>")
+
+
+_SHAPES = {
+    "frequencies": "n", "participation_ram": "n", "participation_pile": "n",
+    "participation_gravity": "n", "elastic_flexibility": (2, 2), "total_mass": (),
+    "fmax": (), "damping_ratio": (), "material": (3,), "interfaces": (3,),
+    "interface_areas": (2,), "n_dof": (), "geometry_hash": (), "source": (),
+}
+
+
+def check_modal_data(data: ModalData, source: str) -> None:
+    """Physical sanity of modal data; raises :class:`InputError` naming the key."""
+    f = np.asarray(data.frequencies)
+    n = len(f)
+
+    def bad(key, rule):
+        return InputError(source, key, rule)
+
+    if f.ndim != 1 or n < 1 or not np.all(np.isfinite(f)):
+        raise bad("frequencies", "must be a non-empty 1D array of finite values")
+    if f[0] != 0.0 or np.any(f[1:] <= 0.0) or np.any(np.diff(f) < 0.0):
+        raise bad("frequencies", "must start with the rigid-body mode (0 Hz) followed by "
+                                 "positive ascending frequencies")
+    for key in ("participation_ram", "participation_pile", "participation_gravity"):
+        arr = np.asarray(getattr(data, key))
+        if arr.shape != (n,) or not np.all(np.isfinite(arr)):
+            raise bad(key, f"must hold one finite value per mode ({n})")
+    G = np.asarray(data.elastic_flexibility)
+    if (G.shape != (2, 2) or not np.all(np.isfinite(G))
+            or abs(G[0, 1] - G[1, 0]) > 1e-9 * abs(G).max()):
+        raise bad("elastic_flexibility", "must be a finite symmetric 2x2 matrix [m/N]")
+    if not (np.isfinite(data.total_mass) and data.total_mass > 0):
+        raise bad("total_mass", "must be positive [kg]")
+    if not (np.isfinite(data.fmax) and data.fmax >= f[-1] * (1 - 1e-9)):
+        raise bad("fmax", "must be at least the highest stored frequency [Hz]")
+    if not (0.0 <= data.damping_ratio < 1.0):
+        raise bad("damping_ratio", "must be in [0, 1)")
+    expected = np.sqrt(data.total_mass)
+    if abs(abs(data.participation_gravity[0]) - expected) > 1e-6 * expected:
+        raise bad("participation_gravity", "rigid-body entry must equal sqrt(total_mass) for "
+                                           "mass-normalised modes")
+
+
+def save_modal_data(data: ModalData, path: str | Path) -> Path:
+    """Write modal data to ``path`` (.npz), atomically (no half-written file on failure)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    arrays = {"format": np.array(FORMAT), "version": np.array(VERSION)}
+    for fld in fields(ModalData):
+        arrays[fld.name] = np.asarray(getattr(data, fld.name))
+    tmp = path.with_name(path.name + ".part")
+    with open(tmp, "wb") as fh:
+        np.savez(fh, **arrays)
+    tmp.replace(path)
+    return path
+
+
+def load_modal_data(path: str | Path) -> ModalData:
+    """Read and validate a modal-data file; a corrupt or foreign file raises :class:`InputError`."""
+    path = Path(path)
+    src = str(path)
+    if not path.exists():
+        raise InputError(src, "", "modal-data file not found")
+    try:
+        with np.load(path, allow_pickle=False) as npz:
+            content = {k: npz[k] for k in npz.files}
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError) as exc:
+        raise InputError(src, "", f"not a readable .npz modal-data file ({exc})") from None
+    if content.get("format", np.array("")).item() != FORMAT:
+        raise InputError(src, "format", f"must be {FORMAT!r}: not an anvilwave modal-data file")
+    version = int(content.get("version", np.array(-1)))
+    if version != VERSION:
+        raise InputError(src, "version", f"format version {version} is not supported (this "
+                                         f"anvilwave reads version {VERSION})")
+    kwargs = {}
+    for fld in fields(ModalData):
+        if fld.name not in content:
+            raise InputError(src, fld.name, "is missing")
+        value = content[fld.name]
+        shape = _SHAPES[fld.name]
+        if shape != "n" and value.shape != shape:
+            raise InputError(src, fld.name, f"must have shape {shape}, got {value.shape}")
+        if fld.name in ("geometry_hash", "source"):
+            kwargs[fld.name] = str(value)
+        elif fld.name == "n_dof":
+            kwargs[fld.name] = int(value)
+        elif shape == ():
+            kwargs[fld.name] = float(value)
+        else:
+            kwargs[fld.name] = np.asarray(value, dtype=float)
+    try:
+        return ModalData(**kwargs)
+    except InputError as exc:
+        raise InputError(src, exc.key, exc.rule) from None

@@ -1,0 +1,86 @@
+"""Anvil file -> mesh -> FE model -> modes -> modal data: the stages in one place."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .fe import AxisymmetricModel, assemble, interface_vectors
+from .geometry import AnvilSpec
+from .inputs import InputError
+from .mesh import build_mesh
+from .modalfile import ModalData
+from .modes import ModeSet, elastic_flexibility, free_free_modes, mesh_resolvable_frequency
+
+
+@dataclass
+class AnvilModes:
+    """Result of the modal analysis of an anvil."""
+
+    spec: AnvilSpec
+    model: AxisymmetricModel
+    modes: ModeSet
+    modal_data: ModalData | None
+    b_ram: np.ndarray | None
+    b_pile: np.ndarray | None
+    wall_time: float
+
+
+def check_fmax(model: AxisymmetricModel, fmax: float, source: str, key: str = "fmax") -> None:
+    """Refuse an fmax the mesh cannot resolve (see :func:`mesh_resolvable_frequency`)."""
+    limit = mesh_resolvable_frequency(model)
+    if fmax > limit:
+        raise InputError(source, key, f"{fmax:g} Hz is above what the mesh resolves ({limit:.0f} "
+                                      "Hz, four quadratic elements per shear wavelength): refine "
+                                      "the mesh (mesh.size) or lower fmax")
+
+
+def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: ModeSet,
+                          b_ram: np.ndarray, b_pile: np.ndarray, areas: tuple[float, float],
+                          source: str = "anvilwave") -> ModalData:
+    """Project modes on the interfaces and pack them with the static flexibility."""
+    B = np.column_stack([b_ram, b_pile])
+    participation = B.T @ modes.shapes
+    e = model.axial_free
+    gravity = modes.shapes.T @ (model.mass @ e)
+    flex = elastic_flexibility(model, B)
+    flex = 0.5 * (flex + flex.T)
+    itf = spec.interfaces
+    mat = spec.material
+    return ModalData(
+        frequencies=modes.frequencies, participation_ram=participation[0],
+        participation_pile=participation[1], participation_gravity=gravity,
+        elastic_flexibility=flex, total_mass=model.total_mass(), fmax=modes.fmax,
+        damping_ratio=spec.damping_ratio,
+        material=np.array([mat.youngs_modulus, mat.poisson_ratio, mat.density]),
+        interfaces=np.array([itf.ram_contact_radius, itf.pile_contact_radius,
+                             itf.pile_contact_width]),
+        interface_areas=np.array(areas), n_dof=model.n_dof, geometry_hash=spec.geometry_hash(),
+        source=source,
+    )
+
+
+def compute_anvil_modes(spec: AnvilSpec, fmax: float | None = None) -> AnvilModes:
+    """Mesh, assemble and solve the free-free modes of an anvil up to ``fmax`` [Hz].
+
+    The modal data (ROM) is built when the spec has interfaces.
+    """
+    start = time.perf_counter()
+    fmax = spec.fmax if fmax is None else fmax
+    mesh = build_mesh(spec)
+    model = assemble(mesh, spec.material)
+    check_fmax(model, fmax, spec.source)
+    modes = free_free_modes(model, fmax)
+    data = b_ram = b_pile = None
+    if spec.interfaces is not None:
+        b_ram, b_pile, a_ram, a_pile = interface_vectors(model, spec.interfaces)
+        if a_ram == 0.0:
+            raise InputError(spec.source, "interfaces.ram_contact_radius",
+                             "no boundary edge of the top face lies inside this radius")
+        if a_pile == 0.0:
+            raise InputError(spec.source, "interfaces.pile_contact_radius",
+                             "no boundary edge of the bottom face lies in the pile ring")
+        data = modal_data_from_modes(spec, model, modes, b_ram, b_pile, (a_ram, a_pile))
+    return AnvilModes(spec, model, modes, data, b_ram, b_pile, time.perf_counter() - start)

@@ -1,0 +1,1 @@
+"""System layer: FMI units, master algorithms, system configuration and the command line."""

@@ -1,0 +1,113 @@
+"""The ``anvilwave`` command line."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from anvil_rom.inputs import InputError
+
+from .output import ResultWriter
+
+
+def _modes(args: argparse.Namespace) -> int:
+    from anvil_rom.geometry import load_anvil
+    from anvil_rom.modalfile import save_modal_data
+    from anvil_rom.pipeline import compute_anvil_modes
+
+    from .plots import plot_modes
+
+    spec = load_anvil(args.anvil)
+    if args.mesh_size is not None:
+        if args.mesh_size <= 0:
+            raise InputError("--mesh-size", "", f"must be positive, got {args.mesh_size:g} m")
+        if spec.outline is None:
+            raise InputError("--mesh-size", "", "only applies to anvils given as [geometry] "
+                                                "points (this one reads a mesh file)")
+        spec = type(spec)(**{**spec.__dict__, "mesh_size": args.mesh_size})
+    if args.fmax is not None and args.fmax <= 0:
+        raise InputError("--fmax", "", f"must be positive, got {args.fmax:g} Hz")
+    if args.from_calculix is not None:
+        from anvil_rom.calculix import modes_from_calculix_job
+
+        result = modes_from_calculix_job(spec, args.from_calculix, fmax=args.fmax)
+    else:
+        result = compute_anvil_modes(spec, fmax=args.fmax)
+    with ResultWriter(args.out) as out:
+        summary = {
+            "anvil": str(args.anvil),
+            "frequencies [Hz]": [float(f) for f in result.modes.frequencies],
+            "total_mass [kg]": result.model.total_mass(),
+            "fmax [Hz]": result.modes.fmax,
+            "n_modes": result.modes.n_modes,
+            "n_dof": result.model.n_dof,
+            "sturm_count": result.modes.sturm_count,
+            "rigid_mode_computed [Hz]": result.modes.rigid_frequency_computed,
+            "mesh_elements": int(result.model.mesh.t.shape[1]),
+            "wall_time [s]": result.wall_time,
+        }
+        if result.modal_data is not None:
+            save_modal_data(result.modal_data, out.part("modes.npz"))
+        else:
+            summary["note"] = "no [interfaces] in the anvil file: modes.npz (the ROM) not written"
+        out.part("modes.json").write_text(json.dumps(summary, indent=2) + "\n")
+        plot_modes(result, out.part("modes.png"))
+        if args.export_ccx is not None:
+            from anvil_rom.calculix import write_ccx_deck_for_model
+
+            write_ccx_deck_for_model(result.model, args.export_ccx, result.modes.n_modes,
+                                     title=spec.name)
+    print(f"{spec.name}: {result.modes.n_modes} modes up to {result.modes.fmax:g} Hz, "
+          f"{result.model.n_dof} DOF, {result.wall_time:.1f} s -> {args.out}")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="anvilwave",
+        description="Impact pile driving with a Mode Displacement Method anvil.",
+    )
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser(
+        "modes", help="free-free modes of an anvil and its modal ROM",
+        description="Mesh the anvil (gmsh), assemble the axisymmetric FE model (scikit-fem), "
+                    "solve ALL free-free modes up to fmax (shift-invert Lanczos, completeness "
+                    "proved by a Sturm count) and write the modal ROM.",
+    )
+    p.add_argument("anvil", type=Path, help="anvil file (TOML): [material], [geometry] or mesh, "
+                                            "[interfaces], [mesh]")
+    p.add_argument("--fmax", type=float, default=None, metavar="HZ",
+                   help="frequency content of the ROM [Hz]: every mode up to it is kept "
+                        "(default: [modes] fmax of the file, else 5000)")
+    p.add_argument("--mesh-size", type=float, default=None, metavar="M",
+                   help="target element size [m] (default: [mesh] size of the file)")
+    p.add_argument("--export-ccx", type=Path, default=None, metavar="FILE",
+                   help="also write the meshed anvil as a CalculiX deck (CAX6, *FREQUENCY) to "
+                        "check the modes in CalculiX")
+    p.add_argument("--from-calculix", type=Path, default=None, metavar="JOB",
+                   help="build the ROM from CalculiX results JOB.frd (mesh and mode shapes) and "
+                        "JOB.dat (frequencies) instead of the built-in FE solution")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR",
+                   help="output folder: modes.npz (ROM), modes.json (summary), modes.png")
+    p.set_defaults(func=_modes)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except InputError as exc:
+        print(f"anvilwave: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("anvilwave: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

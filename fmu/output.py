@@ -1,0 +1,40 @@
+"""Writing result folders without leaving half-written results behind."""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+from pathlib import Path
+
+
+class ResultWriter:
+    """Collect output files in a temporary folder; move them into place only on success.
+
+    >>> with ResultWriter("results/run") as out:
+    ...     out.part("summary.json").write_text("{}")
+    """
+
+    def __init__(self, directory: str | Path):
+        self.directory = Path(directory)
+        self._tmp: Path | None = None
+        self._names: list[str] = []
+
+    def __enter__(self) -> ResultWriter:
+        self.directory.parent.mkdir(parents=True, exist_ok=True)
+        self._tmp = Path(tempfile.mkdtemp(prefix=".partial-", dir=self.directory.parent))
+        return self
+
+    def part(self, name: str) -> Path:
+        """Path of an output file being written."""
+        self._names.append(name)
+        return self._tmp / name
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        try:
+            if exc_type is None:
+                self.directory.mkdir(parents=True, exist_ok=True)
+                for item in self._tmp.iterdir():
+                    item.replace(self.directory / item.name)
+        finally:
+            shutil.rmtree(self._tmp, ignore_errors=True)
+        return False

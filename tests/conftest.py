@@ -1,0 +1,26 @@
+"""Shared fixtures: small anvil models built once per test session."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from anvil_rom.fe import assemble
+from anvil_rom.geometry import STEEL
+from anvil_rom.mesh import mesh_outline, to_skfem
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+
+def cylinder_model(length: float, diameter: float = 1.0, size: float = 0.05):
+    """Assembled FE model of a free solid steel cylinder (half-section r <= D/2, 0 <= z <= L)."""
+    outline = np.array([[0.0, 0.0], [diameter / 2, 0.0], [diameter / 2, length], [0.0, length]])
+    return assemble(to_skfem(mesh_outline(outline, size)), STEEL)
+
+
+@pytest.fixture(scope="session")
+def examples_dir() -> Path:
+    return EXAMPLES
