@@ -114,6 +114,11 @@ class AxisymmetricModel:
             parts.append(b.interior_dofs.T)
         return np.vstack(parts)
 
+    @property
+    def node_coordinates(self) -> np.ndarray:
+        """(n_nodes, 2) coordinates (r, z) [m] of the rows of :meth:`nodal`."""
+        return self.basis.doflocs[:, self.node_dofs[:, 0]].T
+
     def lumped_mass(self) -> np.ndarray:
         """Diagonal (HRZ) lumped mass on the free DOFs [kg].
 

@@ -1,6 +1,6 @@
 """Meshing of the anvil half-section with gmsh, and import of existing meshes with meshio.
 
-The FE model always works on a :class:`skfem.MeshTri2` or :class:`skfem.MeshQuad2` (quadratic
+The FE model works on a scikit-fem triangle or quadrilateral mesh (linear or quadratic
 geometry); coordinates are (r, z) [m] with z pointing down.
 """
 
@@ -121,27 +121,15 @@ def _compact(mesh: meshio.Mesh) -> meshio.Mesh:
 
 
 def to_skfem(mesh: meshio.Mesh) -> skfem.Mesh:
-    """Convert a 2D meshio mesh to a quadratic-geometry scikit-fem mesh.
+    """Convert a 2D meshio mesh to a scikit-fem mesh.
 
-    Linear meshes are lifted to quadratic geometry (straight edges), so the FE model always uses
-    quadratic Lagrange elements.
+    Linear meshes keep their straight-edged geometry; the FE model always puts quadratic
+    Lagrange elements on them (see :func:`anvil_rom.fe.element_for`).
     """
     from skfem.io.meshio import from_meshio
 
     ctype = mesh.cells[0].type
-    m = from_meshio(meshio.Mesh(np.asarray(mesh.points)[:, :2], [(ctype, mesh.cells[0].data)]))
-    if ctype in ("triangle", "quad"):
-        m = _lift(m, skfem.MeshTri2 if ctype == "triangle" else skfem.MeshQuad2)
-    return m
-
-
-def _lift(m: skfem.Mesh, cls) -> skfem.Mesh:
-    """Quadratic-geometry version of a linear mesh with straight edges."""
-    base = skfem.MeshTri1 if cls is skfem.MeshTri2 else skfem.MeshQuad1
-    lin = base(m.p, m.t)
-    elem = skfem.ElementTriP2() if cls is skfem.MeshTri2 else skfem.ElementQuad2()
-    basis = skfem.Basis(lin, elem)
-    return cls(lin.p, lin.t, doflocs=basis.doflocs)
+    return from_meshio(meshio.Mesh(np.asarray(mesh.points)[:, :2], [(ctype, mesh.cells[0].data)]))
 
 
 def build_mesh(spec: AnvilSpec) -> skfem.Mesh:

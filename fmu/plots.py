@@ -39,7 +39,8 @@ def plot_modes(result, path: str | Path, n_shapes: int = 5) -> Path:
         for vec, color, label in ((result.b_ram, "tab:red", "ram face"),
                                   (result.b_pile, "tab:blue", "pile ring")):
             loaded = np.abs(model.nodal(vec)[:, 1]) > 0
-            axes[0].plot(mesh.doflocs[0, loaded], mesh.doflocs[1, loaded], ".", ms=3,
+            xy = model.node_coordinates[loaded]
+            axes[0].plot(xy[:, 0], xy[:, 1], ".", ms=3,
                          color=color, label=label)
         axes[0].legend(loc="lower left", fontsize=7)
     axes[0].set_title(f"{result.spec.name}: {model.n_dof} DOF", fontsize=9)
