@@ -16,14 +16,20 @@ CalculiX conventions and how they are mapped (checked with ccx 2.20):
   element is re-ordered from the sign of its corner area in (x, y).
 - ccx expands each axisymmetric element into a 2-degree sector of 3D elements (CAX6 -> 15-node
   wedge, CAX8 -> 20-node brick) and does not by itself keep u_r = 0 on the axis: in free-free
-  runs the axis nodes move radially by 0.1-0.5 % of the largest radial displacement. The deck
+  runs of a cylinder the axis nodes moved radially by up to 0.35 % of the largest radial
+  displacement (the frequencies by < 3e-7, as the hoop strain u_r / r penalises it). The deck
   therefore fixes u_x of the nodes on the axis (``*BOUNDARY``), the axisymmetry condition that
   anvilwave's FE applies too. It is not a support: the axial rigid-body mode stays at 0 Hz.
 - The eigenvectors are normalised to the mass of the 2-degree sector (1/180 of the body), so
   :func:`modes_from_calculix` re-normalises them with anvilwave's consistent mass matrix.
-- For 2D elements ccx writes the ``.frd`` on the 2D mesh (``*NODE FILE, OUTPUT=2D``, the
-  default, written explicitly in the deck). With ``OUTPUT=3D`` it writes the expanded sector;
-  :func:`read_frd` maps that back onto the 2D mesh.
+- For 2D elements ccx writes the ``.frd`` on the 2D mesh by default (``*NODE FILE,
+  OUTPUT=2D``). Those values are averages over the sector thickness of the Cartesian u_x of the
+  expanded nodes, so u_r comes out low by 1 - cos(1 deg) = 1.5e-4 (relative) at midside nodes
+  and by a third of that at corner nodes (measured; u_z is exact). With ``OUTPUT=3D``
+  (``write_ccx_deck(..., expanded_output=True)``) ccx writes the expanded sector instead, which
+  :func:`read_frd` maps back onto the 2D mesh without that bias (each face node's displacement
+  is projected on its own radial direction), at the price of a 2-3 times larger file and
+  nodes numbered anew.
 - ``.frd`` numbers have 6 significant digits (format E12.5): coordinates and mode shapes read
   back carry a relative rounding error up to 5e-6. The ``.dat`` eigenvalue table has 7.
 """
@@ -100,7 +106,8 @@ class CalculixModes(NamedTuple):
 
 # ---------------------------------------------------------------------------------- deck
 def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell_type: str,
-                   material: Material, n_modes: int, title: str = "") -> Path:
+                   material: Material, n_modes: int, title: str = "", *,
+                   expanded_output: bool = False) -> Path:
     """Write a CalculiX deck for the free-free axisymmetric modes of a 2D (r, z) mesh.
 
     Parameters
@@ -112,6 +119,8 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
     material : linear elastic material (E [Pa], nu [-], rho [kg/m^3]).
     n_modes : number of eigenmodes to extract, the axial rigid-body mode included [-].
     title : one-line heading written into the deck.
+    expanded_output : write the results on the expanded 3D sector (``OUTPUT=3D``) instead of the
+        2D mesh; see the module docstring.
 
     Node i of ``points`` becomes CalculiX node i + 1 and cell j element j + 1. Only nodes used
     by the elements are written. Nodes on the axis get u_r = 0 (see the module docstring); no
@@ -142,7 +151,8 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
     axis = used[np.abs(points[used, 0]) <= 1e-9 * scale]
 
     # ccx reads at most 20 characters per number: 13 significant digits fit
-    lines = ["*HEADING", " ".join(str(title).split()) or "anvilwave free-free axisymmetric modes"]
+    heading = " ".join(str(title).encode("ascii", "replace").decode().split()).lstrip("*")
+    lines = ["*HEADING", heading or "anvilwave free-free axisymmetric modes"]
     lines.append("*NODE, NSET=NALL")
     lines += [f"{i + 1}, {xy[i, 0]:.12e}, {xy[i, 1]:.12e}" for i in used]
     lines.append(f"*ELEMENT, TYPE={CCX_ELEMENTS[cell_type]}, ELSET=EALL")
@@ -161,7 +171,7 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
         "*STEP",
         "*FREQUENCY",
         f"{int(n_modes)}",
-        "*NODE FILE, OUTPUT=2D",
+        f"*NODE FILE, OUTPUT={'3D' if expanded_output else '2D'}",
         "U",
         "*END STEP",
     ]
@@ -171,11 +181,12 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
 
 
 def write_ccx_deck_from_mesh(path: str | Path, mesh: meshio.Mesh, material: Material,
-                             n_modes: int, title: str = "") -> Path:
+                             n_modes: int, title: str = "", *,
+                             expanded_output: bool = False) -> Path:
     """:func:`write_ccx_deck` for a 2D meshio mesh in (r, z) [m] (its first cell block)."""
     block = mesh.cells[0]
     return write_ccx_deck(path, np.asarray(mesh.points)[:, :2], block.data, block.type,
-                          material, n_modes, title)
+                          material, n_modes, title, expanded_output=expanded_output)
 
 
 def _signed_areas(xy: np.ndarray, corners: np.ndarray) -> np.ndarray:
@@ -441,11 +452,11 @@ def _index_of(ids: np.ndarray, numbers: np.ndarray, path: Path, key: str) -> np.
 def _frd_2d(frd: _Frd, path: Path):
     """2D (x, y) nodes, connectivity and per-mode (u_x, u_y) of a 2D-element .frd."""
     cell_type = _FRD_2D[frd.etype]
-    scale = max(float(np.abs(frd.xyz).max()), 1e-300)
-    if np.any(np.abs(frd.xyz[:, 2]) > 1e-9 * scale):
-        raise InputError(path, "nodes", "2D elements with nodes off the x-y plane")
     used, inverse = np.unique(frd.conn, return_inverse=True)
     node_index = _index_of(frd.ids, used, path, "elements")
+    xyz = frd.xyz[node_index]
+    if np.any(np.abs(xyz[:, 2]) > 1e-9 * max(float(np.abs(xyz).max()), 1e-300)):
+        raise InputError(path, "nodes", "2D elements with nodes off the x-y plane")
     # keep the file's node order
     keep = np.sort(node_index)
     rank = np.empty(len(frd.ids), dtype=np.int64)
@@ -488,10 +499,10 @@ def _frd_sector(frd: _Frd, path: Path):
     cells = np.hstack([corner_inv.reshape(mid.shape), nc + pair_inv.reshape(a.shape)])
 
     def radial(p, u):
-        """Radius of sector-face nodes [m] and displacement along their radial direction."""
+        """Displacement of sector-face nodes along their own radial direction."""
         r = np.hypot(p[:, 0], p[:, 2])
         safe = np.where(r > 0.0, r, 1.0)
-        return r, np.where(r > 0.0, (u[:, 0] * p[:, 0] + u[:, 2] * p[:, 2]) / safe, u[:, 0])
+        return np.where(r > 0.0, (u[:, 0] * p[:, 0] + u[:, 2] * p[:, 2]) / safe, u[:, 0])
 
     pa, pb = xyz[pair_nodes[:, 0]], xyz[pair_nodes[:, 1]]
     r_mid = 0.5 * (np.hypot(pa[:, 0], pa[:, 2]) + np.hypot(pb[:, 0], pb[:, 2]))
@@ -504,7 +515,7 @@ def _frd_sector(frd: _Frd, path: Path):
         except KeyError as exc:
             raise InputError(path, "DISP", f"no displacement for node {exc.args[0]}") from None
         ua, ub = u[pair_nodes[:, 0]], u[pair_nodes[:, 1]]
-        ura, urb = radial(pa, ua)[1], radial(pb, ub)[1]
+        ura, urb = radial(pa, ua), radial(pb, ub)
         disp.append(np.vstack([u[corner_nodes, :2],
                                np.column_stack([0.5 * (ura + urb), 0.5 * (ua[:, 1] + ub[:, 1])])]))
     return points, cells, cell_type, np.array(disp)
@@ -620,7 +631,7 @@ def modes_from_calculix(frd_path: str | Path, dat_path: str | Path, material: Ma
 
     # node-by-node map from the .frd nodes to the model's DOFs
     node_dofs = model.node_dofs
-    locations = model.basis.doflocs[:, node_dofs[:, 1]].T
+    locations = model.node_coordinates
     scale = max(float(np.ptp(points, axis=0).max()), 1e-300)
     dist, which = cKDTree(points).query(locations)
     if (len(locations) != len(points) or np.any(dist > 1e-9 * scale)

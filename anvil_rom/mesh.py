@@ -132,9 +132,9 @@ def to_skfem(mesh: meshio.Mesh) -> skfem.Mesh:
     return from_meshio(meshio.Mesh(np.asarray(mesh.points)[:, :2], [(ctype, mesh.cells[0].data)]))
 
 
-def build_mesh(spec: AnvilSpec) -> skfem.Mesh:
-    """The scikit-fem mesh of an anvil spec: gmsh for an outline, meshio for a mesh file."""
+def build_mesh(spec: AnvilSpec) -> meshio.Mesh:
+    """The mesh of an anvil spec: gmsh for an outline, meshio for a mesh file."""
     if spec.outline is not None:
         outline = split_outline_at_interfaces(spec.outline, spec.interfaces)
-        return to_skfem(mesh_outline(outline, spec.mesh_size))
-    return to_skfem(read_mesh(spec.mesh_file, spec.source, "mesh"))
+        return mesh_outline(outline, spec.mesh_size)
+    return read_mesh(spec.mesh_file, spec.source, "mesh")

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
+import meshio
 import numpy as np
 
 from .fe import AxisymmetricModel, assemble, interface_vectors
 from .geometry import AnvilSpec
 from .inputs import InputError
-from .mesh import build_mesh
+from .mesh import build_mesh, to_skfem
 from .modalfile import ModalData
 from .modes import ModeSet, elastic_flexibility, free_free_modes, mesh_resolvable_frequency
 
@@ -20,6 +22,7 @@ class AnvilModes:
     """Result of the modal analysis of an anvil."""
 
     spec: AnvilSpec
+    mesh: meshio.Mesh
     model: AxisymmetricModel
     modes: ModeSet
     modal_data: ModalData | None
@@ -70,9 +73,34 @@ def compute_anvil_modes(spec: AnvilSpec, fmax: float | None = None) -> AnvilMode
     start = time.perf_counter()
     fmax = spec.fmax if fmax is None else fmax
     mesh = build_mesh(spec)
-    model = assemble(mesh, spec.material)
+    model = assemble(to_skfem(mesh), spec.material)
     check_fmax(model, fmax, spec.source)
     modes = free_free_modes(model, fmax)
+    return _finish(spec, mesh, model, modes, "anvilwave", start)
+
+
+def anvil_modes_from_calculix(spec: AnvilSpec, job: str | Path, fmax: float | None = None
+                              ) -> AnvilModes:
+    """The same result from a CalculiX run ``job``.frd / ``job``.dat of the anvil.
+
+    The mesh is the one in the .frd; material and interfaces come from the anvil spec; only
+    modes up to ``fmax`` [Hz] (default: the spec's) are kept, and a Sturm count of the FE model
+    on that mesh proves CalculiX found all of them.
+    """
+    from .calculix import modes_from_calculix
+
+    start = time.perf_counter()
+    job = Path(job)
+    frd, dat = job.with_name(job.name + ".frd"), job.with_name(job.name + ".dat")
+    for path in (frd, dat):
+        if not path.exists():
+            raise InputError(str(path), "", "CalculiX result file not found")
+    fmax = spec.fmax if fmax is None else fmax
+    result = modes_from_calculix(frd, dat, spec.material, fmax=fmax)
+    return _finish(spec, result.mesh, result.model, result.modes, "calculix", start)
+
+
+def _finish(spec, mesh, model, modes, source, start) -> AnvilModes:
     data = b_ram = b_pile = None
     if spec.interfaces is not None:
         b_ram, b_pile, a_ram, a_pile = interface_vectors(model, spec.interfaces)
@@ -82,5 +110,6 @@ def compute_anvil_modes(spec: AnvilSpec, fmax: float | None = None) -> AnvilMode
         if a_pile == 0.0:
             raise InputError(spec.source, "interfaces.pile_contact_radius",
                              "no boundary edge of the bottom face lies in the pile ring")
-        data = modal_data_from_modes(spec, model, modes, b_ram, b_pile, (a_ram, a_pile))
-    return AnvilModes(spec, model, modes, data, b_ram, b_pile, time.perf_counter() - start)
+        data = modal_data_from_modes(spec, model, modes, b_ram, b_pile, (a_ram, a_pile),
+                                     source=source)
+    return AnvilModes(spec, mesh, model, modes, data, b_ram, b_pile, time.perf_counter() - start)

@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from anvil_rom.inputs import InputError
+from anvil_rom.modes import ModeSolveError
 
 from .output import ResultWriter
 
@@ -15,7 +16,7 @@ from .output import ResultWriter
 def _modes(args: argparse.Namespace) -> int:
     from anvil_rom.geometry import load_anvil
     from anvil_rom.modalfile import save_modal_data
-    from anvil_rom.pipeline import compute_anvil_modes
+    from anvil_rom.pipeline import anvil_modes_from_calculix, compute_anvil_modes
 
     from .plots import plot_modes
 
@@ -30,9 +31,7 @@ def _modes(args: argparse.Namespace) -> int:
     if args.fmax is not None and args.fmax <= 0:
         raise InputError("--fmax", "", f"must be positive, got {args.fmax:g} Hz")
     if args.from_calculix is not None:
-        from anvil_rom.calculix import modes_from_calculix_job
-
-        result = modes_from_calculix_job(spec, args.from_calculix, fmax=args.fmax)
+        result = anvil_modes_from_calculix(spec, args.from_calculix, fmax=args.fmax)
     else:
         result = compute_anvil_modes(spec, fmax=args.fmax)
     with ResultWriter(args.out) as out:
@@ -55,10 +54,10 @@ def _modes(args: argparse.Namespace) -> int:
         out.part("modes.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_modes(result, out.part("modes.png"))
         if args.export_ccx is not None:
-            from anvil_rom.calculix import write_ccx_deck_for_model
+            from anvil_rom.calculix import write_ccx_deck_from_mesh
 
-            write_ccx_deck_for_model(result.model, args.export_ccx, result.modes.n_modes,
-                                     title=spec.name)
+            write_ccx_deck_from_mesh(args.export_ccx, result.mesh, spec.material,
+                                     result.modes.n_modes, title=spec.name)
     print(f"{spec.name}: {result.modes.n_modes} modes up to {result.modes.fmax:g} Hz, "
           f"{result.model.n_dof} DOF, {result.wall_time:.1f} s -> {args.out}")
     return 0
@@ -101,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except InputError as exc:
+    except (InputError, ModeSolveError) as exc:
         print(f"anvilwave: error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

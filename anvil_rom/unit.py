@@ -1,0 +1,159 @@
+"""The anvil as a system component: modal ROM (or rigid mass) plus its two contacts.
+
+This is what the Anvil / AnvilLumped FMUs and the in-process engine both run. Inputs are the
+ram toe and pile head states, outputs the two contact forces (feedthrough, evaluated at the
+same instant) and the interface displacements; the step advances the modes exactly with the
+forces held.
+
+Kernel data layout (float64 arrays, shared by every anvil-like unit so the engine can call any
+of them through the same signature):
+
+- ``P`` parameters: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity]
+- ``C`` (n, 9) per-mode table: transition coefficients (6) for the current step, then
+  p_ram, p_pile, p_grav
+- ``S`` state: [q (n), qd (n)]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from .inputs import InputError
+from .rom import ModalAnvil, anvil_contact_forces, modal_interface, modal_step
+
+GRAVITY = 9.81  # [m/s^2]
+
+
+@dataclass(frozen=True)
+class ContactParameters:
+    """Penalty contacts of the anvil.
+
+    ram_stiffness, pile_stiffness : compression-only contact springs [N/m].
+    ram_damping, pile_damping : contact dashpots [N s/m].
+    """
+
+    ram_stiffness: float
+    pile_stiffness: float
+    ram_damping: float = 0.0
+    pile_damping: float = 0.0
+
+    def __post_init__(self):
+        for name in ("ram_stiffness", "pile_stiffness"):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value > 0.0):
+                raise InputError("anvil contact", name, f"must be positive [N/m], got {value!r}")
+        for name in ("ram_damping", "pile_damping"):
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value >= 0.0):
+                raise InputError("anvil contact", name, f"must be >= 0 [N s/m], got {value!r}")
+
+
+@dataclass
+class AnvilUnit:
+    """Modal (or rigid) anvil with its ram and pile contacts.
+
+    anvil : the ROM (``ModalAnvil.from_modal_data``) or the rigid mass (``ModalAnvil.rigid``).
+    contact : contact springs and dashpots.
+    gravity : gravitational acceleration [m/s^2] (0 to switch gravity off).
+    """
+
+    anvil: ModalAnvil
+    contact: ContactParameters
+    gravity: float = GRAVITY
+
+    def __post_init__(self):
+        r = self.anvil.residual_flexibility
+        c = self.contact
+        self.P = np.array([c.ram_stiffness, c.ram_damping, c.pile_stiffness, c.pile_damping,
+                           r[0, 0], r[0, 1], r[1, 1], self.gravity])
+        n = self.anvil.n_modes
+        self.C = np.zeros((n, 9))
+        self.C[:, 6] = self.anvil.participation_ram
+        self.C[:, 7] = self.anvil.participation_pile
+        self.C[:, 8] = self.anvil.participation_gravity
+        self._h = None
+        self.S = np.zeros(2 * n)
+
+    @property
+    def n_modes(self) -> int:
+        return self.anvil.n_modes
+
+    def set_step(self, h: float) -> None:
+        """Prepare the exact transition coefficients for a step ``h`` [s]."""
+        if h != self._h:
+            self.C[:, :6] = self.anvil.transition(h)
+            self._h = h
+
+    def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
+        """Static equilibrium on the pile under gravity (ram not yet touching).
+
+        Sets the state and returns (u_top, pile contact force [N]). The ram toe touches the top
+        face when its displacement equals the returned u_top.
+        """
+        force_pile = self.anvil.total_mass * self.gravity
+        q = self.anvil.static_modal_coordinates(0.0, force_pile)
+        p_ram, p_pile = self.anvil.participation_ram, self.anvil.participation_pile
+        r = self.anvil.residual_flexibility
+        u_bottom_target = pile_head_displacement + force_pile / self.contact.pile_stiffness
+        u_bottom_flex = p_pile @ q - r[1, 1] * force_pile
+        q[0] = (u_bottom_target - u_bottom_flex) / p_pile[0]
+        n = self.n_modes
+        self.S[:n] = q
+        self.S[n:] = 0.0
+        u_top = float(p_ram @ q - r[0, 1] * force_pile)
+        return u_top, force_pile
+
+    def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
+               ) -> tuple[float, float]:
+        """Contact forces (F_ram, F_pile) [N] for the given neighbour states (feedthrough)."""
+        return modal_unit_forces(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
+
+    def step(self, force_ram: float, force_pile: float, h: float) -> None:
+        """Advance the modes over ``h`` [s] with the contact forces held."""
+        self.set_step(h)
+        modal_unit_step(self.P, self.C, self.S, force_ram, force_pile)
+
+    def outputs(self, force_ram: float, force_pile: float) -> tuple[float, float, float, float]:
+        """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included."""
+        return modal_unit_outputs(self.P, self.C, self.S, force_ram, force_pile)
+
+    def energy(self) -> tuple[float, float]:
+        """(kinetic, strain) energy of the retained modes [J]."""
+        return modal_unit_energy(self.C, self.S, self.anvil.omega)
+
+
+@njit(cache=True)
+def modal_unit_outputs(P, C, S, force_ram, force_pile):
+    n = C.shape[0]
+    ut, vt, ub, vb = modal_interface(C[:, 6], C[:, 7], S[:n], S[n:])
+    ut += P[4] * force_ram - P[5] * force_pile
+    ub += P[5] * force_ram - P[6] * force_pile
+    return ut, vt, ub, vb
+
+
+@njit(cache=True)
+def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
+    n = C.shape[0]
+    ut, vt, ub, vb = modal_interface(C[:, 6], C[:, 7], S[:n], S[n:])
+    return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, ut, vt, ub, vb,
+                                P[0], P[1], P[2], P[3], P[4], P[5], P[6])
+
+
+@njit(cache=True)
+def modal_unit_step(P, C, S, force_ram, force_pile):
+    n = C.shape[0]
+    modal_step(C[:, :6], C[:, 6], C[:, 7], C[:, 8], S[:n], S[n:], force_ram, force_pile, P[7])
+
+
+@njit(cache=True)
+def modal_unit_energy(C, S, omega):
+    n = C.shape[0]
+    kinetic = 0.0
+    strain = 0.0
+    for j in range(n):
+        kinetic += 0.5 * S[n + j] ** 2
+        strain += 0.5 * (omega[j] * S[j]) ** 2
+    return kinetic, strain
