@@ -8,10 +8,10 @@ forces held.
 Kernel data layout (float64 arrays, shared by every anvil-like unit so the engine can call any
 of them through the same signature):
 
-- ``P`` parameters: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity]
-- ``C`` (n, 9) per-mode table: transition coefficients (6) for the current step, then
-  p_ram, p_pile, p_grav
-- ``S`` state: [q (n), qd (n)]
+- ``P`` parameters: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h]
+- ``C`` (n, 8) per-mode table: step coefficients a, b, c, m_e for the step h
+  (:func:`anvil_rom.rom.modal_transition`), then p_ram, p_pile, p_grav, omega
+- ``S`` state: [q (n) at t_n, q (n) at t_n-1]
 """
 
 from __future__ import annotations
@@ -68,23 +68,34 @@ class AnvilUnit:
         r = self.anvil.residual_flexibility
         c = self.contact
         self.P = np.array([c.ram_stiffness, c.ram_damping, c.pile_stiffness, c.pile_damping,
-                           r[0, 0], r[0, 1], r[1, 1], self.gravity])
+                           r[0, 0], r[0, 1], r[1, 1], self.gravity, 1.0])
         n = self.anvil.n_modes
-        self.C = np.zeros((n, 9))
-        self.C[:, 6] = self.anvil.participation_ram
-        self.C[:, 7] = self.anvil.participation_pile
-        self.C[:, 8] = self.anvil.participation_gravity
+        self.C = np.zeros((n, 8))
+        self.C[:, 4] = self.anvil.participation_ram
+        self.C[:, 5] = self.anvil.participation_pile
+        self.C[:, 6] = self.anvil.participation_gravity
+        self.C[:, 7] = self.anvil.omega
         self._h = None
         self.S = np.zeros(2 * n)
+        self.set_step(1e-5)
 
     @property
     def n_modes(self) -> int:
         return self.anvil.n_modes
 
     def set_step(self, h: float) -> None:
-        """Prepare the exact transition coefficients for a step ``h`` [s]."""
+        """Prepare the step coefficients for a step ``h`` [s].
+
+        The two-step state is rescaled so that the half-step velocity is kept across a change
+        of step size.
+        """
         if h != self._h:
-            self.C[:, :6] = self.anvil.transition(h)
+            n = self.n_modes
+            if self._h is not None:
+                q, q_prev = self.S[:n], self.S[n:]
+                q_prev[:] = q - (q - q_prev) * (h / self._h)
+            self.C[:, :4] = self.anvil.transition(h)
+            self.P[8] = h
             self._h = h
 
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
@@ -102,7 +113,7 @@ class AnvilUnit:
         q[0] = (u_bottom_target - u_bottom_flex) / p_pile[0]
         n = self.n_modes
         self.S[:n] = q
-        self.S[n:] = 0.0
+        self.S[n:] = q
         u_top = float(p_ram @ q - r[0, 1] * force_pile)
         return u_top, force_pile
 
@@ -120,15 +131,20 @@ class AnvilUnit:
         """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included."""
         return modal_unit_outputs(self.P, self.C, self.S, force_ram, force_pile)
 
-    def energy(self) -> tuple[float, float]:
-        """(kinetic, strain) energy of the retained modes [J]."""
-        return modal_unit_energy(self.C, self.S, self.anvil.omega)
+    def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
+               ) -> tuple[float, float]:
+        """(kinetic, potential) energy of the unit [J] for the given neighbour states.
+
+        Potential = modal strain + gravity potential of the anvil + the energy stored in the
+        two contact springs and in the residual flexibility.
+        """
+        return modal_unit_energy(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
 
 @njit(cache=True)
 def modal_unit_outputs(P, C, S, force_ram, force_pile):
     n = C.shape[0]
-    ut, vt, ub, vb = modal_interface(C[:, 6], C[:, 7], S[:n], S[n:])
+    ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     ut += P[4] * force_ram - P[5] * force_pile
     ub += P[5] * force_ram - P[6] * force_pile
     return ut, vt, ub, vb
@@ -137,7 +153,7 @@ def modal_unit_outputs(P, C, S, force_ram, force_pile):
 @njit(cache=True)
 def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
     n = C.shape[0]
-    ut, vt, ub, vb = modal_interface(C[:, 6], C[:, 7], S[:n], S[n:])
+    ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, ut, vt, ub, vb,
                                 P[0], P[1], P[2], P[3], P[4], P[5], P[6])
 
@@ -145,15 +161,26 @@ def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
 @njit(cache=True)
 def modal_unit_step(P, C, S, force_ram, force_pile):
     n = C.shape[0]
-    modal_step(C[:, :6], C[:, 6], C[:, 7], C[:, 8], S[:n], S[n:], force_ram, force_pile, P[7])
+    modal_step(C, C[:, 4], C[:, 5], C[:, 6], S[:n], S[n:], force_ram, force_pile, P[7])
 
 
 @njit(cache=True)
-def modal_unit_energy(C, S, omega):
+def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
+    """(kinetic, potential) [J] in the conserved (shadow) form of the two-step scheme.
+
+    kinetic = sum m_e ((q_n - q_n-1) / h)^2 / 2; potential = sum w^2 q_n q_n-1 / 2
+    - g p_grav (q_n + q_n-1) / 2 + F^2 / (2 k) per contact + F^T R F / 2 (residual flexibility).
+    The contact dashpots, if any, are not counted.
+    """
     n = C.shape[0]
+    h = P[8]
     kinetic = 0.0
-    strain = 0.0
+    potential = 0.0
     for j in range(n):
-        kinetic += 0.5 * S[n + j] ** 2
-        strain += 0.5 * (omega[j] * S[j]) ** 2
-    return kinetic, strain
+        q, qp = S[j], S[n + j]
+        kinetic += 0.5 * C[j, 3] * ((q - qp) / h) ** 2
+        potential += 0.5 * C[j, 7] ** 2 * q * qp - P[7] * C[j, 6] * 0.5 * (q + qp)
+    f_ram, f_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    potential += 0.5 * f_ram**2 / P[0] + 0.5 * f_pile**2 / P[2]
+    potential += 0.5 * (P[4] * f_ram**2 - 2.0 * P[5] * f_ram * f_pile + P[6] * f_pile**2)
+    return kinetic, potential

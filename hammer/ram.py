@@ -1,17 +1,20 @@
 """The ram as a non-uniform 1D elastic rod of lumped masses and springs (or a rigid body).
 
-Discretisation (Smith 1960): the ram, top to toe, is cut into elements of length dx_j, area A_j,
-modulus E; element j becomes a spring k_j = E A_j / dx_j between nodes j and j + 1, and its mass
-rho A_j dx_j is split in halves onto those two nodes. So n nodes carry n masses m_i and n - 1
-springs; node 0 is the top of the ram and node n - 1 its toe (the striking face). The lumping
-keeps the total mass and the centre of mass exactly, and the springs in series give the exact
-static stiffness 1 / sum(dx_j / (E A_j)) (E A / L for a uniform ram). A rigid ram is n = 1.
+Discretisation (Smith 1960): the ram, top to toe, is cut into segments of length dx_j, area A_j,
+modulus E; segment j becomes a mass m_j = rho A_j dx_j at its centre, and neighbouring centres
+are joined by the two half segments in series, 1 / k = dx_j / (2 E A_j) + dx_j+1 / (2 E A_j+1).
+So n segments carry n masses and n - 1 springs; mass 0 is the top segment and mass n - 1 the toe
+segment. The half segment below the toe mass, ``toe_stiffness`` = 2 E A / dx, joins the toe mass
+to the striking face: it is the ram's side of the contact spring, as in Smith's model, so that
+ram, contact and the neighbour form one regular chain (a rod striking a rod of the same section
+is then exactly the uniform chain, dispersion free at the Courant number 1). The lumping keeps
+the total mass and the centre of mass exactly, and the springs in series with the toe half
+segment and the top half segment give the static stiffness E A / L of a uniform ram. A rigid ram
+is n = 1 (no toe spring: the contact stiffness must then be given).
 
-Time stepping: velocity Verlet (the synchronous form of the leapfrog / central-difference scheme;
-kick v += dt/2 a, drift u += dt v, kick v += dt/2 a), so u and v are known at the same instants,
-as the contacts need. It is symplectic, second-order and stable for dt < 2 / omega_max. For a
-uniform chain omega_max = 2 c / dx, and at the Courant number c dt / dx = 1 the scheme
-propagates waves without dispersion.
+Time stepping: leapfrog (symplectic Euler, v += dt a; u += dt v), second order for the staggered
+velocity, stable for dt < 2 / omega_max; for a uniform chain omega_max = 2 c / dx, and at the
+Courant number c dt / dx = 1 the scheme propagates waves without dispersion.
 
 Sign conventions: z down; u, v positive downward; spring force N_j = k_j (u_j - u_{j+1}) is
 positive in compression; the toe force F_toe (contact with the anvil) is positive in compression
@@ -43,11 +46,13 @@ DEFAULT_SEGMENT_LENGTH = 0.5
 
 # --------------------------------------------------------------------------- discretisation
 def lump_rod(lengths, areas, elastic_modulus: float, density: float,
-             segment_length: float) -> tuple[np.ndarray, np.ndarray]:
-    """Lumped masses [kg] and springs [N/m] of a rod made of uniform sections (top first).
+             segment_length: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Lumped masses [kg], springs [N/m] and toe half-segment spring [N/m] of a rod made of
+    uniform sections (top first).
 
-    Each section of length L_s is cut into ceil(L_s / segment_length) equal elements; element
-    stiffness E A / dx, element mass rho A dx split half-and-half onto its two end nodes.
+    Each section of length L_s is cut into ceil(L_s / segment_length) equal segments; each
+    segment's mass rho A dx sits at its centre, centres are joined by two half segments in
+    series, and the toe half segment 2 E A / dx joins the last mass to the striking face.
 
     Parameters
     ----------
@@ -64,7 +69,8 @@ def lump_rod(lengths, areas, elastic_modulus: float, density: float,
 
     Returns
     -------
-    mass : (n,) nodal masses [kg]; stiffness : (n - 1,) spring stiffnesses [N/m].
+    mass : (n,) segment masses [kg]; stiffness : (n - 1,) springs between them [N/m];
+    toe_stiffness : the toe half segment 2 E A / dx [N/m].
     """
     element_dx = []
     element_area = []
@@ -74,12 +80,10 @@ def lump_rod(lengths, areas, elastic_modulus: float, density: float,
         element_area += [area] * count
     dx = np.array(element_dx)
     area = np.array(element_area)
-    stiffness = elastic_modulus * area / dx
-    element_mass = density * area * dx
-    mass = np.zeros(len(dx) + 1)
-    mass[:-1] += 0.5 * element_mass
-    mass[1:] += 0.5 * element_mass
-    return mass, stiffness
+    half = 2.0 * elastic_modulus * area / dx  # stiffness of a half segment
+    stiffness = 1.0 / (1.0 / half[:-1] + 1.0 / half[1:])
+    mass = density * area * dx
+    return mass, stiffness, float(half[-1])
 
 
 def circle_area(outer_diameter: float, inner_diameter: float = 0.0) -> float:
@@ -101,12 +105,16 @@ class RamRod:
         Ram length [m] (nan when built from explicit segments or as a rigid body).
     toe_diameter : float
         Diameter of the striking face [m] (nan if unknown); the anvil ROM needs it.
+    toe_stiffness : float
+        Half segment between the toe mass and the striking face [N/m], the ram's side of the
+        contact spring (nan for a rigid ram or explicit segments: give a contact stiffness).
     """
 
     mass: np.ndarray
     stiffness: np.ndarray
     length: float = math.nan
     toe_diameter: float = math.nan
+    toe_stiffness: float = math.nan
 
     def __post_init__(self):
         mass = np.ascontiguousarray(self.mass, dtype=np.float64).copy()
@@ -140,8 +148,9 @@ class RamRod:
         inner = np.zeros_like(outer) if inner_diameters is None else np.asarray(
             inner_diameters, float)
         areas = [circle_area(o, i) for o, i in zip(outer, inner, strict=True)]
-        mass, stiffness = lump_rod(lengths, areas, elastic_modulus, density, segment_length)
-        return cls(mass, stiffness, float(lengths.sum()), float(outer[-1]))
+        mass, stiffness, toe = lump_rod(lengths, areas, elastic_modulus, density,
+                                        segment_length)
+        return cls(mass, stiffness, float(lengths.sum()), float(outer[-1]), toe)
 
     @classmethod
     def uniform(cls, length: float, diameter: float, **kwargs) -> RamRod:
@@ -170,13 +179,15 @@ class RamRod:
 
     @property
     def static_stiffness(self) -> float:
-        """Stiffness between top and toe [N/m]: the springs in series (inf when rigid)."""
+        """Stiffness between the top mass and the striking face [N/m]: the springs and the toe
+        half segment in series (inf when rigid; without the toe half segment if unknown)."""
         if self.is_rigid:
             return math.inf
-        return float(1.0 / np.sum(1.0 / self.stiffness))
+        toe = 0.0 if math.isnan(self.toe_stiffness) else 1.0 / self.toe_stiffness
+        return float(1.0 / (np.sum(1.0 / self.stiffness) + toe))
 
     def stable_time_step(self) -> float:
-        """Largest stable velocity-Verlet step [s] (Gershgorin bound; inf when rigid)."""
+        """Largest stable leapfrog step [s] (Gershgorin bound; inf when rigid)."""
         return stable_time_step(self.mass, self.stiffness)
 
     def initial_state(self, impact_velocity: float) -> tuple[np.ndarray, np.ndarray]:
@@ -207,9 +218,14 @@ def _kick(mass, stiffness, u, v, toe_force, gravity, dt):
 
 @njit(cache=True)
 def ram_step(mass, stiffness, u, v, toe_force, gravity, h, n_sub):
-    """Advance the ram over a communication step h [s] in n_sub velocity-Verlet sub-steps.
+    """Advance the ram over a communication step h [s] in n_sub leapfrog sub-steps.
 
-    Works in place on u, v. The toe force is held constant over the step.
+    Works in place on u, v. The toe force is held constant over the step. Each sub-step is the
+    symplectic Euler (leapfrog) update v += dt a(u); u += dt v, so v is the velocity half a
+    sub-step before u. The leapfrog form matters for the coupling: the master holds the contact
+    force computed from the displacements at t_n, and a velocity-Verlet step with that held
+    force (u += h v + h^2 a / 2, v += h a) would be unstable for the contact spring (energy
+    growth (w h)^2 / 2 per step); leapfrog keeps it stable up to w h < 2.
 
     Parameters
     ----------
@@ -223,21 +239,20 @@ def ram_step(mass, stiffness, u, v, toe_force, gravity, h, n_sub):
     """
     dt = h / n_sub
     n = mass.shape[0]
-    _kick(mass, stiffness, u, v, toe_force, gravity, 0.5 * dt)
-    for s in range(n_sub):
+    for _ in range(n_sub):
+        _kick(mass, stiffness, u, v, toe_force, gravity, dt)
         for i in range(n):
             u[i] += dt * v[i]
-        _kick(mass, stiffness, u, v, toe_force, gravity, dt if s < n_sub - 1 else 0.5 * dt)
 
 
 @njit(cache=True)
 def stable_time_step(mass, stiffness):
-    """Stable step of velocity Verlet for the chain [s]: 2 / omega_max, inf for one mass.
+    """Stable step of the leapfrog for the chain [s]: 2 / omega_max, inf for one mass.
 
     omega_max^2 is bounded by Gershgorin's theorem twice over, and the smaller bound is used:
     the row sums of M^-1 K, 2 (k_{i-1} + k_i) / m_i, and the discs of the symmetric
     M^-1/2 K M^-1/2, (k_{i-1} + k_i) / m_i + k_{i-1} / sqrt(m_{i-1} m_i) + k_i / sqrt(m_i m_{i+1}).
-    The first is exact for a uniform rod with half masses at its ends, 4 k / m = (2 c / dx)^2;
+    The first is exact for a long uniform chain, 4 k / m = (2 c / dx)^2;
     both are conservative otherwise.
     """
     n = mass.shape[0]

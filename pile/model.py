@@ -24,7 +24,7 @@ import numpy as np
 
 from anvil_rom.inputs import Table
 
-from .kernels import ENERGY_SIZE, update_energy
+from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, update_energy
 from .pile import PileSpec, pile_from_table, pile_parameters, probe_parameters
 from .soil import SoilSpec, soil_from_table, soil_parameters
 from .static import static_equilibrium
@@ -65,14 +65,30 @@ class PileSoil:
         soil = soil_from_table(soil_table, pile.length) if soil_table is not None else None
         return cls(pile, soil)
 
-    def arrays(self) -> PileSoilArrays:
-        """The kernel parameter arrays (float64, C-contiguous)."""
+    def arrays(self, extrapolate_head: bool = False) -> PileSoilArrays:
+        """The kernel parameter arrays (float64, C-contiguous).
+
+        extrapolate_head : the head outputs (``head_displacement``, ``head_velocity``) are the
+            face extrapolated from the two top masses when True; when False (the system
+            default) they are those of the top mass, and whatever bears on the pile does so
+            through the top half segment, :meth:`head_contact_stiffness`, in its contact spring
+            (Smith's chain: the neighbour, the contact and the pile form one regular chain).
+        """
         seg = self.pile.discretise()
+        probes = probe_parameters(self.pile, seg)
+        if not extrapolate_head:
+            probes[HEAD_EXTRAPOLATION] = 0.0
         return PileSoilArrays(
             np.ascontiguousarray(pile_parameters(self.pile, seg)),
             np.ascontiguousarray(soil_parameters(self.soil, self.pile, seg)),
-            probe_parameters(self.pile, seg),
+            probes,
         )
+
+    def head_contact_stiffness(self) -> float:
+        """Stiffness of the top half segment, 2 E A / dx [N/m]: the pile's side of the
+        contact spring when the head outputs are those of the top mass."""
+        seg = self.pile.discretise()
+        return float(2.0 * seg.youngs_modulus[0] * seg.area[0] / seg.length[0])
 
 
 def load_pile_soil(path: str | Path) -> PileSoil:

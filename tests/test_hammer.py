@@ -64,14 +64,18 @@ def test_uniform_rod_lumping_keeps_mass_centre_and_static_stiffness():
     length, diameter = 13.766, 1.8
     ram = RamRod.uniform(length, diameter, segment_length=0.5)
     area = 0.25 * math.pi * diameter**2
-    assert ram.n_masses == math.ceil(length / 0.5) + 1
-    # lumping is exact for these three quantities: only round-off (1e-13) is allowed
+    n = math.ceil(length / 0.5)
+    dx = length / n
+    assert ram.n_masses == n
+    # lumping is exact for these quantities: only round-off (1e-13) is allowed
     assert ram.total_mass == pytest.approx(RHO_STEEL * area * length, rel=1e-13)
-    assert ram.static_stiffness == pytest.approx(E_STEEL * area / length, rel=1e-13)
-    positions = np.linspace(0.0, length, ram.n_masses)
+    # from the top mass (free top half segment) to the striking face: L - dx / 2 of rod
+    assert ram.static_stiffness == pytest.approx(E_STEEL * area / (length - dx / 2), rel=1e-13)
+    assert ram.toe_stiffness == pytest.approx(2 * E_STEEL * area / dx, rel=1e-13)
+    positions = (np.arange(n) + 0.5) * dx  # segment centres
     assert positions @ ram.mass / ram.total_mass == pytest.approx(length / 2, rel=1e-13)
-    # end nodes carry half an element
-    assert ram.mass[0] == pytest.approx(ram.mass[1] / 2, rel=1e-13)
+    # every mass is a whole segment (Smith)
+    np.testing.assert_allclose(ram.mass, RHO_STEEL * area * dx, rtol=1e-13)
     assert ram.toe_diameter == diameter and ram.length == pytest.approx(length)
 
 
@@ -81,27 +85,31 @@ def test_stepped_hollow_profile_lumping():
     inner = np.array([0.2, 0.0, 0.5])
     ram = RamRod.from_profile(lengths, outer, inner, segment_length=0.6)
     areas = 0.25 * np.pi * (outer**2 - inner**2)
-    # sections are cut into ceil(L / 0.6) = 5, 3, 7 elements
-    assert ram.n_masses == 5 + 3 + 7 + 1
+    # sections are cut into ceil(L / 0.6) = 5, 3, 7 segments
+    assert ram.n_masses == 5 + 3 + 7
     assert ram.total_mass == pytest.approx(RHO_STEEL * areas @ lengths, rel=1e-13)
-    flexibility = np.sum(lengths / (E_STEEL * areas))
+    # top mass to striking face: the whole rod less the free top half segment (0.3 m)
+    flexibility = np.sum(lengths / (E_STEEL * areas)) - 0.3 / (E_STEEL * areas[0])
     assert ram.static_stiffness == pytest.approx(1.0 / flexibility, rel=1e-13)
-    node_z = np.concatenate(([0.0], np.cumsum(np.repeat(lengths / [5, 3, 7], [5, 3, 7]))))
+    seg = np.repeat(lengths / [5, 3, 7], [5, 3, 7])
+    seg_z = np.cumsum(seg) - seg / 2  # segment centres
     centres = np.cumsum(lengths) - lengths / 2
     exact_centre = (RHO_STEEL * areas * lengths) @ centres / ram.total_mass
-    assert node_z @ ram.mass / ram.total_mass == pytest.approx(exact_centre, rel=1e-13)
+    assert seg_z @ ram.mass / ram.total_mass == pytest.approx(exact_centre, rel=1e-13)
     assert ram.toe_diameter == 1.5
 
 
 def test_stable_time_step_exact_for_uniform_conservative_otherwise():
     dx = 0.5
     ram = RamRod.uniform(10.0, 1.0, segment_length=dx)
-    # uniform chain with half-mass ends: omega_max = 2 c / dx exactly, so dt = dx / c;
-    # compared with scipy's tridiagonal eigenvalue (relative accuracy ~1e-14)
+    # uniform free-free chain of whole segments: Gershgorin gives omega_max <= 2 c / dx, so
+    # dt = dx / c; the exact omega_max (scipy, relative accuracy ~1e-14) is 2 c / dx
+    # cos(pi / 2n), just below it, so the bound is safe and within 0.5 % for n = 20
     assert ram.stable_time_step() == pytest.approx(dx / C_STEEL, rel=1e-12)
     assert stable_time_step(ram.mass, ram.stiffness) == ram.stable_time_step()
     exact = 2.0 / max_angular_frequency(ram.mass, ram.stiffness)
-    assert ram.stable_time_step() == pytest.approx(exact, rel=1e-10)
+    assert ram.stable_time_step() <= exact
+    assert ram.stable_time_step() == pytest.approx(exact, rel=5e-3)
     stepped = RamRod.from_profile([2.0, 3.0, 1.0], [0.6, 1.4, 0.9], segment_length=0.37)
     exact = 2.0 / max_angular_frequency(stepped.mass, stepped.stiffness)
     bound = stepped.stable_time_step()
@@ -139,9 +147,12 @@ def test_free_rod_under_constant_toe_force_moves_as_its_centre_of_mass():
         ram_step(ram.mass, ram.stiffness, u, v, F, g, h, n_sub)
     t = steps * h
     a = g - F / M
-    # velocity Verlet integrates a constant acceleration exactly; only round-off remains
+    # the leapfrog integrates a constant acceleration exactly in its own time-staggered form:
+    # v is the velocity half a sub-step dt earlier, and x_n = v0 t + a t (t + dt) / 2 (the
+    # initial velocity belongs to t = -dt/2); only round-off remains
+    dt = h / n_sub
     assert momentum(ram.mass, v) == pytest.approx(M * (6.0 + a * t), rel=1e-12)
-    assert ram.mass @ u / M == pytest.approx(6.0 * t + 0.5 * a * t * t, rel=1e-12)
+    assert ram.mass @ u / M == pytest.approx(6.0 * t + 0.5 * a * t * (t + dt), rel=1e-12)
     # the rod is strained (toe compressed by the force), not rigid
     assert toe_spring_force(ram.stiffness, u) > 0.5 * F
 
@@ -151,8 +162,10 @@ def test_rigid_ram_falls_exactly():
     u, v = ram.initial_state(2.0)
     for _ in range(10):
         ram_step(ram.mass, ram.stiffness, u, v, 0.0, 9.81, 0.01, 3)
-    # exact for constant acceleration up to round-off
-    assert u[0] == pytest.approx(2.0 * 0.1 + 0.5 * 9.81 * 0.01, rel=1e-13)
+    # exact for constant acceleration up to round-off, in the leapfrog's staggered form
+    # (v belongs to half a sub-step dt earlier): u = v0 t + g t (t + dt) / 2
+    dt = 0.01 / 3
+    assert u[0] == pytest.approx(2.0 * 0.1 + 0.5 * 9.81 * 0.1 * (0.1 + dt), rel=1e-13)
     assert v[0] == pytest.approx(2.0 + 9.81 * 0.1, rel=1e-13)
 
 
@@ -168,7 +181,8 @@ def _first_arrival(ram, courant, force=1.0e6):
     for n in range(1, int(2 * ram.length / C_STEEL / h)):
         ram_step(ram.mass, ram.stiffness, u, v, force, 0.0, h, 1)
         if v[0] < half:
-            return (n - 1 + (half - previous) / (v[0] - previous)) * h, h
+            # the leapfrog velocity after step n belongs to t = (n - 1/2) h
+            return (n - 1.5 + (half - previous) / (v[0] - previous)) * h, h
         previous = v[0]
     raise AssertionError("the wave never reached the top")
 
@@ -177,10 +191,10 @@ def test_wave_travels_the_rod_at_bar_speed():
     length = 10.0
     ram = RamRod.uniform(length, 1.0, segment_length=0.5)
     # at the Courant number 1 the lumped chain with central differences is dispersion free:
-    # the front arrives after exactly L / c (asserted within one step; it is exact to 1e-12)
+    # the front stays a one-sample jump, so its half-height time is known to the sampling
+    # (half a step, given the leapfrog's half-step velocity); measured 0.25 h from L / c
     t_arrival, h = _first_arrival(ram, 1.0)
-    assert abs(t_arrival - length / C_STEEL) < h
-    assert t_arrival == pytest.approx(length / C_STEEL, rel=1e-9)
+    assert abs(t_arrival - length / C_STEEL) < 0.5 * h
     # below Courant 1 the chain is dispersive: the front spreads over a few elements and its
     # mid-height lags by about half an element transit time (0.51 dx/c measured at L = 20 dx);
     # the arrival must stay within one element transit time dx / c of L / c
@@ -191,33 +205,38 @@ def test_wave_travels_the_rod_at_bar_speed():
 
 
 def test_ram_energy_balance_under_constant_toe_force():
-    """KE + strain + gravity potential + F u_toe is conserved up to the velocity-Verlet bound."""
-    from scipy.linalg import eigh
+    """The leapfrog's discrete energy is conserved to round-off under a constant toe force.
 
+    With v the half-step velocity after a step from u_n to u_n+1, the quantity
+    v^T M v / 2 + u_n^T K u_n+1 / 2 - f^T (u_n + u_n+1) / 2 (f = gravity loads minus the toe
+    force) is an exact invariant of the leapfrog for a constant f (the shadow energy of the
+    central-difference scheme, Belytschko, Liu & Moran 2000, sec. 6.2).
+    """
     ram = RamRod.uniform(8.0, 1.2, segment_length=0.4)
     m, k = ram.mass, ram.stiffness
     F, g = 4.0e7, 9.81
     h = 0.5 * ram.stable_time_step()
     u, v = ram.initial_state(5.0)
-    energy0 = kinetic_energy(m, v)
-    worst = 0.0
+    f = m * g
+    f[-1] -= F
+
+    def stiffness_product(a, b):
+        return float(np.sum(k * (a[:-1] - a[1:]) * (b[:-1] - b[1:])))
+
+    values = []
     for _ in range(2000):
+        u_prev = u.copy()
         ram_step(m, k, u, v, F, g, h, 1)
-        energy = (kinetic_energy(m, v) + strain_energy(k, u)
-                  + gravity_potential_energy(m, u, g) + F * u[-1])
-        worst = max(worst, abs(energy - energy0))
-    # Velocity Verlet keeps 1/2 v^2 + 1/2 w^2 x^2 (1 - (w dt)^2 / 4) of every mode exactly (the
-    # rigid-body motion, constant acceleration, is exact), so the true energy can deviate by at
-    # most sum_j (w_j dt)^2 / 4 SE_j, SE_j the strain energy of mode j about the accelerating
-    # equilibrium (the rod starts unstrained, so SE_j is its value at t = 0).
-    stiffness = np.diag(np.r_[k, 0.0] + np.r_[0.0, k]) - np.diag(k, 1) - np.diag(k, -1)
-    omega2, shapes = eigh(stiffness, np.diag(m))
-    load = m * g
-    load[-1] -= F
-    modal_static = shapes[:, 1:].T @ load / omega2[1:]
-    bound = np.sum(omega2[1:] * h * h / 4 * 0.5 * omega2[1:] * modal_static**2)
-    assert worst <= bound
-    assert worst > 0.5 * bound  # the deviation is this mechanism (measured 0.73 of the bound)
+        values.append(0.5 * m @ (v * v) + 0.5 * stiffness_product(u_prev, u)
+                      - 0.5 * f @ (u_prev + u))
+    values = np.array(values)
+    scale = 0.5 * m.sum() * 5.0**2
+    assert np.abs(values - values[0]).max() < 1e-9 * scale
+    # the plain energy KE + strain + potential is not invariant at this step (a check that the
+    # invariant above is not trivially satisfied)
+    plain = kinetic_energy(m, v) + strain_energy(k, u) + gravity_potential_energy(m, u, g) \
+        + F * u[-1]
+    assert abs(plain - (values[-1] + 0.0)) > 1e-9 * scale
 
 
 def test_rigid_ram_on_semi_infinite_pile_case_1():
@@ -374,9 +393,10 @@ def test_ram_tables():
     ram = ram_from_table(_table({"profile": [[2.0, 1.0, 0.4], [3.0, 1.2, 0.0]], "mass": 3e4,
                                  "segment_length": 1.0}))
     assert ram.total_mass == pytest.approx(3e4, rel=1e-13)  # density derived from the mass
-    assert ram.n_masses == 2 + 3 + 1
+    assert ram.n_masses == 2 + 3
     ram = ram_from_table(_table({"profile": [[2.0, 1.0]], "elastic_modulus": 200e9}))
-    assert ram.static_stiffness == pytest.approx(200e9 * 0.25 * math.pi / 2.0)
+    # 4 segments of 0.5 m: top mass to face is 2.0 - 0.25 m of rod
+    assert ram.static_stiffness == pytest.approx(200e9 * 0.25 * math.pi / 1.75)
     ram = ram_from_table(_table({"segment_masses": [1e3, 2e3], "segment_stiffnesses": [5e9]}))
     assert ram.total_mass == 3e3 and ram.static_stiffness == 5e9
     ram = ram_from_table(_table({"kind": "rigid", "mass": 7e3, "diameter": 0.5}))

@@ -74,7 +74,7 @@ def ram_spring_impact(dx, k_contact=2e10, head="face", duration=4e-3):
     The pile runs at Courant number 1 (h = dx / c, one sub-step). ``head="face"`` uses the
     pile-top face displacement, ``head="mass"`` the top mass displacement.
     """
-    arrays = uniform_pile(dx=dx).arrays()
+    arrays = uniform_pile(dx=dx).arrays(extrapolate_head=True)
     state = initial_state(arrays)
     h = stable_time_step(arrays.pile, arrays.soil)
     u_ram, v_ram = 0.0, V0
@@ -168,7 +168,7 @@ def test_lumped_chain_dispersion_relation_and_cutoff():
     round-off of a 100 x 100 symmetric eigenproblem.
     """
     dx, length = 1.0, 100.0
-    arrays = uniform_pile(length=length, dx=dx).arrays()
+    arrays = uniform_pile(length=length, dx=dx).arrays(extrapolate_head=True)
     m, k = arrays.pile[PILE_MASS], arrays.pile[PILE_STIFFNESS, :-1]
     diag = (np.r_[0.0, k] + np.r_[k, 0.0]) / m
     off = -k / np.sqrt(m[:-1] * m[1:])
@@ -195,7 +195,7 @@ def test_leapfrog_at_courant_one_is_dispersion_free(courant):
     c kappa): the error is of order one.
     """
     dx, length, mode = 1.0, 40.0, 25  # a short wave: 3.2 segments per wavelength
-    arrays = uniform_pile(length=length, dx=dx).arrays()
+    arrays = uniform_pile(length=length, dx=dx).arrays(extrapolate_head=True)
     state = initial_state(arrays)
     n = arrays.pile.shape[1]
     shape = np.cos(mode * np.pi * (np.arange(n) + 0.5) / n)
@@ -220,7 +220,8 @@ def test_free_toe_pile_returns_tension_at_2L_over_c():
     sampled half-sine peak of 1 ms held over dt = 0.097 ms steps is 0.995 F0.
     """
     length, gauge_depth, dx = 40.0, 2.0, 0.5
-    arrays = uniform_pile(length=length, dx=dx, gauge_depth=gauge_depth).arrays()
+    pile = uniform_pile(length=length, dx=dx, gauge_depth=gauge_depth)
+    arrays = pile.arrays(extrapolate_head=True)
     state = initial_state(arrays)
     dt = stable_time_step(arrays.pile, arrays.soil)
     assert dt == pytest.approx(dx / C_STEEL, rel=1e-12)  # Courant 1 is the stable limit
@@ -281,7 +282,7 @@ def test_closed_form_case1_rigid_ram_tied_to_the_head():
     """
 
     def run(dx):
-        arrays = uniform_pile(dx=dx).arrays()
+        arrays = uniform_pile(dx=dx).arrays(extrapolate_head=True)
         state = initial_state(arrays)
         h = stable_time_step(arrays.pile, arrays.soil)
         v_ram, n = V0, int(6e-3 / h)
@@ -344,7 +345,7 @@ def test_static_equilibrium_end_bearing_linear():
     """
     weight = 3.0e6  # [N] hammer resting on the pile
     model = uniform_pile(soil=end_bearing_soil(toe_unit=200e6))
-    arrays = model.arrays()
+    arrays = model.arrays(extrapolate_head=True)
     state = initial_state(arrays, head_force=weight)
     k = arrays.pile[PILE_STIFFNESS, :-1]
     k_toe = arrays.soil[SOIL_STIFFNESS, -1]
@@ -375,7 +376,7 @@ def test_static_equilibrium_with_gravity_and_partial_yield():
     weight, g = 5.0e6, 9.81
     rows = np.array([[0.0, 0.0, 5e6], [20.0, 40e3, 5e6]])
     soil = SoilSpec(model="smith", penetration=20.0, srd=SoilResistanceTable.from_rows(rows))
-    arrays = uniform_pile(soil=soil, damping=0.02).arrays()
+    arrays = uniform_pile(soil=soil, damping=0.02).arrays(extrapolate_head=True)
     capacity = arrays.soil[SOIL_CAPACITY]
     state = initial_state(arrays, head_force=weight, gravity=g)
     static, total = np.empty(81), np.empty(81)
@@ -393,7 +394,7 @@ def test_static_equilibrium_with_gravity_and_partial_yield():
 
 
 def test_static_load_above_capacity_is_refused():
-    arrays = uniform_pile(soil=end_bearing_soil(toe_unit=1e6)).arrays()
+    arrays = uniform_pile(soil=end_bearing_soil(toe_unit=1e6)).arrays(extrapolate_head=True)
     with pytest.raises(ValueError, match="capacity"):
         initial_state(arrays, head_force=1e7)
 
@@ -414,7 +415,7 @@ def test_energy_bookkeeping_closes(model):
     soil = SoilSpec(model=model, penetration=30.0, srd=SoilResistanceTable.from_rows(rows),
                     **extra)
     sections = (Section(30.0, 2.0, 0.05), Section(20.0, 2.0, 0.04), Section(10.0, 1.8, 0.06))
-    arrays = PileSoil(PileSpec(sections, 0.5, 1.0, 0.02), soil).arrays()
+    arrays = PileSoil(PileSpec(sections, 0.5, 1.0, 0.02), soil).arrays(extrapolate_head=True)
     weight, g = 1.0e6, 9.81
     state = initial_state(arrays, head_force=weight, gravity=g)
     e0 = state.energy.copy()
@@ -464,7 +465,7 @@ def test_lysmer_toe_parameters():
     rows = np.array([[0.0, 0.0, 5e6], [10.0, 0.0, 5e6]])
     soil = SoilSpec(model="lysmer-toe", penetration=10.0, srd=SoilResistanceTable.from_rows(rows),
                     toe_shear_modulus=50e6, toe_density=1900.0, toe_poisson_ratio=0.3)
-    arrays = uniform_pile(soil=soil).arrays()
+    arrays = uniform_pile(soil=soil).arrays(extrapolate_head=True)
     r0 = math.sqrt(Section(40.0, 2.0, 0.05).area / math.pi)
     assert arrays.soil[SOIL_STIFFNESS, -1] == pytest.approx(4 * 50e6 * r0 / 0.7)
     dashpot = 3.4 * r0**2 * math.sqrt(50e6 * 1900) / 0.7
@@ -510,7 +511,7 @@ def write(tmp_path, text):
 def test_load_pile_soil_file(tmp_path):
     model = load_pile_soil(write(tmp_path, PILE_TOML))
     assert model.pile.length == 80.0 and model.soil.model == "smith"
-    arrays = model.arrays()
+    arrays = model.arrays(extrapolate_head=True)
     assert arrays.pile.shape == (3, 160) and arrays.soil.shape == (5, 161)
     assert arrays.pile.dtype == np.float64 and arrays.pile.flags.c_contiguous
     steel = 7850.0 * (math.pi / 4) * (64.0 - 7.72**2) * 60.0
@@ -564,7 +565,7 @@ def test_pile_without_soil_from_table():
     table = Table({"sections": [{"length": 10.0, "outer_diameter": 1.0, "wall_thickness": 0.5}]},
                   "<memory>", "pile")
     model = PileSoil.from_tables(table, None)
-    arrays = model.arrays()
+    arrays = model.arrays(extrapolate_head=True)
     assert not arrays.soil.any()
     assert arrays.pile.shape[1] == 20  # 10 m at the default 0.5 m
     state = initial_state(arrays)

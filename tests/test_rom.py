@@ -22,35 +22,45 @@ from .conftest import EXAMPLES
 
 
 def test_single_mode_step_is_exact_for_any_step():
-    """Damped oscillator under a constant force: closed-form response, even with h >> period."""
+    """Damped oscillator under a constant force: the recurrence reproduces the closed-form
+    trajectory at every sample, even with steps much longer than the period."""
     w, xi, f = 2 * np.pi * 50.0, 0.05, 3.0
     wd = w * np.sqrt(1 - xi**2)
+
+    def exact(t):  # at rest until t = -0.02 s, then the force is on
+        s_ = t + 0.02
+        return f / w**2 * (1 - np.exp(-xi * w * s_) * (np.cos(wd * s_)
+                                                        + xi * w / wd * np.sin(wd * s_)))
+
     for h in (1e-4, 0.013, 0.5):  # from 1/200 of a period to 25 periods per step
         coef = modal_transition(np.array([w]), xi, h)
-        q, qd = np.zeros(1), np.zeros(1)
-        n = 7
-        for _ in range(n):
-            modal_step(coef, np.ones(1), np.zeros(1), np.zeros(1), q, qd, f, 0.0, 0.0)
-        t = n * h
-        exact = f / w**2 * (1 - np.exp(-xi * w * t) * (np.cos(wd * t)
-                                                       + xi * w / wd * np.sin(wd * t)))
-        # exact integration: only round-off (about 1e-15 relative per step) remains
-        assert q[0] == pytest.approx(exact, rel=1e-10, abs=1e-15 * f / w**2)
+        # start from an exact pair of samples after the force came on
+        t0 = 2 * h
+        q, q_prev = np.array([exact(t0)]), np.array([exact(t0 - h)])
+        for n in range(1, 8):
+            modal_step(coef, np.ones(1), np.zeros(1), np.zeros(1), q, q_prev, f, 0.0, 0.0)
+            # exact free vibration and exact static response: only round-off remains
+            assert q[0] == pytest.approx(exact(t0 + n * h), rel=1e-9, abs=1e-12 * f / w**2)
 
 
-def test_rigid_anvil_falls_and_accelerates_exactly():
+def test_rigid_anvil_falls_as_central_differences():
+    """The rigid mode is the central-difference (leapfrog) scheme: from rest (q_-1 = q_0),
+    u_n = a h^2 n (n + 1) / 2, the exact free fall of a body whose force starts at t = -h/2."""
     m = 3.0e5
     anvil = ModalAnvil.rigid(m)
-    coef = anvil.transition(1e-3)
-    q, qd = np.zeros(1), np.zeros(1)
+    h = 1e-3
+    coef = anvil.transition(h)
+    q, q_prev = np.zeros(1), np.zeros(1)
     F = 2.0e6
-    for _ in range(100):
+    n = 100
+    for _ in range(n):
         modal_step(coef, anvil.participation_ram, anvil.participation_pile,
-                   anvil.participation_gravity, q, qd, F, 0.0, 9.81)
-    u, v, ub, vb = modal_interface(anvil.participation_ram, anvil.participation_pile, q, qd)
+                   anvil.participation_gravity, q, q_prev, F, 0.0, 9.81)
+    u, v, ub, vb = modal_interface(anvil.participation_ram, anvil.participation_pile, q, q_prev,
+                                   h)
     a = F / m + 9.81
-    assert u == pytest.approx(0.5 * a * 0.1**2, rel=1e-12)
-    assert v == pytest.approx(a * 0.1, rel=1e-12)
+    assert u == pytest.approx(0.5 * a * h * h * n * (n + 1), rel=1e-12)
+    assert v == pytest.approx(a * n * h, rel=1e-10)
     assert (u, v) == pytest.approx((ub, vb), rel=1e-14)
 
 
@@ -127,28 +137,24 @@ def full_fe_response(result):
 
 
 def rom_response(anvil: ModalAnvil):
-    """The ROM on the same spring bed, coupled as the engines do: F_pile from u_bottom at t_n.
+    """The ROM on the same spring bed: bed and ram forces sampled at t_n, as the engines do.
 
-    The ram force is applied as the step average (midpoint), matching Newmark's trapezoidal
-    impulse to second order.
+    The bed force uses the corrected bottom displacement, solved with the residual flexibility
+    (f = k (u_b + r01 F_ram - r11 f)), so the static correction is consistent.
     """
     coef = anvil.transition(H)
-    q, qd = np.zeros(anvil.n_modes), np.zeros(anvil.n_modes)
+    q, q_prev = np.zeros(anvil.n_modes), np.zeros(anvil.n_modes)
     out = np.zeros((N_STEPS + 1, 2))
     r = anvil.residual_flexibility
-    f_pile = 0.0
-    for i in range(1, N_STEPS + 1):
-        f_ram = ram_force((i - 0.5) * H)
-        # bed force from the corrected bottom displacement (implicit in the bed: exact linear
-        # solve of f = k (u_b + r01 f_ram - r11 f))
-        ut, _, ub, _ = modal_interface(anvil.participation_ram, anvil.participation_pile, q, qd)
+    for i in range(N_STEPS + 1):
+        f_ram = float(ram_force(i * H))
+        ut, _, ub, _ = modal_interface(anvil.participation_ram, anvil.participation_pile, q,
+                                       q_prev, H)
         f_pile = BED * (ub + r[0, 1] * f_ram) / (1 + BED * r[1, 1])
+        out[i] = (ut + r[0, 0] * f_ram - r[0, 1] * f_pile,
+                  ub + r[0, 1] * f_ram - r[1, 1] * f_pile)
         modal_step(coef, anvil.participation_ram, anvil.participation_pile,
-                   anvil.participation_gravity, q, qd, f_ram, f_pile, 0.0)
-        ut, _, ub, _ = modal_interface(anvil.participation_ram, anvil.participation_pile, q, qd)
-        f_next = ram_force((i + 0.5) * H)
-        out[i] = (ut + r[0, 0] * f_next - r[0, 1] * f_pile,
-                  ub + r[0, 1] * f_next - r[1, 1] * f_pile)
+                   anvil.participation_gravity, q, q_prev, f_ram, f_pile, 0.0)
     return out
 
 
@@ -188,7 +194,7 @@ def test_static_correction_makes_static_response_exact(xl8_coarse):
                                                static_correction=corrected)
             q = anvil.static_modal_coordinates(F, F)  # force balance: F_pile = F
             ut, _, ub, _ = modal_interface(anvil.participation_ram, anvil.participation_pile,
-                                           q, np.zeros_like(q))
+                                           q, q, 1.0)
             r = anvil.residual_flexibility
             ut, ub = ut + r[0, 0] * F - r[0, 1] * F, ub + r[0, 1] * F - r[1, 1] * F
             shift = F / BED - ub  # rigid-body mode settles on the bed: u_bottom = F / k

@@ -1,0 +1,178 @@
+"""The system configuration file: hammer, anvil, pile and soil, and the simulation settings.
+
+A system file is TOML (every key is checked; units in brackets)::
+
+    [simulation]
+    duration = 0.025            # [s] simulated time of one blow
+    time_step = 5e-6            # [s] optional; default: automatic, below every stable limit
+    output_interval = 1e-5      # [s] optional; default: every step
+    gravity = 9.81              # [m/s^2]
+    blows = 1                   # consecutive blows (the FMI master and the direct engine)
+
+    [hammer]
+    database = "illustrative_5500kj"   # a hammer of hammer/data, or file = "my_hammer.toml"
+    energy = 5.5e6              # [J] optional blow energy (default: the rated energy)
+                                # or impact_velocity = 6.0 [m/s]
+
+    [anvil]
+    model = "rom"               # "rom" (Mode Displacement Method), "lumped" (rigid FE mass),
+                                # "classic" (cushion-helmet system, see [anvil.classic]), or
+                                # "none" (the ram bears on the pile through the contact spring)
+    file = "anvils/xl8.toml"    # anvil geometry (rom, lumped)
+    fmax = 5000.0               # [Hz] optional, ROM frequency content
+    damping_ratio = 0.0         # [-] optional
+    static_correction = true    # optional
+    ram_contact_stiffness = 1e12    # [N/m] optional, default: the ram's toe half segment
+    pile_contact_stiffness = 1e12   # [N/m] optional, default: the pile's top half segment
+
+    [pile]      # see pile/pile.py          [soil]      # see pile/soil.py
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from anvil_rom.geometry import AnvilSpec, load_anvil
+from anvil_rom.inputs import InputError, Table
+from hammer.database import Hammer, available_hammers, load_hammer
+from hammer.driving_system import DrivingSystem
+from pile.model import PileSoil
+
+ANVIL_MODELS = ("rom", "lumped", "classic", "none")
+
+
+@dataclass(frozen=True)
+class AnvilSettings:
+    """How the anvil unit is modelled (see the module docstring)."""
+
+    model: str
+    spec: AnvilSpec | None = None
+    fmax: float | None = None
+    damping_ratio: float | None = None
+    static_correction: bool = True
+    mass: float | None = None
+    ram_contact_stiffness: float | None = None
+    pile_contact_stiffness: float | None = None
+    ram_contact_damping: float = 0.0
+    pile_contact_damping: float = 0.0
+    classic: DrivingSystem | None = None
+
+
+@dataclass(frozen=True)
+class SystemConfig:
+    """A validated system file.
+
+    duration : simulated time of one blow [s].
+    time_step : master step [s], None for automatic.
+    output_interval : spacing of the recorded samples [s], None for every step.
+    gravity : [m/s^2].
+    blows : number of consecutive blows.
+    impact_velocity : ram velocity at first contact [m/s].
+    """
+
+    source: str
+    duration: float
+    time_step: float | None
+    output_interval: float | None
+    gravity: float
+    blows: int
+    hammer: Hammer
+    impact_velocity: float
+    anvil: AnvilSettings
+    pile_soil: PileSoil
+
+    def with_anvil_model(self, model: str) -> SystemConfig:
+        """The same system with another anvil model ("rom", "lumped", "classic")."""
+        if model == self.anvil.model:
+            return self
+        if model in ("rom", "lumped") and self.anvil.spec is None:
+            raise InputError(self.source, "anvil.file", f"the {model!r} anvil needs an anvil "
+                                                         "geometry file")
+        if model == "classic" and self.anvil.classic is None:
+            raise InputError(self.source, "anvil.classic", "the 'classic' anvil needs an "
+                                                           "[anvil.classic] table")
+        return replace(self, anvil=replace(self.anvil, model=model))
+
+
+def load_system(path: str | Path) -> SystemConfig:
+    """Read and validate a system file."""
+    root = Table.from_file(path)
+    source = str(path)
+
+    sim = root.table("simulation")
+    duration = sim.number("duration", gt=0.0, le=10.0, unit="s")
+    time_step = sim.number("time_step", None, gt=0.0, unit="s")
+    output_interval = sim.number("output_interval", None, gt=0.0, unit="s")
+    gravity = sim.number("gravity", 9.81, ge=0.0, le=20.0, unit="m/s^2")
+    blows = sim.integer("blows", 1, ge=1)
+    sim.finish()
+    if output_interval is not None and output_interval > duration:
+        raise sim.error("output_interval", "must not exceed the duration")
+
+    hammer, velocity = _hammer(root.table("hammer"), gravity)
+    anvil = _anvil(root.table("anvil"))
+    pile_soil = PileSoil.from_tables(root.table("pile"), root.table("soil", required=False))
+    root.finish()
+    return SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
+                        velocity, anvil, pile_soil)
+
+
+def _hammer(table: Table, gravity: float) -> tuple[Hammer, float]:
+    if table.has("database") == table.has("file"):
+        raise table.error("database", "give exactly one of database = \"name\" (one of "
+                                      f"{', '.join(available_hammers())}) or file = \"path\"")
+    if table.has("database"):
+        name = table.string("database", choices=available_hammers())
+        hammer = load_hammer(name, gravity)
+    else:
+        path = table.path("file")
+        if not path.exists():
+            raise table.error("file", f"hammer file {path} not found")
+        hammer = load_hammer(path, gravity)
+    if table.has("energy") and table.has("impact_velocity"):
+        raise table.error("impact_velocity", "give either energy or impact_velocity, not both")
+    if table.has("energy"):
+        energy = table.number("energy", gt=0.0, unit="J")
+        if hammer.rated_energy == hammer.rated_energy and energy > hammer.rated_energy * 1.0001:
+            raise table.error("energy", f"exceeds the rated energy of {hammer.name} "
+                                        f"({hammer.rated_energy / 1e3:g} kJ)")
+        velocity = hammer.impact_velocity_at(energy)
+    else:
+        velocity = table.number("impact_velocity", hammer.impact_velocity, gt=0.0, le=50.0,
+                                unit="m/s")
+    table.finish()
+    return hammer, velocity
+
+
+def _anvil(table: Table) -> AnvilSettings:
+    model = table.string("model", choices=ANVIL_MODELS)
+    spec = None
+    if table.has("file"):
+        path = table.path("file")
+        if not path.exists():
+            raise table.error("file", f"anvil file {path} not found")
+        spec = load_anvil(path)
+        if spec.interfaces is None:
+            raise table.error("file", f"{path} has no [interfaces]: the ROM needs them")
+    elif model in ("rom", "lumped"):
+        raise table.error("file", f"is required for the {model!r} anvil")
+    classic_table = table.table("classic", required=False)
+    classic = DrivingSystem.from_table(classic_table) if classic_table is not None else None
+    if model == "classic" and classic is None:
+        raise table.error("classic", "is required for the 'classic' anvil")
+    settings = AnvilSettings(
+        model=model,
+        spec=spec,
+        fmax=table.number("fmax", None, gt=0.0, unit="Hz"),
+        damping_ratio=table.number("damping_ratio", None, ge=0.0, lt=1.0),
+        static_correction=table.boolean("static_correction", True),
+        mass=table.number("mass", None, gt=0.0, unit="kg"),
+        ram_contact_stiffness=table.number("ram_contact_stiffness", None, gt=0.0, unit="N/m"),
+        pile_contact_stiffness=table.number("pile_contact_stiffness", None, gt=0.0, unit="N/m"),
+        ram_contact_damping=table.number("ram_contact_damping", 0.0, ge=0.0, unit="N s/m"),
+        pile_contact_damping=table.number("pile_contact_damping", 0.0, ge=0.0, unit="N s/m"),
+        classic=classic,
+    )
+    table.finish()
+    return settings
