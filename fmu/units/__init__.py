@@ -1,0 +1,9 @@
+"""The FMU slaves (pythonfmu): thin classes mapping FMI variables onto component objects.
+
+Each FMU type has its own slave script whose module name is unique to that type
+(``anvilwave_anvil_rom.py`` -> ``Anvil.fmu``, ``anvilwave_anvil_lumped.py`` ->
+``AnvilLumped.fmu``): pythonfmu imports the script by module name, and a process runs the first
+module of a given name for every FMU that names it. The scripts only subclass the slave classes
+of this package (:mod:`fmu.units.anvil`, built on :mod:`fmu.units.base`), so the FMUs need a
+Python with anvilwave installed. Build them with :func:`fmu.fmi_build.build_fmu`.
+"""
