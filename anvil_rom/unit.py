@@ -169,8 +169,9 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
     """(kinetic, potential) [J] in the conserved (shadow) form of the two-step scheme.
 
     kinetic = sum m_e ((q_n - q_n-1) / h)^2 / 2; potential = sum w^2 q_n q_n-1 / 2
-    - g p_grav (q_n + q_n-1) / 2 + F^2 / (2 k) per contact + F^T R F / 2 (residual flexibility).
-    The contact dashpots, if any, are not counted.
+    - g p_grav (q_n + q_n-1) / 2 + the contact springs, k d_n d_n-1 / 2 each (with static
+    correction: F_n^T (K_c^-1 + R) F_n-1 / 2, contacts and residual flexibility together). The
+    contact dashpots, if any, are not counted.
     """
     n = C.shape[0]
     h = P[8]
@@ -181,6 +182,28 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
         kinetic += 0.5 * C[j, 3] * ((q - qp) / h) ** 2
         potential += 0.5 * C[j, 7] ** 2 * q * qp - P[7] * C[j, 6] * 0.5 * (q + qp)
     f_ram, f_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    potential += 0.5 * f_ram**2 / P[0] + 0.5 * f_pile**2 / P[2]
-    potential += 0.5 * (P[4] * f_ram**2 - 2.0 * P[5] * f_ram * f_pile + P[6] * f_pile**2)
+    if P[4] == 0.0 and P[5] == 0.0 and P[6] == 0.0:
+        # contact springs in the same shadow form, k d_n d_n-1 / 2 (d_n-1 = d_n - h d')
+        ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], h)
+        potential += _shadow_contact(u_ram - ut, v_ram - vt, h, P[0])
+        potential += _shadow_contact(ub - u_pile, vb - v_pile, h, P[2])
+    else:
+        # complementary energy of contacts + residual flexibility, F_n^T A F_n-1 / 2 with
+        # A = [[1/k_ram + r00, -r01], [-r01, 1/k_pile + r11]] and F_n-1 the forces one step
+        # earlier (neighbours moved back by h v, modes at q_n-1)
+        ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[n:], S[n:], h)
+        fr0, fp0 = anvil_contact_forces(u_ram - h * v_ram, v_ram, u_pile - h * v_pile, v_pile,
+                                        ut, vt, ub, vb, P[0], P[1], P[2], P[3], P[4], P[5], P[6])
+        a11 = 1.0 / P[0] + P[4]
+        a22 = 1.0 / P[2] + P[6]
+        potential += 0.5 * (a11 * f_ram * fr0 - P[5] * (f_ram * fp0 + f_pile * fr0)
+                            + a22 * f_pile * fp0)
     return kinetic, potential
+
+
+@njit(cache=True)
+def _shadow_contact(overlap, rate, h, stiffness):
+    previous = overlap - h * rate
+    if overlap <= 0.0 or previous <= 0.0:
+        return 0.5 * stiffness * max(overlap, 0.0) ** 2
+    return 0.5 * stiffness * overlap * previous

@@ -63,6 +63,56 @@ def _modes(args: argparse.Namespace) -> int:
     return 0
 
 
+def _impact(args: argparse.Namespace) -> int:
+    from .engine import build_engine
+    from .plots import plot_impact_blows
+    from .report import summarise, write_csv
+    from .system import load_system
+
+    cfg = load_system(args.system)
+    if args.anvil is not None:
+        cfg = cfg.with_anvil_model(args.anvil)
+    model = cfg.anvil.model
+    if args.engine == "fmi":
+        from .fmi_engine import run_fmi
+
+        blows = run_fmi(cfg, args.out / "fmus", anvil_model=model, progress=True)
+    else:
+        engine = build_engine(cfg)
+        blows = engine.run(progress=True)
+    gauge_area = _gauge_area(cfg)
+    with ResultWriter(args.out) as out:
+        summaries = []
+        for i, blow in enumerate(blows):
+            name = "impact.csv" if len(blows) == 1 else f"impact_blow{i + 1}.csv"
+            write_csv(blow.columns, out.part(name))
+            summaries.append(summarise(blow, cfg, args.engine, model, gauge_area))
+        summary = dict(summaries[0])
+        summary["system"] = str(args.system)
+        if len(blows) > 1:
+            summary["blows"] = summaries
+        out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+        plot_impact_blows(blows, out.part("impact.png"),
+                          title=f"{Path(args.system).name}: {model} anvil, {args.engine} engine")
+    s = summaries[0]
+    print(f"{Path(args.system).name} [{model}, {args.engine}]: peak ram-anvil "
+          f"{s['peak_ram_anvil_force [N]'] / 1e6:.1f} MN, anvil-pile "
+          f"{s['peak_anvil_pile_force [N]'] / 1e6:.1f} MN; "
+          f"{s['simulated_time [s]'] * 1e3:.1f} ms in {s['wall_time [s]']:.4f} s "
+          f"({s['realtime_factor [-]']:.0f}x real time) -> {args.out}")
+    return 0
+
+
+def _gauge_area(cfg) -> float:
+    """Steel area of the pile section at the gauge depth [m^2]."""
+    depth = 0.0
+    for section in cfg.pile_soil.pile.sections:
+        depth += section.length
+        if cfg.pile_soil.pile.gauge_depth <= depth:
+            return section.area
+    return cfg.pile_soil.pile.sections[-1].area
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="anvilwave",
@@ -92,6 +142,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=Path, required=True, metavar="DIR",
                    help="output folder: modes.npz (ROM), modes.json (summary), modes.png")
     p.set_defaults(func=_modes)
+
+    p = sub.add_parser(
+        "impact", help="simulate blows of a hammer on a pile (in-process engine or FMUs)",
+        description="Simulate the impact of the ram on the anvil and the pile (system file, see "
+                    "README) and write DIR/impact.csv (time series), DIR/summary.json (peak "
+                    "forces and stresses, transferred energy, permanent set, energy balance, "
+                    "simulated and wall time) and DIR/impact.png.",
+    )
+    p.add_argument("system", type=Path, help="system file (TOML): [simulation], [hammer], "
+                                             "[anvil], [pile], [soil]")
+    p.add_argument("--engine", choices=("direct", "fmi"), default="direct",
+                   help="direct: the in-process numba engine (default); fmi: the FMUs "
+                        "(pythonfmu) co-simulated by the fmpy master")
+    p.add_argument("--anvil", choices=("rom", "lumped", "classic", "none"), default=None,
+                   help="anvil model, overriding [anvil] model of the system file: rom (Mode "
+                        "Displacement Method), lumped (rigid FE mass), classic (cushion-helmet "
+                        "system), none (ram directly on the pile)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_impact)
     return parser
 
 

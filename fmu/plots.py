@@ -62,3 +62,31 @@ def plot_modes(result, path: str | Path, n_shapes: int = 5) -> Path:
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def plot_impact_blows(blows, path: str | Path, title: str = "") -> Path:
+    """Forces and pile-head velocity of one or more blows against time (ms) as PNG."""
+    plt = _pyplot()
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True, constrained_layout=True)
+    for i, blow in enumerate(blows):
+        c = blow.columns
+        t = c["time [s]"] * 1e3
+        tag = f" (blow {i + 1})" if len(blows) > 1 else ""
+        alpha = 1.0 if i == len(blows) - 1 else 0.4
+        for name, label in (("ram_anvil_force [N]", "ram-anvil contact"),
+                            ("anvil_pile_force [N]", "anvil-pile contact"),
+                            ("gauge_force [N]", "pile at gauge")):
+            ax1.plot(t, c[name] / 1e6, label=label + tag, alpha=alpha)
+        ax2.plot(t, c["pile_head_velocity [m/s]"], label="pile head" + tag, alpha=alpha)
+        ax2.plot(t, c["gauge_velocity [m/s]"], label="pile at gauge" + tag, alpha=alpha)
+    ax1.set_ylabel("force [MN] (compression +)")
+    ax1.set_title(title)
+    ax2.set_ylabel("velocity [m/s] (down +)")
+    ax2.set_xlabel("time [ms] (0 = first ram-anvil contact)")
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, ncol=2)
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
