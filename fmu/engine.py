@@ -8,7 +8,7 @@ The step order is the master algorithm of DESIGN.md, the same as the FMI master'
 
 Time is t_n = n h, never accumulated. The kernels are those of the physics packages, called
 through small adapters that give every anvil unit (ROM, rigid mass, classic cushion-helmet
-system) the same signature, so one compiled loop serves each of them.
+system, none) the same signature; one compiled loop serves all of them.
 """
 
 from __future__ import annotations
@@ -207,9 +207,40 @@ def classic_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
     return kinetic, strain + gravity
 
 
+# one compiled loop serves every anvil unit: numba's on-disk cache cannot hold a function
+# specialised on function arguments across processes, so the unit is chosen by a code
+UNIT_MODAL, UNIT_CLASSIC, UNIT_NONE = 0, 1, 2
+
+
+@njit(cache=True)
+def anvil_forces(kind, P, C, S, u_ram, v_ram, u_pile, v_pile):
+    if kind == UNIT_MODAL:
+        return modal_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    if kind == UNIT_CLASSIC:
+        return classic_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    return direct_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+
+
+@njit(cache=True)
+def anvil_step(kind, P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub):
+    if kind == UNIT_MODAL:
+        modal_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub)
+    elif kind == UNIT_CLASSIC:
+        classic_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub)
+
+
+@njit(cache=True)
+def anvil_energy(kind, P, C, S, u_ram, v_ram, u_pile, v_pile):
+    if kind == UNIT_MODAL:
+        return modal_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    if kind == UNIT_CLASSIC:
+        return classic_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    return direct_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
+
+
 # ----------------------------------------------------------------- the loop
 @njit(cache=True)
-def run_blow(anvil_forces, anvil_step, anvil_energy,
+def run_blow(kind,
              ram_mass, ram_stiffness, ram_u, ram_v, ram_nsub,
              aP, aC, aS, anvil_nsub,
              pile, soil, probes, stress_factor, pu, pv, poff, pen, pile_nsub,
@@ -230,7 +261,8 @@ def run_blow(anvil_forces, anvil_step, anvil_energy,
         u_pile = head_displacement(probes, pu) - pile_face0
         v_pile = head_velocity(probes, pv)
         # 2. contact forces at t_n (feedthrough of the anvil unit)
-        f_ram, f_pile, u_top, u_bottom = anvil_forces(aP, aC, aS, u_ram, v_ram, u_pile, v_pile)
+        f_ram, f_pile, u_top, u_bottom = anvil_forces(kind, aP, aC, aS, u_ram, v_ram, u_pile,
+                                                      v_pile)
         for i in range(n_pile - 1):
             stress = stress_factor[i] * (pu[i] - pu[i + 1])
             if stress > extremes[0]:
@@ -249,7 +281,7 @@ def run_blow(anvil_forces, anvil_step, anvil_energy,
             out[row, 8] = u_bottom
             out[row, 9] = u_pile + pile_face0
             out[row, 10] = toe_displacement(pu)
-            kin, pot = anvil_energy(aP, aC, aS, u_ram, v_ram, u_pile, v_pile)
+            kin, pot = anvil_energy(kind, aP, aC, aS, u_ram, v_ram, u_pile, v_pile)
             ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v, gravity,
                                            h / ram_nsub)
             energies[row, 0] = ke
@@ -270,7 +302,7 @@ def run_blow(anvil_forces, anvil_step, anvil_energy,
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
         ram_step(ram_mass, ram_stiffness, ram_u, ram_v, f_ram, gravity, h, ram_nsub)
-        anvil_step(aP, aC, aS, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, anvil_nsub)
+        anvil_step(kind, aP, aC, aS, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, anvil_nsub)
         pile_step(pile, soil, pu, pv, poff, pen, f_pile, gravity, h, pile_nsub)
     return row
 
@@ -281,9 +313,7 @@ class AnvilKernels:
     """An anvil unit as kernel functions and arrays (P, C, S) with the common signature."""
 
     kind: str
-    forces: object
-    step: object
-    energy: object
+    code: int
     P: np.ndarray
     C: np.ndarray
     S: np.ndarray
@@ -370,7 +400,7 @@ class Engine:
             extremes = np.zeros(2)
             pile_nsub = substeps(h, pile_stable_time_step(arrays.pile, arrays.soil))
             ram_nsub = substeps(h, ram_stable_time_step(self.ram_mass, self.ram_stiffness))
-            args = (anvil.forces, anvil.step, anvil.energy, self.ram_mass, self.ram_stiffness,
+            args = (anvil.code, self.ram_mass, self.ram_stiffness,
                     ram_u, ram_v, ram_nsub, anvil.P, anvil.C, anvil.S, anvil.n_sub,
                     arrays.pile, arrays.soil, arrays.probes,
                     np.ascontiguousarray(arrays.pile[PILE_STIFFNESS, :-1] / self.spring_area),
@@ -419,7 +449,7 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
         k = 1.0 / (1.0 / contact.ram_stiffness + 1.0 / contact.pile_stiffness)
         P = np.array([k, contact.ram_damping])
         limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness, k, k, pile_arrays)
-        return AnvilKernels("none", direct_forces, direct_step, direct_energy, P,
+        return AnvilKernels("none", UNIT_NONE, P,
                             np.zeros((1, 1)), np.zeros(1), 0.0, float(limit), 1, None)
     if settings.model == "classic":
         ds = settings.classic
@@ -428,7 +458,7 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
         limit = min(driving_system_stable_time_step(P),
                     interface_time_step(P, ram_mass[-1], pile_arrays.pile[0, 0]))
         n_sub = 1 if h is None else max(1, int(np.ceil(h / driving_system_stable_time_step(P))))
-        return AnvilKernels("classic", classic_forces, classic_step, classic_energy, P,
+        return AnvilKernels("classic", UNIT_CLASSIC, P,
                             np.zeros((1, 1)), S, 0.0, limit, n_sub, ds)
     if settings.model == "rom":
         rom = ModalAnvil.from_modal_data(modal, fmax=settings.fmax,
@@ -444,7 +474,7 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
                                      pile_arrays, rom.participation_ram, rom.participation_pile)
     if h is not None:
         unit.set_step(h)
-    return AnvilKernels(settings.model, modal_forces, modal_step, modal_energy, unit.P, unit.C,
+    return AnvilKernels(settings.model, UNIT_MODAL, unit.P, unit.C,
                         unit.S, u_top0, limit, 1, unit)
 
 
