@@ -103,6 +103,114 @@ def _impact(args: argparse.Namespace) -> int:
     return 0
 
 
+def _fea(args: argparse.Namespace) -> int:
+    from anvil_rom.fea import run_impact_fea
+
+    from .compare import fea_config, without_soil
+    from .plots import plot_columns
+    from .report import write_csv
+    from .system import load_system
+
+    cfg = without_soil(load_system(args.system))
+    config = fea_config(cfg, mesh_size=args.mesh_size, truncate_length=args.truncate)
+    with _progress("FEA") as progress:
+        result = run_impact_fea(config, progress=progress)
+    columns = result.to_columns()
+    summary = {
+        "system": str(args.system),
+        "model": "axisymmetric explicit FEA (ram + anvil + pile top)",
+        "peak_ram_anvil_force [N]": float(result.ram_anvil_force.max()),
+        "peak_anvil_pile_force [N]": float(result.anvil_pile_force.max()),
+        "peak_gauge_force [N]": float(result.gauge_force.max()),
+        "n_dof": result.n_dof, "n_steps": result.n_steps, "time_step [s]": result.time_step,
+        "simulated_time [s]": float(result.time[-1] - result.time[0]),
+        "wall_time [s]": result.wall_time, "setup_time [s]": result.setup_time,
+        "pile_model": ("full length" if config.truncate_length is None else
+                       f"{config.truncate_length:g} m with an absorbing cut"),
+    }
+    with ResultWriter(args.out) as out:
+        write_csv(columns, out.part("impact.csv"))
+        out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+        plot_columns(columns, out.part("impact.png"), title=f"{Path(args.system).name}: FEA")
+    print(f"FEA {Path(args.system).name}: {result.n_dof} DOF, {result.n_steps} steps in "
+          f"{result.wall_time:.1f} s; peak ram-anvil "
+          f"{summary['peak_ram_anvil_force [N]'] / 1e6:.1f} MN, anvil-pile "
+          f"{summary['peak_anvil_pile_force [N]'] / 1e6:.1f} MN -> {args.out}")
+    return 0
+
+
+def _compare(args: argparse.Namespace) -> int:
+    from .system import load_system
+
+    cfg = load_system(args.system)
+    with ResultWriter(args.out) as out:
+        comparison = _run_comparison(cfg, out, args.rom_engine, args.fea_mesh_size)
+    _print_comparison(comparison, args.out)
+    return 0
+
+
+def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> dict:
+    from .compare import compare, plot_comparison, run_models
+    from .report import write_csv
+
+    with _progress("FEA") as progress:
+        runs = run_models(cfg, out._tmp, rom_engine=rom_engine, fea_mesh_size=fea_mesh_size,
+                          progress=progress)
+    # the static anvil weight on the pile at t = 0 (the arrival threshold sits above it)
+    preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
+    comparison = compare(runs, preload=preload)
+    comparison["system"] = cfg.source
+    for name, run in runs.items():
+        write_csv(run.columns, out.part(f"{name}.csv"))
+    out.part("comparison.json").write_text(json.dumps(comparison, indent=2) + "\n")
+    plot_comparison(runs, "ram_anvil_force [N]", out.part("fig2_ram_force.png"),
+                    "Ram impact force (ram-anvil contact): FEA vs simulation")
+    plot_comparison(runs, "anvil_pile_force [N]", out.part("fig3_pile_force.png"),
+                    "Pile-top impact force (anvil-pile contact): FEA vs simulation")
+    return comparison
+
+
+def _print_comparison(comparison: dict, out) -> None:
+    print(f"{'model':7s} {'ram peak':>9s} {'pile peak':>9s} {'arrival':>8s} {'RMS ram':>8s} "
+          f"{'RMS pile':>8s} {'wall':>8s}")
+    for name in ("fea", "rom", "lumped"):
+        if name not in comparison:
+            continue
+        m = comparison[name]
+        print(f"{name:7s} {m['peak_ram_anvil_force [N]'] / 1e6:8.1f}M "
+              f"{m['peak_anvil_pile_force [N]'] / 1e6:8.1f}M "
+              f"{m['pile_force_arrival_time [s]'] * 1e3:6.2f}ms "
+              f"{m.get('ram_anvil_force_normalised_rms_error [-]', 0.0):8.3f} "
+              f"{m.get('anvil_pile_force_normalised_rms_error [-]', 0.0):8.3f} "
+              f"{m['wall_time [s]']:7.2f}s")
+    print(f"-> {out}")
+
+
+class _progress:
+    """A tqdm bar driven by a fraction callback (the FEA reports its progress that way)."""
+
+    def __init__(self, label: str):
+        self.label = label
+
+    def __enter__(self):
+        from tqdm import tqdm
+
+        self.bar = tqdm(total=100, desc=self.label, unit="%", leave=False)
+        self._last = 0
+
+        def update(fraction: float) -> None:
+            now = int(round(100 * fraction))
+            if now > self._last:
+                self.bar.update(now - self._last)
+                self._last = now
+
+        return update
+
+    def __exit__(self, *exc):
+        self.bar.close()
+        return False
+
+
 def _gauge_area(cfg) -> float:
     """Steel area of the pile section at the gauge depth [m^2]."""
     depth = 0.0
@@ -161,6 +269,38 @@ def build_parser() -> argparse.ArgumentParser:
                         "system), none (ram directly on the pile)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_impact)
+
+    p = sub.add_parser(
+        "fea", help="the reference axisymmetric impact FEA (ram + anvil + pile top)",
+        description="Explicit transient axisymmetric FE of ram, anvil and pile top with "
+                    "compression-only contacts (lift-off and re-impact), gravity preload, the "
+                    "whole pile or a length of it with an absorbing cut; writes DIR/impact.csv, DIR/summary.json (with "
+                    "wall_time [s] of the stepping) and DIR/impact.png. The soil is left out.",
+    )
+    p.add_argument("system", type=Path, help="system file (TOML)")
+    p.add_argument("--mesh-size", type=float, default=None, metavar="M",
+                   help="element size in the ram and the anvil [m] (default 0.1)")
+    p.add_argument("--truncate", type=float, default=None, metavar="M",
+                   help="model only this length of pile, with an absorbing cut [m] (default: "
+                        "the whole pile, exact until its toe reflection returns)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_fea)
+
+    p = sub.add_parser(
+        "compare", help="ROM anvil (FMUs) vs lumped-mass anvil vs FEA: the paper's Fig. 2 and 3",
+        description="Run the ROM anvil (through the FMUs), the rigid lumped-mass anvil and the "
+                    "reference FEA on the same configuration (free pile, see the README) and "
+                    "write DIR/comparison.json (peak forces, pile-force arrival time, "
+                    "normalised RMS errors against the FEA, wall times), DIR/fig2_ram_force.png, "
+                    "DIR/fig3_pile_force.png and the three time series.",
+    )
+    p.add_argument("system", type=Path, help="system file (TOML)")
+    p.add_argument("--rom-engine", choices=("fmi", "direct"), default="fmi",
+                   help="run the ROM through the FMUs (default) or the in-process engine")
+    p.add_argument("--fea-mesh-size", type=float, default=None, metavar="M",
+                   help="FEA element size in the ram and the anvil [m]")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_compare)
     return parser
 
 

@@ -90,3 +90,14 @@ def plot_impact_blows(blows, path: str | Path, title: str = "") -> Path:
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def plot_columns(columns: dict, path: str | Path, title: str = "") -> Path:
+    """Forces and pile-head velocity of one set of time series (CSV columns) as PNG."""
+
+    class _Blow:
+        pass
+
+    blow = _Blow()
+    blow.columns = columns
+    return plot_impact_blows([blow], path, title=title)

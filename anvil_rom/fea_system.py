@@ -1,0 +1,351 @@
+"""Building blocks of the reference impact FEA: bodies, faces, contacts, boundaries, probes.
+
+Every body is an axisymmetric solid assembled with :func:`anvil_rom.fe.assemble` (quadratic
+Lagrange elements, 2 pi r weighting, u_r = 0 on the axis) and HRZ-lumped. Bodies touch along
+horizontal faces whose nodes sit at the SAME radii on both sides (conforming meshes), so a
+contact is a set of node pairs. Cylinders and tubes are structured (r, z) tensor meshes of
+9-node quadrilaterals whose radial vertex positions are copied from the anvil face they touch;
+the anvil is meshed with gmsh (6-node triangles) with a finer size on the pile bearing ring.
+
+Coordinates (r, z) [m], z DOWN; each body has its own z origin: z is the position in the stack
+(the anvil top face is at z = 0, the ram lies above it at z < 0, the pile below).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import meshio
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+import skfem
+
+from .fe import AxisymmetricModel, _stiffness_form, assemble, lame_parameters
+from .geometry import Material
+from .mesh import _compact
+
+_GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
+
+
+# --------------------------------------------------------------------------- bodies
+
+
+@dataclass
+class Body:
+    """One elastic body of the stack.
+
+    name : label used in messages and outputs.
+    model : assembled axisymmetric FE model (K, consistent M on the free DOFs).
+    lumped_mass : (n_dof,) HRZ lumped mass [kg].
+    offset : index of the body's first DOF in the global vector.
+    """
+
+    name: str
+    model: AxisymmetricModel
+    lumped_mass: np.ndarray
+    offset: int = 0
+
+    @property
+    def n_dof(self) -> int:
+        return self.model.n_dof
+
+    @property
+    def mass(self) -> float:
+        """Total mass [kg]."""
+        return self.model.total_mass()
+
+    def node_free_dofs(self) -> np.ndarray:
+        """(n_nodes, 2) local free-DOF index of (u_r, u_z) of every node, -1 where removed."""
+        inverse = np.full(self.model.basis.N, -1, dtype=np.int64)
+        inverse[self.model.free_dofs] = np.arange(self.model.n_dof)
+        return inverse[self.model.node_dofs]
+
+    def axial_indicator(self) -> np.ndarray:
+        """(n_dof,) 1 on axial DOFs, 0 on radial ones."""
+        return self.model.axial_free
+
+    def gravity_force(self, gravity: float) -> np.ndarray:
+        """Nodal weight [N] from the LUMPED mass, so a free body falls without stress."""
+        return self.lumped_mass * self.axial_indicator() * gravity
+
+
+def make_body(name: str, mesh: skfem.Mesh, material: Material) -> Body:
+    """Assemble and HRZ-lump one body."""
+    model = assemble(mesh, material)
+    return Body(name, model, model.lumped_mass())
+
+
+def tensor_body(name: str, r_vertices: np.ndarray, z_vertices: np.ndarray,
+                material: Material) -> Body:
+    """A solid cylinder or tube as a structured mesh of 9-node quadrilaterals.
+
+    r_vertices, z_vertices : increasing vertex coordinates [m]; r_vertices[0] = 0 for a solid
+        cylinder (its axis nodes get u_r = 0).
+    """
+    mesh = skfem.MeshQuad.init_tensor(np.asarray(r_vertices, float),
+                                      np.asarray(z_vertices, float))
+    return make_body(name, mesh, material)
+
+
+def graded_vertices(start: float, stop: float, size: float, fixed=()) -> np.ndarray:
+    """Vertex coordinates from start to stop [m] with spacing <= size, through ``fixed`` points."""
+    knots = np.unique(np.concatenate([[start, stop], [x for x in fixed if start < x < stop]]))
+    parts = [np.linspace(a, b, max(1, int(np.ceil((b - a) / size - 1e-9))) + 1)[:-1]
+             for a, b in zip(knots[:-1], knots[1:], strict=True)]
+    return np.concatenate([*parts, [stop]])
+
+
+def mesh_outline_sized(outline: np.ndarray, point_sizes: np.ndarray,
+                       edge_divisions: dict[int, int] | None = None) -> meshio.Mesh:
+    """Mesh a closed (r, z) polygon into 6-node triangles with a target size per vertex [m].
+
+    Like :func:`anvil_rom.mesh.mesh_outline`, but gmsh interpolates the element size between
+    the vertices, so the mesh can be refined locally (the pile bearing ring), and
+    ``edge_divisions`` {i: m} splits edge i (vertex i to i + 1) into exactly m equal elements.
+    """
+    import gmsh
+
+    if not gmsh.isInitialized():
+        gmsh.initialize(interruptible=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("fea_body")
+    try:
+        tags = [gmsh.model.geo.addPoint(r, z, 0.0, s)
+                for (r, z), s in zip(outline, point_sizes, strict=True)]
+        lines = [gmsh.model.geo.addLine(tags[i], tags[(i + 1) % len(tags)])
+                 for i in range(len(tags))]
+        gmsh.model.geo.addPlaneSurface([gmsh.model.geo.addCurveLoop(lines)])
+        for edge, count in (edge_divisions or {}).items():
+            gmsh.model.geo.mesh.setTransfiniteCurve(lines[edge], int(count) + 1)
+        gmsh.model.geo.synchronize()
+        gmsh.option.setNumber("Mesh.Algorithm", 6)
+        gmsh.option.setNumber("Mesh.ElementOrder", 2)
+        gmsh.option.setNumber("Mesh.SecondOrderLinear", 1)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.model.mesh.generate(2)
+        node_tags, coords, _ = gmsh.model.mesh.getNodes()
+        etypes, _, enodes = gmsh.model.mesh.getElements(dim=2)
+    finally:
+        gmsh.model.remove()
+    xyz = np.asarray(coords).reshape(-1, 3)
+    index = np.zeros(int(np.max(node_tags)) + 1, dtype=np.int64)
+    index[np.asarray(node_tags, dtype=np.int64)] = np.arange(len(node_tags))
+    cells = []
+    for etype, conn in zip(etypes, enodes, strict=True):
+        if etype != 9:
+            raise RuntimeError(f"gmsh produced unexpected element type {etype}")
+        cells.append(("triangle6", index[np.asarray(conn, dtype=np.int64).reshape(-1, 6)]))
+    return _compact(meshio.Mesh(xyz[:, :2], cells))
+
+
+# --------------------------------------------------------------------------- faces
+
+
+@dataclass
+class Face:
+    """The nodes of one body on a horizontal line z = const, r_min <= r <= r_max, sorted by r.
+
+    radii : (n,) node radii [m] (vertices and edge mid-nodes alternate).
+    axial_dofs, radial_dofs : (n,) GLOBAL DOF indices (radial -1 on the axis).
+    weights : (n,) integral of 2 pi r N_i dr over the line [m^2]; sum = the face area. A uniform
+        pressure p gives the nodal forces p * weights; the area-weighted mean of a nodal field is
+        weights @ x / weights.sum().
+    """
+
+    body: str
+    z: float
+    radii: np.ndarray
+    axial_dofs: np.ndarray
+    radial_dofs: np.ndarray
+    weights: np.ndarray
+
+    @property
+    def area(self) -> float:
+        """Face area [m^2]."""
+        return float(self.weights.sum())
+
+
+def line_weights(radii: np.ndarray) -> np.ndarray:
+    """Integral of 2 pi r N_i dr for the quadratic shape functions of a line of nodes [m^2].
+
+    ``radii`` holds 2m + 1 sorted node radii: vertex, mid-node, vertex, ... (exact midpoints).
+    The integrand is cubic, so 3-point Gauss is exact.
+    """
+    radii = np.asarray(radii, float)
+    if len(radii) < 3 or len(radii) % 2 == 0:
+        raise ValueError("a quadratic line needs 2m + 1 nodes")
+    r0, rm, r1 = radii[:-2:2], radii[1:-1:2], radii[2::2]
+    if not np.allclose(rm, 0.5 * (r0 + r1), rtol=0.0, atol=1e-9 * max(radii.max(), 1.0)):
+        raise ValueError("mid-nodes are not at the edge midpoints")
+    xi, w = _GAUSS3
+    shape = np.stack([0.5 * xi * (xi - 1.0), 1.0 - xi**2, 0.5 * xi * (xi + 1.0)])  # (3 nodes, 3 qp)
+    r_q = 0.5 * (r0 + r1)[:, None] + 0.5 * (r1 - r0)[:, None] * xi[None, :]     # (m, qp)
+    jac = 0.5 * (r1 - r0)[:, None]
+    local = np.einsum("eq,aq,q->ea", 2.0 * np.pi * r_q * jac, shape, w)          # (m, 3)
+    out = np.zeros(len(radii))
+    np.add.at(out, np.arange(0, len(radii) - 2, 2), local[:, 0])
+    np.add.at(out, np.arange(1, len(radii) - 1, 2), local[:, 1])
+    np.add.at(out, np.arange(2, len(radii), 2), local[:, 2])
+    # the axis node's weight is exactly 0 (integrand r N_0); drop its round-off
+    return np.where(np.abs(out) < 1e-12 * out.max(), 0.0, out)
+
+
+def face(body: Body, z: float, r_min: float = 0.0, r_max: float = np.inf) -> Face:
+    """The nodes of ``body`` on the line z [m] with r_min <= r <= r_max, as a :class:`Face`."""
+    xy = body.model.node_coordinates
+    scale = max(np.abs(xy).max(), 1.0)
+    tol = 1e-7 * scale
+    on = (np.abs(xy[:, 1] - z) < tol) & (xy[:, 0] >= r_min - tol) & (xy[:, 0] <= r_max + tol)
+    nodes = np.flatnonzero(on)
+    if len(nodes) < 3:
+        raise ValueError(f"{body.name}: no element edges on z = {z:g} m, "
+                         f"{r_min:g} <= r <= {r_max:g} m")
+    nodes = nodes[np.argsort(xy[nodes, 0])]
+    radii = xy[nodes, 0]
+    dofs = body.node_free_dofs()[nodes]
+    radial = np.where(dofs[:, 0] >= 0, dofs[:, 0] + body.offset, -1)
+    return Face(body.name, float(z), radii, dofs[:, 1] + body.offset, radial, line_weights(radii))
+
+
+def vertex_radii(f: Face) -> np.ndarray:
+    """Vertex radii of a face (every other node) [m]: the radial grid of a matching body."""
+    return f.radii[::2]
+
+
+# --------------------------------------------------------------------------- contacts
+
+
+@dataclass
+class ContactSet:
+    """Node-to-node compression-only penalty contact between two conforming faces.
+
+    The overlap of pair i is d_i = u_upper_i - u_lower_i - gap_i (z down, u the axial
+    displacement from the undeformed stack); the pair force follows
+    :func:`anvil_rom.contact.contact_force` and pushes the upper node up, the lower down.
+
+    stiffness : (n,) pair stiffness [N/m]; damping : (n,) pair dashpot [N s/m].
+    gap : (n,) initial geometric gap [m] (0: the faces touch in the undeformed stack).
+    """
+
+    name: str
+    upper_dofs: np.ndarray
+    lower_dofs: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    gap: np.ndarray
+    radii: np.ndarray
+
+
+def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: float,
+                    damping_per_area: float = 0.0) -> ContactSet:
+    """Pair the nodes of two conforming faces; pair stiffness = stiffness_per_area * weight.
+
+    stiffness_per_area : penalty stiffness per unit contact area [N/m^3] (e.g. alpha E / h).
+    damping_per_area : contact dashpot per unit area [N s/m^3] (0: elastic contact).
+    """
+    if len(upper.radii) != len(lower.radii) or not np.allclose(
+            upper.radii, lower.radii, rtol=0.0, atol=1e-7 * max(upper.radii.max(), 1.0)):
+        raise ValueError(f"{name}: the faces of {upper.body} and {lower.body} are not conforming "
+                         "(node radii differ)")
+    weights = 0.5 * (upper.weights + lower.weights)
+    return ContactSet(name, upper.axial_dofs.copy(), lower.axial_dofs.copy(),
+                      stiffness_per_area * weights, damping_per_area * weights,
+                      np.zeros(len(weights)), upper.radii.copy())
+
+
+def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None) -> sp.csr_matrix:
+    """Stiffness matrix of the closed (or ``active``) pairs of a contact set (n x n)."""
+    k = contact.stiffness if active is None else contact.stiffness * active
+    i, j = contact.upper_dofs, contact.lower_dofs
+    rows = np.concatenate([i, j, i, j])
+    cols = np.concatenate([i, j, j, i])
+    vals = np.concatenate([k, k, -k, -k])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
+# --------------------------------------------------------------------------- boundaries, probes
+
+
+def dashpot_damping(f: Face, material: Material, n: int, axial_speed: float,
+                    radial_speed: float) -> np.ndarray:
+    """Diagonal dashpot coefficients [N s/m] of a viscous (Lysmer-type) boundary on a face.
+
+    c_i = rho * speed * weight_i on the axial (and radial) DOF of each face node: a traction
+    -rho c v, which absorbs a plane wave travelling at ``speed`` [m/s] normal to the face.
+    """
+    c = np.zeros(n)
+    c[f.axial_dofs] += material.density * axial_speed * f.weights
+    radial = f.radial_dofs >= 0
+    c[f.radial_dofs[radial]] += material.density * radial_speed * f.weights[radial]
+    return c
+
+
+def section_force_row(body: Body, z: float, n: int) -> np.ndarray:
+    """Row vector g with g @ u = axial force across the section z [N], positive compression.
+
+    The force the part below the section exerts on the section nodes is -(K_below u); the one
+    the part above exerts is -(K_above u). Averaging the two one-sided values,
+    N = 1/2 sum_i [(K_below u)_zi - (K_above u)_zi], cancels the inertia of the section nodes to
+    first order; statically both equal the section resultant. (Nodal-force recovery is exact
+    for the resultant, unlike averaging element stresses.)
+    """
+    model = body.model
+    mesh, basis = model.mesh, model.basis
+    centroid_z = mesh.p[1, mesh.t].mean(axis=0)
+    lam, mu = lame_parameters(model.material)
+    below = np.flatnonzero(centroid_z > z)
+    above = np.flatnonzero(centroid_z < z)
+    if len(below) == 0 or len(above) == 0:
+        raise ValueError(f"{body.name}: the section z = {z:g} m is not inside the body")
+    sec = face(body, z)
+    local_z = sec.axial_dofs - body.offset
+    full_z = model.free_dofs[local_z]
+    rows = []
+    for elements in (below, above):
+        sub = skfem.Basis(mesh, basis.elem, intorder=4, elements=elements)
+        K = _stiffness_form.assemble(sub, lam=lam, mu=mu).tocsr()
+        rows.append(np.asarray(K[full_z].sum(axis=0)).ravel()[model.free_dofs])
+    g = np.zeros(n)
+    g[body.offset:body.offset + body.n_dof] = 0.5 * (rows[0] - rows[1])
+    return g
+
+
+# --------------------------------------------------------------------------- statics
+
+
+def static_preload(stiffness: sp.spmatrix, force: np.ndarray, contacts: list[ContactSet],
+                   supported: np.ndarray, max_iterations: int = 20
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Static equilibrium with compression-only contacts and fixed DOFs (active-set iteration).
+
+    Solves (K + K_contact(active)) u = f with u = 0 on ``supported`` DOFs; pairs in tension are
+    released and separated pairs that overlap are closed until the active set is stable.
+
+    Returns u [m] and the support reaction r [N] (nonzero only on ``supported``): the force
+    the supports exert, K u + contact - f = r there.
+    """
+    n = stiffness.shape[0]
+    free = np.setdiff1d(np.arange(n), supported)
+    active = [np.ones(len(c.stiffness)) for c in contacts]
+    for _ in range(max_iterations):
+        A = stiffness.tocsr()
+        for c, a in zip(contacts, active, strict=True):
+            A = A + contact_matrix(c, n, a)
+        A = A.tocsr()
+        u = np.zeros(n)
+        u[free] = sla.spsolve(A[free][:, free].tocsc(), force[free])
+        changed = False
+        new_active = []
+        for c in contacts:
+            overlap = u[c.upper_dofs] - u[c.lower_dofs] - c.gap
+            a = (overlap > 0.0).astype(float)
+            new_active.append(a)
+        for a_old, a_new in zip(active, new_active, strict=True):
+            changed |= not np.array_equal(a_old, a_new)
+        active = new_active
+        if not changed:
+            reaction = np.zeros(n)
+            reaction[supported] = (A @ u - force)[supported]
+            return u, reaction
+    raise RuntimeError("static preload: contact active set did not converge")
