@@ -274,8 +274,9 @@ def build_parser() -> argparse.ArgumentParser:
         "fea", help="the reference axisymmetric impact FEA (ram + anvil + pile top)",
         description="Explicit transient axisymmetric FE of ram, anvil and pile top with "
                     "compression-only contacts (lift-off and re-impact), gravity preload, the "
-                    "whole pile or a length of it with an absorbing cut; writes DIR/impact.csv, DIR/summary.json (with "
-                    "wall_time [s] of the stepping) and DIR/impact.png. The soil is left out.",
+                    "whole pile or a length of it with an absorbing cut; writes DIR/impact.csv, "
+                    "DIR/summary.json (with wall_time [s] of the stepping) and DIR/impact.png. "
+                    "The soil is left out.",
     )
     p.add_argument("system", type=Path, help="system file (TOML)")
     p.add_argument("--mesh-size", type=float, default=None, metavar="M",
