@@ -74,9 +74,16 @@ def _impact(args: argparse.Namespace) -> int:
         cfg = cfg.with_anvil_model(args.anvil)
     model = cfg.anvil.model
     if args.engine == "fmi":
+        import tempfile
+
         from .fmi_engine import run_fmi
 
-        blows = run_fmi(cfg, args.out / "fmus", anvil_model=model, progress=True)
+        if model not in ("rom", "lumped"):
+            raise InputError(str(args.system), "anvil.model",
+                             f"the FMI engine has the 'rom' and 'lumped' anvil units, not "
+                             f"{model!r}: use --engine direct")
+        with tempfile.TemporaryDirectory(prefix="anvilwave-fmus-") as tmp:
+            blows = run_fmi(cfg, tmp, progress=None)
     else:
         engine = build_engine(cfg)
         blows = engine.run(progress=True)
@@ -100,6 +107,22 @@ def _impact(args: argparse.Namespace) -> int:
           f"{s['peak_anvil_pile_force [N]'] / 1e6:.1f} MN; "
           f"{s['simulated_time [s]'] * 1e3:.1f} ms in {s['wall_time [s]']:.4f} s "
           f"({s['realtime_factor [-]']:.0f}x real time) -> {args.out}")
+    return 0
+
+
+def _build_fmus(args: argparse.Namespace) -> int:
+    from .ssp import build_system_fmus
+    from .system import load_system
+
+    cfg = load_system(args.system)
+    if args.anvil is not None:
+        cfg = cfg.with_anvil_model(args.anvil)
+    with ResultWriter(args.out) as out:
+        built = build_system_fmus(cfg, out.staging)
+    names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
+                                                    "ssp"))
+    print(f"{names} -> {args.out} (system uses {built['anvil']}, step "
+          f"{built['time_step'] * 1e6:.2f} us)")
     return 0
 
 
@@ -150,15 +173,15 @@ def _compare(args: argparse.Namespace) -> int:
 
 
 def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> dict:
-    from .compare import compare, plot_comparison, run_models
+    from .compare import compare, comparison_bandwidth, plot_comparison, run_models
     from .report import write_csv
 
     with _progress("FEA") as progress:
-        runs = run_models(cfg, out._tmp, rom_engine=rom_engine, fea_mesh_size=fea_mesh_size,
+        runs = run_models(cfg, out.staging, rom_engine=rom_engine, fea_mesh_size=fea_mesh_size,
                           progress=progress)
     # the static anvil weight on the pile at t = 0 (the arrival threshold sits above it)
     preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
-    comparison = compare(runs, preload=preload)
+    comparison = compare(runs, preload=preload, bandwidth=comparison_bandwidth(cfg))
     comparison["system"] = cfg.source
     for name, run in runs.items():
         write_csv(run.columns, out.part(f"{name}.csv"))
@@ -209,6 +232,65 @@ class _progress:
     def __exit__(self, *exc):
         self.bar.close()
         return False
+
+
+def _demo(args: argparse.Namespace) -> int:
+    """The Table 1 comparison end to end (the README's main job)."""
+    import time
+
+    from anvil_rom.modalfile import save_modal_data
+    from anvil_rom.pipeline import compute_anvil_modes
+
+    from .plots import plot_modes
+    from .system import load_system
+
+    start = time.perf_counter()
+    system = Path(__file__).resolve().parents[1] / "examples" / "table1.toml"
+    if args.system is not None:
+        system = args.system
+    cfg = load_system(system)
+    steps = ["modes of the anvil", "FMUs", "ROM (FMI co-simulation), lumped anvil, FEA",
+             "figures and summary"]
+    print(f"anvilwave demo: {system.name} -> {args.out}")
+    with ResultWriter(args.out) as out:
+        _say(1, steps)
+        modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
+        save_modal_data(modes.modal_data, out.part("modes/modes.npz"))
+        plot_modes(modes, out.part("modes/modes.png"))
+        print(f"    {modes.modes.n_modes} modes up to {modes.modes.fmax:g} Hz, "
+              f"{modes.model.n_dof} DOF, {modes.wall_time:.1f} s")
+        _say(2, steps)
+        from .ssp import build_system_fmus
+
+        fmus = build_system_fmus(cfg, out.staging / "fmus")
+        print("    " + ", ".join(Path(fmus[k]).name
+                                 for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil", "ssp")))
+        _say(3, steps)
+        comparison = _run_comparison(cfg, out, "fmi", None)
+        _say(4, steps)
+        rom, lumped, fea = comparison["rom"], comparison["lumped"], comparison["fea"]
+        summary = {
+            "system": str(system),
+            "anvil_modes": modes.modes.n_modes, "anvil_fmax [Hz]": modes.modes.fmax,
+            "anvil_fe_dof": modes.model.n_dof,
+            "comparison_bandwidth [Hz]": comparison["comparison_bandwidth [Hz]"],
+            "rom_vs_fea": {k: v for k, v in rom.items() if k.endswith("[-]") or
+                           k.endswith("error [s]")},
+            "lumped_vs_fea": {k: v for k, v in lumped.items() if k.endswith("[-]") or
+                              k.endswith("error [s]")},
+            "fea_lift_off_intervals [s]": fea["anvil_lift_off_intervals [s]"],
+            "rom_lift_off_intervals [s]": rom["anvil_lift_off_intervals [s]"],
+            "wall_time_fea [s]": fea["wall_time [s]"], "wall_time_rom [s]": rom["wall_time [s]"],
+            "total_time [s]": time.perf_counter() - start,
+        }
+        out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    _print_comparison(comparison, args.out)
+    print(f"demo finished in {time.perf_counter() - start:.0f} s")
+    return 0
+
+
+def _say(i: int, steps: list[str]) -> None:
+    print(f"[{i}/{len(steps)}] {steps[i - 1]}", flush=True)
 
 
 def _gauge_area(cfg) -> float:
@@ -271,6 +353,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_impact)
 
     p = sub.add_parser(
+        "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
+        description="Build the FMI 2.0 co-simulation units of a system (pythonfmu; the anvil's "
+                    "modal-data file embedded) and an SSP 1.0 file connecting ram, anvil and "
+                    "pile/soil with the system's parameter values.",
+    )
+    p.add_argument("system", type=Path, help="system file (TOML)")
+    p.add_argument("--anvil", choices=("rom", "lumped"), default=None,
+                   help="anvil unit of system.ssp (default: [anvil] model of the file)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_build_fmus)
+
+    p = sub.add_parser(
         "fea", help="the reference axisymmetric impact FEA (ram + anvil + pile top)",
         description="Explicit transient axisymmetric FE of ram, anvil and pile top with "
                     "compression-only contacts (lift-off and re-impact), gravity preload, the "
@@ -302,6 +396,18 @@ def build_parser() -> argparse.ArgumentParser:
                    help="FEA element size in the ram and the anvil [m]")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_compare)
+
+    p = sub.add_parser(
+        "demo", help="the paper's Table 1 comparison end to end (modes, FMUs, co-simulation, "
+                     "lumped anvil, FEA, Fig. 2 and 3, summary)",
+        description="Run the Table 1 case end to end: anvil modes, the four FMUs and system.ssp, "
+                    "the ROM through the FMI co-simulation, the lumped-mass anvil, the reference "
+                    "FEA, Fig. 2 and Fig. 3 and DIR/summary.json.",
+    )
+    p.add_argument("--system", type=Path, default=None,
+                   help="system file (default: examples/table1.toml)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_demo)
     return parser
 
 

@@ -22,6 +22,13 @@
 
 The FMUs run in a Python that has anvilwave (and pythonfmu) installed: the slave scripts import
 their classes from :mod:`fmu.units`.
+
+Helpers per FMU type: :func:`build_anvil_fmu` (``Anvil.fmu`` / ``AnvilLumped.fmu`` from a
+modal-data file), :func:`build_ram_fmu` (``Ram.fmu`` from a hammer: its segments embedded as
+``hammer.toml``, or a database name), :func:`build_pile_soil_fmu` (``PileSoil.fmu`` with the
+``[pile]`` / ``[soil]`` tables embedded as ``pile_soil.toml``). The resource files are written
+with floats in ``repr`` form, so the units read back the engine's arrays bit for bit. A whole
+system file: :func:`fmu.ssp.build_system_fmus`.
 """
 
 from __future__ import annotations
@@ -55,6 +62,8 @@ FORMAT = "anvilwave-fmu-parameters"
 KINDS: dict[str, Path] = {
     "Anvil": UNITS_DIR / "anvilwave_anvil_rom.py",
     "AnvilLumped": UNITS_DIR / "anvilwave_anvil_lumped.py",
+    "Ram": UNITS_DIR / "anvilwave_ram.py",
+    "PileSoil": UNITS_DIR / "anvilwave_pile_soil.py",
 }
 """Slave script of each FMU type. A new type registers its script here (unique module name)."""
 
@@ -67,6 +76,9 @@ UNIT_DEFINITIONS: dict[str, dict[str, int]] = {
     "N/m": {"kg": 1, "s": -2},
     "N.s/m": {"kg": 1, "s": -1},
     "Hz": {"s": -1},
+    "Pa": {"kg": 1, "m": -1, "s": -2},
+    "s/m": {"s": 1, "m": -1},
+    "kg/m3": {"kg": 1, "m": -3},
     "kg": {"kg": 1},
     "s": {"s": 1},
     "1": {},
@@ -137,6 +149,189 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
     defaults = {"modal_data_file": path.name, "fmax": data.fmax,
                 "damping_ratio": data.damping_ratio}
     return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path])
+
+
+HAMMER_RESOURCE = "hammer.toml"
+PILE_SOIL_RESOURCE = "pile_soil.toml"
+
+
+def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
+    """``Ram.fmu`` for a hammer.
+
+    hammer : a :class:`hammer.database.Hammer` (its ram is embedded as ``hammer.toml``, the
+        segment masses [kg] and springs [N/m] written exactly; ``v_impact`` [m/s] and ``mass``
+        [kg] default to the hammer's), the name of a database hammer (nothing embedded), the
+        path of a hammer TOML file (embedded), or None (the default database hammer).
+    parameters : further parameters of the Ram FMU (``v_impact`` [m/s], ``gravity`` [m/s^2],
+        ``contact_displacement`` [m], ``contact_time`` [s], ``mass`` [kg]).
+    """
+    from hammer.database import Hammer
+
+    with tempfile.TemporaryDirectory(prefix="anvilwave_ram_") as tmp:
+        resources = []
+        defaults: dict[str, Any] = {}
+        if isinstance(hammer, Hammer):
+            path = Path(tmp) / HAMMER_RESOURCE
+            path.write_text(hammer_toml(hammer), encoding="utf-8")
+            resources.append(path)
+            defaults = {"hammer": HAMMER_RESOURCE, "v_impact": hammer.impact_velocity,
+                        "mass": hammer.ram.total_mass}
+        elif hammer is not None:
+            from hammer.database import available_hammers
+
+            if str(hammer) in available_hammers():
+                defaults = {"hammer": str(hammer)}
+            else:
+                path = Path(hammer)
+                if path.suffix != ".toml" or not path.is_file():
+                    raise InputError("build_ram_fmu", "hammer",
+                                     f"{str(hammer)!r} is neither a database hammer "
+                                     f"({', '.join(available_hammers())}) nor a .toml file")
+                resources.append(path)
+                defaults = {"hammer": path.name}
+        return build_fmu("Ram", out_dir, {**defaults, **parameters}, resources)
+
+
+def build_pile_soil_fmu(out_dir: str | Path, pile_soil, **parameters) -> Path:
+    """``PileSoil.fmu`` for a pile with its soil.
+
+    pile_soil : a :class:`pile.model.PileSoil` (written exactly as ``pile_soil.toml``; the
+        scalar settings become the parameter defaults) or the path of a TOML file with
+        ``[pile]`` and an optional ``[soil]`` table (embedded; its scalar settings become the
+        defaults likewise).
+    parameters : further parameters (``static_head_load`` [N], ``gravity`` [m/s^2],
+        ``soil_model``, ``gauge_depth`` [m], ...; see :mod:`fmu.units.pile_soil`).
+    """
+    from pile.model import PileSoil, load_pile_soil
+
+    with tempfile.TemporaryDirectory(prefix="anvilwave_pile_") as tmp:
+        if isinstance(pile_soil, PileSoil):
+            model = pile_soil
+            path = Path(tmp) / PILE_SOIL_RESOURCE
+            path.write_text(pile_soil_toml(model), encoding="utf-8")
+        else:
+            path = Path(pile_soil)
+            model = load_pile_soil(path)
+        defaults = {"pile_soil_file": path.name, **pile_soil_parameters(model)}
+        return build_fmu("PileSoil", out_dir, {**defaults, **parameters}, [path])
+
+
+def pile_soil_parameters(model) -> dict[str, Any]:
+    """The scalar settings of a :class:`pile.model.PileSoil` as PileSoil FMU parameters."""
+    pile, soil = model.pile, model.soil
+    values: dict[str, Any] = {"segment_length": pile.segment_length,
+                              "gauge_depth": pile.gauge_depth,
+                              "material_damping": pile.material_damping}
+    if soil is not None:
+        values.update(soil_model=soil.model, penetration=soil.penetration,
+                      quake_shaft=soil.quake_shaft, damping_shaft=soil.damping_shaft,
+                      friction_perimeter=soil.friction_perimeter, toe_area=soil.toe_area)
+        if soil.model == "lysmer-toe":
+            values.update(toe_shear_modulus=soil.toe_shear_modulus,
+                          toe_density=soil.toe_density,
+                          toe_poisson_ratio=soil.toe_poisson_ratio)
+        else:
+            values.update(quake_toe=soil.quake_toe, damping_toe=soil.damping_toe)
+    return {k: float(v) if isinstance(v, numbers.Real) else v for k, v in values.items()}
+
+
+# ---------------------------------------------------------------------------- TOML resources
+def hammer_toml(hammer) -> str:
+    """A hammer file (TOML) that reads back as ``hammer``'s ram exactly: its segment masses
+    [kg] and springs [N/m] and its impact velocity [m/s]."""
+    ram = hammer.ram
+    ram_table: dict[str, Any] = {"segment_masses": [float(m) for m in ram.mass],
+                                 "segment_stiffnesses": [float(k) for k in ram.stiffness]}
+    if math.isfinite(ram.toe_diameter):
+        ram_table["diameter"] = float(ram.toe_diameter)
+    root = {"name": hammer.name, "manufacturer": hammer.manufacturer,
+            "description": f"Written by anvilwave from the hammer {hammer.name!r} "
+                           "(segments of its ram model).",
+            "impact_velocity": float(hammer.impact_velocity), "ram": ram_table}
+    return "# anvilwave Ram FMU resource: the ram of a system file as lumped segments.\n" \
+        + toml_dumps(root)
+
+
+def pile_soil_toml(model) -> str:
+    """A pile/soil file (``[pile]``, ``[soil]``) that reads back as ``model`` exactly."""
+    pile, soil = model.pile, model.soil
+    sections = [{"length": s.length, "outer_diameter": s.outer_diameter,
+                 "wall_thickness": s.wall_thickness, "youngs_modulus": s.youngs_modulus,
+                 "density": s.density} for s in pile.sections]
+    root: dict[str, Any] = {"pile": {"segment_length": pile.segment_length,
+                                     "gauge_depth": pile.gauge_depth,
+                                     "material_damping": pile.material_damping,
+                                     "sections": sections}}
+    if soil is not None:
+        table: dict[str, Any] = {
+            "model": soil.model, "penetration": soil.penetration,
+            "quake_shaft": soil.quake_shaft, "damping_shaft": soil.damping_shaft,
+            "friction_perimeter": soil.friction_perimeter, "toe_area": soil.toe_area,
+            "srd": np.column_stack([soil.srd.depth, soil.srd.unit_shaft_friction,
+                                    soil.srd.unit_toe_resistance]).tolist(),
+        }
+        if soil.model == "lysmer-toe":
+            table.update(toe_shear_modulus=soil.toe_shear_modulus, toe_density=soil.toe_density,
+                         toe_poisson_ratio=soil.toe_poisson_ratio)
+        else:
+            table.update(quake_toe=soil.quake_toe, damping_toe=soil.damping_toe)
+        root["soil"] = table
+    return ("# anvilwave PileSoil FMU resource: the [pile] and [soil] tables of a system file.\n"
+            "# The FMU parameters of the same names replace the scalar values here.\n"
+            + toml_dumps(root))
+
+
+def toml_dumps(root: dict[str, Any]) -> str:
+    """TOML text of a nested dict of strings, booleans, numbers, lists and tables.
+
+    Floats are written with ``repr`` so they read back bit for bit.
+    """
+    lines: list[str] = []
+    _toml_table(root, [], lines)
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _toml_table(table: dict[str, Any], path: list[str], lines: list[str]) -> None:
+    def is_table(v):
+        return isinstance(v, dict)
+
+    def is_table_array(v):
+        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
+
+    for key, value in table.items():
+        if not (is_table(value) or is_table_array(value)):
+            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
+    for key, value in table.items():
+        if is_table(value):
+            lines += ["", f"[{'.'.join(map(_toml_key, path + [key]))}]"]
+            _toml_table(value, path + [key], lines)
+        elif is_table_array(value):
+            for item in value:
+                lines += ["", f"[[{'.'.join(map(_toml_key, path + [key]))}]]"]
+                _toml_table(item, path + [key], lines)
+
+
+def _toml_key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool | np.bool_):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        value = float(value)
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a JSON string is a valid TOML basic string
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} to TOML")
 
 
 # ---------------------------------------------------------------------------- steps

@@ -25,16 +25,26 @@ class ResultWriter:
         return self
 
     def part(self, name: str) -> Path:
-        """Path of an output file being written."""
+        """Path of an output file being written (``name`` may name a sub-folder)."""
         self._names.append(name)
-        return self._tmp / name
+        path = self._tmp / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        return path
+
+    @property
+    def staging(self) -> Path:
+        """The folder being filled (for tools that write several files of their own)."""
+        return self._tmp
 
     def __exit__(self, exc_type, exc, tb) -> bool:
         try:
             if exc_type is None:
                 self.directory.mkdir(parents=True, exist_ok=True)
                 for item in self._tmp.iterdir():
-                    item.replace(self.directory / item.name)
+                    target = self.directory / item.name
+                    if target.is_dir() and item.is_dir():
+                        shutil.rmtree(target)
+                    item.replace(target)
         finally:
             shutil.rmtree(self._tmp, ignore_errors=True)
         return False

@@ -2,8 +2,11 @@
 
 Each FMU type has its own slave script whose module name is unique to that type
 (``anvilwave_anvil_rom.py`` -> ``Anvil.fmu``, ``anvilwave_anvil_lumped.py`` ->
-``AnvilLumped.fmu``): pythonfmu imports the script by module name, and a process runs the first
+``AnvilLumped.fmu``, ``anvilwave_ram.py`` -> ``Ram.fmu``, ``anvilwave_pile_soil.py`` ->
+``PileSoil.fmu``): pythonfmu imports the script by module name, and a process runs the first
 module of a given name for every FMU that names it. The scripts only subclass the slave classes
-of this package (:mod:`fmu.units.anvil`, built on :mod:`fmu.units.base`), so the FMUs need a
-Python with anvilwave installed. Build them with :func:`fmu.fmi_build.build_fmu`.
+of this package (:mod:`fmu.units.anvil`, :mod:`fmu.units.ram`, :mod:`fmu.units.pile_soil`,
+built on :mod:`fmu.units.base`), so the FMUs need a Python with anvilwave installed. Build them
+with :func:`fmu.fmi_build.build_fmu` (or the helpers there, or
+:func:`fmu.ssp.build_system_fmus` for a whole system file).
 """

@@ -24,16 +24,32 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+from numba import njit
 from pythonfmu import DefaultExperiment
 
 from anvil_rom.inputs import InputError
 from anvil_rom.modalfile import load_modal_data
 from anvil_rom.rom import ModalAnvil
-from anvil_rom.unit import GRAVITY, AnvilUnit, ContactParameters
+from anvil_rom.unit import (
+    GRAVITY,
+    AnvilUnit,
+    ContactParameters,
+    modal_unit_forces,
+    modal_unit_outputs,
+)
 
 from .base import UnitSlave
 
 INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
+
+
+@njit(cache=True)
+def anvil_outputs(P, C, S, u_ram, v_ram, u_pile, v_pile):
+    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] in one call: the contact forces of
+    :meth:`AnvilUnit.forces` and the interface displacements of :meth:`AnvilUnit.outputs`."""
+    force_ram, force_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    u_top, _, u_bottom, _ = modal_unit_outputs(P, C, S, force_ram, force_pile)
+    return force_ram, force_pile, u_top, u_bottom
 
 
 class AnvilSlaveBase(UnitSlave):
@@ -107,12 +123,8 @@ class AnvilSlaveBase(UnitSlave):
 
     def compute_outputs(self, inputs, outputs) -> None:
         unit = self.component
-        force_ram, force_pile = unit.forces(inputs[0], inputs[1], inputs[2], inputs[3])
-        u_top, _, u_bottom, _ = unit.outputs(force_ram, force_pile)
-        outputs[0] = force_ram
-        outputs[1] = force_pile
-        outputs[2] = u_top
-        outputs[3] = u_bottom
+        outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, inputs[0], inputs[1], inputs[2],
+                                   inputs[3])
 
     def advance(self, h: float) -> None:
         self.component.step(self.outputs[0], self.outputs[1], h)

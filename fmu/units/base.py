@@ -25,13 +25,20 @@ its FMU type (``anvilwave_<unit>.py``), calls ``pin_namespace(globals())`` and d
 subclass of a :class:`UnitSlave` subclass; see ``fmu/units/anvilwave_anvil_rom.py``.
 
 Time handling: the slaves accept any communication step ``h > 0``; each component integrates
-its own way over it (the anvil ROM in one step, unconditionally stable).
+its own way over it (the anvil ROM in one step, unconditionally stable; ram and pile in
+sub-steps within their stable limits). ``fmi2SetupExperiment``'s start time is kept as
+``start_time`` (the ram starts its free flight there).
+
+Speed: ``get_real`` / ``set_real`` take a short cut when a call reads only outputs or writes
+only inputs (the per-step exchange), and setting an input keeps the outputs of a unit without
+feedthrough valid, so each output is computed once per step.
 """
 
 from __future__ import annotations
 
 import json
 import math
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, ClassVar
@@ -93,7 +100,13 @@ class UnitSlave(Fmi2Slave):
         self.output_names: list[str] = []
         self.inputs: list[float] = []
         self.outputs: list[float] = []
+        self._input_vr: dict[int, int] = {}  # value reference -> index in inputs
+        self._output_vr: dict[int, int] = {}  # value reference -> index in outputs
+        self._get_plans: dict[tuple, tuple | None] = {}
+        self._set_plans: dict[tuple, tuple | None] = {}
+        self._feedthrough = False  # does any output depend directly on an input?
         self.component = None
+        self.start_time = 0.0
         self.failed = False
         self._initialized = False
         self._outputs_current = False
@@ -155,6 +168,7 @@ class UnitSlave(Fmi2Slave):
                    description=description, getter=lambda index=index: self.inputs[index],
                    setter=setter)
         self._register(var, unit)
+        self._input_vr[var.value_reference] = index
 
     def add_output(self, name: str, unit: str, description: str,
                    depends_on: tuple[str, ...] = ()) -> None:
@@ -166,9 +180,11 @@ class UnitSlave(Fmi2Slave):
         if unknown:
             raise ValueError(f"{name}: depends on unregistered inputs {sorted(unknown)}")
         self.fmi_dependencies[name] = tuple(depends_on)
+        self._feedthrough = self._feedthrough or bool(depends_on)
         var = Real(name, causality=Fmi2Causality.output, variability=Fmi2Variability.continuous,
                    description=description, getter=lambda index=index: self._output(index))
         self._register(var, unit)
+        self._output_vr[var.value_reference] = index
 
     def _register(self, var, unit: str | None) -> None:
         if unit is not None:
@@ -176,6 +192,12 @@ class UnitSlave(Fmi2Slave):
         self.register_variable(var)
 
     # ------------------------------------------------------------------ FMI calls
+    def setup_experiment(self, start_time, stop_time=None, tolerance=None):
+        """Record the start time [s] (``self.start_time``); the component starts there."""
+        if not self._initialized:
+            self.start_time = float(start_time)
+            self.component = None  # its initial state may depend on the start time
+
     def exit_initialization_mode(self):
         self._guard("initialization", self._initialize)
 
@@ -183,7 +205,47 @@ class UnitSlave(Fmi2Slave):
         if self.failed:
             self._fail("failed earlier (see the previous error): reset or free it")
             return False
-        return self._guard(f"step at t = {current_time:.9g} s", self._step, step_size)
+        try:  # _guard inlined: this runs every step
+            self._step(step_size)
+            return True
+        except Exception:  # noqa: BLE001 - reported by _guard, which re-raises nothing
+            return self._guard(f"step at t = {current_time:.9g} s", _reraise, sys.exc_info())
+
+    # Fast paths of the per-step exchange (pythonfmu calls these once per fmi2GetReal /
+    # fmi2SetReal): all outputs or all inputs go straight to the lists, anything else takes
+    # pythonfmu's general route through the variables' getters and setters.
+    def get_real(self, vrs):
+        key = tuple(vrs)
+        plan = self._get_plans.get(key, False)
+        if plan is False:
+            index = self._output_vr
+            plan = tuple(index[vr] for vr in key) if all(vr in index for vr in key) else None
+            self._get_plans[key] = plan
+        if plan is None:
+            return super().get_real(vrs)
+        if not self._outputs_current:
+            if self.component is None and not self._guard("initialization",
+                                                          self._ensure_component):
+                return [math.nan] * len(plan)
+            if not self._guard("outputs", self._refresh):
+                return [math.nan] * len(plan)
+        outputs = self.outputs
+        return [outputs[i] for i in plan]
+
+    def set_real(self, vrs, values):
+        key = tuple(vrs)
+        plan = self._set_plans.get(key, False)
+        if plan is False:
+            index = self._input_vr
+            plan = tuple(index[vr] for vr in key) if all(vr in index for vr in key) else None
+            self._set_plans[key] = plan
+        if plan is None:
+            return super().set_real(vrs, values)
+        inputs = self.inputs
+        for i, value in zip(plan, values, strict=False):
+            inputs[i] = value
+        if self._feedthrough:  # outputs that are states stay valid
+            self._outputs_current = False
 
     # ------------------------------------------------------------------ internals
     def _initialize(self) -> None:
@@ -202,7 +264,8 @@ class UnitSlave(Fmi2Slave):
         if not (math.isfinite(h) and h > 0.0):
             raise InputError(self.instance_name, "communication step", f"must be positive, "
                                                                       f"got {h!r} s")
-        self._refresh()
+        if not self._outputs_current:
+            self.compute_outputs(self.inputs, self.outputs)
         self.advance(h)
         self._outputs_current = False
 
@@ -255,3 +318,8 @@ class UnitSlave(Fmi2Slave):
         if not path.is_absolute() and self.resources:
             path = Path(self.resources) / path
         return path
+
+
+def _reraise(exc_info) -> None:
+    """Raise an exception caught earlier again (so that ``_guard`` reports it)."""
+    raise exc_info[1].with_traceback(exc_info[2])

@@ -1,0 +1,87 @@
+"""The fmax study on xl8 (the method's single parameter): error against the FEA and run time.
+
+Run: python benchmarks/study_fmax.py [--out results/study_fmax] [--fea-csv FILE]
+For fmax in a range, the ROM of the Table 1 case (free pile, as in `anvilwave compare`) is run
+with the in-process engine and compared with the reference FEA in the comparison band (the
+pile chain's cut-off, 3.3 kHz for 0.5 m segments): peak ram and pile forces, normalised RMS
+errors, arrival time, number of modes and the wall time of the time stepping (simulated time /
+wall time), all measured in this one run. Writes study.json and prints a table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+from pathlib import Path
+
+from anvil_rom.fea import run_impact_fea
+from anvil_rom.pipeline import compute_anvil_modes
+from fmu.compare import (
+    ModelRun,
+    comparison_bandwidth,
+    fea_config,
+    metrics,
+    without_soil,
+)
+from fmu.engine import build_engine
+from fmu.report import read_csv, write_csv
+from fmu.system import load_system
+
+ROOT = Path(__file__).resolve().parents[1]
+FMAX = (500.0, 1000.0, 2000.0, 3000.0, 5000.0, 7500.0, 10000.0)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--system", type=Path, default=ROOT / "examples" / "table1.toml")
+    parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_fmax")
+    parser.add_argument("--fea-csv", type=Path, default=None,
+                        help="reuse an FEA time series (fea.csv of `anvilwave compare`)")
+    args = parser.parse_args()
+    args.out.mkdir(parents=True, exist_ok=True)
+    cfg = without_soil(load_system(args.system))
+    if args.fea_csv is not None:
+        fea = ModelRun("fea", read_csv(args.fea_csv), float("nan"), {})
+    else:
+        result = run_impact_fea(fea_config(cfg))
+        fea = ModelRun("fea", result.to_columns(), result.wall_time, {})
+        write_csv(fea.columns, args.out / "fea.csv")
+    preload = float(fea.columns["anvil_pile_force [N]"][0])  # the anvil weight at t = 0
+    bandwidth = comparison_bandwidth(dataclasses.replace(
+        cfg, anvil=dataclasses.replace(cfg.anvil, fmax=None)))
+    modal = compute_anvil_modes(cfg.anvil.spec, fmax=max(FMAX)).modal_data
+    rows = []
+    for correction in (True, False):
+        for fmax in FMAX:
+            anvil = dataclasses.replace(cfg.anvil, fmax=fmax, static_correction=correction)
+            engine = build_engine(dataclasses.replace(cfg, anvil=anvil), modal=modal)
+            blow = engine.run()[0]
+            m = metrics(ModelRun("rom", blow.columns, blow.wall_time, {}), fea, preload,
+                        bandwidth)
+            rows.append({"fmax [Hz]": fmax, "static_correction": correction,
+                         "n_modes": engine.anvil.unit.n_modes,
+                         "time_step [s]": engine.time_step,
+                         "realtime_factor [-]": cfg.duration / blow.wall_time, **m})
+    lumped = build_engine(cfg.with_anvil_model("lumped"), modal=modal).run()[0]
+    m_lumped = metrics(ModelRun("lumped", lumped.columns, lumped.wall_time, {}), fea, preload,
+                       bandwidth)
+    (args.out / "study.json").write_text(json.dumps(
+        {"bandwidth [Hz]": bandwidth, "rom": rows, "lumped": m_lumped}, indent=2) + "\n")
+    print(f"comparison band {bandwidth:.0f} Hz; errors against the FEA")
+    print(f"{'fmax':>6s} {'corr':>4s} {'modes':>5s} {'ram pk':>7s} {'pile pk':>7s} "
+          f"{'RMS ram':>7s} {'RMS pile':>8s} {'arrival':>8s} {'x real':>6s}")
+    for r in rows + [{"fmax [Hz]": 0, "static_correction": "-", "n_modes": 1,
+                      "realtime_factor [-]": cfg.duration / lumped.wall_time, **m_lumped}]:
+        label = f"{r['fmax [Hz]']:6.0f}" if r["fmax [Hz]"] else "lumped"
+        print(f"{label:>6s} {str(r['static_correction'])[:4]:>4s} {r['n_modes']:5d} "
+              f"{r['peak_ram_anvil_force_error [-]']:+7.3f} "
+              f"{r['peak_anvil_pile_force_error [-]']:+7.3f} "
+              f"{r['ram_anvil_force_normalised_rms_error [-]']:7.3f} "
+              f"{r['anvil_pile_force_normalised_rms_error [-]']:8.3f} "
+              f"{r['pile_force_arrival_error [s]'] * 1e3:+7.3f}ms "
+              f"{r['realtime_factor [-]']:6.1f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,512 @@
+"""The system FMUs (Ram, Anvil, AnvilLumped, PileSoil), system.ssp and the FMI engine.
+
+Built once per module from examples/table1.toml (anvil modes ~2-5 s, four FMUs ~3 s). The FMU
+chain under the fmpy master (``run_fmi``) must reproduce the in-process engine
+(``build_engine(cfg).run()``): both run the same kernels with the same initialisation,
+sub-stepping and step order, so they agree to round-off. The tolerance of 1e-6 x peak asked
+for is therefore very loose; what is left (~1e-12 measured) is the order of floating-point
+sums (the anvil's top face at rest is read back from the anvil unit instead of reused, the
+anvil starts on the pile head of the blow in the frame of the first blow).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import dataclasses
+import json
+import shutil
+import subprocess
+import sys
+import textwrap
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+fmpy = pytest.importorskip("fmpy")
+pytest.importorskip("pythonfmu")
+
+from fmpy import calloc, extract, free, read_model_description, simulate_fmu  # noqa: E402
+from fmpy.fmi1 import FMICallException  # noqa: E402
+from fmpy.fmi2 import (  # noqa: E402
+    FMU2Slave,
+    fmi2CallbackAllocateMemoryTYPE,
+    fmi2CallbackFreeMemoryTYPE,
+    fmi2CallbackFunctions,
+    fmi2CallbackLoggerTYPE,
+)
+from fmpy.validation import validate_fmu  # noqa: E402
+
+from anvil_rom.inputs import InputError  # noqa: E402
+from fmu.engine import COLUMNS, build_engine  # noqa: E402
+from fmu.fmi_build import (  # noqa: E402
+    SHIM_INNER_LIBRARY,
+    build_ram_fmu,
+    hammer_toml,
+    pile_soil_toml,
+)
+from fmu.fmi_engine import run_fmi  # noqa: E402
+from fmu.fmi_master import BlowMaster, CosimulationError  # noqa: E402
+from fmu.ssp import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
+from fmu.system import load_system  # noqa: E402
+from hammer.database import load_hammer  # noqa: E402
+from pile.model import PileSoil, load_pile_soil  # noqa: E402
+
+from .conftest import EXAMPLES  # noqa: E402
+
+KINDS = ("Ram", "Anvil", "AnvilLumped", "PileSoil")
+FORCES = ("ram_anvil_force [N]", "anvil_pile_force [N]")
+
+
+@pytest.fixture(scope="module")
+def system(tmp_path_factory):
+    """Table 1 system: its anvil modes, its four FMUs and system.ssp, built once."""
+    cfg = load_system(EXAMPLES / "table1.toml")
+    modal = load_anvil_modal_data(cfg)
+    out = tmp_path_factory.mktemp("system_fmus")
+    fmus = build_system_fmus(cfg, out, modal)
+    return {"cfg": cfg, "modal": modal, "fmus": fmus, "out": out}
+
+
+@pytest.fixture(scope="module")
+def direct(system):
+    """The in-process engine's blows for the ROM and the lumped anvil."""
+    cfg, modal = system["cfg"], system["modal"]
+    return {model: build_engine(cfg.with_anvil_model(model), modal).run()
+            for model in ("rom", "lumped")}
+
+
+def relative_difference(a: np.ndarray, b: np.ndarray) -> float:
+    """max |a - b| / max |b|."""
+    return float(np.abs(a - b).max() / np.abs(b).max())
+
+
+def assert_same_blows(fmi, direct, tolerance=1e-6):
+    """Every column of every blow within ``tolerance`` x its peak (forces: the issue's 1e-6)."""
+    assert len(fmi) == len(direct)
+    for f, d in zip(fmi, direct, strict=True):
+        assert f.time_step == d.time_step and f.n_steps == d.n_steps
+        assert list(f.columns) == list(d.columns) == list(COLUMNS)
+        np.testing.assert_array_equal(f.columns["time [s]"], d.columns["time [s]"])
+        for name in COLUMNS[1:]:
+            scale = max(np.abs(d.columns[name]).max(), 1e-300)
+            diff = np.abs(f.columns[name] - d.columns[name]).max()
+            assert diff <= tolerance * scale, (name, diff, scale)
+
+
+# ---------------------------------------------------------------------------- the files
+@pytest.mark.parametrize("kind", KINDS)
+def test_fmus_validate_without_problems(system, kind):
+    assert validate_fmu(str(system["fmus"][kind])) == []
+    md = read_model_description(str(system["fmus"][kind]))
+    assert all("[" in v.description for v in md.modelVariables)
+    assert all(v.unit for v in md.modelVariables if v.type == "Real"
+               and v.causality in ("input", "output"))
+    assert {u.variable.name for u in md.initialUnknowns} == {u.variable.name for u in md.outputs}
+
+
+def test_interfaces_are_the_design_contract(system):
+    names = {}
+    for kind in KINDS:
+        md = read_model_description(str(system["fmus"][kind]))
+        names[kind] = {c: {v.name for v in md.modelVariables if v.causality == c}
+                       for c in ("input", "output")}
+    assert names["Ram"] == {"input": {"F_toe"}, "output": {"u_toe", "v_toe"}}
+    for anvil in ("Anvil", "AnvilLumped"):
+        assert names[anvil] == {"input": {"u_ram", "v_ram", "u_pile", "v_pile"},
+                                "output": {"F_ram", "F_pile", "u_top", "u_bottom"}}
+    assert names["PileSoil"]["input"] == {"F_head"}
+    assert {"u_head", "v_head", "F_gauge", "v_gauge"} <= names["PileSoil"]["output"]
+    # the states are not feedthrough: ram and pile outputs depend on no input
+    for kind in ("Ram", "PileSoil"):
+        md = read_model_description(str(system["fmus"][kind]))
+        assert all(not u.dependencies for u in md.outputs)
+    # resources: the ram's segments, the pile/soil tables, the modal-data file
+    for kind, resource in (("Ram", "hammer.toml"), ("PileSoil", "pile_soil.toml"),
+                           ("Anvil", "xl8_modes.npz")):
+        with zipfile.ZipFile(system["fmus"][kind]) as zf:
+            assert f"resources/{resource}" in zf.namelist()
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_each_fmu_runs_alone_with_fmpy_simulate(system, kind):
+    result = simulate_fmu(str(system["fmus"][kind]), stop_time=2e-3, step_size=1e-5)
+    names = result.dtype.names[1:]
+    assert all(np.all(np.isfinite(result[n])) for n in names)
+    parameters = system["fmus"]["parameters"]
+    t = result["time"]
+    if kind == "Ram":  # free fall from the contact point: v = v0 + g t, no input force
+        v0, g = parameters["Ram"]["v_impact"], parameters["Ram"]["gravity"]
+        np.testing.assert_allclose(result["v_toe"], v0 + g * t, rtol=1e-9)
+    elif kind == "PileSoil":  # at rest under the anvil weight, unloaded at t = 0: it rebounds
+        assert result["u_head"][0] == 0.0 and result["u_head"][-1] < 0.0
+    else:  # the anvil at rest on the pile: the contact force is its weight
+        weight = system["modal"].total_mass * 9.81
+        np.testing.assert_allclose(result["F_pile"], weight, rtol=1e-9)
+
+
+def test_system_ssp_is_valid_ssp_1_0(system):
+    from fmpy.ssp.ssd import read_ssd
+
+    fmus = system["fmus"]
+    ssd = read_ssd(str(fmus["ssp"]), validate=True)  # against the SSP 1.0 schema
+    assert ssd.version == "1.0"
+    assert sorted(e.name for e in ssd.system.elements) == ["Anvil", "PileSoil", "Ram"]
+    connections = {(c.startElement, c.startConnector, c.endElement, c.endConnector)
+                   for c in ssd.system.connections}
+    assert connections == {("Ram", "u_toe", "Anvil", "u_ram"), ("Ram", "v_toe", "Anvil", "v_ram"),
+                           ("PileSoil", "u_head", "Anvil", "u_pile"),
+                           ("PileSoil", "v_head", "Anvil", "v_pile"),
+                           ("Anvil", "F_ram", "Ram", "F_toe"),
+                           ("Anvil", "F_pile", "PileSoil", "F_head")}
+    with zipfile.ZipFile(fmus["ssp"]) as zf:
+        assert {"resources/Ram.fmu", "resources/Anvil.fmu", "resources/PileSoil.fmu"} <= set(
+            zf.namelist())
+        xml = zf.read("SystemStructure.ssd").decode()
+    # every parameter value of the build is in the SSP (exactly, repr round trip)
+    for component in ("Ram", "Anvil", "PileSoil"):
+        for name, value in fmus["parameters"][component].items():
+            text = ("true" if value else "false") if isinstance(value, bool) else repr(value)
+            assert f'<ssv:Parameter name="{name}">' in xml and f'value="{text}"' in xml
+    step = round(fmus["time_step"] * 1e9 / SSP_STEP_DIVISOR) * 1e-9
+    assert f'baseStepSize="{step!r}"' in xml and "osp:FixedStepAlgorithm" in xml
+
+
+def test_build_rejects_an_anvil_model_without_fmus(system, tmp_path):
+    cfg = system["cfg"]
+    classic = dataclasses.replace(cfg, anvil=dataclasses.replace(cfg.anvil, model="classic"))
+    with pytest.raises(InputError, match="'rom' or 'lumped'"):
+        build_system_fmus(classic, tmp_path, system["modal"])
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_embedded_resources_read_back_exactly(system, tmp_path):
+    """hammer.toml and pile_soil.toml give the engine's arrays bit for bit (floats by repr)."""
+    cfg = system["cfg"]
+    (tmp_path / "hammer.toml").write_text(hammer_toml(cfg.hammer))
+    hammer = load_hammer(tmp_path / "hammer.toml")
+    assert np.array_equal(hammer.ram.mass, cfg.hammer.ram.mass)
+    assert np.array_equal(hammer.ram.stiffness, cfg.hammer.ram.stiffness)
+    assert hammer.impact_velocity == cfg.hammer.impact_velocity
+    soil = dataclasses.replace(cfg.pile_soil.soil, model="lysmer-toe", toe_shear_modulus=8e7,
+                               toe_density=1900.0)
+    for model in (cfg.pile_soil, PileSoil(cfg.pile_soil.pile, soil)):
+        (tmp_path / "pile.toml").write_text(pile_soil_toml(model))
+        for a, b in zip(load_pile_soil(tmp_path / "pile.toml").arrays(), model.arrays(),
+                        strict=True):
+            assert np.array_equal(a, b)
+
+
+def test_ram_fmu_from_the_hammer_database(system, tmp_path):
+    """A Ram.fmu naming a database hammer; v_impact 0 takes the hammer's impact velocity."""
+    path = build_ram_fmu(tmp_path, "illustrative_s2")
+    hammer = load_hammer("illustrative_s2")
+    fmu = Driven(path)
+    try:
+        fmu.fmu.setupExperiment(startTime=0.0)
+        fmu.fmu.enterInitializationMode()
+        fmu.fmu.exitInitializationMode()
+        assert fmu.get("v_toe") == hammer.impact_velocity
+        assert fmu.get("u_toe") == 0.0
+    finally:
+        fmu.close()
+
+
+# ---------------------------------------------------------------------------- equivalence
+@pytest.mark.parametrize("model", ["rom", "lumped"])
+def test_fmi_engine_equals_direct_engine(system, direct, model):
+    """Anvil and AnvilLumped from ONE build: swapping the anvil changes no other unit."""
+    cfg = system["cfg"].with_anvil_model(model)
+    fmi = run_fmi(cfg, system["out"], fmus=system["fmus"])
+    assert_same_blows(fmi, direct[model])
+    f, d = fmi[0], direct[model][0]
+    report = ", ".join(
+        f"{name.split()[0]} {relative_difference(f.columns[name], d.columns[name]):.1e}"
+        for name in FORCES)
+    print(f"\n{model}: max |fmi - direct| / peak: {report}; h = {f.time_step:.4g} s, "
+          f"{f.n_steps} steps; fmi {f.microseconds_per_step:.1f} us/step, direct "
+          f"{1e6 * d.wall_time / d.n_steps:.1f} us/step")
+    assert np.abs(d.columns["ram_anvil_force [N]"]).max() > 1e8  # the impact happened
+
+
+def test_consecutive_blows_keep_the_pile_state(system):
+    cfg = dataclasses.replace(system["cfg"], blows=3, duration=0.012)
+    fmi = run_fmi(cfg, system["out"], fmus=system["fmus"])
+    direct_blows = build_engine(cfg, system["modal"]).run()
+    assert_same_blows(fmi, direct_blows)
+    # the permanent set accumulates: each blow starts deeper than the one before
+    starts = [b.columns["pile_head_displacement [m]"][0] for b in fmi]
+    assert starts[0] < starts[1] < starts[2]
+
+
+def test_soil_model_is_a_parameter_of_the_pile_fmu(system):
+    """lysmer-toe swapped in by a parameter of the same PileSoil.fmu equals the engine with
+    that soil; the toe differs from the smith-viscous toe (the wave reaches it at ~15 ms)."""
+    cfg = system["cfg"]
+    soil = dataclasses.replace(cfg.pile_soil.soil, model="lysmer-toe", toe_shear_modulus=1.0e8,
+                               toe_density=2000.0, toe_poisson_ratio=0.3)
+    lysmer = dataclasses.replace(cfg, pile_soil=PileSoil(cfg.pile_soil.pile, soil))
+    fmi = run_fmi(lysmer, system["out"], fmus=system["fmus"],
+                  parameters={"pile": {"soil_model": "lysmer-toe"}})
+    assert_same_blows(fmi, build_engine(lysmer, system["modal"]).run())
+    smith = run_fmi(cfg, system["out"], fmus=system["fmus"])
+    toe = "pile_toe_displacement [m]"
+    assert np.abs(fmi[0].columns[toe] - smith[0].columns[toe]).max() > 1e-5
+
+
+def test_reset_then_second_run_is_identical(system):
+    fmus = system["fmus"]
+    with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"]) as master:
+        first = master.run_blows(2, 400, 2.5e-5)
+        second = master.run_blows(2, 400, 2.5e-5)  # fmi2Reset of all three units
+    for a, b in zip(first, second, strict=True):
+        assert np.array_equal(a.data, b.data, equal_nan=True)
+
+
+def test_two_anvil_instances_with_their_own_parameters(system):
+    """Two masters, so two Anvil instances of one FMU in one process, run in turn."""
+    fmus, cfg = system["fmus"], system["cfg"]
+    h, n = 2.5e-5, 400
+    with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"]) as a, \
+            BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"],
+                       {"anvil": {"fmax": 3000.0, "static_correction": False}}) as b:
+        first_a = a.run_blows(1, n, h)[0]
+        only_b = b.run_blows(1, n, h)[0]
+        again_a = a.run_blows(1, n, h)[0]
+    assert np.array_equal(first_a.data, again_a.data, equal_nan=True)
+    other = dataclasses.replace(cfg, anvil=dataclasses.replace(cfg.anvil, fmax=3000.0,
+                                                               static_correction=False),
+                                time_step=h, duration=n * h)
+    expected = build_engine(other, system["modal"]).run()[0]
+    for name, column in (("F_ram", "ram_anvil_force [N]"), ("F_pile", "anvil_pile_force [N]")):
+        assert relative_difference(only_b[name], expected.columns[column]) < 1e-6
+        assert relative_difference(first_a[name], only_b[name]) > 1e-3
+
+
+# ---------------------------------------------------------------------------- robustness
+class Driven:
+    """One FMU instance through fmpy's FMU2Slave, its log collected."""
+
+    def __init__(self, path: Path):
+        from fmpy.logging import addLoggerProxy
+
+        md = read_model_description(str(path))
+        self.variables = {v.name: v for v in md.modelVariables}
+        self.messages: list[tuple[int, str]] = []
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = fmi2CallbackLoggerTYPE(
+            lambda env, inst, status, cat, msg: self.messages.append((status, msg.decode())))
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(ctypes.byref(self.callbacks))
+        self.unzip = extract(str(path))
+        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.unzip,
+                             modelIdentifier=md.coSimulation.modelIdentifier,
+                             instanceName="robust")
+        self.fmu.instantiate(callbacks=self.callbacks)
+
+    def set(self, **values):
+        for name, value in values.items():
+            var = self.variables[name]
+            setter = {"Real": self.fmu.setReal, "Boolean": self.fmu.setBoolean,
+                      "String": self.fmu.setString}[var.type]
+            setter([var.valueReference], [value])
+
+    def get(self, name):
+        return self.fmu.getReal([self.variables[name].valueReference])[0]
+
+    def close(self):
+        try:
+            self.fmu.terminate()
+        except FMICallException:
+            pass
+        self.fmu.freeInstance()
+        shutil.rmtree(self.unzip, ignore_errors=True)
+
+
+@pytest.mark.parametrize("kind, parameters, reason", [
+    ("Ram", {"mass": -5.0}, "mass: must be positive"),
+    ("Ram", {"v_impact": -1.0}, "v_impact: must be in (0, 50] m/s"),
+    ("Ram", {"hammer": "no_such_hammer"}, "is neither a hammer of the database"),
+    ("PileSoil", {"segment_length": -0.5}, "pile.segment_length: must be greater than 0"),
+    ("PileSoil", {"soil_model": "clay"}, "soil.model: must be one of"),
+    ("PileSoil", {"static_head_load": -1.0}, "static_head_load: must be at least 0 N"),
+    ("PileSoil", {"pile_soil_file": "missing.toml"}, "file not found"),
+    ("Anvil", {"fmax": 100.0}, "below the first flexible mode"),
+    ("AnvilLumped", {"mass": -5.0}, "mass: must be positive"),
+])
+def test_invalid_parameters_give_fmi2error_and_the_host_survives(system, kind, parameters,
+                                                                 reason):
+    path = system["fmus"][kind]
+    with zipfile.ZipFile(path) as zf:
+        shim = f"binaries/linux64/{SHIM_INNER_LIBRARY}" in zf.namelist()
+    fmu = Driven(path)
+    try:
+        fmu.fmu.setupExperiment(startTime=0.0)
+        fmu.set(**parameters)
+        fmu.fmu.enterInitializationMode()
+        if shim:
+            with pytest.raises(FMICallException) as error:
+                fmu.fmu.exitInitializationMode()
+            assert error.value.status == 3  # fmi2Error, not fmi2Fatal
+        else:
+            fmu.fmu.exitInitializationMode()
+            with pytest.raises(FMICallException):
+                fmu.fmu.doStep(0.0, 1e-5)
+        assert any(status == 3 and reason in text for status, text in fmu.messages), \
+            fmu.messages
+        # the instance is intact: reset, initialize with the build defaults and step
+        fmu.fmu.reset()
+        fmu.fmu.setupExperiment(startTime=0.0)
+        fmu.fmu.enterInitializationMode()
+        fmu.fmu.exitInitializationMode()
+        for n in range(3):
+            fmu.fmu.doStep(n * 1e-5, 1e-5)
+        output = {"Ram": "v_toe", "PileSoil": "v_head"}.get(kind, "F_pile")
+        assert np.isfinite(fmu.get(output))
+    finally:
+        fmu.close()
+
+
+def test_master_reports_the_reason_of_a_unit_error(system):
+    fmus = system["fmus"]
+    with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"],
+                    {"pile": {"soil_model": "clay"}}) as master:
+        with pytest.raises(CosimulationError, match="soil.model: must be one of"):
+            master.run_blows(1, 10, 2.5e-5)
+
+
+# ---------------------------------------------------------------------------- libcosim
+LIBCOSIM_RUN = textwrap.dedent('''
+    """Run an SSP with libcosim (libcosimpy): F_ram, F_pile of the Anvil after every step."""
+    import json, sys
+    import numpy as np
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+
+    log_output_level(CosimLogLevel.WARNING)
+    ssp, step_ns, n_steps, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+    # step_ns 0: the SSP's own osp:FixedStepAlgorithm base step
+    execution = CosimExecution.from_ssp_file(ssp, step_ns or None)
+    index = {i.name.decode(): i.index for i in execution.slave_infos()}
+    refs = {v.name.decode(): v.reference for v in execution.slave_variables(index["Anvil"])}
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    rows = []
+    for n in range(n_steps):
+        if not execution.step(1):
+            raise SystemExit(f"libcosim step {n} failed")
+        rows.append([execution.status().current_time,
+                     *observer.last_real_values(index["Anvil"],
+                                                [refs["F_ram"], refs["F_pile"]])])
+    np.save(out, np.array(rows))
+''')
+
+
+def run_libcosim(ssp: Path, step_ns: int, n_steps: int, out: Path) -> np.ndarray:
+    """(time [ns], F_ram [N], F_pile [N]) after each of n_steps libcosim steps (step_ns 0:
+    the SSP's default step).
+
+    In a subprocess: libcosim runs the pythonfmu units on its worker threads; a crash there
+    must not take the test session down.
+    """
+    run = subprocess.run([sys.executable, "-c", LIBCOSIM_RUN, str(ssp), str(step_ns),
+                          str(n_steps), str(out)], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-3000:]
+    return np.load(out)
+
+
+@pytest.fixture(scope="module")
+def libcosim(system):
+    pytest.importorskip("libcosimpy")
+    return system
+
+
+def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int):
+    """The fmpy master on the SSP's units and parameter values, on libcosim's time grid."""
+    fmus = system["fmus"]
+    ram = system["fmus"]["parameters"]["Ram"]
+    parameters = {"ram": {"contact_displacement": ram["contact_displacement"],
+                          "contact_time": ram["contact_time"]}}
+    with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"], parameters,
+                    exchange=exchange) as master:
+        return master.run_blows(1, n_steps, step_ns * 1e-9, start_time=start_ns * 1e-9)[0]
+
+
+def engine_step_ns(system) -> int:
+    """The engine's step in whole nanoseconds (libcosim's time unit)."""
+    return max(1, round(system["fmus"]["time_step"] * 1e9))
+
+
+def test_libcosim_runs_system_ssp_in_its_jacobi_exchange_order(libcosim, tmp_path):
+    """libcosim (Open Simulation Platform) loads system.ssp and simulates the 25 ms blow.
+
+    Its fixed-step algorithm steps every unit, then reads every output and passes it on: the
+    anvil's forces, read right after its step, are computed from its inputs of the previous
+    step (a one-step lag through the feedthrough). The fmpy master run in that same exchange
+    order (``exchange="jacobi"``) reproduces libcosim to round-off: band 1e-9 x peak.
+    """
+    system = libcosim
+    step_ns = engine_step_ns(system)
+    n_steps = int(round(system["cfg"].duration / (step_ns * 1e-9)))
+    lc = run_libcosim(system["fmus"]["ssp"], step_ns, n_steps, tmp_path / "lc.npy")
+    start_ns = int(lc[0, 0]) - step_ns
+    jacobi = fmpy_run(system, "jacobi", step_ns, n_steps, start_ns)
+    np.testing.assert_allclose(lc[:, 0] * 1e-9, jacobi.time[1:], rtol=0, atol=1e-12)
+    for j, name in ((1, "F_ram"), (2, "F_pile")):
+        reference = jacobi[name][1:]
+        assert np.abs(reference).max() > 1e8  # the impact
+        assert relative_difference(lc[:, j], reference) <= 1e-9
+
+
+def test_libcosim_forces_approach_the_design_order_at_first_order(libcosim, tmp_path):
+    """Against the DESIGN.md order (fmpy), the Jacobi lag is a first-order error.
+
+    Band: the lag feeds a contact the neighbour's displacement of one step before, which
+    changes its force by k_c |u_n - u_n-1| <= k_c h v_max (k_c the contact spring, v_max the
+    largest toe / head speed of the DESIGN run). Over the impact (the first 5 ms: ram-anvil
+    contact and the first pile-head force rise) that local error is what remains: the band
+    asserted is k_c h v_max (measured 0.5-0.7 of it), at h/16 and h/64 of the engine's step h
+    (h/64 is the SSP's default step, used by libcosim from the file), and the RMS difference
+    must shrink at least 2.5x from h/16 to h/64 (first order: 4x).
+    Later in the blow, lift-off and re-impact of the anvil shift in time and the
+    difference grows to several k_c h v_max (about 7% of the peak at h/64 over 25 ms).
+    """
+    system = libcosim
+    k = {"F_ram": system["fmus"]["parameters"]["Anvil"]["ram_contact_stiffness"],
+         "F_pile": system["fmus"]["parameters"]["Anvil"]["pile_contact_stiffness"]}
+    rms = {}
+    for divisor in (16, SSP_STEP_DIVISOR):  # the second: the SSP's own default step
+        step_ns = max(1, round(system["fmus"]["time_step"] * 1e9 / divisor))
+        n_steps = int(round(5e-3 / (step_ns * 1e-9)))
+        lc = run_libcosim(system["fmus"]["ssp"], 0 if divisor == SSP_STEP_DIVISOR else step_ns,
+                          n_steps, tmp_path / f"lc{divisor}.npy")
+        assert np.all(np.diff(lc[:, 0]) == step_ns)
+        design = fmpy_run(system, "design", step_ns, n_steps, int(lc[0, 0]) - step_ns)
+        h = step_ns * 1e-9
+        speed = max(np.abs(np.diff(design["u_toe"])).max(),
+                    np.abs(np.diff(design["u_head"])).max()) / h
+        for j, name in ((1, "F_ram"), (2, "F_pile")):
+            diff = np.abs(lc[:, j] - design[name][1:]).max()
+            band = k[name] * h * speed
+            print(f"\nh/{divisor} = {h:.4g} s {name}: max |libcosim - fmpy| = {diff:.3e} N "
+                  f"({diff / np.abs(design[name]).max():.2%} of the peak), band {band:.3e} N")
+            assert diff <= band
+            rms[divisor, name] = np.sqrt(np.mean((lc[:, j] - design[name][1:]) ** 2))
+    for name in k:
+        assert rms[16, name] >= 2.5 * rms[SSP_STEP_DIVISOR, name]
+
+
+# ---------------------------------------------------------------------------- outputs
+def test_fmi_results_write_like_the_engines(system, tmp_path):
+    """The columns of run_fmi are those of the engine (names, units, order): one writer."""
+    fmi = run_fmi(system["cfg"], system["out"], fmus=system["fmus"], duration=1e-3)
+    header = list(fmi[0].columns)
+    assert header == list(COLUMNS)
+    table = np.column_stack([fmi[0].columns[n] for n in header])
+    path = tmp_path / "fmi.csv"
+    np.savetxt(path, table, delimiter=",", header=",".join(header), comments="")
+    assert path.read_text().splitlines()[0].startswith("time [s],")
+    json.dumps({"wall_time [s]": fmi[0].wall_time, "time_step [s]": fmi[0].time_step})
