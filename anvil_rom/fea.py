@@ -51,7 +51,6 @@ from .fea_system import (
     face,
     graded_vertices,
     make_body,
-    mesh_outline_sized,
     section_force_row,
     static_preload,
     tensor_body,
@@ -59,7 +58,7 @@ from .fea_system import (
 )
 from .geometry import STEEL, AnvilSpec, Interfaces, Material
 from .inputs import InputError
-from .mesh import split_outline_at_interfaces, to_skfem
+from .mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 
 DEFAULT_CONTACT_STIFFNESS_FACTOR = 1.0
 """alpha in the penalty stiffness per unit area alpha * E / h [-] (h: element size at the face).
@@ -351,7 +350,8 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
         if (abs(a[1] - height) < tol and abs(b[1] - height) < tol and abs(lo - r_in) < tol
                 and abs(hi - r_out) < tol):
             divisions[i] = config.pile_wall_elements
-    anvil = make_body("anvil", to_skfem(mesh_outline_sized(outline, sizes, divisions)),
+    anvil = make_body("anvil", to_skfem(mesh_outline(outline, None, point_sizes=sizes,
+                                                     edge_divisions=divisions)),
                       spec.material)
     # the ram and the pile copy the radial vertex positions of the anvil faces they touch
     a_top = face(anvil, 0.0, 0.0, config.ram_radius)

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import meshio
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
@@ -23,7 +22,6 @@ import skfem
 
 from .fe import AxisymmetricModel, _stiffness_form, assemble, lame_parameters
 from .geometry import Material
-from .mesh import _compact
 
 _GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
@@ -94,49 +92,6 @@ def graded_vertices(start: float, stop: float, size: float, fixed=()) -> np.ndar
     parts = [np.linspace(a, b, max(1, int(np.ceil((b - a) / size - 1e-9))) + 1)[:-1]
              for a, b in zip(knots[:-1], knots[1:], strict=True)]
     return np.concatenate([*parts, [stop]])
-
-
-def mesh_outline_sized(outline: np.ndarray, point_sizes: np.ndarray,
-                       edge_divisions: dict[int, int] | None = None) -> meshio.Mesh:
-    """Mesh a closed (r, z) polygon into 6-node triangles with a target size per vertex [m].
-
-    Like :func:`anvil_rom.mesh.mesh_outline`, but gmsh interpolates the element size between
-    the vertices, so the mesh can be refined locally (the pile bearing ring), and
-    ``edge_divisions`` {i: m} splits edge i (vertex i to i + 1) into exactly m equal elements.
-    """
-    import gmsh
-
-    if not gmsh.isInitialized():
-        gmsh.initialize(interruptible=False)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("fea_body")
-    try:
-        tags = [gmsh.model.geo.addPoint(r, z, 0.0, s)
-                for (r, z), s in zip(outline, point_sizes, strict=True)]
-        lines = [gmsh.model.geo.addLine(tags[i], tags[(i + 1) % len(tags)])
-                 for i in range(len(tags))]
-        gmsh.model.geo.addPlaneSurface([gmsh.model.geo.addCurveLoop(lines)])
-        for edge, count in (edge_divisions or {}).items():
-            gmsh.model.geo.mesh.setTransfiniteCurve(lines[edge], int(count) + 1)
-        gmsh.model.geo.synchronize()
-        gmsh.option.setNumber("Mesh.Algorithm", 6)
-        gmsh.option.setNumber("Mesh.ElementOrder", 2)
-        gmsh.option.setNumber("Mesh.SecondOrderLinear", 1)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-        gmsh.model.mesh.generate(2)
-        node_tags, coords, _ = gmsh.model.mesh.getNodes()
-        etypes, _, enodes = gmsh.model.mesh.getElements(dim=2)
-    finally:
-        gmsh.model.remove()
-    xyz = np.asarray(coords).reshape(-1, 3)
-    index = np.zeros(int(np.max(node_tags)) + 1, dtype=np.int64)
-    index[np.asarray(node_tags, dtype=np.int64)] = np.arange(len(node_tags))
-    cells = []
-    for etype, conn in zip(etypes, enodes, strict=True):
-        if etype != 9:
-            raise RuntimeError(f"gmsh produced unexpected element type {etype}")
-        cells.append(("triangle6", index[np.asarray(conn, dtype=np.int64).reshape(-1, 6)]))
-    return _compact(meshio.Mesh(xyz[:, :2], cells))
 
 
 # --------------------------------------------------------------------------- faces

@@ -45,7 +45,8 @@ def split_outline_at_interfaces(outline: np.ndarray, interfaces: Interfaces | No
     return np.array(points, dtype=float)
 
 
-def mesh_outline(outline: np.ndarray, size: float) -> meshio.Mesh:
+def mesh_outline(outline: np.ndarray, size: float | None, *, point_sizes=None,
+                 edge_divisions: dict[int, int] | None = None) -> meshio.Mesh:
     """Mesh a closed (r, z) polygon with gmsh into quadratic (6-node) triangles.
 
     Parameters
@@ -53,7 +54,11 @@ def mesh_outline(outline: np.ndarray, size: float) -> meshio.Mesh:
     outline : (n, 2) array
         Polygon vertices (r, z) [m], not repeating the first point.
     size : float
-        Target element size [m].
+        Target element size [m] (everywhere, unless ``point_sizes`` is given).
+    point_sizes : (n,) array, optional
+        Target size at each vertex [m]; gmsh interpolates between them (local refinement).
+    edge_divisions : {i: m}, optional
+        Split edge i (vertex i to i + 1) into exactly m equal elements.
     """
     import gmsh
 
@@ -61,13 +66,18 @@ def mesh_outline(outline: np.ndarray, size: float) -> meshio.Mesh:
         gmsh.initialize(interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add("anvil")
+    sizes = np.full(len(outline), size) if point_sizes is None else np.asarray(point_sizes)
     try:
-        tags = [gmsh.model.geo.addPoint(r, z, 0.0, size) for r, z in outline]
+        tags = [gmsh.model.geo.addPoint(r, z, 0.0, h)
+                for (r, z), h in zip(outline, sizes, strict=True)]
         lines = [gmsh.model.geo.addLine(tags[i], tags[(i + 1) % len(tags)])
                  for i in range(len(tags))]
         loop = gmsh.model.geo.addCurveLoop(lines)
         gmsh.model.geo.addPlaneSurface([loop])
+        for edge, count in (edge_divisions or {}).items():
+            gmsh.model.geo.mesh.setTransfiniteCurve(lines[edge], int(count) + 1)
         gmsh.model.geo.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.SecondOrderLinear", 1)
