@@ -269,17 +269,18 @@ class ChainMaster:
         return ChainResult(data=data, wall_time=wall, n_steps=n_steps,
                            messages={r: list(m) for r, m in self.messages.items()})
 
+    def _calls(self):
+        """(component, fmi2GetReal, fmi2SetReal, fmi2DoStep) of ram, anvil and pile."""
+        return tuple((slave.component, *(getattr(slave.dll, f) for f in
+                                         ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep")))
+                     for slave in (self.units[r].slave for r in UNITS))
+
     def _loop(self, n_steps, h, t0, rows, data, progress) -> None:
         from tqdm import tqdm
 
         ram, anvil, pile = (self.units[r].slave for r in UNITS)
-        c_ram, c_anvil, c_pile = ram.component, anvil.component, pile.component
-        get_ram, set_ram, step_ram = (getattr(ram.dll, f) for f in
-                                      ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep"))
-        get_anvil, set_anvil, step_anvil = (getattr(anvil.dll, f) for f in
-                                            ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep"))
-        get_pile, set_pile, step_pile = (getattr(pile.dll, f) for f in
-                                         ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep"))
+        (c_ram, get_ram, set_ram, step_ram), (c_anvil, get_anvil, set_anvil, step_anvil), \
+            (c_pile, get_pile, set_pile, step_pile) = self._calls()
         vr = self._vr
         vr_ram_out, vr_ram_in = vr["ram_out"], vr["ram_in"]
         vr_pile_out, vr_pile_in = vr["pile_out"], vr["pile_in"]
@@ -582,13 +583,8 @@ class BlowMaster(ChainMaster):
     def _python_loop(self, n_steps, h, n_offset, t0, record_every, data, bar) -> float:
         """The loop in Python through fmpy's ctypes functions (reference; Jacobi order)."""
         ram, anvil, pile = (self.units[r].slave for r in UNITS)
-        c_ram, c_anvil, c_pile = ram.component, anvil.component, pile.component
-        get_ram, set_ram, step_ram = (getattr(ram.dll, f) for f in
-                                      ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep"))
-        set_anvil, get_anvil, step_anvil = (getattr(anvil.dll, f) for f in
-                                            ("fmi2SetReal", "fmi2GetReal", "fmi2DoStep"))
-        get_pile, set_pile, step_pile = (getattr(pile.dll, f) for f in
-                                         ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep"))
+        (c_ram, get_ram, set_ram, step_ram), (c_anvil, get_anvil, set_anvil, step_anvil), \
+            (c_pile, get_pile, set_pile, step_pile) = self._calls()
         vr = self._vr
         vr_ram_out, vr_ram_in = vr["ram_out"], vr["ram_in"]
         vr_pile_out, vr_pile_in = vr["pile_out"], vr["pile_in"]
