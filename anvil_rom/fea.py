@@ -206,6 +206,15 @@ class FeaConfig:
         if self.anvil.outline is None:
             raise InputError(src, "anvil", "the reference FEA needs an anvil outline (a "
                                            "[geometry] polygon), not a mesh file")
+        # a contact radius that nearly, but not exactly, meets an outline vertex would leave a
+        # sliver element there and a stable step a thousand times smaller
+        top = self.anvil.outline[:, 1].min()
+        for r in self.anvil.outline[np.abs(self.anvil.outline[:, 1] - top) < 1e-12, 0]:
+            gap = abs(r - self.ram_radius)
+            if 0.0 < gap < 0.1 * self.mesh_size:
+                raise InputError(src, "ram_radius", f"{self.ram_radius:g} m is {gap:.2g} m "
+                                                    f"from the anvil's top-face vertex at r = "
+                                                    f"{r:g} m: make them equal")
         if self.truncate_length is not None and self.truncate_length > self.pile_length:
             raise InputError(src, "truncate_length", "must not exceed pile_length")
         if self.gauge_depth >= self.modelled_pile_length:
