@@ -247,12 +247,7 @@ class ChainMaster:
         record_every : keep every k-th step (the first and the last row are always kept).
         Returns the time series (``n_steps // record_every + 1`` rows, plus the last step).
         """
-        if not (isinstance(n_steps, int) and n_steps >= 0):
-            raise ValueError(f"n_steps must be a non-negative integer, got {n_steps!r}")
-        if not (np.isfinite(step_size) and step_size > 0.0):
-            raise ValueError(f"step_size must be positive [s], got {step_size!r}")
-        if not (isinstance(record_every, int) and record_every >= 1):
-            raise ValueError(f"record_every must be a positive integer, got {record_every!r}")
+        _check_run(n_steps, step_size, record_every)
         for log in self.messages.values():
             log.clear()
         h = float(step_size)
@@ -510,12 +505,7 @@ class BlowMaster(ChainMaster):
         """
         if not (isinstance(blows, int) and blows >= 1):
             raise ValueError(f"blows must be a positive integer, got {blows!r}")
-        if not (isinstance(n_steps, int) and n_steps >= 0):
-            raise ValueError(f"n_steps must be a non-negative integer, got {n_steps!r}")
-        if not (np.isfinite(step_size) and step_size > 0.0):
-            raise ValueError(f"step_size must be positive [s], got {step_size!r}")
-        if not (isinstance(record_every, int) and record_every >= 1):
-            raise ValueError(f"record_every must be a positive integer, got {record_every!r}")
+        _check_run(n_steps, step_size, record_every)
         from tqdm import tqdm
 
         for log in self.messages.values():
@@ -715,3 +705,13 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
         if status > 1:
             return -(n + 1)
     return 0
+
+
+def _check_run(n_steps, step_size, record_every) -> None:
+    """Refuse a non-integer or negative step count, a non-positive step [s], a bad stride."""
+    if not (isinstance(n_steps, int) and n_steps >= 0):
+        raise ValueError(f"n_steps must be a non-negative integer, got {n_steps!r}")
+    if not (np.isfinite(step_size) and step_size > 0.0):
+        raise ValueError(f"step_size must be positive [s], got {step_size!r}")
+    if not (isinstance(record_every, int) and record_every >= 1):
+        raise ValueError(f"record_every must be a positive integer, got {record_every!r}")
