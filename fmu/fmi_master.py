@@ -559,6 +559,9 @@ class BlowMaster(ChainMaster):
                           dtype=np.int64)
         row = np.full(len(BLOW_ROW), np.nan)
         chunk = max(1000, (n_steps + 1) // 50)
+        # compile (or load from numba's cache) outside the timed stepping: an empty range
+        _design_loop(0, 0, n_steps, n_offset, h, t0, record_every, *functions, *components,
+                     *refs, counts, row, data)
         start = time.perf_counter()
         for first in range(0, n_steps + 1, chunk):
             last = min(first + chunk, n_steps + 1)
