@@ -91,9 +91,10 @@ class ModalAnvil:
             raise InputError(source, "fmax", f"{fmax:g} Hz exceeds the {data.fmax:g} Hz the modes "
                                              "were computed for; recompute the modes")
         if len(freqs) < 2 or fmax < freqs[1]:
-            first = freqs[1] if len(freqs) > 1 else float("nan")
+            first = (f"{freqs[1]:.1f} Hz" if len(freqs) > 1
+                     else f"none at or below the {data.fmax:g} Hz computed")
             raise InputError(source, "fmax", f"{fmax:g} Hz is below the first flexible mode "
-                                             f"({first:.1f} Hz): the ROM would be a rigid body; "
+                                             f"({first}): the ROM would be a rigid body; "
                                              "use the lumped anvil for that")
         damping = data.damping_ratio if damping_ratio is None else float(damping_ratio)
         if not 0.0 <= damping < 1.0:

@@ -461,10 +461,13 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
         return AnvilKernels("classic", UNIT_CLASSIC, P,
                             np.zeros((1, 1)), S, 0.0, limit, n_sub, ds)
     if settings.model == "rom":
-        rom = ModalAnvil.from_modal_data(modal, fmax=settings.fmax,
-                                         damping_ratio=settings.damping_ratio,
-                                         static_correction=settings.static_correction,
-                                         source=f"{cfg.source}: anvil")
+        try:
+            rom = ModalAnvil.from_modal_data(modal, fmax=settings.fmax,
+                                             damping_ratio=settings.damping_ratio,
+                                             static_correction=settings.static_correction,
+                                             source=cfg.source)
+        except InputError as exc:
+            raise InputError(cfg.source, f"anvil.{exc.key}", exc.rule) from None
     else:
         rom = ModalAnvil.rigid(settings.mass if settings.mass is not None else modal.total_mass)
     unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity)
@@ -514,7 +517,12 @@ def build_engine(cfg: SystemConfig, modal=None, progress: bool = False) -> Engin
     ram_stiffness = np.ascontiguousarray(ram.stiffness, dtype=float)
     arrays = cfg.pile_soil.arrays()
     if cfg.anvil.model in ("rom", "lumped") and modal is None:
-        modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+        try:
+            modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+        except InputError as exc:
+            if exc.key != "fmax" or cfg.anvil.fmax is None:
+                raise
+            raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
     probe = _anvil_kernels(cfg, ram_mass, arrays, None, modal)
     limits = {
         "ram": float(ram_stable_time_step(ram_mass, ram_stiffness)),
