@@ -56,6 +56,7 @@ from pile.kernels import (
     head_velocity,
     pile_step,
     toe_displacement,
+    update_stress_extremes,
 )
 from pile.kernels import stable_time_step as pile_stable_time_step
 from pile.model import initial_state, substeps
@@ -253,7 +254,6 @@ def run_blow(kind,
     reference of the anvil unit's pile input.
     """
     row = 0
-    n_pile = pu.shape[0]
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
         u_ram = ram_u[ram_u.shape[0] - 1]
@@ -263,12 +263,7 @@ def run_blow(kind,
         # 2. contact forces at t_n (feedthrough of the anvil unit)
         f_ram, f_pile, u_top, u_bottom = anvil_forces(kind, aP, aC, aS, u_ram, v_ram, u_pile,
                                                       v_pile)
-        for i in range(n_pile - 1):
-            stress = stress_factor[i] * (pu[i] - pu[i + 1])
-            if stress > extremes[0]:
-                extremes[0] = stress
-            if stress < extremes[1]:
-                extremes[1] = stress
+        update_stress_extremes(stress_factor, pu, extremes)
         if n % record_every == 0:
             out[row, 0] = t0 + n * h
             out[row, 1] = f_ram
@@ -354,12 +349,6 @@ class Engine:
     limits: dict[str, float]
     modal: object = None
 
-    @property
-    def spring_area(self) -> np.ndarray:
-        """Steel area of each pile spring [m^2] (the smaller of the two segments it joins)."""
-        area = self.config.pile_soil.pile.discretise().area
-        return np.ascontiguousarray(np.minimum(area[:-1], area[1:]))
-
     def run(self, duration: float | None = None, record_interval: float | None = None,
             progress: bool = False) -> list[BlowResult]:
         """Simulate ``config.blows`` consecutive blows of ``duration`` [s] each.
@@ -403,8 +392,7 @@ class Engine:
             args = (anvil.code, self.ram_mass, self.ram_stiffness,
                     ram_u, ram_v, ram_nsub, anvil.P, anvil.C, anvil.S, anvil.n_sub,
                     arrays.pile, arrays.soil, arrays.probes,
-                    np.ascontiguousarray(arrays.pile[PILE_STIFFNESS, :-1] / self.spring_area),
-                    pu, pv, poff,
+                    cfg.pile_soil.stress_factors(), pu, pv, poff,
                     pen, pile_nsub,
                     face0, cfg.gravity, t0, h)
             _warm_up(args, out.shape[1], energies.shape[1])

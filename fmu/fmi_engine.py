@@ -30,6 +30,10 @@ class FmiBlowResult:
     columns : ``{name: array}`` with the names of :data:`fmu.engine.COLUMNS` (SI units).
     time_step : master step h [s]; n_steps : steps of the blow; wall_time : wall time of the
     stepping loop alone [s]; input_energy : kinetic energy of the ram at impact [J].
+    pile_max_compression_stress, pile_max_tension_stress : the PileSoil unit's running stress
+    extremes [Pa] at the end of the run (the pile unit lives through all blows: for one blow
+    they are the blow's, as the engine reports them; with several, only the last blow carries
+    them, over the whole run).
     """
 
     columns: dict[str, np.ndarray]
@@ -38,6 +42,8 @@ class FmiBlowResult:
     wall_time: float
     input_energy: float
     messages: dict[str, list[str]] = field(default_factory=dict)
+    pile_max_compression_stress: float | None = None
+    pile_max_tension_stress: float | None = None
 
     @property
     def microseconds_per_step(self) -> float:
@@ -114,8 +120,14 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
         records = master.run_blows(cfg.blows, n_steps, h, record_every=record_every,
                                    progress=progress)
         messages = {role: list(log) for role, log in master.messages.items()}
+        pile = master.units["pile"]
+        names = ["max_compression_stress", "max_tension_stress"]
+        extremes = (pile.slave.getReal(list(pile.references(names)))
+                    if all(n in pile.variables for n in names) else [None, None])
     ram_mass = float(np.sum(cfg.hammer.ram.mass))
     v_impact = float((parameters or {}).get("ram", {}).get("v_impact", cfg.impact_velocity))
-    return [FmiBlowResult(columns=engine_columns(rec), time_step=h, n_steps=n_steps,
-                          wall_time=rec.wall_time, input_energy=0.5 * ram_mass * v_impact**2,
-                          messages=messages) for rec in records]
+    results = [FmiBlowResult(columns=engine_columns(rec), time_step=h, n_steps=n_steps,
+                             wall_time=rec.wall_time, input_energy=0.5 * ram_mass * v_impact**2,
+                             messages=messages) for rec in records]
+    results[-1].pile_max_compression_stress, results[-1].pile_max_tension_stress = extremes
+    return results

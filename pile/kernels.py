@@ -352,3 +352,19 @@ def soil_forces(soil, u, v, soil_offset, static_out, total_out):
             soil[SOIL_STIFFNESS, i], soil[SOIL_SMITH, i], soil[SOIL_DASHPOT, i])
         static_out[i] = rs
         total_out[i] = rs + rd
+
+
+@njit(cache=True)
+def update_stress_extremes(stress_factor, u, extremes):
+    """Fold the axial stresses of the pile's springs into running extremes (in place).
+
+    stress_factor : (N-1,) spring stiffness / steel area of each spring [N/m^3];
+    u : (N,) displacements [m]; extremes : [largest compression, largest tension (negative)]
+    stress so far [Pa]. Stress = k (u_i - u_i+1) / A, compression positive.
+    """
+    for i in range(u.size - 1):
+        stress = stress_factor[i] * (u[i] - u[i + 1])
+        if stress > extremes[0]:
+            extremes[0] = stress
+        if stress < extremes[1]:
+            extremes[1] = stress

@@ -24,7 +24,7 @@ import numpy as np
 
 from anvil_rom.inputs import Table
 
-from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, update_energy
+from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, PILE_STIFFNESS, update_energy
 from .pile import PileSpec, pile_from_table, pile_parameters, probe_parameters
 from .soil import SoilSpec, soil_from_table, soil_parameters
 from .static import static_equilibrium
@@ -83,6 +83,13 @@ class PileSoil:
             np.ascontiguousarray(soil_parameters(self.soil, self.pile, seg)),
             probes,
         )
+
+    def stress_factors(self) -> np.ndarray:
+        """Spring stiffness / steel area of each pile spring [N/m^3] (the smaller area of the
+        two segments a spring joins): the stress of spring i is this times u_i - u_i+1."""
+        seg = self.pile.discretise()
+        stiffness = pile_parameters(self.pile, seg)[PILE_STIFFNESS, :-1]
+        return np.ascontiguousarray(stiffness / np.minimum(seg.area[:-1], seg.area[1:]))
 
     def head_contact_stiffness(self) -> float:
         """Stiffness of the top half segment, 2 E A / dx [N/m]: the pile's side of the

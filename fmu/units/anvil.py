@@ -36,6 +36,7 @@ from anvil_rom.unit import (
     ContactParameters,
     modal_unit_forces,
     modal_unit_outputs,
+    modal_unit_step,
 )
 
 from .base import UnitSlave
@@ -120,6 +121,9 @@ class AnvilSlaveBase(UnitSlave):
     def start_component(self) -> None:
         if self.parameters["start_at_rest"]:
             self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
+        # compile (or load) the step kernel now, on copies, not inside the first doStep
+        unit = self.component
+        modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
 
     def compute_outputs(self, inputs, outputs) -> None:
         unit = self.component

@@ -3,7 +3,10 @@
 Interface (DESIGN.md, the contract): input ``F_head`` [N] (anvil-pile contact force,
 compression positive, pushes the head down); outputs ``u_head`` [m], ``v_head`` [m/s] (pile
 head), ``F_gauge`` [N], ``v_gauge`` [m/s] (PDA gauge location). Two more outputs for results:
-``u_head_total`` [m] and ``u_pile_toe`` [m]. All outputs are states: no feedthrough.
+``u_head_total`` [m] and ``u_pile_toe`` [m], and the running stress extremes over the pile
+``max_compression_stress`` and ``max_tension_stress`` [Pa] (since the instance started, the
+states after every step, as the in-process engine folds them). All outputs are states: no
+feedthrough.
 
 ``u_head`` is the head displacement RELATIVE to its static position at initialization (the
 pile in static equilibrium under ``static_head_load`` and gravity): the quantity the anvil's
@@ -44,6 +47,7 @@ from pile.kernels import (
     pile_step,
     stable_time_step,
     toe_displacement,
+    update_stress_extremes,
 )
 from pile.model import PileSoil, initial_state, substeps
 from pile.soil import MODELS
@@ -73,8 +77,14 @@ class PileSoilState:
         self.u, self.v, self.offset, self.energy = (np.array(a) for a in state)
         self.face0 = float(head_displacement(self.arrays.probes, self.u))
         self.stable_step = float(stable_time_step(self.arrays.pile, self.arrays.soil))
+        self.stress_factor = model.stress_factors()
+        self.extremes = np.zeros(2)  # [largest compression, largest tension] stress [Pa]
+        update_stress_extremes(self.stress_factor, self.u, self.extremes)
         self._h = math.nan
         self._n_sub = 1
+        # compile (or load) the kernel now, on copies, not inside the first doStep
+        pile_step(self.arrays.pile, self.arrays.soil, self.u.copy(), self.v.copy(),
+                  self.offset.copy(), self.energy.copy(), 0.0, 0.0, 1e-9, 1)
 
     def step(self, head_force: float, h: float) -> None:
         if h != self._h:
@@ -83,6 +93,7 @@ class PileSoilState:
         a = self.arrays
         pile_step(a.pile, a.soil, self.u, self.v, self.offset, self.energy, head_force,
                   self.gravity, h, self._n_sub)
+        update_stress_extremes(self.stress_factor, self.u, self.extremes)
 
 
 class PileSoilSlave(UnitSlave):
@@ -151,6 +162,10 @@ class PileSoilSlave(UnitSlave):
                                "settlement included), positive down [m]")
         o("u_pile_toe", "m", "Pile toe displacement from the undeformed pile, positive "
                              "down [m]")
+        o("max_compression_stress", "Pa", "Largest axial compressive stress in the pile since "
+                                          "the start, over all springs [Pa]")
+        o("max_tension_stress", "Pa", "Largest axial tensile stress in the pile since the "
+                                      "start, over all springs (negative) [Pa]")
 
     # ------------------------------------------------------------------ mapping
     def build_component(self) -> PileSoilState:
@@ -192,7 +207,8 @@ class PileSoilSlave(UnitSlave):
 
     def compute_outputs(self, inputs, outputs) -> None:
         c = self.component
-        outputs[:] = pile_outputs(c.arrays.pile, c.arrays.probes, c.u, c.v, c.face0)
+        outputs[:6] = pile_outputs(c.arrays.pile, c.arrays.probes, c.u, c.v, c.face0)
+        outputs[6:] = c.extremes
 
     def advance(self, h: float) -> None:
         self.component.step(self.inputs[0], h)

@@ -51,6 +51,8 @@ class RamState:
         self.stable_step = float(stable_time_step(self.mass, self.stiffness))
         self._h = math.nan
         self._n_sub = 1
+        # compile (or load) the kernel now, on copies, not inside the first doStep
+        ram_step(self.mass, self.stiffness, self.u.copy(), self.v.copy(), 0.0, 0.0, 1e-9, 1)
 
     def start(self, displacement: float, velocity: float) -> None:
         self.u[:] = displacement
