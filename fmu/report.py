@@ -115,7 +115,6 @@ def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge:
     if getattr(result, "energies", None):
         summary["energy_balance"] = energy_balance(result)
     else:
-        summary["note"] = ("pile stress extremes and the energy balance are computed by the "
-                           "in-process engine only (the FMU interface exposes forces and "
-                           "velocities)")
+        summary["note"] = ("the energy balance is computed by the in-process engine only (the "
+                           "FMU interface exposes forces, motions and stress extremes)")
     return summary
