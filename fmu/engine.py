@@ -2,13 +2,14 @@
 
 The step order is the master algorithm of DESIGN.md, the same as the FMI master's:
 
-1. read the ram toe (u, v) and the pile head face (u, v) at t_n (states, no feedthrough);
+1. read the ram toe (u, v) and the pile head (u, v) at t_n (states, no feedthrough);
 2. the anvil unit turns them into the two contact forces at t_n (feedthrough);
 3. the forces are held over [t_n, t_n+1] while ram, anvil unit and pile/soil each advance.
 
-Time is t_n = n h, never accumulated. The kernels are those of the physics packages, called
-through small adapters that give every anvil unit (ROM, rigid mass, classic cushion-helmet
-system, none) the same signature; one compiled loop serves all of them.
+Time is t_n = t0 + n h, never accumulated, with t0 = -h/2: the ram starts half a step before
+the first contact (t = 0), see :meth:`Engine.run`. The kernels are those of the physics
+packages, called through small adapters that give every anvil unit (ROM, rigid mass, classic
+cushion-helmet system, none) the same signature; one compiled loop serves all of them.
 """
 
 from __future__ import annotations
@@ -495,7 +496,7 @@ def _contact(cfg: SystemConfig) -> ContactParameters:
     return ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
 
 
-def build_engine(cfg: SystemConfig, modal=None, progress: bool = False) -> Engine:
+def build_engine(cfg: SystemConfig, modal=None) -> Engine:
     """Assemble the components of a system (computing the anvil modes when needed).
 
     modal : precomputed ModalData of the anvil (else computed from the anvil file).
