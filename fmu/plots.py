@@ -94,10 +94,6 @@ def plot_impact_blows(blows, path: str | Path, title: str = "") -> Path:
 
 def plot_columns(columns: dict, path: str | Path, title: str = "") -> Path:
     """Forces and pile-head velocity of one set of time series (CSV columns) as PNG."""
+    from types import SimpleNamespace
 
-    class _Blow:
-        pass
-
-    blow = _Blow()
-    blow.columns = columns
-    return plot_impact_blows([blow], path, title=title)
+    return plot_impact_blows([SimpleNamespace(columns=columns)], path, title=title)
