@@ -13,6 +13,10 @@ A system file is TOML (every key is checked; units in brackets)::
     database = "illustrative_5500kj"   # a hammer of hammer/data, or file = "my_hammer.toml"
     energy = 5.5e6              # [J] optional blow energy (default: the rated energy)
                                 # or impact_velocity = 6.0 [m/s]
+    ram_model = "modal"         # optional: "rod" (default, Smith's 1D chain) or "modal" (the
+                                # ram's own Mode Displacement Method ROM up to the anvil's
+                                # fmax, hammer/modal_ram.py)
+    ram_mesh_size = 0.1         # [m] optional, modal ram only (default: from fmax and radius)
 
     [anvil]
     model = "rom"               # "rom" (Mode Displacement Method), "lumped" (rigid FE mass),
@@ -33,13 +37,15 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from anvil_rom.geometry import AnvilSpec, load_anvil
+from anvil_rom.geometry import DEFAULT_FMAX, AnvilSpec, load_anvil
 from anvil_rom.inputs import InputError, Table
 from hammer.database import Hammer, available_hammers, load_hammer
 from hammer.driving_system import DrivingSystem
+from hammer.modal_ram import modal_ram
 from pile.model import PileSoil
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
+RAM_MODELS = ("rod", "modal")
 
 
 @dataclass(frozen=True)
@@ -110,15 +116,35 @@ def load_system(path: str | Path) -> SystemConfig:
     if output_interval is not None and output_interval > duration:
         raise sim.error("output_interval", "must not exceed the duration")
 
-    hammer, velocity = _hammer(root.table("hammer"), gravity)
+    hammer, velocity, ram_options = _hammer(root.table("hammer"), gravity)
     anvil = _anvil(root.table("anvil"))
+    if ram_options["ram_model"] == "modal":
+        hammer = _modal_hammer(hammer, anvil, ram_options["ram_mesh_size"], source)
     pile_soil = PileSoil.from_tables(root.table("pile"), root.table("soil", required=False))
     root.finish()
     return SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
                         velocity, anvil, pile_soil)
 
 
-def _hammer(table: Table, gravity: float) -> tuple[Hammer, float]:
+def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
+                  source: str) -> Hammer:
+    """The hammer with its ram replaced by the ram's modal ROM at the anvil's fmax."""
+    if anvil.fmax is not None:
+        fmax = anvil.fmax
+    else:
+        fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
+    try:
+        ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source)
+    except InputError as exc:
+        if exc.key == "fmax":  # the mesh does not resolve fmax
+            key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"
+        else:
+            key = "hammer.ram_model"
+        raise InputError(source, key, f"modal ram of {hammer.name}: {exc.rule}") from None
+    return replace(hammer, ram=ram)
+
+
+def _hammer(table: Table, gravity: float) -> tuple[Hammer, float, dict]:
     if table.has("database") == table.has("file"):
         raise table.error("database", "give exactly one of database = \"name\" (one of "
                                       f"{', '.join(available_hammers())}) or file = \"path\"")
@@ -141,8 +167,12 @@ def _hammer(table: Table, gravity: float) -> tuple[Hammer, float]:
     else:
         velocity = table.number("impact_velocity", hammer.impact_velocity, gt=0.0, le=50.0,
                                 unit="m/s")
+    options = {"ram_model": table.string("ram_model", "rod", choices=RAM_MODELS),
+               "ram_mesh_size": table.number("ram_mesh_size", None, gt=0.0, le=1.0, unit="m")}
+    if options["ram_mesh_size"] is not None and options["ram_model"] != "modal":
+        raise table.error("ram_mesh_size", "applies to ram_model = \"modal\" only")
     table.finish()
-    return hammer, velocity
+    return hammer, velocity, options
 
 
 def _anvil(table: Table) -> AnvilSettings:

@@ -108,6 +108,14 @@ class RamRod:
     toe_stiffness : float
         Half segment between the toe mass and the striking face [N/m], the ram's side of the
         contact spring (nan for a rigid ram or explicit segments: give a contact stiffness).
+        For a modal ram, the residual flexibility of its truncated modes at the toe, inverted.
+    sections : (s, 3) ndarray or None
+        The ram's shape, top to toe: rows [length, outer diameter, inner diameter] [m] (None
+        when built from explicit segments or as a rigid body); the modal ram is built from it.
+    elastic_modulus, density : float
+        Material of ``sections`` [Pa], [kg/m^3] (nan when unknown).
+    fmax : float
+        Frequency content [Hz] of a modal ram (:mod:`hammer.modal_ram`); nan for a Smith rod.
     """
 
     mass: np.ndarray
@@ -115,6 +123,10 @@ class RamRod:
     length: float = math.nan
     toe_diameter: float = math.nan
     toe_stiffness: float = math.nan
+    sections: np.ndarray | None = None
+    elastic_modulus: float = math.nan
+    density: float = math.nan
+    fmax: float = math.nan
 
     def __post_init__(self):
         mass = np.ascontiguousarray(self.mass, dtype=np.float64).copy()
@@ -150,7 +162,9 @@ class RamRod:
         areas = [circle_area(o, i) for o, i in zip(outer, inner, strict=True)]
         mass, stiffness, toe = lump_rod(lengths, areas, elastic_modulus, density,
                                         segment_length)
-        return cls(mass, stiffness, float(lengths.sum()), float(outer[-1]), toe)
+        sections = np.column_stack([lengths, outer, inner])
+        return cls(mass, stiffness, float(lengths.sum()), float(outer[-1]), toe, sections,
+                   float(elastic_modulus), float(density))
 
     @classmethod
     def uniform(cls, length: float, diameter: float, **kwargs) -> RamRod:

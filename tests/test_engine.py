@@ -14,6 +14,8 @@ from fmu.cli import main
 from fmu.engine import build_engine
 from fmu.report import energy_balance, read_csv, total_energy
 from fmu.system import load_system
+from hammer.database import load_hammer
+from hammer.ram import RamRod
 from pile.model import PileSoil
 
 from .conftest import EXAMPLES
@@ -276,12 +278,15 @@ def test_permanent_set_positive_and_falls_with_resistance(table1, xl8_modal):
 
 
 def test_segment_length_convergence_of_peak_head_force(table1, xl8_modal):
-    """Peak anvil-pile force of the Table 1 blow (lumped anvil) as the pile and ram segments
-    are refined: the changes shrink (the lumped chains converge)."""
+    """Peak anvil-pile force of the Table 1 blow (lumped anvil, Smith's rod ram) as the pile
+    and ram segments are refined: the changes shrink (the lumped chains converge)."""
     peaks = []
     for dx in (1.0, 0.5, 0.25):
         pile = dataclasses.replace(table1.pile_soil.pile, segment_length=dx)
-        cfg = dataclasses.replace(table1, pile_soil=PileSoil(pile, table1.pile_soil.soil))
+        hammer = load_hammer("illustrative_5500kj")  # table1.toml's, as a rod
+        ram = RamRod.uniform(hammer.ram.length, hammer.ram.toe_diameter, segment_length=dx)
+        cfg = dataclasses.replace(table1, pile_soil=PileSoil(pile, table1.pile_soil.soil),
+                                  hammer=dataclasses.replace(hammer, ram=ram))
         r = build_engine(cfg.with_anvil_model("lumped"), modal=xl8_modal).run()[0]
         peaks.append(r.columns["anvil_pile_force [N]"].max())
     changes = np.abs(np.diff(peaks))
