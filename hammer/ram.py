@@ -382,19 +382,12 @@ def momentum(mass, v):
 
 def max_angular_frequency(mass, stiffness) -> float:
     """Exact largest natural angular frequency of the free chain [rad/s] (scipy; for checks)."""
-    from scipy.linalg import eigvalsh_tridiagonal
+    from anvil_rom.chain import chain_modes
 
     mass = np.asarray(mass, float)
-    stiffness = np.asarray(stiffness, float)
     if mass.size == 1:
         return 0.0
-    k_left = np.concatenate(([0.0], stiffness))
-    k_right = np.concatenate((stiffness, [0.0]))
-    diagonal = (k_left + k_right) / mass
-    off = -stiffness / np.sqrt(mass[:-1] * mass[1:])
-    eig = eigvalsh_tridiagonal(diagonal, off, select="i",
-                               select_range=(mass.size - 1, mass.size - 1))
-    return float(math.sqrt(max(eig[0], 0.0)))
+    return float(chain_modes(mass, stiffness)[0].max())
 
 
 # --------------------------------------------------------------------------- input
