@@ -1,12 +1,27 @@
-"""Anvil-size study: lumped-mass and ROM anvils against the FEA for the s2, m55 and xl8 anvils.
+"""Anvil-size study: lumped-mass and ROM anvils against the FEA for anvils of three pile sizes.
 
-Run: python benchmarks/study_anvil_size.py [--out results/study_size]
-Each anvil sits on its pile (examples/size_s2.toml, size_m55.toml, table1.toml: the same
-configuration at scales 0.25, 0.6875 and 1), struck by its illustrative ram at the same
-velocity. The window (25 ms at full scale) and the FEA element size scale with the anvil, so
-the three cases differ in size only. Prints and writes (study.json) the errors of both anvil
-models against the FEA in each case's comparison band: where the lumped mass stops being
-adequate shows as its errors growing with the anvil size.
+Run: python benchmarks/study_anvil_size.py [--out results/study_size] [--series both]
+
+Two series, each of a 2 m, a 5.5 m and an 8 m pile, every ram striking at 6.16 m/s:
+
+* "scaled": the s2, m55 and xl8 anvils on their piles (examples/size_s2.toml, size_m55.toml,
+  table1.toml: the same configuration at scales 0.25, 0.6875 and 1), struck by their
+  illustrative rams (scaled with the rest). The window (25 ms at full scale) and the FEA
+  element size scale with the anvil, so the three cases differ in size only: under geometric
+  similarity the wave problem is scale-free and the errors come out the same at every size.
+* "class": class-typical systems, in which the ram does not scale with the pile:
+  examples/size_s2_class.toml (IHC S-800, 40 t, D 0.95 m ram on the 2 m pile) and
+  size_m55_class.toml (MENCK MHU 1900S, 95 t, D 1.26 m on the 5.5 m pile), whose anvils keep the
+  xl8 proportions scaled with the pile but a top face of the ram's radius, and the xl8 case
+  (table1.toml) with its 275 t illustrative ram as a Smith rod like the other two (Table 1 itself
+  uses the modal ram). The FEA element size scales with the pile (0.1 m x D / 8); the window is
+  25 ms in every case, long enough for the ram impact of the long class rams.
+
+Per case it prints and writes (study.json) the errors of both anvil models against the FEA in
+the case's comparison band, and what should govern the lumped error: the anvil's overhang from
+the ram face to the pile wall, (r_pile - r_ram) / r_pile (r_pile: the pile wall mid radius),
+and the anvil's first flexible frequency f1 times the ram's wave return time 2 L_ram / c
+(f1 T_ram large: the anvil is stiff over the time of the impact and acts as a rigid mass).
 """
 
 from __future__ import annotations
@@ -14,9 +29,12 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
+import time
 from pathlib import Path
 
 from anvil_rom.fea import run_impact_fea
+from anvil_rom.pipeline import compute_anvil_modes
 from fmu.compare import (
     ModelRun,
     comparison_bandwidth,
@@ -25,48 +43,131 @@ from fmu.compare import (
     without_soil,
 )
 from fmu.engine import build_engine
-from fmu.system import load_system
+from fmu.system import SystemConfig, load_system
+from hammer.database import load_hammer
 
 ROOT = Path(__file__).resolve().parents[1]
-CASES = (("s2", "size_s2.toml", 0.25), ("m55", "size_m55.toml", 0.6875),
-         ("xl8", "table1.toml", 1.0))
+FULL_WINDOW = 0.025
+"""The paper's window at full scale (8 m pile) [s]."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Case:
+    """One configuration of the study.
+
+    scale : pile diameter / 8 m; sets the FEA element size (0.1 m x scale) and output interval.
+    window : simulated time [s].
+    hammer : a database hammer replacing the file's (None: as in the file).
+    """
+
+    name: str
+    file: str
+    scale: float
+    window: float
+    hammer: str | None = None
+
+
+SERIES = {
+    "scaled": (Case("s2", "size_s2.toml", 0.25, FULL_WINDOW * 0.25),
+               Case("m55", "size_m55.toml", 0.6875, FULL_WINDOW * 0.6875),
+               Case("xl8", "table1.toml", 1.0, FULL_WINDOW)),
+    "class": (Case("s2_class", "size_s2_class.toml", 0.25, FULL_WINDOW),
+              Case("m55_class", "size_m55_class.toml", 0.6875, FULL_WINDOW),
+              Case("xl8", "table1.toml", 1.0, FULL_WINDOW, hammer="illustrative_5500kj")),
+}
+
+
+def case_config(case: Case) -> SystemConfig:
+    """The free-pile system of a case, with its window (and hammer, when replaced)."""
+    cfg = without_soil(load_system(ROOT / "examples" / case.file))
+    if case.hammer is not None:
+        hammer = load_hammer(case.hammer, cfg.gravity)
+        cfg = dataclasses.replace(cfg, hammer=hammer, impact_velocity=hammer.impact_velocity)
+    return dataclasses.replace(cfg, duration=round(case.window / 1e-5) * 1e-5)
+
+
+def geometry_numbers(cfg: SystemConfig, modal) -> dict:
+    """Masses and the dimensionless numbers of the ram, anvil and pile of a case."""
+    ram = cfg.hammer.ram
+    section = cfg.pile_soil.pile.sections[0]
+    r_pile = 0.5 * (section.outer_diameter - section.wall_thickness)
+    r_ram = 0.5 * ram.toe_diameter
+    f1 = float(modal.frequencies[1])
+    return_time = 2.0 * ram.length / math.sqrt(ram.elastic_modulus / ram.density)
+    return {
+        "hammer": cfg.hammer.name,
+        "anvil_mass [kg]": float(modal.total_mass),
+        "ram_mass [kg]": float(cfg.hammer.ram_mass),
+        "ram_length [m]": float(ram.length),
+        "ram_diameter [m]": float(ram.toe_diameter),
+        "pile_diameter [m]": float(section.outer_diameter),
+        "ram_over_pile_diameter [-]": float(ram.toe_diameter / section.outer_diameter),
+        "anvil_overhang_ratio [-]": float((r_pile - r_ram) / r_pile),
+        "anvil_first_flexible_frequency [Hz]": f1,
+        "ram_wave_return_time [s]": return_time,
+        "f1_times_ram_return_time [-]": f1 * return_time,
+    }
+
+
+def run_case(case: Case) -> dict:
+    cfg = case_config(case)
+    modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+    fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * case.scale,
+                                    output_interval=1e-5 * case.scale))
+    ref = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
+    preload = float(ref.columns["anvil_pile_force [N]"][0])
+    band = comparison_bandwidth(cfg)
+    row = {"window [s]": cfg.duration, "fea_mesh_size [m]": 0.1 * case.scale,
+           "bandwidth [Hz]": band, "fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time,
+           **geometry_numbers(cfg, modal)}
+    for model in ("rom", "lumped"):
+        blow = build_engine(cfg.with_anvil_model(model), modal=modal).run()[0]
+        row[model] = metrics(ModelRun(model, blow.columns, blow.wall_time, {}), ref, preload,
+                             band)
+    return row
+
+
+def print_table(series: str, table: dict) -> None:
+    print(f"\n{series} series")
+    print(f"{'anvil':9s} {'m_anv t':>7s} {'m_ram t':>7s} {'Dr/Dp':>5s} {'overh':>5s} "
+          f"{'f1 Hz':>6s} {'f1 Tr':>5s} {'model':6s} {'ram pk':>7s} {'pile pk':>7s} "
+          f"{'RMS ram':>7s} {'RMS pile':>8s} {'arrival':>9s}")
+    for name, row in table.items():
+        for model in ("rom", "lumped"):
+            m = row[model]
+            print(f"{name:9s} {row['anvil_mass [kg]'] / 1e3:7.2f} "
+                  f"{row['ram_mass [kg]'] / 1e3:7.2f} "
+                  f"{row['ram_over_pile_diameter [-]']:5.3f} "
+                  f"{row['anvil_overhang_ratio [-]']:5.3f} "
+                  f"{row['anvil_first_flexible_frequency [Hz]']:6.1f} "
+                  f"{row['f1_times_ram_return_time [-]']:5.3f} {model:6s} "
+                  f"{m['peak_ram_anvil_force_error [-]']:+7.3f} "
+                  f"{m['peak_anvil_pile_force_error [-]']:+7.3f} "
+                  f"{m['ram_anvil_force_normalised_rms_error [-]']:7.3f} "
+                  f"{m['anvil_pile_force_normalised_rms_error [-]']:8.3f} "
+                  f"{m['pile_force_arrival_error [s]'] * 1e3:+8.3f}ms")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_size")
+    parser.add_argument("--series", choices=("scaled", "class", "both"), default="both")
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
-    table = {}
-    for name, file, scale in CASES:
-        cfg = without_soil(load_system(ROOT / "examples" / file))
-        cfg = dataclasses.replace(cfg, duration=round(0.025 * scale / 1e-5) * 1e-5)
-        fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * scale,
-                                        output_interval=1e-5 * scale))
-        ref = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
-        preload = float(ref.columns["anvil_pile_force [N]"][0])
-        band = comparison_bandwidth(cfg)
-        row = {"bandwidth [Hz]": band, "fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time,
-               "anvil_mass [kg]": None}
-        for model in ("rom", "lumped"):
-            engine = build_engine(cfg.with_anvil_model(model))
-            blow = engine.run()[0]
-            m = metrics(ModelRun(model, blow.columns, blow.wall_time, {}), ref, preload, band)
-            row[model] = m
-            row["anvil_mass [kg]"] = engine.modal.total_mass
-        table[name] = row
-        print(f"{name}: FEA {fea.n_dof} DOF in {fea.wall_time:.1f} s", flush=True)
-    (args.out / "study.json").write_text(json.dumps(table, indent=2) + "\n")
-    print(f"{'anvil':5s} {'model':7s} {'ram pk':>7s} {'pile pk':>7s} {'RMS ram':>7s} "
-          f"{'RMS pile':>8s} {'arrival':>9s}")
-    for name, row in table.items():
-        for model in ("rom", "lumped"):
-            m = row[model]
-            print(f"{name:5s} {model:7s} {m['peak_ram_anvil_force_error [-]']:+7.3f} "
-                  f"{m['peak_anvil_pile_force_error [-]']:+7.3f} "
-                  f"{m['ram_anvil_force_normalised_rms_error [-]']:7.3f} "
-                  f"{m['anvil_pile_force_normalised_rms_error [-]']:8.3f} "
-                  f"{m['pile_force_arrival_error [s]'] * 1e3:+8.3f}ms")
+    names = ("scaled", "class") if args.series == "both" else (args.series,)
+    results = {}
+    for series in names:
+        results[series] = {}
+        for case in SERIES[series]:
+            start = time.perf_counter()
+            row = run_case(case)
+            results[series][case.name] = row
+            print(f"{series} {case.name}: FEA {row['fea_dof']} DOF in "
+                  f"{row['fea_wall_time [s]']:.1f} s, case {time.perf_counter() - start:.1f} s",
+                  flush=True)
+    (args.out / "study.json").write_text(json.dumps(results, indent=2) + "\n")
+    for series, table in results.items():
+        print_table(series, table)
 
 
 if __name__ == "__main__":

@@ -248,8 +248,10 @@ def _demo(args: argparse.Namespace) -> int:
     system = Path(__file__).resolve().parents[1] / "examples" / "table1.toml"
     if args.system is not None:
         system = args.system
-    cfg = load_system(system)
-    steps = ["modes of the anvil", "FMUs", "ROM (FMI co-simulation), lumped anvil, FEA",
+    cfg = load_system(system)  # a modal ram's modes are computed here
+    ram = cfg.hammer.ram
+    ram_model = "modal" if ram.fmax == ram.fmax else "rod"
+    steps = ["modes of the anvil and the ram", "FMUs", "ROM (FMI co-simulation), lumped anvil, FEA",
              "figures and summary"]
     print(f"anvilwave demo: {system.name} -> {args.out}")
     with ResultWriter(args.out) as out:
@@ -259,6 +261,11 @@ def _demo(args: argparse.Namespace) -> int:
         plot_modes(modes, out.part("modes/modes.png"))
         print(f"    {modes.modes.n_modes} modes up to {modes.modes.fmax:g} Hz, "
               f"{modes.model.n_dof} DOF, {modes.wall_time:.1f} s")
+        if ram_model == "modal":
+            print(f"    ram: modal ROM up to {ram.fmax:g} Hz, realised as a {ram.n_masses}-mass "
+                  "chain")
+        else:
+            print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
         from .ssp import build_system_fmus
 
@@ -273,6 +280,7 @@ def _demo(args: argparse.Namespace) -> int:
             "system": str(system),
             "anvil_modes": modes.modes.n_modes, "anvil_fmax [Hz]": modes.modes.fmax,
             "anvil_fe_dof": modes.model.n_dof,
+            "ram_model": ram_model, "ram_masses": ram.n_masses,
             "comparison_bandwidth [Hz]": comparison["comparison_bandwidth [Hz]"],
             "rom_vs_fea": {k: v for k, v in rom.items() if k.endswith("[-]") or
                            k.endswith("error [s]")},

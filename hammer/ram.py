@@ -299,10 +299,10 @@ def stable_time_step(mass, stiffness):
         off = 0.0
         if i > 0:
             k_sum += stiffness[i - 1]
-            off += stiffness[i - 1] / math.sqrt(mass[i - 1] * mass[i])
+            off += stiffness[i - 1] / (math.sqrt(mass[i - 1]) * math.sqrt(mass[i]))
         if i < n - 1:
             k_sum += stiffness[i]
-            off += stiffness[i] / math.sqrt(mass[i] * mass[i + 1])
+            off += stiffness[i] / (math.sqrt(mass[i]) * math.sqrt(mass[i + 1]))
         row_sum = max(row_sum, 2.0 * k_sum / mass[i])
         disc = max(disc, k_sum / mass[i] + off)
     omega2 = min(row_sum, disc)

@@ -26,6 +26,7 @@ def test_demo_writes_everything(demo):
         assert (out / name).exists(), name
     summary = json.loads((out / "summary.json").read_text())
     assert summary["anvil_modes"] > 10
+    assert summary["ram_model"] == "modal" and summary["ram_masses"] > 50
 
 
 def test_table1_rom_against_fea(demo):
