@@ -18,6 +18,7 @@ import json
 from pathlib import Path
 
 from anvil_rom.fea import run_impact_fea
+from anvil_rom.inputs import InputError
 from anvil_rom.pipeline import compute_anvil_modes
 from fmu.compare import (
     ModelRun,
@@ -60,7 +61,11 @@ def main() -> None:
             anvil = dataclasses.replace(cfg.anvil, fmax=fmax, static_correction=correction)
             case = dataclasses.replace(cfg, anvil=anvil)
             if cfg.hammer.ram.fmax == cfg.hammer.ram.fmax:  # a modal ram: same fmax
-                ram = modal_ram(cfg.hammer.ram, fmax)
+                try:
+                    ram = modal_ram(cfg.hammer.ram, fmax)
+                except InputError as exc:  # beyond the chain's range (README)
+                    print(f"fmax {fmax:g} Hz skipped: {exc}", flush=True)
+                    continue
                 case = dataclasses.replace(case, hammer=dataclasses.replace(cfg.hammer, ram=ram))
             engine = build_engine(case, modal=modal)
             blow = engine.run()[0]
