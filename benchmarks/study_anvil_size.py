@@ -17,9 +17,10 @@ Two series, each of a 2 m, a 5.5 m and an 8 m pile, every ram striking at 6.16 m
   0.5 m x D / 8 (:func:`case_config`). The FEA element size scales with the pile
   (0.1 m x D / 8); the window is 25 ms, long enough for the impact of the long class rams,
   but ends before the pile toe reflection reaches the gauge ((2 L - gauge depth) / c0 after
-  impact: 15.2 ms for the 40 m pile of s2_class, 22.8 ms for the 60 m pile of m55_class). The FEA's toe is free and the 1D models'
-  rests on a stiff elastic bearing (fmu.compare.without_soil), so after the reflection the models
-  differ by their boundary, not by their anvil.
+  impact: 15.2 ms for the 40 m pile of s2_class, 22.8 ms for the 60 m pile of m55_class). The
+  FEA's toe is free and the 1D models' rests on a stiff elastic bearing
+  (fmu.compare.without_soil), so after the reflection the models differ by their boundary, not
+  by their anvil.
 
 Per case it prints and writes (study.json) the errors of both anvil models against the FEA in
 the case's comparison band, and what should govern the lumped error: the anvil's overhang from
