@@ -21,7 +21,7 @@ of 1e-70 kg), and the null-vector recurrence cancels about as many digits. The L
 and the null vector are therefore computed in multiple precision (mpmath) and only the final
 masses and springs are rounded to float64. The rounded chain is then checked against the modal
 data (frequencies and participations, solved in double precision on its well-scaled Jacobi
-form); if it misses, the precision is doubled. That 1.8 m ram needs about 100 digits.
+form); if it misses, the precision is doubled (from 40 + n digits, which that ram passes).
 The chain cannot be cut short (dropping the masses below 1e-30 of the largest changes the face's
 impulse response by 3 % over 30 ms: the deep tail carries close modes whose beating shows late),
 so float64's range bounds it: about 500 modes (RANGE).
@@ -81,7 +81,7 @@ def chain_from_modes(omega, participation, digits: int | None = None
     while True:
         mass, stiffness = _realise(omega**2, p, digits)
         if not mass.min() > RANGE * mass.max():
-            raise InputError("modal chain", "fmax", f"the {omega.size} modes need chain masses "
+            raise InputError("modal chain", "modes", f"the {omega.size} modes need chain masses "
                                                     f"spanning more than {1 / RANGE:.0e}, beyond "
                                                     "double precision: lower fmax")
         if mass.size < omega.size:

@@ -62,7 +62,7 @@ def main() -> None:
         for fmax in FMAX:
             anvil = dataclasses.replace(cfg.anvil, fmax=fmax, static_correction=correction)
             case = dataclasses.replace(cfg, anvil=anvil)
-            if cfg.hammer.ram.fmax == cfg.hammer.ram.fmax:  # a modal ram: same fmax
+            if cfg.hammer.ram.is_modal:  # the same fmax for the ram
                 try:
                     ram = modal_ram(cfg.hammer.ram, fmax)
                 except InputError as exc:  # beyond the chain's range (README)

@@ -250,7 +250,7 @@ def _demo(args: argparse.Namespace) -> int:
         system = args.system
     cfg = load_system(system)  # a modal ram's modes are computed here
     ram = cfg.hammer.ram
-    ram_model = "modal" if ram.fmax == ram.fmax else "rod"
+    ram_model = "modal" if ram.is_modal else "rod"
     steps = ["modes of the anvil and the ram", "FMUs", "ROM (FMI co-simulation), lumped anvil, FEA",
              "figures and summary"]
     print(f"anvilwave demo: {system.name} -> {args.out}")

@@ -138,6 +138,8 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
     except InputError as exc:
         if exc.key == "fmax":  # the mesh does not resolve fmax
             key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"
+        elif exc.key == "modes":  # more modes below fmax than one chain can carry
+            key = "anvil.fmax"
         else:
             key = "hammer.ram_model"
         raise InputError(source, key, f"modal ram of {hammer.name}: {exc.rule}") from None

@@ -188,6 +188,11 @@ class RamRod:
         return float(self.mass.sum())
 
     @property
+    def is_modal(self) -> bool:
+        """True for a modal ram (:mod:`hammer.modal_ram`)."""
+        return not math.isnan(self.fmax)
+
+    @property
     def is_rigid(self) -> bool:
         return self.mass.size == 1
 
