@@ -219,10 +219,17 @@ def xl8_modal(table1):
 
 @pytest.mark.parametrize("model", ["rom", "lumped"])
 def test_energy_balance_of_a_table1_blow(table1, xl8_modal, model):
-    """Ram energy = kinetic + strain + soil work + damping + contact (+ gravity), 0.5 %."""
-    r = build_engine(table1.with_anvil_model(model), modal=xl8_modal).run()[0]
+    """Ram energy = kinetic + strain + soil work + damping + contact (+ gravity), 0.5 %, at the
+    engine's automatic step (the step its accuracy rule is made for).
+
+    table1.toml fixes h = 25 us, 0.57 of the coupling limit of its modal ram's stiff toe
+    contact: there the final residual is 2e-4 (lumped) and 1.4e-3 (ROM), but the lumped
+    anvil's transient deviation while the contact closes reaches 0.51 % (O(h^2), see below)."""
+    cfg = dataclasses.replace(table1, time_step=None).with_anvil_model(model)
+    r = build_engine(cfg, modal=xl8_modal).run()[0]
     balance = energy_balance(r)
-    # measured 2e-4 of the impact energy; 0.5 % is the issue's bound
+    # measured: residual 8.5e-4 (ROM) and 1.2e-3 (lumped) of the impact energy, largest
+    # deviation 1.0e-3 and 2.9e-3; 0.5 % is the issue's bound
     assert abs(balance["residual_relative [-]"]) < 5e-3
     assert balance["max_deviation_relative [-]"] < 5e-3
     assert balance["soil_static_work [J]"] > 0 and balance["soil_damping_work [J]"] > 0
@@ -236,7 +243,7 @@ def test_total_energy_conserved_without_damping_over_100ms(table1, xl8_modal, mo
     The explicit coupling conserves a discrete (shadow) energy of the leapfrog family exactly
     for linear parts; what remains is the penalty contact closing within a step, an error of
     about k (v h / 2)^2 / 2 per closing, O(h^2): 0.28 % of the impact energy for the lumped
-    anvil at the automatic step (38 us), 0.02 % at the 10 us used here."""
+    anvil at the automatic step with the rod ram (38 us), 0.02 % at the 10 us used here."""
     ps = table1.pile_soil
     soil = dataclasses.replace(ps.soil, damping_shaft=0.0, damping_toe=0.0)
     pile = dataclasses.replace(ps.pile, material_damping=0.0)
