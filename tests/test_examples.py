@@ -1,0 +1,23 @@
+"""Every shipped system file loads, and its anvil's ram face fits its ram."""
+
+from __future__ import annotations
+
+import pytest
+
+from fmu.system import load_system
+
+from .conftest import EXAMPLES
+
+SYSTEMS = sorted(p.name for p in EXAMPLES.glob("*.toml"))
+
+
+@pytest.mark.parametrize("name", SYSTEMS)
+def test_example_system_loads_and_its_ram_fits_the_anvil_face(name):
+    """The ROM's ram face and the FEA's ram both take the ram's radius: the anvil file's
+    ram_contact_radius must be the ram's toe radius (to 1 mm, the files' rounding)."""
+    cfg = load_system(EXAMPLES / name)
+    spec = cfg.anvil.spec
+    if spec is None:
+        pytest.skip("no anvil geometry")
+    assert spec.interfaces.ram_contact_radius == pytest.approx(
+        0.5 * cfg.hammer.ram.toe_diameter, abs=1e-3)
