@@ -99,6 +99,13 @@ def lowpass(time_s: np.ndarray, signal: np.ndarray, cutoff: float) -> np.ndarray
     return sosfiltfilt(butter(4, cutoff, fs=fs, output="sos"), signal)
 
 
+def band_limited(columns: dict[str, np.ndarray], key: str, grid: np.ndarray,
+                 cutoff: float) -> np.ndarray:
+    """Column ``key`` interpolated onto the uniform ``grid`` [s] and low-passed at ``cutoff``
+    [Hz] (:func:`lowpass`)."""
+    return lowpass(grid, np.interp(grid, columns["time [s]"], columns[key]), cutoff)
+
+
 def lift_off_intervals(time_s: np.ndarray, force: np.ndarray, min_duration: float = 5e-5
                        ) -> list[list[float]]:
     """Intervals [start, end] [s] in which the anvil-pile contact is open (force zero) after it
@@ -135,7 +142,7 @@ def metrics(run: ModelRun, reference: ModelRun | None, preload: float,
     grid = np.linspace(grid[0], grid[-1], len(grid))
 
     def band(columns, key):
-        return lowpass(grid, np.interp(grid, columns["time [s]"], columns[key]), bandwidth)
+        return band_limited(columns, key, grid, bandwidth)
 
     c = run.columns
     out = {
@@ -233,8 +240,8 @@ def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
         color, ls, label = styles.get(name, ("0.5", ":", name))
         t, f = run.columns["time [s]"], run.columns[key]
         if bandwidth is not None:
-            grid = np.linspace(t[0], t[-1], len(t))
-            t, f = grid, lowpass(grid, np.interp(grid, t, f), bandwidth)
+            t = np.linspace(t[0], t[-1], len(t))
+            f = band_limited(run.columns, key, t, bandwidth)
         ax.plot(t * 1e3, f / 1e6, color=color, ls=ls, lw=1.4 if name == "fea" else 1.2,
                 label=label)
     ax.set_xlabel("time [ms]")
