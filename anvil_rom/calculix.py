@@ -45,9 +45,10 @@ import meshio
 import numpy as np
 from scipy.spatial import cKDTree
 
+from anvilwave_inputs import InputError
+
 from .fe import AxisymmetricModel, assemble
 from .geometry import Material
-from .inputs import InputError
 from .mesh import to_skfem
 from .modes import ModeSet, ModeSolveError, sturm_count
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .inputs import InputError
+from anvilwave_inputs import InputError
 
 MAX_DIGITS = 1000
 """Give up beyond this precision [decimal digits]."""

@@ -25,15 +25,42 @@ mesh (anything meshio reads: Gmsh .msh, Abaqus .inp, ...), coordinates (r, z) in
 from __future__ import annotations
 
 import hashlib
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 
 DEFAULT_FMAX = 5000.0
 """Default frequency content of the modal anvil [Hz] (see the fmax study in the README)."""
+
+
+MAX_ELEMENTS = 1_000_000
+"""Largest FE mesh (quadratic triangles) this machine class takes: about 4 million DOF, whose
+sparse factorisation for the eigenvalue count needs some tens of GB."""
+
+
+def estimated_triangles(outline: np.ndarray, size: float) -> float:
+    """Number of triangles of a mesh of the polygon at the target size [-]: its area over the
+    area of an equilateral triangle of side ``size`` [m]."""
+    r, z = np.asarray(outline, dtype=float).T
+    area = 0.5 * abs(np.dot(r, np.roll(z, -1)) - np.dot(z, np.roll(r, -1)))
+    return float(area / (math.sqrt(3.0) / 4.0 * size**2))
+
+
+def mesh_budget_rule(elements: float, size: float) -> str | None:
+    """The rule broken by a mesh of ``elements`` triangles at ``size`` [m], or None if it fits:
+    the estimated size (elements, DOF, memory) and the smallest size that fits."""
+    if elements <= MAX_ELEMENTS:
+        return None
+    dof = 4.0 * elements
+    memory = dof * 30 * 8 * 10 / 2**30   # ~30 non-zeros per row, K and factor fill ~10x
+    smallest = size * math.sqrt(elements / MAX_ELEMENTS)
+    return (f"gives a mesh too big for this machine: about {elements:.3g} elements, "
+            f"{dof:.3g} DOF, {memory:.3g} GiB for the eigenvalue solution (limit "
+            f"{MAX_ELEMENTS:.0e} elements); use a size of at least {smallest:.3g} m")
 
 
 @dataclass(frozen=True)
@@ -149,6 +176,9 @@ def load_anvil(path: str | Path) -> AnvilSpec:
         if mesh_size > 0.5 * extent:
             raise mesh_table.error("size",
                                    f"must be at most half the anvil size ({0.5 * extent:g} m)")
+        rule = mesh_budget_rule(estimated_triangles(outline, mesh_size), mesh_size)
+        if rule is not None:
+            raise mesh_table.error("size", rule)
 
     interfaces = None
     itab = root.table("interfaces", required=False)

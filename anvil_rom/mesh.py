@@ -12,8 +12,9 @@ import meshio
 import numpy as np
 import skfem
 
-from .geometry import AnvilSpec, Interfaces
-from .inputs import InputError
+from anvilwave_inputs import InputError
+
+from .geometry import AnvilSpec, Interfaces, estimated_triangles, mesh_budget_rule
 
 _TRI = ("triangle", "triangle6")
 _QUAD = ("quad", "quad8", "quad9")
@@ -62,6 +63,10 @@ def mesh_outline(outline: np.ndarray, size: float | None, *, point_sizes=None,
     """
     import gmsh
 
+    if size is not None:
+        rule = mesh_budget_rule(estimated_triangles(outline, size), size)
+        if rule is not None:
+            raise ValueError(f"mesh size {size:g} m {rule}")
     if not gmsh.isInitialized():
         gmsh.initialize(interruptible=False)
     gmsh.option.setNumber("General.Terminal", 0)

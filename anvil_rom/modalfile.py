@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .inputs import InputError
+from anvilwave_inputs import InputError
 
 FORMAT = "anvilwave-modal"
 VERSION = 1

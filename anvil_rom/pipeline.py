@@ -9,9 +9,10 @@ from pathlib import Path
 import meshio
 import numpy as np
 
+from anvilwave_inputs import InputError
+
 from .fe import AxisymmetricModel, assemble, interface_vectors
 from .geometry import AnvilSpec
-from .inputs import InputError
 from .mesh import build_mesh, to_skfem
 from .modalfile import ModalData
 from .modes import ModeSet, elastic_flexibility, free_free_modes, mesh_resolvable_frequency

@@ -39,8 +39,9 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from anvilwave_inputs import InputError
+
 from .contact import contact_force
-from .inputs import InputError
 from .modalfile import ModalData
 
 

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .inputs import InputError
+from anvilwave_inputs import InputError
+
 from .rom import ModalAnvil, anvil_contact_forces, modal_interface, modal_step
 
 GRAVITY = 9.81  # [m/s^2]

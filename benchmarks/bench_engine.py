@@ -16,8 +16,8 @@ import statistics
 from pathlib import Path
 
 from anvil_rom.pipeline import compute_anvil_modes
-from fmu.engine import build_engine
-from fmu.system import load_system
+from anvilwave.engine import build_engine
+from anvilwave.system import load_system
 from hammer.database import load_hammer
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,11 +11,11 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from anvil_rom.fea import run_impact_fea
-from fmu.compare import fea_config, without_soil
-from fmu.engine import build_engine
-from fmu.fmi_engine import run_fmi
-from fmu.system import load_system
+from anvilwave.compare import fea_config, without_soil
+from anvilwave.engine import build_engine
+from anvilwave.fea.impact import run_impact_fea
+from anvilwave.fmi_engine import run_fmi
+from anvilwave.system import load_system
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -5,8 +5,8 @@ Run: python benchmarks/bench_fmi.py [SYSTEM.toml] [--repeat N]
 Builds the system's FMUs once (not timed), then in ONE process times, for the ROM and the
 lumped anvil,
 
-- ``direct``: :meth:`fmu.engine.Engine.run` (one jitted loop per blow);
-- ``fmi``: :func:`fmu.fmi_engine.run_fmi`, the Ram, Anvil and PileSoil FMUs (pythonfmu) under
+- ``direct``: :meth:`anvilwave.engine.Engine.run` (one jitted loop per blow);
+- ``fmi``: :func:`anvilwave.fmi_engine.run_fmi`, the Ram, Anvil and PileSoil FMUs (pythonfmu) under
   the fmpy master with its numba-compiled DESIGN.md loop;
 - ``fmi-py``: the same master with the loop interpreted by Python (for reference).
 
@@ -39,11 +39,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeat", type=int, default=5, help="runs per engine (default 5)")
     args = parser.parse_args(argv)
 
-    from fmu.engine import build_engine
-    from fmu.fmi_engine import run_fmi
+    from anvilwave.engine import build_engine
+    from anvilwave.fmi_engine import run_fmi
+    from anvilwave.fmus import build_system_fmus, load_anvil_modal_data
+    from anvilwave.system import load_system
     from fmu.fmi_master import BlowMaster
-    from fmu.ssp import build_system_fmus, load_anvil_modal_data
-    from fmu.system import load_system
 
     cfg = load_system(args.system)
     cfg = dataclasses.replace(cfg, blows=1)

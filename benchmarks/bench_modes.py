@@ -22,7 +22,7 @@ def main() -> None:
     anvil = ROOT / "examples" / "anvils" / "xl8.toml"
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "fmu.cli", "modes", str(anvil), "--out", tmp],
+        subprocess.run([sys.executable, "-m", "anvilwave.cli", "modes", str(anvil), "--out", tmp],
                        check=True, cwd=ROOT, stdout=subprocess.DEVNULL)
         total = time.perf_counter() - start
         summary = json.loads((Path(tmp) / "modes.json").read_text())

@@ -18,19 +18,19 @@ import dataclasses
 import json
 from pathlib import Path
 
-from anvil_rom.fea import run_impact_fea
-from anvil_rom.inputs import InputError
 from anvil_rom.pipeline import compute_anvil_modes
-from fmu.compare import (
+from anvilwave.compare import (
     ModelRun,
     comparison_bandwidth,
     fea_config,
     metrics,
     without_soil,
 )
-from fmu.engine import build_engine
-from fmu.report import read_csv, write_csv
-from fmu.system import load_system
+from anvilwave.engine import build_engine
+from anvilwave.fea.impact import run_impact_fea
+from anvilwave.report import read_csv, write_csv
+from anvilwave.system import load_system
+from anvilwave_inputs import InputError
 from hammer.modal_ram import modal_ram
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,1 +1,3 @@
-"""System layer: FMI units, master algorithms, system configuration and the command line."""
+"""FMI only: the co-simulation units (pythonfmu), the FMU build, the SSP file and the fmpy
+master. It takes physics objects and plain parameters and never reads system files (that is
+:mod:`anvilwave`)."""

@@ -3,7 +3,7 @@
 ``build_fmu(kind, out_dir, parameters, resources)`` does, in a scratch folder:
 
 1. checks the parameters against the slave (unknown name, wrong type, a value the component
-   rejects: :class:`~anvil_rom.inputs.InputError`, nothing written);
+   rejects: :class:`~anvilwave_inputs.InputError`, nothing written);
 2. writes them as the FMU's parameter defaults (``resources/anvilwave_parameters.json``) next to
    the embedded resource files (e.g. the modal-data ``.npz`` of ``Anvil.fmu``);
 3. runs the pythonfmu build of the kind's slave script; each FMU type has a script with a module
@@ -28,7 +28,7 @@ modal-data file), :func:`build_ram_fmu` (``Ram.fmu`` from a hammer: its segments
 ``hammer.toml``, or a database name), :func:`build_pile_soil_fmu` (``PileSoil.fmu`` with the
 ``[pile]`` / ``[soil]`` tables embedded as ``pile_soil.toml``). The resource files are written
 with floats in ``repr`` form, so the units read back the engine's arrays bit for bit. A whole
-system file: :func:`fmu.ssp.build_system_fmus`.
+system file: :func:`anvilwave.fmus.build_system_fmus`.
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ from typing import Any
 
 import numpy as np
 
-from anvil_rom.inputs import InputError
+from anvilwave_inputs import InputError
 
 UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"

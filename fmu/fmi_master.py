@@ -19,7 +19,7 @@ communication step (the anvil ROM integrates exactly over any step).
 Cost: the Python-side call overhead of pythonfmu units dominates (tens of microseconds per
 3-unit step, measured by :meth:`ChainMaster.run`; ``ChainResult.microseconds_per_step``).
 
-:class:`BlowMaster` (the master of :func:`fmu.fmi_engine.run_fmi`) runs consecutive blows the
+:class:`BlowMaster` (the master of :func:`anvilwave.fmi_engine.run_fmi`) runs consecutive blows the
 way the in-process engine does (the pile/soil unit lives on, ram and anvil are reset for each
 blow and start at rest on the pile head) with the same step order. Its loop is compiled with
 numba (:func:`_design_loop`): the nine FMI calls per step go straight from machine code to the
@@ -388,7 +388,7 @@ class BlowRecord:
 class BlowMaster(ChainMaster):
     """Consecutive blows of Ram, Anvil and PileSoil FMUs (the fmpy master of ``run_fmi``).
 
-    Each blow mirrors the in-process engine (:class:`fmu.engine.Engine`): the pile/soil unit
+    Each blow mirrors the in-process engine (:class:`anvilwave.engine.Engine`): the pile/soil unit
     lives on (permanent set, soil state, motion), the anvil is reset and rests on the pile head
     where the previous blow left it (its ``initial_pile_head_displacement`` parameter is the
     pile's ``u_head`` at the start of the blow), and the ram is reset and starts in free

@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 
 from .impact import (
     GRAVITY,

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from anvil_rom.inputs import Table
+from anvilwave_inputs import Table
 
 from .cushion import cushion_force, loading_compression, recoverable_energy
 from .impact import GRAVITY

@@ -31,9 +31,9 @@ import numpy as np
 
 from anvil_rom.chain import chain_from_modes
 from anvil_rom.geometry import AnvilSpec, Interfaces, Material, validate_outline
-from anvil_rom.inputs import InputError
 from anvil_rom.pipeline import compute_anvil_modes
 from anvil_rom.rom import residual_flexibility
+from anvilwave_inputs import InputError
 
 from .ram import RamRod
 

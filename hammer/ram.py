@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from anvil_rom.inputs import Table
+from anvilwave_inputs import Table
 
 STEEL_ELASTIC_MODULUS = 210e9
 """Young's modulus of steel [Pa] (DESIGN.md)."""

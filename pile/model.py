@@ -22,7 +22,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from anvil_rom.inputs import Table
+from anvilwave_inputs import Table
 
 from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, PILE_STIFFNESS, update_energy
 from .pile import PileSpec, pile_from_table, pile_parameters, probe_parameters

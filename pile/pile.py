@@ -57,7 +57,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 
 from .kernels import (
     GAUGE_MASS,
@@ -295,6 +295,11 @@ def section_from_table(table: Table) -> Section:
     return section
 
 
+MAX_SEGMENTS = 20_000
+"""Most pile segments a case may have: 2 cm segments on a 400 m pile, far beyond what the
+wave equation needs, and still small for this machine."""
+
+
 def pile_from_table(table: Table) -> PileSpec:
     """Read and validate the ``[pile]`` table (see the module docstring)."""
     segment_length = table.number("segment_length", DEFAULT_SEGMENT_LENGTH, gt=0.0, unit="m")
@@ -304,6 +309,17 @@ def pile_from_table(table: Table) -> PileSpec:
         raise table.error("sections", "needs at least one [[pile.sections]] entry")
     length = sum(s.length for s in sections)
     gauge_depth = table.number("gauge_depth", DEFAULT_GAUGE_DEPTH, ge=0.0, lt=length, unit="m")
+    n_segments = sum(math.ceil(s.length / segment_length - 1e-9) for s in sections)
+    if n_segments > MAX_SEGMENTS:
+        c = min(s.wave_speed for s in sections)
+        steps = 0.025 / (segment_length / c)
+        raise table.error(
+            "segment_length",
+            f"gives a pile too big for this machine: {n_segments:.3g} segments "
+            f"({n_segments * 8 * 12 / 2**30:.3g} GiB of state), a stable step of "
+            f"{segment_length / c:.2g} s ({steps:.3g} steps and {steps * n_segments:.3g} "
+            f"segment updates per 25 ms blow; limit {MAX_SEGMENTS} segments); use at least "
+            f"{length / MAX_SEGMENTS:.3g} m")
     pile = PileSpec(sections, segment_length, gauge_depth, damping)
     if discretise(pile).count < 2:
         raise table.error("segment_length",

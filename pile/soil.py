@@ -55,7 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from anvil_rom.inputs import Table
+from anvilwave_inputs import Table
 
 from .kernels import (
     SOIL_CAPACITY,

@@ -26,9 +26,9 @@ from anvil_rom.calculix import (
 )
 from anvil_rom.fe import assemble, interface_vectors
 from anvil_rom.geometry import STEEL, Interfaces
-from anvil_rom.inputs import InputError
 from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 from anvil_rom.modes import free_free_modes
+from anvilwave_inputs import InputError
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) not installed")
 

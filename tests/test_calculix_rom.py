@@ -10,7 +10,7 @@ import pytest
 
 from anvil_rom.calculix import run_ccx
 from anvil_rom.modalfile import load_modal_data
-from fmu.cli import main
+from anvilwave.cli import main
 
 from .conftest import EXAMPLES
 

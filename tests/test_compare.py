@@ -7,8 +7,8 @@ import json
 import numpy as np
 import pytest
 
-from fmu.cli import main
-from fmu.compare import arrival_time, lift_off_intervals, lowpass
+from anvilwave.cli import main
+from anvilwave.compare import arrival_time, lift_off_intervals, lowpass
 
 
 @pytest.fixture(scope="module")

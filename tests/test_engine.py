@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from anvil_rom.inputs import InputError
-from fmu.cli import main
-from fmu.engine import build_engine
-from fmu.report import energy_balance, read_csv, total_energy
-from fmu.system import load_system
+from anvilwave.cli import main
+from anvilwave.engine import build_engine
+from anvilwave.report import energy_balance, read_csv, total_energy
+from anvilwave.system import load_system
+from anvilwave_inputs import InputError
 from hammer.database import load_hammer
 from hammer.ram import RamRod
 from pile.model import PileSoil

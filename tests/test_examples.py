@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from fmu.system import load_system
+from anvilwave.system import load_system
 
 from .conftest import EXAMPLES
 

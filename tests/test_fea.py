@@ -1,4 +1,4 @@
-"""Reference impact FEA (anvil_rom.fea): closed-form bar impacts, convergence, absorbing cut,
+"""Reference impact FEA (anvilwave.fea.impact): closed-form bar impacts, convergence, absorbing cut,
 and a coarse smoke run of the paper's Table 1 stack."""
 
 from __future__ import annotations
@@ -6,16 +6,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from anvil_rom.fea import FeaConfig, build_impact_model, run_bar_impact, run_impact_fea
-from anvil_rom.fea_system import (
+from anvil_rom.geometry import STEEL, load_anvil
+from anvilwave.fea.bodies import (
     face,
     graded_vertices,
     line_weights,
     section_force_row,
     tensor_body,
 )
-from anvil_rom.geometry import STEEL, load_anvil
-from anvil_rom.inputs import InputError
+from anvilwave.fea.impact import FeaConfig, build_impact_model, run_bar_impact, run_impact_fea
+from anvilwave_inputs import InputError
 
 from .conftest import EXAMPLES
 

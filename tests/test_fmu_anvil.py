@@ -30,11 +30,11 @@ from fmpy.fmi2 import (  # noqa: E402
 from fmpy.validation import validate_fmu  # noqa: E402
 
 from anvil_rom.geometry import load_anvil  # noqa: E402
-from anvil_rom.inputs import InputError  # noqa: E402
 from anvil_rom.modalfile import load_modal_data, save_modal_data  # noqa: E402
 from anvil_rom.pipeline import compute_anvil_modes  # noqa: E402
 from anvil_rom.rom import ModalAnvil  # noqa: E402
 from anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
+from anvilwave_inputs import InputError  # noqa: E402
 from fmu.fmi_build import SHIM_INNER_LIBRARY, build_anvil_fmu, build_fmu  # noqa: E402
 from fmu.fmi_master import ChainMaster, CosimulationError  # noqa: E402
 

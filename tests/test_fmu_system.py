@@ -38,18 +38,18 @@ from fmpy.fmi2 import (  # noqa: E402
 )
 from fmpy.validation import validate_fmu  # noqa: E402
 
-from anvil_rom.inputs import InputError  # noqa: E402
-from fmu.engine import COLUMNS, build_engine  # noqa: E402
+from anvilwave.engine import COLUMNS, build_engine  # noqa: E402
+from anvilwave.fmi_engine import run_fmi  # noqa: E402
+from anvilwave.fmus import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
+from anvilwave.system import load_system  # noqa: E402
+from anvilwave_inputs import InputError  # noqa: E402
 from fmu.fmi_build import (  # noqa: E402
     SHIM_INNER_LIBRARY,
     build_ram_fmu,
     hammer_toml,
     pile_soil_toml,
 )
-from fmu.fmi_engine import run_fmi  # noqa: E402
 from fmu.fmi_master import BlowMaster, CosimulationError  # noqa: E402
-from fmu.ssp import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
-from fmu.system import load_system  # noqa: E402
 from hammer.database import load_hammer  # noqa: E402
 from pile.model import PileSoil, load_pile_soil  # noqa: E402
 

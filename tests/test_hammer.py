@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 from hammer import (
     Hammer,
     RamRod,

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 from hammer import (
     Cushion,
     DrivingSystem,

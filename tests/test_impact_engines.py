@@ -7,8 +7,8 @@ import json
 import numpy as np
 import pytest
 
-from fmu.cli import main
-from fmu.report import read_csv
+from anvilwave.cli import main
+from anvilwave.report import read_csv
 
 from .conftest import EXAMPLES
 

@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from anvil_rom.geometry import load_anvil
-from anvil_rom.inputs import InputError
 from anvil_rom.modalfile import load_modal_data, save_modal_data
 from anvil_rom.pipeline import compute_anvil_modes
-from fmu.cli import main
+from anvilwave.cli import main
+from anvilwave_inputs import InputError
 
 from .conftest import EXAMPLES
 
@@ -75,7 +75,7 @@ def test_toml_syntax_error_is_reported(tmp_path):
 def test_cli_bad_file_one_line_no_traceback_no_output(tmp_path):
     path = write(tmp_path, GOOD.replace("density = 7850.0", "density = 0"))
     out = tmp_path / "out"
-    proc = subprocess.run([sys.executable, "-m", "fmu.cli", "modes", str(path), "--out",
+    proc = subprocess.run([sys.executable, "-m", "anvilwave.cli", "modes", str(path), "--out",
                            str(out)], capture_output=True, text=True)
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr

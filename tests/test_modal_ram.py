@@ -10,11 +10,11 @@ import pytest
 from scipy.linalg import eigh
 
 from anvil_rom.chain import chain_from_modes, chain_modes
-from anvil_rom.inputs import InputError
-from fmu.compare import ModelRun, comparison_bandwidth, lowpass, metrics, without_soil
-from fmu.engine import build_engine
-from fmu.report import energy_balance
-from fmu.system import load_system
+from anvilwave.compare import ModelRun, comparison_bandwidth, lowpass, metrics, without_soil
+from anvilwave.engine import build_engine
+from anvilwave.report import energy_balance
+from anvilwave.system import load_system
+from anvilwave_inputs import InputError
 from hammer.database import load_hammer
 from hammer.modal_ram import modal_ram, ram_outline
 from hammer.ram import RamRod

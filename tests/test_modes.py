@@ -158,7 +158,7 @@ def test_interface_vectors_have_unit_resultant_and_exact_areas():
 def test_fmax_above_mesh_resolution_is_refused():
     spec = load_anvil(EXAMPLES / "anvils" / "xl8.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.3})
-    from anvil_rom.inputs import InputError
+    from anvilwave_inputs import InputError
 
     with pytest.raises(InputError, match="fmax"):
         compute_anvil_modes(spec, fmax=5000.0)

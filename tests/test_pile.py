@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh_tridiagonal
 
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 from pile import (
     ENERGY_KINETIC,
     ENERGY_STRAIN,

@@ -210,7 +210,7 @@ def test_static_correction_makes_static_response_exact(xl8_coarse):
 
 
 def test_fmax_below_first_flexible_mode_is_refused(xl8_coarse):
-    from anvil_rom.inputs import InputError
+    from anvilwave_inputs import InputError
 
     with pytest.raises(InputError, match="first flexible mode"):
         ModalAnvil.from_modal_data(xl8_coarse.modal_data, fmax=50.0)

@@ -8,5 +8,5 @@ module of a given name for every FMU that names it. The scripts only subclass th
 of this package (:mod:`fmu.units.anvil`, :mod:`fmu.units.ram`, :mod:`fmu.units.pile_soil`,
 built on :mod:`fmu.units.base`), so the FMUs need a Python with anvilwave installed. Build them
 with :func:`fmu.fmi_build.build_fmu` (or the helpers there, or
-:func:`fmu.ssp.build_system_fmus` for a whole system file).
+:func:`anvilwave.fmus.build_system_fmus` for a whole system file).
 """

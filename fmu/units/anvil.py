@@ -27,7 +27,6 @@ from typing import ClassVar
 from numba import njit
 from pythonfmu import DefaultExperiment
 
-from anvil_rom.inputs import InputError
 from anvil_rom.modalfile import load_modal_data
 from anvil_rom.rom import ModalAnvil
 from anvil_rom.unit import (
@@ -38,6 +37,7 @@ from anvil_rom.unit import (
     modal_unit_outputs,
     modal_unit_step,
 )
+from anvilwave_inputs import InputError
 
 from .base import UnitSlave
 

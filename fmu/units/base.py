@@ -46,7 +46,7 @@ from typing import Any, ClassVar
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Real, String
 from pythonfmu.enums import Fmi2Status
 
-from anvil_rom.inputs import InputError
+from anvilwave_inputs import InputError
 
 DEFAULTS_FILE = "anvilwave_parameters.json"
 """Name of the per-build parameter defaults inside the FMU's ``resources`` folder."""
@@ -77,7 +77,7 @@ class UnitSlave(Fmi2Slave):
 
     - ``register_variables()``: call ``add_parameter`` / ``add_input`` / ``add_output``;
     - ``build_component()``: the component from the parameters (raise
-      :class:`~anvil_rom.inputs.InputError` on a bad value);
+      :class:`~anvilwave_inputs.InputError` on a bad value);
     - ``start_component()``: put it in its initial state (optional);
     - ``compute_outputs(inputs, outputs)``: fill the output list from the current inputs
       (feedthrough outputs are evaluated here, at the current time);

@@ -38,7 +38,7 @@ import numpy as np
 from numba import njit
 from pythonfmu import DefaultExperiment
 
-from anvil_rom.inputs import InputError, Table, read_toml
+from anvilwave_inputs import InputError, Table, read_toml
 from pile.kernels import (
     gauge_force,
     gauge_velocity,

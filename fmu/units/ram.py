@@ -29,7 +29,7 @@ from typing import ClassVar
 import numpy as np
 from pythonfmu import DefaultExperiment
 
-from anvil_rom.inputs import InputError
+from anvilwave_inputs import InputError
 from hammer.database import available_hammers, load_hammer
 from hammer.ram import ram_step, stable_time_step
 from pile.model import substeps

@@ -79,6 +79,16 @@ def total_energy(E: dict[str, np.ndarray]) -> np.ndarray:
             + E["pile_damping_work [J]"])
 
 
+def gauge_steel_area(config) -> float:
+    """Steel area of the pile section at the gauge depth [m^2] of a system configuration."""
+    depth = 0.0
+    for section in config.pile_soil.pile.sections:
+        depth += section.length
+        if config.pile_soil.pile.gauge_depth <= depth:
+            return section.area
+    return config.pile_soil.pile.sections[-1].area
+
+
 def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge: float
               ) -> dict:
     """The summary.json content of one blow."""

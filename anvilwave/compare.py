@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from anvil_rom.inputs import InputError
+from anvilwave_inputs import InputError
 from pile.model import PileSoil
 
 from .system import SystemConfig
@@ -44,7 +44,7 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
 
     truncate_length : modelled pile length with an absorbing cut [m] (None: full length).
     """
-    from anvil_rom.fea import FeaConfig
+    from anvilwave.fea.impact import FeaConfig
 
     ram = cfg.hammer.ram
     if not (math.isfinite(ram.toe_diameter) and math.isfinite(ram.length)):
@@ -193,7 +193,7 @@ def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True
                                 "total_time [s]": time.perf_counter() - start,
                                 "engine": rom_engine if model == "rom" else "direct"})
     if fea:
-        from anvil_rom.fea import run_impact_fea
+        from anvilwave.fea.impact import run_impact_fea
 
         config = fea_config(cfg, mesh_size=fea_mesh_size)
         result = run_impact_fea(config, progress=progress)

@@ -20,8 +20,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 import skfem
 
-from .fe import AxisymmetricModel, _stiffness_form, assemble, lame_parameters
-from .geometry import Material
+from anvil_rom.fe import AxisymmetricModel, _stiffness_form, assemble, lame_parameters
+from anvil_rom.geometry import Material
 
 _GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 

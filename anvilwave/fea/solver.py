@@ -32,8 +32,9 @@ import scipy.sparse.linalg as sla
 from numba import njit
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from .contact import contact_force
-from .fea_system import ContactSet, contact_matrix
+from anvil_rom.contact import contact_force
+
+from .bodies import ContactSet, contact_matrix
 
 
 @dataclass

@@ -7,10 +7,11 @@ import json
 import sys
 from pathlib import Path
 
-from anvil_rom.inputs import InputError
 from anvil_rom.modes import ModeSolveError
+from anvilwave_inputs import InputError
 
 from .output import ResultWriter
+from .report import gauge_steel_area
 
 
 def _modes(args: argparse.Namespace) -> int:
@@ -87,7 +88,7 @@ def _impact(args: argparse.Namespace) -> int:
     else:
         engine = build_engine(cfg)
         blows = engine.run(progress=True)
-    gauge_area = _gauge_area(cfg)
+    gauge_area = gauge_steel_area(cfg)
     with ResultWriter(args.out) as out:
         summaries = []
         for i, blow in enumerate(blows):
@@ -111,7 +112,7 @@ def _impact(args: argparse.Namespace) -> int:
 
 
 def _build_fmus(args: argparse.Namespace) -> int:
-    from .ssp import build_system_fmus
+    from .fmus import build_system_fmus
     from .system import load_system
 
     cfg = load_system(args.system)
@@ -127,7 +128,7 @@ def _build_fmus(args: argparse.Namespace) -> int:
 
 
 def _fea(args: argparse.Namespace) -> int:
-    from anvil_rom.fea import run_impact_fea
+    from anvilwave.fea.impact import run_impact_fea
 
     from .compare import fea_config, without_soil
     from .plots import plot_columns
@@ -268,7 +269,7 @@ def _demo(args: argparse.Namespace) -> int:
         else:
             print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
-        from .ssp import build_system_fmus
+        from .fmus import build_system_fmus
 
         fmus = build_system_fmus(cfg, out.staging / "fmus")
         print("    " + ", ".join(Path(fmus[k]).name
@@ -300,16 +301,6 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _say(i: int, steps: list[str]) -> None:
     print(f"[{i}/{len(steps)}] {steps[i - 1]}", flush=True)
-
-
-def _gauge_area(cfg) -> float:
-    """Steel area of the pile section at the gauge depth [m^2]."""
-    depth = 0.0
-    for section in cfg.pile_soil.pile.sections:
-        depth += section.length
-        if cfg.pile_soil.pile.gauge_depth <= depth:
-            return section.area
-    return cfg.pile_soil.pile.sections[-1].area
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,12 +1,14 @@
 """The FMI engine: a system file run as Ram, Anvil and PileSoil FMUs under the fmpy master.
 
-:func:`run_fmi` is the ``--engine fmi`` counterpart of :meth:`fmu.engine.Engine.run`
-(``--engine direct``): it builds the system's FMUs (:func:`fmu.ssp.build_system_fmus`), drives
-them with :class:`fmu.fmi_master.BlowMaster` at the engine's time step (DESIGN.md step order,
+:func:`run_fmi` is the ``--engine fmi`` counterpart of :meth:`anvilwave.engine.Engine.run`
+(``--engine direct``): it builds the system's FMUs
+(:func:`anvilwave.fmus.build_system_fmus`), drives them with
+:class:`fmu.fmi_master.BlowMaster` at the engine's time step (DESIGN.md step order,
 consecutive blows as the engine: the pile keeps its permanent set and soil state, ram and
-anvil restart) and returns per blow the engine's result columns (:data:`fmu.engine.COLUMNS`),
-so that both engines write identical outputs. The FMUs run the engine's kernels with the
-engine's initialisation and sub-stepping, so the two agree to round-off.
+anvil restart) and returns per blow the engine's result columns
+(:data:`anvilwave.engine.COLUMNS`), so that both engines write identical outputs. The FMUs
+run the engine's kernels with the engine's initialisation and sub-stepping, so the two
+agree to round-off.
 """
 
 from __future__ import annotations
@@ -17,7 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from .fmi_master import BlowMaster, BlowRecord
+from fmu.fmi_master import BlowMaster, BlowRecord
+
 from .system import SystemConfig
 
 ROLES = {"ram": "Ram", "pile": "PileSoil"}
@@ -25,9 +28,9 @@ ROLES = {"ram": "Ram", "pile": "PileSoil"}
 
 @dataclass
 class FmiBlowResult:
-    """One blow of the FMI engine, in the shape of :class:`fmu.engine.BlowResult`.
+    """One blow of the FMI engine, in the shape of :class:`anvilwave.engine.BlowResult`.
 
-    columns : ``{name: array}`` with the names of :data:`fmu.engine.COLUMNS` (SI units).
+    columns : ``{name: array}`` with the names of :data:`anvilwave.engine.COLUMNS` (SI units).
     time_step : master step h [s]; n_steps : steps of the blow; wall_time : wall time of the
     stepping loop alone [s]; input_energy : kinetic energy of the ram at impact [J].
     pile_max_compression_stress, pile_max_tension_stress : the PileSoil unit's running stress
@@ -57,7 +60,7 @@ class FmiBlowResult:
 
 
 def engine_columns(record: BlowRecord) -> dict[str, np.ndarray]:
-    """The columns of :data:`fmu.engine.COLUMNS` from a blow of the FMU master.
+    """The columns of :data:`anvilwave.engine.COLUMNS` from a blow of the FMU master.
 
     Anvil displacements are taken relative to the pile head's position at the start of the
     blow (where the anvil came to rest), as the engine reports them; a column the FMUs do not
@@ -93,13 +96,14 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
 
     out_dir_for_fmus : folder the FMUs and ``system.ssp`` are built into.
     anvil_model : precomputed modal data (``ModalData`` or ``.npz`` path) of the anvil.
-    duration [s], record_interval [s] : as :meth:`fmu.engine.Engine.run` (default: the file's).
+    duration [s], record_interval [s] : as :meth:`anvilwave.engine.Engine.run` (default:
+        the file's).
     progress : progress bar (default: on for runs of 100000 steps or more).
-    fmus : the dict of an earlier :func:`fmu.ssp.build_system_fmus` (skips the build).
+    fmus : the dict of an earlier :func:`anvilwave.fmus.build_system_fmus` (skips the build).
     parameters : ``{"ram" | "anvil" | "pile": {name: value}}`` FMU parameters to change.
     time_step : master step h [s] (default: the engine's, ``build_engine(cfg).time_step``).
     """
-    from .ssp import build_system_fmus
+    from .fmus import build_system_fmus
 
     if fmus is None:
         fmus = build_system_fmus(cfg, out_dir_for_fmus, anvil_model, time_step=time_step,

@@ -21,7 +21,6 @@ import numpy as np
 from numba import njit
 
 from anvil_rom.contact import contact_force
-from anvil_rom.inputs import InputError
 from anvil_rom.pipeline import compute_anvil_modes
 from anvil_rom.rom import ModalAnvil
 from anvil_rom.unit import (
@@ -32,6 +31,7 @@ from anvil_rom.unit import (
     modal_unit_outputs,
     modal_unit_step,
 )
+from anvilwave_inputs import InputError
 from hammer.driving_system import (
     driving_system_energy,
     driving_system_forces,

@@ -2,9 +2,9 @@
 
 The ram (solid steel cylinder), the anvil (an :class:`~anvil_rom.geometry.AnvilSpec` outline)
 and the pile (steel tube, to full length or truncated with an absorbing boundary) are three
-axisymmetric elastic bodies (see :mod:`anvil_rom.fea_system`) that touch through
+axisymmetric elastic bodies (see :mod:`anvilwave.fea.bodies`) that touch through
 compression-only node-to-node penalty contacts on conforming faces (lift-off and re-impact
-allowed), integrated with central differences (:mod:`anvil_rom.fea_solver`).
+allowed), integrated with central differences (:mod:`anvilwave.fea.solver`).
 
 Elements: quadratic (6-node triangles in the anvil, 9-node quadrilaterals in the ram and the
 pile tube), HRZ-lumped. Against linear elements at the same number of DOFs they halve the phase
@@ -41,8 +41,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .fea_solver import ExplicitSystem, HighPassDashpots, Transient, integrate
-from .fea_system import (
+from anvil_rom.geometry import STEEL, AnvilSpec, Interfaces, Material
+from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave_inputs import InputError
+
+from .bodies import (
     Body,
     ContactSet,
     Face,
@@ -56,9 +59,7 @@ from .fea_system import (
     tensor_body,
     vertex_radii,
 )
-from .geometry import STEEL, AnvilSpec, Interfaces, Material
-from .inputs import InputError
-from .mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from .solver import ExplicitSystem, HighPassDashpots, Transient, integrate
 
 DEFAULT_CONTACT_STIFFNESS_FACTOR = 1.0
 """alpha in the penalty stiffness per unit area alpha * E / h [-] (h: element size at the face).
@@ -67,7 +68,7 @@ A penalty layer of stiffness alpha E / h per area is as compliant as a slab of t
 material h / alpha thick: alpha = 1 adds one element layer of compliance (a delay of about
 h / c0 = 20 us for h = 0.1 m, 0.1 % of a 13.8 m ram's compliance). It leaves the stable step of
 the Table 1 stack unchanged (the small anvil elements at the pile ring set it) and keeps the
-pair frequency below the chatter limit (:data:`anvil_rom.fea_solver.CONTACT_PHASE_LIMIT`); a
+pair frequency below the chatter limit (:data:`anvilwave.fea.solver.CONTACT_PHASE_LIMIT`); a
 stiffer penalty shortens the step there as 1 / sqrt(alpha).
 """
 
@@ -245,7 +246,7 @@ class FeaResult:
     gauge_force : axial force across the pile section at ``gauge_depth`` [N];
     gauge_velocity : mean axial velocity on that section [m/s];
     ram_velocity : mean (momentum / mass) ram velocity [m/s];
-    energies : name -> [J], see :class:`anvil_rom.fea_solver.Transient`;
+    energies : name -> [J], see :class:`anvilwave.fea.solver.Transient`;
     n_dof, n_steps, time_step [s], critical_time_step [s], wall_time [s] (stepping alone),
     setup_time [s] (meshing, assembly, statics, stable step); info : masses, preload, ...
     """

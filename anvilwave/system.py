@@ -38,11 +38,13 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from anvil_rom.geometry import DEFAULT_FMAX, AnvilSpec, load_anvil
-from anvil_rom.inputs import InputError, Table
+from anvilwave_inputs import InputError, Table
 from hammer.database import Hammer, available_hammers, load_hammer
 from hammer.driving_system import DrivingSystem
 from hammer.modal_ram import modal_ram
 from pile.model import PileSoil
+
+from .budget import check_run_budget
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
 RAM_MODELS = ("rod", "modal")
@@ -118,12 +120,15 @@ def load_system(path: str | Path) -> SystemConfig:
 
     hammer, velocity, ram_options = _hammer(root.table("hammer"), gravity)
     anvil = _anvil(root.table("anvil"))
-    if ram_options["ram_model"] == "modal":
-        hammer = _modal_hammer(hammer, anvil, ram_options["ram_mesh_size"], source)
     pile_soil = PileSoil.from_tables(root.table("pile"), root.table("soil", required=False))
     root.finish()
-    return SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
-                        velocity, anvil, pile_soil)
+    config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
+                          velocity, anvil, pile_soil)
+    check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
+    if ram_options["ram_model"] == "modal":
+        config = replace(config, hammer=_modal_hammer(hammer, anvil,
+                                                      ram_options["ram_mesh_size"], source))
+    return config
 
 
 def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,

@@ -1,0 +1,8 @@
+"""The reference FEA of the whole driving system: ram, anvil and pile as axisymmetric
+explicit finite elements (quadratic triangles, lumped mass, central differences) with
+compression-only node-to-node contacts, against which the anvil ROM and the lumped mass are
+compared.
+
+Modules: :mod:`.bodies` (bodies, faces, contacts, section forces, static preload),
+:mod:`.solver` (the explicit integrator), :mod:`.impact` (the ram-anvil-pile model and runs).
+"""

@@ -1,0 +1,130 @@
+"""The FMUs of a system file: the four units with the system's parameter values and
+``system.ssp`` (the system layer's side of :mod:`fmu.ssp`, which knows no system files)."""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from anvilwave_inputs import InputError
+from fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
+from fmu.ssp import ANVIL_FMU, write_ssp
+
+from .system import SystemConfig
+
+
+def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
+    """The modal data of the system's anvil: ``anvil_model`` (a ModalData or a modal-data
+    ``.npz`` path) or computed from the anvil file as the engine does."""
+    from anvil_rom.modalfile import ModalData, load_modal_data
+
+    if isinstance(anvil_model, ModalData):
+        return anvil_model
+    if anvil_model is not None:
+        return load_modal_data(Path(anvil_model))
+    if cfg.anvil.spec is None:
+        raise InputError(cfg.source, "anvil.file", "the FMUs need the anvil geometry (the "
+                                                   "Anvil and AnvilLumped units are built "
+                                                   "from its modes)")
+    from anvil_rom.pipeline import compute_anvil_modes
+
+    return compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+
+
+def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
+    """The FMU parameter values of a system (per FMU type), as the engine sets its units.
+
+    Also returns, under ``"_rest"``, the anvil top face at rest [m] per anvil FMU.
+    """
+    from anvil_rom.rom import ModalAnvil
+    from anvil_rom.unit import AnvilUnit, ContactParameters
+
+    from .engine import contact_stiffnesses
+
+    s = cfg.anvil
+    k_ram, k_pile = contact_stiffnesses(cfg)
+    contacts = {"ram_contact_stiffness": k_ram, "pile_contact_stiffness": k_pile,
+                "ram_contact_damping": float(s.ram_contact_damping),
+                "pile_contact_damping": float(s.pile_contact_damping),
+                "gravity": float(cfg.gravity)}
+    rom = {**contacts, "fmax": float(s.fmax if s.fmax is not None else modal.fmax),
+           "damping_ratio": float(s.damping_ratio if s.damping_ratio is not None
+                                  else modal.damping_ratio),
+           "static_correction": bool(s.static_correction)}
+    lumped_mass = float(s.mass if s.mass is not None else modal.total_mass)
+    lumped = {**contacts, "mass": lumped_mass}
+    contact = ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
+    rest = {}
+    for kind, anvil in (("Anvil", ModalAnvil.from_modal_data(
+            modal, fmax=s.fmax, damping_ratio=s.damping_ratio,
+            static_correction=s.static_correction, source=f"{cfg.source}: anvil")),
+            ("AnvilLumped", ModalAnvil.rigid(lumped_mass))):
+        rest[kind] = (float(AnvilUnit(anvil, contact, gravity=cfg.gravity).rest_on_pile(0.0)[0]),
+                      float(anvil.total_mass * cfg.gravity))
+    kind = ANVIL_FMU.get(s.model, "Anvil")
+    ram = {"v_impact": float(cfg.impact_velocity), "gravity": float(cfg.gravity),
+           "contact_displacement": rest[kind][0], "contact_time": 0.0}
+    pile = {"static_head_load": rest[kind][1], "gravity": float(cfg.gravity)}
+    return {"Ram": ram, "Anvil": rom, "AnvilLumped": lumped, "PileSoil": pile, "_rest": rest}
+
+
+SSP_STEP_DIVISOR = 64
+"""The SSP's default fixed step is the engine's step over this (see the module docstring)."""
+
+
+def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
+                      time_step: float | None = None, ssp: bool = True) -> dict[str, Any]:
+    """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
+    ``system.ssp`` for a system into ``out_dir`` (module docstring).
+
+    anvil_model : precomputed modal data of the anvil (``ModalData`` or a ``.npz`` path);
+        default: computed from the system's anvil file (as :func:`anvilwave.engine.build_engine`).
+    time_step : master step h [s] (default: the engine's); the SSP's default experiment
+        starts at -h/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+
+    Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
+    "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
+    "parameters": {fmu type: {name: value}}, "time_step": h [s], "modal_data": ModalData,
+    "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
+    The anvil model of the system must be "rom" or "lumped" (InputError otherwise).
+    """
+    from anvil_rom.modalfile import save_modal_data
+
+    if cfg.anvil.model not in ANVIL_FMU:
+        raise InputError(cfg.source, "anvil.model",
+                         f"the FMI units model the anvil as 'rom' or 'lumped', not "
+                         f"{cfg.anvil.model!r}")
+    modal = load_anvil_modal_data(cfg, anvil_model)
+    parameters = system_parameters(cfg, modal)
+    rest = parameters.pop("_rest")
+    if time_step is None:
+        from .engine import build_engine
+
+        time_step = build_engine(cfg, modal).time_step
+    out_dir = Path(out_dir)
+    result: dict[str, Any] = {"anvil": ANVIL_FMU[cfg.anvil.model], "parameters": parameters,
+                              "time_step": float(time_step), "modal_data": modal,
+                              "anvil_rest": rest}
+    with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
+        stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
+        modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
+        result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
+        result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
+        result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
+                                                **parameters["AnvilLumped"])
+        result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
+                                                 **parameters["PileSoil"])
+    if ssp:
+        kind = result["anvil"]
+        h = float(time_step)
+        result["ssp"] = write_ssp(
+            out_dir / "system.ssp",
+            {"Ram": result["Ram"], "Anvil": result[kind], "PileSoil": result["PileSoil"]},
+            {"Ram": parameters["Ram"], "Anvil": parameters[kind],
+             "PileSoil": parameters["PileSoil"]},
+            name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * h,
+            stop_time=cfg.duration, step_size=h / SSP_STEP_DIVISOR)
+    return result
+
+
