@@ -220,10 +220,12 @@ class _progress:
     def __enter__(self):
         from tqdm import tqdm
 
-        self.bar = tqdm(total=100, desc=self.label, unit="%", leave=False)
+        self.bar = None
         self._last = 0
 
         def update(fraction: float) -> None:
+            if self.bar is None:  # started with the stepping: its rate and estimate are true
+                self.bar = tqdm(total=100, desc=self.label, unit="%", leave=False)
             now = int(round(100 * fraction))
             if now > self._last:
                 self.bar.update(now - self._last)
@@ -232,7 +234,8 @@ class _progress:
         return update
 
     def __exit__(self, *exc):
-        self.bar.close()
+        if self.bar is not None:
+            self.bar.close()
         return False
 
 
@@ -408,7 +411,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="system file (default: examples/table1.toml)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_demo)
+
+    p = sub.add_parser("schema", help="list every key of the input files (unit, default, "
+                                      "meaning)")
+    p.add_argument("kind", nargs="?", choices=("system", "anvil"), default="system")
+    p.set_defaults(func=_schema)
     return parser
+
+
+def _schema(args: argparse.Namespace) -> int:
+    from .schema import describe
+
+    print(describe(args.kind))
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -419,6 +434,8 @@ def main(argv: list[str] | None = None) -> int:
     except (InputError, ModeSolveError) as exc:
         print(f"anvilwave: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # output piped into head, less ...
+        return 0
     except KeyboardInterrupt:
         print("anvilwave: interrupted", file=sys.stderr)
         return 130

@@ -418,6 +418,9 @@ class Engine:
 
 def _warm_up(args, n_columns, n_energy) -> None:
     """Compile (or load from cache) the loop on copies, so the timing excludes compilation."""
+    from .kernels import announce_compilation
+
+    announce_compilation()
     copies = tuple(a.copy() if isinstance(a, np.ndarray) else a for a in args)
     run_blow(*copies, 1, 1, np.zeros((2, n_columns)), np.zeros((2, n_energy)), np.zeros(2))
 

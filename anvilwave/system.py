@@ -90,6 +90,12 @@ class SystemConfig:
     anvil: AnvilSettings
     pile_soil: PileSoil
 
+    def with_energy(self, energy: float) -> SystemConfig:
+        """The same system at another blow energy [J] (the hammer's efficiency applies)."""
+        if not energy > 0.0:
+            raise InputError(self.source, "hammer.energy", f"must be positive, got {energy!r}")
+        return replace(self, impact_velocity=self.hammer.impact_velocity_at(energy))
+
     def with_anvil_model(self, model: str) -> SystemConfig:
         """The same system with another anvil model ("rom", "lumped", "classic")."""
         if model == self.anvil.model:

@@ -8,6 +8,7 @@ broken, and an unknown key is rejected instead of silently ignored.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -82,8 +83,15 @@ class Table:
     def has(self, name: str) -> bool:
         return name in self.data
 
+    record: list[tuple[str, str]] | None = None
+    """When a list, every key asked for is appended to it as (file, dotted key without array
+    indices):
+    the tests check that each accepted key is documented (``anvilwave.schema``)."""
+
     def _get(self, name: str, default: Any) -> Any:
         self._used.add(name)
+        if Table.record is not None:
+            Table.record.append((self.source, re.sub(r"\[\d+\]", "", self.key(name))))
         if name in self.data:
             return self.data[name]
         if default is _MISSING:

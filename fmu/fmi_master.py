@@ -46,6 +46,14 @@ RAM_OUTPUTS = ("u_toe", "v_toe")
 PILE_OUTPUTS = ("u_head", "v_head", "F_gauge", "v_gauge")
 ANVIL_INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
 ANVIL_OUTPUTS = ("F_ram", "F_pile", "u_top", "u_bottom")
+PILE_EXTRA_OUTPUTS = ("u_head_total", "u_pile_toe")
+"""Optional PileSoil outputs read with the interface ones when the unit has them."""
+BLOW_ROW = RAM_OUTPUTS + PILE_OUTPUTS + PILE_EXTRA_OUTPUTS + ANVIL_OUTPUTS
+"""The exchange row of :class:`BlowMaster`: every value read in one communication point."""
+_F_RAM = BLOW_ROW.index("F_ram")
+_F_PILE = BLOW_ROW.index("F_pile")
+_PILE_AT = BLOW_ROW.index("u_head")
+assert (_PILE_AT, _F_RAM, _F_PILE) == (2, 8, 9)  # the offsets compiled into _design_loop
 
 COLUMNS: tuple[tuple[str, str], ...] = (
     ("time", "s"),
@@ -180,6 +188,9 @@ class ChainMaster:
         if unknown:
             raise CosimulationError(f"parameters: unknown units {sorted(unknown)} (use {UNITS})")
         self.parameters = {role: dict(parameters.get(role, {})) for role in UNITS}
+        if not hasattr(self, "exchange"):
+            self.exchange = "design"
+        self._pile_names = PILE_OUTPUTS
         self.messages: dict[str, list[str]] = {role: [] for role in UNITS}
         self.debug_logging = debug_logging
         self._callbacks = fmi2CallbackFunctions()
@@ -253,15 +264,23 @@ class ChainMaster:
         h = float(step_size)
         t0 = float(start_time)
         self.initialize(t0, t0 + n_steps * h)
+        from tqdm import tqdm
+
+        if progress is None:
+            progress = n_steps >= 100_000
         rows = list(range(0, n_steps + 1, record_every))
         if rows[-1] != n_steps:
             rows.append(n_steps)
-        data = np.empty((len(rows), len(COLUMNS)))
-        start = time.perf_counter()
-        self._loop(n_steps, h, t0, rows, data, progress)
-        wall = time.perf_counter() - start
-        data[:, 0] = t0 + np.asarray(rows, dtype=float) * h
-        return ChainResult(data=data, wall_time=wall, n_steps=n_steps,
+        data = np.full((len(rows), len(BLOW_ROW)), np.nan)
+        with tqdm(total=n_steps, unit="step", disable=not progress, mininterval=0.5) as bar:
+            wall = self._python_loop(n_steps, h, 0, t0, record_every, data, bar,
+                                     record_last=True)
+        columns = [BLOW_ROW.index(name) for name in
+                   RAM_OUTPUTS + PILE_OUTPUTS + ANVIL_OUTPUTS]
+        table = np.empty((len(rows), len(COLUMNS)))
+        table[:, 0] = t0 + np.asarray(rows, dtype=float) * h
+        table[:, 1:] = data[:, columns]
+        return ChainResult(data=table, wall_time=wall, n_steps=n_steps,
                            messages={r: list(m) for r, m in self.messages.items()})
 
     def _calls(self):
@@ -270,9 +289,15 @@ class ChainMaster:
                                          ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep")))
                      for slave in (self.units[r].slave for r in UNITS))
 
-    def _loop(self, n_steps, h, t0, rows, data, progress) -> None:
-        from tqdm import tqdm
+    def _python_loop(self, n_steps, h, n_offset, t0, record_every, data, bar,
+                     record_last: bool = False) -> float:
+        """THE step loop in Python through fmpy's ctypes functions, in the exchange order of
+        ``self.exchange`` (DESIGN.md order, or Jacobi); returns its wall time [s].
 
+        Rows n with n % record_every == 0 (and the last, with ``record_last``) of the exchange
+        row (:data:`BLOW_ROW`, absent pile outputs NaN) go into ``data``; time is
+        t0 + (n_offset + n) h from the step count.
+        """
         ram, anvil, pile = (self.units[r].slave for r in UNITS)
         (c_ram, get_ram, set_ram, step_ram), (c_anvil, get_anvil, set_anvil, step_anvil), \
             (c_pile, get_pile, set_pile, step_pile) = self._calls()
@@ -280,9 +305,10 @@ class ChainMaster:
         vr_ram_out, vr_ram_in = vr["ram_out"], vr["ram_in"]
         vr_pile_out, vr_pile_in = vr["pile_out"], vr["pile_in"]
         vr_anvil_in, vr_anvil_out = vr["anvil_in"], vr["anvil_out"]
-        # the scratch row: [u_toe, v_toe, u_head, v_head, F_gauge, v_gauge, F_ram, F_pile,
-        # u_top, u_bottom]; each unit reads / writes its slice through a pointer into it
-        scratch = (ctypes.c_double * (len(COLUMNS) - 1))()
+        # the exchange row (BLOW_ROW); each call reads / writes its slice through a pointer:
+        # [u_toe, v_toe | u_head, v_head, F_gauge, v_gauge, u_head_total, u_pile_toe |
+        #  F_ram, F_pile, u_top, u_bottom]; the anvil's inputs are the first four in a row
+        scratch = (ctypes.c_double * len(BLOW_ROW))(*([np.nan] * len(BLOW_ROW)))
         row = np.frombuffer(scratch, dtype=np.float64)
         base = ctypes.addressof(scratch)
         size = ctypes.sizeof(ctypes.c_double)
@@ -290,42 +316,71 @@ class ChainMaster:
         def at(offset):
             return ctypes.cast(base + offset * size, ctypes.POINTER(ctypes.c_double))
 
-        p_ram_out, p_pile_out, p_anvil_in = at(0), at(2), at(0)
-        p_anvil_out, p_force_ram, p_force_pile = at(6), at(6), at(7)
-        n_ram, n_pile, n_anvil = len(RAM_OUTPUTS), len(PILE_OUTPUTS), len(ANVIL_OUTPUTS)
-        if progress is None:
-            progress = n_steps >= 100_000
-        chunk = max(1, (n_steps + 1) // 200)
-        record = iter(rows)
-        next_row = next(record)
+        p_ram_out, p_pile_out, p_anvil_in = at(0), at(_PILE_AT), at(0)
+        p_anvil_out, p_force_ram, p_force_pile = at(_F_RAM), at(_F_RAM), at(_F_PILE)
+        n_ram, n_pile, n_anvil = len(RAM_OUTPUTS), len(self._pile_names), len(ANVIL_OUTPUTS)
+        chunk = max(1, (n_steps + 1) // 100)
         k = 0
-        with tqdm(total=n_steps, unit="step", disable=not progress, mininterval=0.5) as bar:
-            for first in range(0, n_steps + 1, chunk):
-                last = min(first + chunk, n_steps + 1)
-                for n in range(first, last):
-                    # 1-2: states of ram and pile -> anvil -> contact forces at t_n
-                    status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                              | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                              | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
-                              | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
-                    if status > 1:  # statuses <= 1 (OK, warning) only ever set bit 0
-                        self._diagnose(n, h, t0, "exchange")
-                    if n == next_row:
-                        data[k, 1:] = row
-                        k += 1
-                        next_row = next(record, -1)
-                    if n == n_steps:
-                        break
-                    # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
-                    t = t0 + n * h
-                    status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
-                              | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
-                              | step_ram(c_ram, t, h, 1)
-                              | step_anvil(c_anvil, t, h, 1)
-                              | step_pile(c_pile, t, h, 1))
-                    if status > 1:
-                        self._diagnose(n, h, t0, "step")
-                bar.update(min(last, n_steps) - min(first, n_steps))
+        start = time.perf_counter()
+        if self.exchange == "jacobi":
+            status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
+                      | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
+                      | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
+                      | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
+            if status > 1:
+                self._diagnose(n_offset, h, t0, "exchange")
+            data[0] = row
+            k = 1
+            for n in range(n_steps):
+                t = t0 + (n_offset + n) * h
+                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
+                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
+                          | step_ram(c_ram, t, h, 1)
+                          | step_anvil(c_anvil, t, h, 1)
+                          | step_pile(c_pile, t, h, 1))
+                if status > 1:
+                    self._diagnose(n_offset + n, h, t0, "step")
+                # every output read after the step, the anvil's with its inputs of t_n
+                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
+                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
+                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out)
+                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in))
+                if status > 1:
+                    self._diagnose(n_offset + n + 1, h, t0, "exchange")
+                if (n + 1) % record_every == 0 or (record_last and n + 1 == n_steps):
+                    data[k] = row
+                    k += 1
+                if (n + 1) % chunk == 0:
+                    bar.update(chunk)
+            bar.update(n_steps % chunk)
+            return time.perf_counter() - start
+        for first in range(0, n_steps + 1, chunk):
+            last = min(first + chunk, n_steps + 1)
+            for n in range(first, last):
+                # 1-2: states of ram and pile -> anvil -> contact forces at t_n
+                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
+                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
+                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
+                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
+                if status > 1:  # statuses <= 1 (OK, warning) only ever set bit 0
+                    self._diagnose(n_offset + n, h, t0, "exchange")
+                if n % record_every == 0 or (record_last and n == n_steps):
+                    data[k] = row
+                    k += 1
+                if n == n_steps:
+                    break
+                # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
+                t = t0 + (n_offset + n) * h
+                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
+                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
+                          | step_ram(c_ram, t, h, 1)
+                          | step_anvil(c_anvil, t, h, 1)
+                          | step_pile(c_pile, t, h, 1))
+                if status > 1:
+                    self._diagnose(n_offset + n, h, t0, "step")
+            bar.update(min(last, n_steps) - min(first, n_steps))
+        return time.perf_counter() - start
+
 
     def _diagnose(self, n: int, h: float, t0: float, phase: str) -> None:
         raise CosimulationError(
@@ -347,14 +402,6 @@ class ChainMaster:
 
 
 # ================================================================================ blows
-PILE_EXTRA_OUTPUTS = ("u_head_total", "u_pile_toe")
-"""Optional PileSoil outputs read with the interface ones when the unit has them."""
-BLOW_ROW = RAM_OUTPUTS + PILE_OUTPUTS + PILE_EXTRA_OUTPUTS + ANVIL_OUTPUTS
-"""The exchange row of :class:`BlowMaster`: every value read in one communication point."""
-_F_RAM = BLOW_ROW.index("F_ram")
-_F_PILE = BLOW_ROW.index("F_pile")
-_PILE_AT = BLOW_ROW.index("u_head")
-assert (_PILE_AT, _F_RAM, _F_PILE) == (2, 8, 9)  # the offsets compiled into _design_loop
 
 
 @dataclass
@@ -572,92 +619,6 @@ class BlowMaster(ChainMaster):
                 self._diagnose(n_offset + n, h, t0, "exchange" if code > 0 else "step")
             bar.update(min(last, n_steps) - min(first, n_steps))
         return time.perf_counter() - start
-
-    def _python_loop(self, n_steps, h, n_offset, t0, record_every, data, bar) -> float:
-        """The loop in Python through fmpy's ctypes functions (reference; Jacobi order)."""
-        ram, anvil, pile = (self.units[r].slave for r in UNITS)
-        (c_ram, get_ram, set_ram, step_ram), (c_anvil, get_anvil, set_anvil, step_anvil), \
-            (c_pile, get_pile, set_pile, step_pile) = self._calls()
-        vr = self._vr
-        vr_ram_out, vr_ram_in = vr["ram_out"], vr["ram_in"]
-        vr_pile_out, vr_pile_in = vr["pile_out"], vr["pile_in"]
-        vr_anvil_in, vr_anvil_out = vr["anvil_in"], vr["anvil_out"]
-        # the exchange row (BLOW_ROW); each call reads / writes its slice through a pointer:
-        # [u_toe, v_toe | u_head, v_head, F_gauge, v_gauge, u_head_total, u_pile_toe |
-        #  F_ram, F_pile, u_top, u_bottom]; the anvil's inputs are the first four in a row
-        scratch = (ctypes.c_double * len(BLOW_ROW))(*([np.nan] * len(BLOW_ROW)))
-        row = np.frombuffer(scratch, dtype=np.float64)
-        base = ctypes.addressof(scratch)
-        size = ctypes.sizeof(ctypes.c_double)
-
-        def at(offset):
-            return ctypes.cast(base + offset * size, ctypes.POINTER(ctypes.c_double))
-
-        p_ram_out, p_pile_out, p_anvil_in = at(0), at(_PILE_AT), at(0)
-        p_anvil_out, p_force_ram, p_force_pile = at(_F_RAM), at(_F_RAM), at(_F_PILE)
-        n_ram, n_pile, n_anvil = len(RAM_OUTPUTS), len(self._pile_names), len(ANVIL_OUTPUTS)
-        chunk = max(1, (n_steps + 1) // 100)
-        k = 0
-        start = time.perf_counter()
-        if self.exchange == "jacobi":
-            status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                      | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                      | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
-                      | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
-            if status > 1:
-                self._diagnose(n_offset, h, t0, "exchange")
-            data[0] = row
-            k = 1
-            for n in range(n_steps):
-                t = t0 + (n_offset + n) * h
-                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
-                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
-                          | step_ram(c_ram, t, h, 1)
-                          | step_anvil(c_anvil, t, h, 1)
-                          | step_pile(c_pile, t, h, 1))
-                if status > 1:
-                    self._diagnose(n_offset + n, h, t0, "step")
-                # every output read after the step, the anvil's with its inputs of t_n
-                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out)
-                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in))
-                if status > 1:
-                    self._diagnose(n_offset + n + 1, h, t0, "exchange")
-                if (n + 1) % record_every == 0:
-                    data[k] = row
-                    k += 1
-                if (n + 1) % chunk == 0:
-                    bar.update(chunk)
-            bar.update(n_steps % chunk)
-            return time.perf_counter() - start
-        for first in range(0, n_steps + 1, chunk):
-            last = min(first + chunk, n_steps + 1)
-            for n in range(first, last):
-                # 1-2: states of ram and pile -> anvil -> contact forces at t_n
-                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
-                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
-                if status > 1:  # statuses <= 1 (OK, warning) only ever set bit 0
-                    self._diagnose(n_offset + n, h, t0, "exchange")
-                if n % record_every == 0:
-                    data[k] = row
-                    k += 1
-                if n == n_steps:
-                    break
-                # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
-                t = t0 + (n_offset + n) * h
-                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
-                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
-                          | step_ram(c_ram, t, h, 1)
-                          | step_anvil(c_anvil, t, h, 1)
-                          | step_pile(c_pile, t, h, 1))
-                if status > 1:
-                    self._diagnose(n_offset + n, h, t0, "step")
-            bar.update(min(last, n_steps) - min(first, n_steps))
-        return time.perf_counter() - start
-
 
 # The FMI 2.0 functions of the loop as C function types numba can call:
 # fmi2GetReal / fmi2SetReal(component, const unsigned vr[], size_t nvr, double value[]) and

@@ -341,6 +341,9 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                  mw_vmass, mw_vold, u, v, f_lower, f_contact, pair_force, pair_vold, v_record,
                  record)
 
+    from anvilwave.kernels import announce_compilation
+
+    announce_compilation()
     advance(0)  # compile (or load from numba's cache) outside the timed stepping
     start = time.perf_counter()
     for j in range(n_out + 1):

@@ -1,0 +1,46 @@
+"""Compilation of the numba kernels as its own, announced step.
+
+The time stepping is numba code cached on disk (``cache=True``): the first run after an install
+compiles it (tens of seconds), every later run loads it. Without a word the first run would look
+like a hung progress bar; :func:`announce_compilation` prints ``compiling kernels ...`` before
+the step that compiles, and only when a kernel has no cache yet.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+_announced = False
+
+
+def _main_kernels():
+    from anvilwave.engine import run_blow
+    from anvilwave.fea.solver import _advance
+    from fmu.fmi_master import _design_loop
+
+    return (run_blow, _advance, _design_loop)
+
+
+def uncached(dispatchers=None) -> list[str]:
+    """Names of the numba kernels (default: the engine's, the FEA's and the FMI master's loop)
+    that have no on-disk cache index yet, i.e. will be compiled on their first call."""
+    missing = []
+    for fn in dispatchers if dispatchers is not None else _main_kernels():
+        cache = getattr(fn, "_cache", None)
+        index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
+        if index is None or not os.path.exists(index):
+            missing.append(getattr(fn, "__name__", str(fn)))
+    return missing
+
+
+def announce_compilation(dispatchers=None, stream=None) -> bool:
+    """Print ``compiling kernels ...`` once per process if a kernel will be compiled; returns
+    whether it did."""
+    global _announced
+    if _announced or not uncached(dispatchers):
+        return False
+    _announced = True
+    print("    compiling kernels ... (first run after an install: about a minute; numba caches "
+          "them for every later run)", file=stream or sys.stderr, flush=True)
+    return True

@@ -1,0 +1,120 @@
+"""Every key of the input files, in one place: unit, default and meaning.
+
+``anvilwave schema`` prints it; ``tests/test_system_layer.py`` checks that every key the
+loaders accept in the shipped examples is documented here. The loaders (``load_system`` and
+the physics packages' table readers) enforce the rules; a key that is not listed for its table
+is rejected with the list of allowed keys.
+
+Each entry: ``"table.key": (unit, default, meaning)``; default ``REQUIRED`` means the key must
+be given, ``None`` that it is optional with a computed default described in the meaning.
+"""
+
+from __future__ import annotations
+
+REQUIRED = "required"
+
+SYSTEM: dict[str, tuple[str, object, str]] = {
+    # [simulation]
+    "simulation.duration": ("s", REQUIRED, "simulated time of one blow (at most 10 s)"),
+    "simulation.time_step": ("s", None, "master step; default automatic (0.4 of the coupled "
+                                        "stability limit, 8 steps per period at fmax)"),
+    "simulation.output_interval": ("s", None, "spacing of recorded samples; default every "
+                                              "step"),
+    "simulation.gravity": ("m/s^2", 9.81, "gravitational acceleration"),
+    "simulation.blows": ("-", 1, "consecutive blows; the pile keeps its set and soil state"),
+    # [hammer]
+    "hammer.database": ("-", None, "a hammer of hammer/data (give this or file)"),
+    "hammer.file": ("-", None, "a hammer file (TOML, the format of hammer/data)"),
+    "hammer.energy": ("J", None, "blow energy; default the rated energy"),
+    "hammer.impact_velocity": ("m/s", None, "ram velocity at impact (instead of energy)"),
+    "hammer.ram_model": ("-", "rod", "'rod' (Smith chain) or 'modal' (the ram's own modal "
+                                     "ROM up to the anvil's fmax)"),
+    "hammer.ram_mesh_size": ("m", None, "modal ram only: FE size; default from fmax"),
+    # [anvil]
+    "anvil.model": ("-", REQUIRED, "'rom', 'lumped', 'classic' or 'none'"),
+    "anvil.file": ("-", None, "anvil file (rom, lumped)"),
+    "anvil.fmax": ("Hz", None, "frequency content of the ROM; default the anvil file's"),
+    "anvil.damping_ratio": ("-", None, "modal damping ratio; default the anvil file's"),
+    "anvil.static_correction": ("-", True, "residual flexibility of the truncated modes"),
+    "anvil.mass": ("kg", None, "lumped anvil mass; default the FE mass"),
+    "anvil.ram_contact_stiffness": ("N/m", None, "default the ram's toe half segment"),
+    "anvil.pile_contact_stiffness": ("N/m", None, "default the pile's top half segment"),
+    "anvil.ram_contact_damping": ("N s/m", 0.0, "dashpot parallel to the ram contact"),
+    "anvil.pile_contact_damping": ("N s/m", 0.0, "dashpot parallel to the pile contact"),
+    "anvil.classic": ("-", None, "table of the classic driving system (model 'classic')"),
+    "anvil.classic.helmet_mass": ("kg", REQUIRED, "helmet mass"),
+    "anvil.classic.assembly_mass": ("kg", 0.0, "hammer assembly (housing) mass"),
+    "anvil.classic.assembly_stiffness": ("N/m", REQUIRED, "assembly spring to the helmet"),
+    "anvil.classic.hammer_cushion": ("-", REQUIRED, "cushion table (below)"),
+    "anvil.classic.pile_cushion": ("-", None, "cushion table (below)"),
+    "anvil.classic.pile_contact_stiffness": ("N/m", REQUIRED, "helmet-pile contact spring"),
+    "anvil.classic.*_cushion.stiffness": ("N/m", None, "or area, elastic_modulus, thickness"),
+    "anvil.classic.*_cushion.area": ("m^2", None, "cushion area"),
+    "anvil.classic.*_cushion.elastic_modulus": ("Pa", None, "cushion modulus"),
+    "anvil.classic.*_cushion.thickness": ("m", None, "cushion thickness"),
+    "anvil.classic.*_cushion.restitution": ("-", REQUIRED, "coefficient of restitution"),
+    "anvil.classic.*_cushion.round_out": ("m", 0.0, "round-out deformation"),
+    # [pile]
+    "pile.segment_length": ("m", 0.5, "target segment length (upper bound per section)"),
+    "pile.gauge_depth": ("m", 2.0, "gauge position below the head"),
+    "pile.material_damping": ("-", 0.01, "fraction of critical per segment"),
+    "pile.sections": ("-", REQUIRED, "[[pile.sections]], head first"),
+    "pile.sections.length": ("m", REQUIRED, "section length"),
+    "pile.sections.outer_diameter": ("m", REQUIRED, "outer diameter"),
+    "pile.sections.wall_thickness": ("m", REQUIRED, "wall thickness"),
+    "pile.sections.youngs_modulus": ("Pa", 210e9, "Young's modulus"),
+    "pile.sections.density": ("kg/m^3", 7850.0, "density"),
+    # [soil]
+    "soil.model": ("-", "smith-viscous", "'smith', 'smith-viscous' or 'lysmer-toe'"),
+    "soil.penetration": ("m", REQUIRED, "embedded length (tip depth below the mudline)"),
+    "soil.srd": ("[m, Pa, Pa]", REQUIRED, "rows depth, unit shaft friction, unit toe "
+                                          "resistance"),
+    "soil.quake_shaft": ("m", 0.0025, "shaft quake"),
+    "soil.quake_toe": ("m", 0.0025, "toe quake (not lysmer-toe)"),
+    "soil.damping_shaft": ("s/m", 0.65, "Smith shaft damping"),
+    "soil.damping_toe": ("s/m", 0.5, "Smith toe damping (not lysmer-toe)"),
+    "soil.friction_perimeter": ("-", "outside+inside", "or 'outside'"),
+    "soil.toe_area": ("-", "annulus", "or 'plugged'"),
+    "soil.toe_shear_modulus": ("Pa", None, "lysmer-toe: soil shear modulus"),
+    "soil.toe_density": ("kg/m^3", None, "lysmer-toe: soil density"),
+    "soil.toe_poisson_ratio": ("-", 0.3, "lysmer-toe: Poisson's ratio"),
+}
+
+ANVIL: dict[str, tuple[str, object, str]] = {
+    "material.youngs_modulus": ("Pa", REQUIRED, "Young's modulus"),
+    "material.poisson_ratio": ("-", REQUIRED, "Poisson's ratio, in [0, 0.5)"),
+    "material.density": ("kg/m^3", REQUIRED, "density"),
+    "geometry.points": ("[m, m]", REQUIRED, "closed (r, z) polygon of the half-section, z down"),
+    "mesh": ("-", None, "instead of [geometry]/[mesh]: a 2D mesh file read with meshio"),
+    "mesh.size": ("m", REQUIRED, "target element size (quadratic triangles)"),
+    "interfaces.ram_contact_radius": ("m", REQUIRED, "radius of the top face under the ram"),
+    "interfaces.pile_contact_radius": ("m", REQUIRED, "mid-radius of the pile wall"),
+    "interfaces.pile_contact_width": ("m", REQUIRED, "width of the pile contact ring"),
+    "modes.fmax": ("Hz", 5000.0, "frequency content of the ROM"),
+    "modes.damping_ratio": ("-", 0.0, "modal damping ratio"),
+}
+
+FILES = {"system": SYSTEM, "anvil": ANVIL}
+
+
+def documented(kind: str, dotted_key: str) -> bool:
+    """Whether ``dotted_key`` (array indices dropped, e.g. ``pile.sections.length``) of a file
+    of ``kind`` ("system", "anvil") is documented (a ``*`` matches one part)."""
+    parts = dotted_key.split(".")
+    for key in FILES[kind]:
+        if key.startswith(dotted_key + "."):  # a table
+            return True
+        pattern = key.split(".")
+        if len(pattern) == len(parts) and all(p in ("*", q) or (p.startswith("*") and
+                                                               q.endswith(p[1:]))
+                                              for p, q in zip(pattern, parts, strict=True)):
+            return True
+    return False
+
+
+def describe(kind: str = "system") -> str:
+    """The keys of a file kind as a plain-text table."""
+    rows = [f"{'key':44s} {'unit':12s} {'default':16s} meaning"]
+    for key, (unit, default, meaning) in FILES[kind].items():
+        rows.append(f"{key:44s} {unit:12s} {str(default):16s} {meaning}")
+    return "\n".join(rows)
