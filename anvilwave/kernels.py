@@ -15,11 +15,16 @@ _announced = False
 
 
 def _main_kernels():
-    from anvilwave.engine import run_blow
-    from anvilwave.fea.solver import _advance
-    from fmu.fmi_master import _design_loop
+    """The numba dispatchers of the three stepping loops (those that take long to compile)."""
+    import importlib
 
-    return (run_blow, _advance, _design_loop)
+    found = []
+    for module, names in (("anvilwave.engine", ("run_blow",)),
+                          ("anvilwave.fea.solver", ("_advance",)),
+                          ("fmu.fmi_master", ("_design_loop",))):
+        mod = importlib.import_module(module)
+        found += [getattr(mod, n) for n in names if hasattr(getattr(mod, n, None), "_cache")]
+    return tuple(found)
 
 
 def uncached(dispatchers=None) -> list[str]:
