@@ -1,0 +1,337 @@
+"""PDA analysis of gauge records: the Case method (RTL, RSP, RMX), transferred energy (EMX),
+maximum force and stresses (FMX, CSX, TSX) and the BTA integrity factor.
+
+Signs follow the project conventions: force positive in compression, velocity positive downward,
+time t from the record's start. The gauges sit at the top of a pile of uniform impedance
+Z = E A / c over the length L below them (t2 = t1 + 2L/c is when a wave leaving the gauges at t1
+is back after reflection at the toe).
+
+Wave decomposition (d'Alembert; Rausche, Goble & Likins 1985): at the gauges
+F = WD + WU and Z v = WD - WU, so WD = (F + Z v)/2 is the wave travelling down and
+WU = (F - Z v)/2 the wave travelling up.
+
+t1 (:func:`first_peak_index`): the time of the first peak of Z v (``t1_signal="velocity"``, the
+default: the impact peak, as the Case method is commonly applied) or of F
+(``t1_signal="force"``). The first peak is the first local maximum whose prominence
+(``scipy.signal.find_peaks``) is at least ``peak_prominence`` (default 0.1) of the signal's
+maximum, so that noise ripples on the rise are not taken; if there is none, the global
+maximum. t1 is a sample time (no interpolation between samples); t2 = t1 + 2L/c is
+interpolated linearly.
+
+Case method (Goble, Likins & Rausche 1975; Rausche, Goble & Likins 1985):
+* RTL = WD(t1) + WU(t2), the total soil resistance;
+* RSP(Jc) = (1 - Jc)/2 (F1 + Z v1) + (1 + Jc)/2 (F2 - Z v2) = RTL - Jc (2 WD(t1) - RTL), the
+  static resistance after subtracting a viscous toe damping Jc Z v_toe (Jc the Case damping
+  factor: clean sand 0.10-0.15, silty sand 0.15-0.25, silt 0.25-0.40, silty clay 0.40-0.70,
+  clay 0.70-1.00);
+* RMX = the largest RSP(Jc) as t1 is moved later, sample by sample, from the first peak over a
+  window of ``rmx_window`` [s] (default one wave round trip 2L/c; a choice of this
+  implementation, set it to match another convention), limited to the record (t1 + 2L/c must
+  stay inside it).
+
+EMX = max over t of the running integral of F v dt (trapezoidal rule), the energy transferred
+past the gauges (ENTHRU). FMX = max F, CSX = FMX / A.
+
+TSX, the largest tension stress below the gauges (:func:`max_tension_along_pile`): the pile
+between the gauges and the toe is taken uniform and soil-free as far as the waves are concerned,
+so that the measured waves travel unchanged: the force at depth x below the gauges at time t is
+F(x, t) = WD(t - x/c) + WU(t + x/c) (the wave down that passed the gauges x/c earlier plus the
+wave up that will reach them x/c later). TSX is the largest -F(x, t) / A over depths x in
+[0, L] (a grid of spacing no more than c dt) and over the times at which both waves are
+recorded; 0 when there is no tension. The estimate is exact on a soil-free uniform pile. Shaft
+resistance that is active between the gauges and x makes the true force at x more tensile
+than F(x, t) by up to that resistance (its upward compression wave is in the measured WU but
+not yet in the wave up at x, and its downward tension wave is not in the measured WD), so TSX
+underestimates the tension below soil that is active during the tension wave; in easy driving,
+where tension matters, the activated shaft resistance is small.
+
+BTA (Rausche & Goble 1979): an impedance change from Z to beta Z at depth x reflects the wave
+down with the force ratio r = (beta - 1)/(beta + 1), arriving at the gauges 2x/c later. With
+t0 the start of the impact (the last sample before t1 where WD <= ``onset_fraction`` WD(t1),
+default 0: the foot of the rise), the reflection of the rise t0 -> t1 arrives between
+tr = t0 + 2x/c and tx = t1 + 2x/c. Taking the resistance above x as R_x = 2 WU(tr) (its upward
+wave, in the wave up before the reflection) and the wave reaching x as WD(t1) - R_x/2 gives
+alpha = (WU(tr) - WU(tx)) / (WD(t1) - WU(tr)), beta = (1 - alpha)/(1 + alpha) (Rausche & Goble
+1979). beta(x) is evaluated for every sample tx with t1 < tx < t0 + 2L/c (before the toe
+reflection), i.e. x = c (tx - t1)/2 below the gauges; BTA = min(1, min beta(x)) at the depth
+of the minimum (BTA = 1 with no depth when min beta is within 1e-9 of 1, i.e. round-off).
+Classes: 1.0 uniform, 0.8-1.0 slightly damaged, 0.6-0.8 damaged, < 0.6 broken.
+
+References
+----------
+Goble, G.G., Likins, G.E., Rausche, F. (1975). Bearing capacity of piles from dynamic
+measurements. Final report to the Ohio Department of Transportation, Case Western Reserve
+University, Cleveland.
+Rausche, F., Goble, G.G. (1979). Determination of pile damage by top measurements. In: Behavior
+of Deep Foundations, ASTM STP 670, ASTM, Philadelphia.
+Rausche, F., Goble, G.G., Likins, G.E. (1985). Dynamic determination of pile capacity. ASCE J.
+Geotech. Eng. 111(3), 367-383.
+ASTM D4945-17. Standard test method for high-strain dynamic testing of deep foundations.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.signal import find_peaks
+
+T1_SIGNALS = ("velocity", "force")
+"""Signals whose first peak can define t1."""
+
+_BETA_ROUND_OFF = 1e-9  # beta closer to 1 than this is a uniform pile (floating-point noise)
+
+
+# ---------------------------------------------------------------------------------- formulas
+def pile_impedance(elastic_modulus, area, wave_speed):
+    """Pile impedance Z = E A / c [N s/m].
+
+    elastic_modulus : E [Pa]. area : A, steel cross-section [m^2]. wave_speed : c [m/s].
+    """
+    return elastic_modulus * area / wave_speed
+
+
+def wave_down(force, velocity, impedance):
+    """Wave travelling down WD = (F + Z v)/2 [N] (Rausche, Goble & Likins 1985).
+
+    force : F [N], compression positive. velocity : v [m/s], downward positive.
+    impedance : Z [N s/m].
+    """
+    return 0.5 * (np.asarray(force) + impedance * np.asarray(velocity))
+
+
+def wave_up(force, velocity, impedance):
+    """Wave travelling up WU = (F - Z v)/2 [N] (Rausche, Goble & Likins 1985).
+
+    Parameters as :func:`wave_down`.
+    """
+    return 0.5 * (np.asarray(force) - impedance * np.asarray(velocity))
+
+
+def rausche_goble_likins_1985_total_resistance(wave_down_t1, wave_up_t2):
+    """Case method total resistance RTL = WD(t1) + WU(t2) [N].
+
+    wave_down_t1 : WD at t1 [N]. wave_up_t2 : WU at t2 = t1 + 2L/c [N].
+    """
+    return wave_down_t1 + wave_up_t2
+
+
+def rausche_goble_likins_1985_static_resistance(force_t1, velocity_t1, force_t2, velocity_t2,
+                                                impedance, case_damping):
+    """Case method static resistance RSP = (1 - Jc)/2 (F1 + Z v1) + (1 + Jc)/2 (F2 - Z v2) [N].
+
+    force_t1, force_t2 : F at t1 and t2 = t1 + 2L/c [N].
+    velocity_t1, velocity_t2 : v at t1 and t2 [m/s].
+    impedance : Z [N s/m]. case_damping : Jc [-].
+    """
+    return (0.5 * (1.0 - case_damping) * (force_t1 + impedance * velocity_t1)
+            + 0.5 * (1.0 + case_damping) * (force_t2 - impedance * velocity_t2))
+
+
+def rausche_goble_1979_beta(wave_down_t1, wave_up_tr, wave_up_tx):
+    """Impedance ratio beta = Z_below / Z_above at a change (Rausche & Goble 1979) [-].
+
+    alpha = (WU(tr) - WU(tx)) / (WD(t1) - WU(tr)), beta = (1 - alpha)/(1 + alpha).
+
+    wave_down_t1 : WD at t1 [N].
+    wave_up_tr : WU at tr = t0 + 2x/c, the reflection of the impact start [N].
+    wave_up_tx : WU at tx = t1 + 2x/c, the reflection of the impact peak [N].
+    """
+    alpha = (wave_up_tr - wave_up_tx) / (wave_down_t1 - wave_up_tr)
+    return (1.0 - alpha) / (1.0 + alpha)
+
+
+def transferred_energy(time, force, velocity):
+    """Running integral of F v dt from the record start (trapezoidal rule) [J].
+
+    time : t [s], increasing. force : F [N]. velocity : v [m/s].
+    """
+    t = np.asarray(time, dtype=float)
+    p = np.asarray(force, dtype=float) * np.asarray(velocity, dtype=float)
+    return np.concatenate(([0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))))
+
+
+def first_peak_index(signal, peak_prominence: float = 0.1) -> int:
+    """Index of the first peak of a signal (see the module notes on t1).
+
+    signal : samples [any unit]. peak_prominence : smallest prominence of the peak, as a
+    fraction of the signal's maximum [-].
+    """
+    s = np.asarray(signal, dtype=float)
+    top = float(np.max(s))
+    if not top > 0.0:
+        raise ValueError("the signal that defines t1 never becomes positive")
+    peaks, _ = find_peaks(s, prominence=peak_prominence * top)
+    return int(peaks[0]) if peaks.size else int(np.argmax(s))
+
+
+def max_tension_along_pile(time, wave_down_gauge, wave_up_gauge, wave_speed: float,
+                           length: float) -> tuple[float, float, float]:
+    """Largest tension force below the gauges from WD and WU superposed (module notes) [N].
+
+    time : t [s], increasing. wave_down_gauge, wave_up_gauge : WD, WU at the gauges [N].
+    wave_speed : c [m/s]. length : L below the gauges [m].
+
+    Returns (tension [N] (>= 0), its depth below the gauges [m], its time [s]).
+    """
+    t = np.asarray(time, dtype=float)
+    wd = np.asarray(wave_down_gauge, dtype=float)
+    wu = np.asarray(wave_up_gauge, dtype=float)
+    step = float(np.min(np.diff(t)))
+    n_depths = max(1, int(np.ceil(length / (wave_speed * step) - 1e-9)))
+    best = (0.0, 0.0, float(t[0]))
+    for x in np.linspace(0.0, length, n_depths + 1):
+        delay = x / wave_speed
+        inside = (t - delay >= t[0]) & (t + delay <= t[-1])
+        if not np.any(inside):
+            continue
+        ts = t[inside]
+        force = np.interp(ts - delay, t, wd) + np.interp(ts + delay, t, wu)
+        k = int(np.argmin(force))
+        if -force[k] > best[0]:
+            best = (float(-force[k]), float(x), float(ts[k]))
+    return best
+
+
+# ---------------------------------------------------------------------------------- analysis
+@dataclass(frozen=True)
+class CaseMethodResult:
+    """PDA quantities of one blow record.
+
+    rtl : total resistance RTL [N]. rsp : static resistance RSP(Jc) at t1 [N].
+    rmx : largest RSP(Jc) as t1 moves later [N]. emx : largest transferred energy EMX [J].
+    fmx : largest force at the gauges [N]. csx : FMX / A [Pa].
+    tsx : largest tension stress below the gauges [Pa] (>= 0).
+    bta : integrity factor beta [-] (<= 1). bta_depth : depth of the BTA minimum below the
+    gauges [m] (NaN when BTA = 1). t1 : [s]. t2 : t1 + 2L/c [s]. rmx_t1 : t1 of RMX [s].
+    tsx_depth : depth of the largest tension below the gauges [m].
+    case_damping : Jc [-]. impedance : Z [N s/m].
+    """
+
+    rtl: float
+    rsp: float
+    rmx: float
+    emx: float
+    fmx: float
+    csx: float
+    tsx: float
+    bta: float
+    bta_depth: float
+    t1: float
+    t2: float
+    rmx_t1: float
+    tsx_depth: float
+    case_damping: float
+    impedance: float
+
+    def summary(self) -> dict[str, float]:
+        """The PDA summary, named ``NAME [unit]`` (JSON-ready)."""
+        return {"RTL [N]": self.rtl, "RSP [N]": self.rsp, "RMX [N]": self.rmx,
+                "EMX [J]": self.emx, "FMX [N]": self.fmx, "CSX [Pa]": self.csx,
+                "TSX [Pa]": self.tsx, "BTA [-]": self.bta}
+
+    def details(self) -> dict[str, float]:
+        """Times, depths and parameters behind the summary, named ``name [unit]``."""
+        return {"t1 [s]": self.t1, "t2 [s]": self.t2, "rmx_t1 [s]": self.rmx_t1,
+                "bta_depth [m]": self.bta_depth, "tsx_depth [m]": self.tsx_depth,
+                "case_damping [-]": self.case_damping, "impedance [N s/m]": self.impedance}
+
+
+def case_method(time, force, velocity, *, area: float, elastic_modulus: float,
+                wave_speed: float, length_below_gauges: float, case_damping: float,
+                t1_signal: str = "velocity", rmx_window: float | None = None,
+                peak_prominence: float = 0.1, onset_fraction: float = 0.0
+                ) -> CaseMethodResult:
+    """Case method and PDA summary of a gauge record (see the module notes for each quantity).
+
+    time : t [s], strictly increasing (uniform sampling not required).
+    force : gauge force F [N], compression positive.
+    velocity : gauge velocity v [m/s], downward positive.
+    area : steel cross-section A at the gauges [m^2].
+    elastic_modulus : E [Pa].
+    wave_speed : c [m/s].
+    length_below_gauges : L [m].
+    case_damping : Jc [-] (>= 0).
+    t1_signal : ``"velocity"`` (first peak of Z v) or ``"force"`` (first peak of F).
+    rmx_window : how far t1 is moved later for RMX [s] (default 2L/c).
+    peak_prominence : see :func:`first_peak_index` [-].
+    onset_fraction : impact start for BTA, fraction of WD(t1) [-].
+    """
+    t = np.asarray(time, dtype=float)
+    f = np.asarray(force, dtype=float)
+    v = np.asarray(velocity, dtype=float)
+    if not (t.ndim == f.ndim == v.ndim == 1 and t.size == f.size == v.size and t.size >= 3):
+        raise ValueError("time, force and velocity must be 1D arrays of one length (>= 3)")
+    if not (np.all(np.isfinite(t)) and np.all(np.isfinite(f)) and np.all(np.isfinite(v))):
+        raise ValueError("the record contains non-finite values")
+    if np.any(np.diff(t) <= 0.0):
+        raise ValueError("time must increase strictly")
+    for name, value in (("area", area), ("elastic_modulus", elastic_modulus),
+                        ("wave_speed", wave_speed), ("length_below_gauges", length_below_gauges)):
+        if not value > 0.0:
+            raise ValueError(f"{name} must be positive, got {value!r}")
+    if case_damping < 0.0:
+        raise ValueError(f"case_damping must not be negative, got {case_damping!r}")
+    if t1_signal not in T1_SIGNALS:
+        raise ValueError(f"unknown t1_signal {t1_signal!r}; choose one of {T1_SIGNALS}")
+
+    z = pile_impedance(elastic_modulus, area, wave_speed)
+    wd, wu = wave_down(f, v, z), wave_up(f, v, z)
+    round_trip = 2.0 * length_below_gauges / wave_speed
+    i1 = first_peak_index(z * v if t1_signal == "velocity" else f, peak_prominence)
+    t1 = float(t[i1])
+    t2 = t1 + round_trip
+    if t2 > t[-1]:
+        raise ValueError(f"the record ends at {t[-1]:g} s, before t1 + 2L/c = {t2:g} s")
+
+    def rsp_at(i):  # RSP with t1 at sample(s) i, F and v interpolated at t2 = t1 + 2L/c
+        later = t[i] + round_trip
+        return rausche_goble_likins_1985_static_resistance(
+            f[i], v[i], np.interp(later, t, f), np.interp(later, t, v), z, case_damping)
+
+    rtl = float(rausche_goble_likins_1985_total_resistance(wd[i1], np.interp(t2, t, wu)))
+    rsp = float(rsp_at(i1))
+
+    window = round_trip if rmx_window is None else float(rmx_window)
+    if window < 0.0:
+        raise ValueError(f"rmx_window must not be negative, got {rmx_window!r}")
+    movable = np.nonzero((t >= t1) & (t <= t1 + window) & (t + round_trip <= t[-1]))[0]
+    rsp_moved = rsp_at(movable)
+    k = int(np.argmax(rsp_moved))
+    rmx, rmx_t1 = float(rsp_moved[k]), float(t[movable][k])
+
+    emx = float(np.max(transferred_energy(t, f, v)))
+    fmx = float(np.max(f))
+    tension, tsx_depth, _ = max_tension_along_pile(t, wd, wu, wave_speed, length_below_gauges)
+    bta, bta_depth = _bta(t, wd, wu, i1, round_trip, wave_speed, onset_fraction)
+    return CaseMethodResult(
+        rtl=rtl, rsp=rsp, rmx=rmx, emx=emx, fmx=fmx, csx=fmx / area, tsx=tension / area,
+        bta=bta, bta_depth=bta_depth, t1=t1, t2=t2, rmx_t1=rmx_t1, tsx_depth=tsx_depth,
+        case_damping=float(case_damping), impedance=float(z))
+
+
+def _bta(t, wd, wu, i1, round_trip, wave_speed, onset_fraction) -> tuple[float, float]:
+    below = np.nonzero(wd[:i1] <= onset_fraction * wd[i1])[0]
+    i0 = int(below[-1]) if below.size else 0
+    rise = t[i1] - t[i0]
+    k = np.nonzero((t > t[i1]) & (t < t[i0] + round_trip))[0]
+    if k.size == 0:
+        return 1.0, float("nan")
+    wu_x = wu[k]
+    wu_r = np.interp(t[k] - rise, t, wu)
+    ok = wd[i1] - wu_r > 0.0  # beta is undefined once the resistance exceeds the wave down
+    if not np.any(ok):
+        return 1.0, float("nan")
+    beta = rausche_goble_1979_beta(wd[i1], wu_r[ok], wu_x[ok])
+    j = int(np.argmin(beta))
+    if beta[j] >= 1.0 - _BETA_ROUND_OFF:
+        return 1.0, float("nan")
+    return float(beta[j]), float(0.5 * wave_speed * (t[k[ok][j]] - t[i1]))
+
+
+__all__ = [
+    "T1_SIGNALS", "CaseMethodResult", "case_method", "first_peak_index",
+    "max_tension_along_pile", "pile_impedance", "rausche_goble_1979_beta",
+    "rausche_goble_likins_1985_static_resistance", "rausche_goble_likins_1985_total_resistance",
+    "transferred_energy", "wave_down", "wave_up",
+]
