@@ -5,23 +5,34 @@ Modules
 impact          impact velocity from rated energy or stroke and efficiency
 ram             the ram as a lumped-mass rod (or rigid) and its time-stepping kernels
 cushion         compression-only cushion force with restitution and round-out
-driving_system  the classic hammer cushion / helmet / pile cushion system ("lumped anvil")
+driving_system  the classic hammer cushion / helmet / pile cushion system ("lumped anvil"),
+                with GRLWEAP's ram bottom spring, hammer damping and assembly chain
 database        hammer files (hammer/data/*.toml) with cited sources
 
 All quantities are SI; z points down, displacement and velocity are positive downward and
 forces positive in compression (DESIGN.md).
 """
 
-from .cushion import cushion_force, loading_compression, loading_force, recoverable_energy
+from .cushion import (
+    cushion_force,
+    hysteresis_loss,
+    loading_compression,
+    loading_force,
+    loading_work,
+    recoverable_energy,
+)
 from .database import Hammer, HammerSource, available_hammers, load_hammer
 from .driving_system import (
     Cushion,
     DrivingSystem,
     driving_system_energy,
     driving_system_forces,
+    driving_system_losses,
     driving_system_stable_time_step,
     driving_system_step,
+    grlweap_2010_hammer_damping,
     interface_time_step,
+    series_stiffness,
 )
 from .impact import (
     GRAVITY,
@@ -54,10 +65,13 @@ __all__ = [
     "cushion_force",
     "driving_system_energy",
     "driving_system_forces",
+    "driving_system_losses",
     "driving_system_stable_time_step",
     "driving_system_step",
     "equivalent_stroke",
     "gravity_potential_energy",
+    "grlweap_2010_hammer_damping",
+    "hysteresis_loss",
     "impact_velocity_from_energy",
     "impact_velocity_from_stroke",
     "interface_time_step",
@@ -65,11 +79,13 @@ __all__ = [
     "load_hammer",
     "loading_compression",
     "loading_force",
+    "loading_work",
     "momentum",
     "ram_from_table",
     "ram_step",
     "recoverable_energy",
     "required_substeps",
+    "series_stiffness",
     "spring_forces",
     "stable_time_step",
     "strain_energy",

@@ -115,3 +115,57 @@ def loading_compression(force, stiffness, round_out):
     if force < 0.5 * stiffness * round_out:
         return math.sqrt(2.0 * round_out * force / stiffness)
     return force / stiffness + 0.5 * round_out
+
+
+@njit(cache=True)
+def loading_work(compression, stiffness, round_out):
+    """Work [J] done on a cushion loaded along the loading curve from 0 to the compression c.
+
+    The integral of :func:`loading_force`: k c^3 / (6 r) within the round-out (c <= r), and
+    k r^2 / 6 + k ((c^2 - r^2) / 2 - r (c - r) / 2) beyond it; k c^2 / 2 without round-out.
+
+    Parameters
+    ----------
+    compression : float
+        Compression c [m] (<= 0: no work).
+    stiffness : float
+        Loading stiffness k [N/m].
+    round_out : float
+        Round-out compression r [m].
+    """
+    if compression <= 0.0:
+        return 0.0
+    if compression < round_out:
+        return stiffness * compression**3 / (6.0 * round_out)
+    r = round_out
+    return stiffness * (r * r / 6.0 + 0.5 * (compression * compression - r * r)
+                        - 0.5 * r * (compression - r))
+
+
+@njit(cache=True)
+def hysteresis_loss(max_compression, stiffness, restitution, round_out):
+    """Energy [J] a cushion has dissipated once it has been compressed to c_max (Smith's law).
+
+    Loading follows the loading curve up to c_max, unloading and reloading run on the one line
+    of slope k / e^2 through (c_max, F_L(c_max)), so whatever the path below c_max the work
+    done on the cushion minus what it can still give back is the area between the loading curve
+    and that line: W_L(c_max) - e^2 F_L(c_max)^2 / (2 k) (:func:`loading_work`,
+    :func:`recoverable_energy`). Without round-out this is (1 - e^2) k c_max^2 / 2; with
+    round-out and e = 1 it is k r^2 / 24 once c_max >= r (the unloading line is straight).
+
+    Parameters
+    ----------
+    max_compression : float
+        Largest compression reached c_max [m].
+    stiffness : float
+        Loading stiffness k [N/m].
+    restitution : float
+        Coefficient of restitution e [-].
+    round_out : float
+        Round-out compression r [m].
+    """
+    if max_compression <= 0.0:
+        return 0.0
+    force = loading_force(max_compression, stiffness, round_out)
+    return (loading_work(max_compression, stiffness, round_out)
+            - recoverable_energy(force, stiffness, restitution))

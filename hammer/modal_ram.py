@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
 
 from anvil_rom.chain import chain_from_modes
 from anvil_rom.geometry import AnvilSpec, Interfaces, Material, validate_outline
-from anvil_rom.pipeline import compute_anvil_modes
 from anvil_rom.rom import residual_flexibility
 from anvilwave_inputs import InputError
 
@@ -87,12 +87,15 @@ def default_mesh_size(sections: np.ndarray, material: Material, fmax: float) -> 
 
 
 def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
-              mesh_size: float | None = None, source: str = "hammer") -> RamRod:
+              mesh_size: float | None = None, source: str = "hammer",
+              modes: Callable | None = None) -> RamRod:
     """The modal ROM of ``ram`` (given by its sections) up to ``fmax`` [Hz], as a RamRod.
 
     poisson_ratio [-]; mesh_size [m] (default :func:`default_mesh_size`). Errors name
     ``source`` and the key: a ram without sections (rigid, explicit segments) has no shape to
-    mesh.
+    mesh. modes : ``modes(spec, fmax) -> ModalData`` of the ram's section (default: computed,
+    :func:`anvil_rom.pipeline.compute_anvil_modes`); the system layer passes its modal-data
+    cache.
     """
     if ram.sections is None or not math.isfinite(ram.elastic_modulus):
         raise InputError(source, "ram", "a modal ram needs the ram's shape (diameter and mass "
@@ -106,14 +109,15 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
     size = default_mesh_size(ram.sections, material, fmax) if mesh_size is None else mesh_size
     mass, stiffness, toe_stiffness = _modal_chain(
         np.ascontiguousarray(ram.sections, float).tobytes(), ram.sections.shape[0],
-        material, float(fmax), float(size), source)
+        material, float(fmax), float(size), source, modes)
     return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
                                toe_stiffness=toe_stiffness, fmax=float(fmax))
 
 
 @lru_cache(maxsize=16)
 def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fmax: float,
-                 mesh_size: float, source: str) -> tuple[np.ndarray, np.ndarray, float]:
+                 mesh_size: float, source: str, modes: Callable | None
+                 ) -> tuple[np.ndarray, np.ndarray, float]:
     """Chain masses and springs (toe first) and the toe stiffness; cached per ram and fmax."""
     sections = np.frombuffer(sections_bytes).reshape(n_sections, 3)
     outline = ram_outline(sections)
@@ -123,7 +127,11 @@ def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fma
                      pile_contact_radius=0.5 * (outer + inner), pile_contact_width=outer - inner)
     spec = AnvilSpec("ram", material, outline=outline, interfaces=toe, mesh_size=mesh_size,
                      fmax=fmax, source=source)
-    data = compute_anvil_modes(spec, fmax=fmax).modal_data
+    if modes is None:
+        
+        data = compute_anvil_modes(spec, fmax=fmax).modal_data
+    else:
+        data = modes(spec, fmax)
     omega = 2.0 * np.pi * np.asarray(data.frequencies)
     p_toe = np.asarray(data.participation_pile)
     r = residual_flexibility(data.elastic_flexibility, omega, data.participation_ram, p_toe)

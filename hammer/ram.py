@@ -220,19 +220,27 @@ class RamRod:
 
 # --------------------------------------------------------------------------- kernels
 @njit(cache=True)
-def _kick(mass, stiffness, u, v, toe_force, gravity, dt):
-    """v += dt * a(u) with a the acceleration of every mass (in place)."""
-    n = mass.shape[0]
-    from_above = 0.0
-    for i in range(n):
-        force = from_above + mass[i] * gravity
-        if i < n - 1:
+def ram_advance(weight, inverse_mass, stiffness, u, v, toe_force, h, n_sub):
+    """Advance the ram over a communication step h [s] in n_sub leapfrog sub-steps, in place.
+
+    The physics of :func:`ram_step` on arrays prepared once: weight m g [N] and inverse mass
+    1 / m [1/kg] of every mass (top first), the n - 1 springs [N/m]. One sweep per sub-step:
+    the spring below mass i is evaluated before u_i moves and carried to mass i + 1, so every
+    force is that of the displacements at the start of the sub-step.
+    """
+    dt = h / n_sub
+    last = u.shape[0] - 1
+    for _ in range(n_sub):
+        from_above = 0.0
+        for i in range(last):
             spring = stiffness[i] * (u[i] - u[i + 1])
-            force -= spring
+            v_new = v[i] + dt * (from_above + weight[i] - spring) * inverse_mass[i]
+            v[i] = v_new
+            u[i] += dt * v_new
             from_above = spring
-        else:
-            force -= toe_force
-        v[i] += dt * force / mass[i]
+        v_new = v[last] + dt * (from_above + weight[last] - toe_force) * inverse_mass[last]
+        v[last] = v_new
+        u[last] += dt * v_new
 
 
 @njit(cache=True)
@@ -255,13 +263,10 @@ def ram_step(mass, stiffness, u, v, toe_force, gravity, h, n_sub):
     gravity : gravitational acceleration [m/s^2] (0 to switch it off).
     h : communication step [s].
     n_sub : number of sub-steps (h / n_sub below :func:`stable_time_step`).
+
+    A convenience form of :func:`ram_advance` that prepares its arrays on every call.
     """
-    dt = h / n_sub
-    n = mass.shape[0]
-    for _ in range(n_sub):
-        _kick(mass, stiffness, u, v, toe_force, gravity, dt)
-        for i in range(n):
-            u[i] += dt * v[i]
+    ram_advance(mass * gravity, 1.0 / mass, stiffness, u, v, toe_force, h, n_sub)
 
 
 @njit(cache=True)
