@@ -5,7 +5,7 @@ from __future__ import annotations
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def contact_force(penetration, penetration_rate, stiffness, damping):
     """Force of a compression-only penalty contact [N], positive in compression.
 

@@ -191,12 +191,13 @@ def modal_step(coef, p_ram, p_pile, p_grav, q, q_prev, force_ram, force_pile, gr
 def modal_interface(p_ram, p_pile, q, q_prev, h):
     """Modal part of (u_top, v_top, u_bottom, v_bottom) [m, m/s]; v is the half-step velocity
     (q_n - q_n-1) / h of the step h [s]."""
+    inverse_step = 1.0 / h
     ut = 0.0
     vt = 0.0
     ub = 0.0
     vb = 0.0
     for j in range(q.shape[0]):
-        qd = (q[j] - q_prev[j]) / h
+        qd = (q[j] - q_prev[j]) * inverse_step
         ut += p_ram[j] * q[j]
         vt += p_ram[j] * qd
         ub += p_pile[j] * q[j]
@@ -204,7 +205,7 @@ def modal_interface(p_ram, p_pile, q, q_prev, h):
     return ut, vt, ub, vb
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, u_top, v_top, u_bot, v_bot,
                          k_ram, c_ram, k_pile, c_pile, r00, r01, r11):
     """Ram-anvil and anvil-pile contact forces at one instant [N].

@@ -174,32 +174,112 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
     correction: F_n^T (K_c^-1 + R) F_n-1 / 2, contacts and residual flexibility together). The
     contact dashpots, if any, are not counted.
     """
+    interface = np.empty(4)
+    modal_unit_interface(P, C, S, interface)
+    f_ram, f_pile = modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile)
+    return modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+
+
+@njit(cache=True, fastmath={"reassoc"})
+def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+    """:func:`modal_unit_energy` in one sweep over the modes, given the interface sums of the
+    state (:func:`modal_unit_interface`) and the contact forces of these neighbour states.
+    The sums may be added in any order (fastmath reassociation only: their last bits)."""
     n = C.shape[0]
     h = P[8]
+    inverse_step = 1.0 / h
     kinetic = 0.0
     potential = 0.0
+    ut_prev = 0.0
+    ub_prev = 0.0
     for j in range(n):
         q, qp = S[j], S[n + j]
-        kinetic += 0.5 * C[j, 3] * ((q - qp) / h) ** 2
+        rate = (q - qp) * inverse_step
+        kinetic += 0.5 * C[j, 3] * rate * rate
         potential += 0.5 * C[j, 7] ** 2 * q * qp - P[7] * C[j, 6] * 0.5 * (q + qp)
-    f_ram, f_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+        ut_prev += C[j, 4] * qp
+        ub_prev += C[j, 5] * qp
+    ut, vt, ub, vb = interface[0], interface[1], interface[2], interface[3]
     if P[4] == 0.0 and P[5] == 0.0 and P[6] == 0.0:
         # contact springs in the same shadow form, k d_n d_n-1 / 2 (d_n-1 = d_n - h d')
-        ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], h)
         potential += _shadow_contact(u_ram - ut, v_ram - vt, h, P[0])
         potential += _shadow_contact(ub - u_pile, vb - v_pile, h, P[2])
     else:
         # complementary energy of contacts + residual flexibility, F_n^T A F_n-1 / 2 with
         # A = [[1/k_ram + r00, -r01], [-r01, 1/k_pile + r11]] and F_n-1 the forces one step
         # earlier (neighbours moved back by h v, modes at q_n-1)
-        ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[n:], S[n:], h)
         fr0, fp0 = anvil_contact_forces(u_ram - h * v_ram, v_ram, u_pile - h * v_pile, v_pile,
-                                        ut, vt, ub, vb, P[0], P[1], P[2], P[3], P[4], P[5], P[6])
+                                        ut_prev, 0.0, ub_prev, 0.0, P[0], P[1], P[2], P[3],
+                                        P[4], P[5], P[6])
         a11 = 1.0 / P[0] + P[4]
         a22 = 1.0 / P[2] + P[6]
         potential += 0.5 * (a11 * f_ram * fr0 - P[5] * (f_ram * fp0 + f_pile * fr0)
                             + a22 * f_pile * fp0)
     return kinetic, potential
+
+
+# ------------------------------------------------------------------ the engine's form
+# The step and the interface sums of the new state in one sweep over the modes, the contact
+# forces from those sums: the in-process engine's loop and the FMU give the same numbers as
+# modal_unit_step / modal_unit_forces / modal_unit_outputs, with one pass over the modes a step.
+@njit(cache=True)
+def modal_unit_interface(P, C, S, interface):
+    """Modal parts (u_top, v_top, u_bottom, v_bottom) [m, m/s] of the state into
+    ``interface`` (4,) (:func:`anvil_rom.rom.modal_interface`)."""
+    n = C.shape[0]
+    inverse_step = 1.0 / P[8]
+    ut = 0.0
+    vt = 0.0
+    ub = 0.0
+    vb = 0.0
+    for j in range(n):
+        qd = (S[j] - S[n + j]) * inverse_step
+        ut += C[j, 4] * S[j]
+        vt += C[j, 4] * qd
+        ub += C[j, 5] * S[j]
+        vb += C[j, 5] * qd
+    interface[0] = ut
+    interface[1] = vt
+    interface[2] = ub
+    interface[3] = vb
+
+
+@njit(cache=True, inline='always')
+def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
+    """:func:`modal_unit_step`, then :func:`modal_unit_interface` of the new state, in one
+    sweep over the modes (the same arithmetic)."""
+    n = C.shape[0]
+    gravity = P[7]
+    inverse_step = 1.0 / P[8]
+    ut = 0.0
+    vt = 0.0
+    ub = 0.0
+    vb = 0.0
+    for j in range(n):
+        p_ram = C[j, 4]
+        p_pile = C[j, 5]
+        f = p_ram * force_ram - p_pile * force_pile + C[j, 6] * gravity
+        q = S[j]
+        q_new = C[j, 0] * q + C[j, 1] * S[n + j] + C[j, 2] * f
+        qd = (q_new - q) * inverse_step
+        S[n + j] = q
+        S[j] = q_new
+        ut += p_ram * q_new
+        vt += p_ram * qd
+        ub += p_pile * q_new
+        vb += p_pile * qd
+    interface[0] = ut
+    interface[1] = vt
+    interface[2] = ub
+    interface[3] = vb
+
+
+@njit(cache=True, inline='always')
+def modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile):
+    """Contact forces (F_ram, F_pile) [N] from the interface sums (:func:`modal_unit_forces`)."""
+    return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, interface[0], interface[1],
+                                interface[2], interface[3], P[0], P[1], P[2], P[3], P[4], P[5],
+                                P[6])
 
 
 @njit(cache=True)

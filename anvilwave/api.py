@@ -116,13 +116,17 @@ def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
 
 
 def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
-               anvil: str | None = None, modal_data=None) -> dict[str, Any]:
+               anvil: str | None = None, modal_data=None,
+               native_anvil: bool = True) -> dict[str, Any]:
     """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
     ``system.ssp`` of a system into ``out_dir`` (FMI 2.0 co-simulation).
 
+    native_anvil : the anvils in C (default; needs a C compiler), else with pythonfmu
+        (:func:`anvilwave.fmus.build_system_fmus`).
+
     Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
     "ssp": path, "anvil": name of the system's anvil FMU, "parameters": {...},
-    "time_step": master step [s]}``.
+    "time_step": master step [s], "ssp_step": the step of system.ssp [s]}``.
     """
     from .fmus import build_system_fmus
 
@@ -130,4 +134,4 @@ def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
     if anvil is not None:
         cfg = cfg.with_anvil_model(anvil)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
-    return build_system_fmus(cfg, out_dir, modal_data)
+    return build_system_fmus(cfg, out_dir, modal_data, native_anvil=native_anvil)

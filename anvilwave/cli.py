@@ -7,6 +7,8 @@ import json
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from anvil_rom.modes import ModeSolveError
 from anvilwave_inputs import InputError
 
@@ -119,11 +121,13 @@ def _build_fmus(args: argparse.Namespace) -> int:
     if args.anvil is not None:
         cfg = cfg.with_anvil_model(args.anvil)
     with ResultWriter(args.out) as out:
-        built = build_system_fmus(cfg, out.staging)
+        built = build_system_fmus(cfg, out.staging, native_anvil=not args.python_anvil)
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
-    print(f"{names} -> {args.out} (system uses {built['anvil']}, step "
-          f"{built['time_step'] * 1e6:.2f} us)")
+    print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}; system.ssp uses "
+          f"{built['anvil']} with input extrapolation, step {built['ssp_step'] * 1e6:.3g} us "
+          f"= engine step {built['time_step'] * 1e6:.3g} us / "
+          f"{built['time_step'] / built['ssp_step']:.0f})")
     return 0
 
 
@@ -347,7 +351,8 @@ def build_parser() -> argparse.ArgumentParser:
                                              "[anvil], [pile], [soil]")
     p.add_argument("--engine", choices=("direct", "fmi"), default="direct",
                    help="direct: the in-process numba engine (default); fmi: the FMUs "
-                        "(pythonfmu) co-simulated by the fmpy master")
+                        "(native anvil, pythonfmu ram and pile) co-simulated by the fmpy "
+                        "master")
     p.add_argument("--anvil", choices=("rom", "lumped", "classic", "none"), default=None,
                    help="anvil model, overriding [anvil] model of the system file: rom (Mode "
                         "Displacement Method), lumped (rigid FE mass), classic (cushion-helmet "
@@ -357,13 +362,17 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
-        description="Build the FMI 2.0 co-simulation units of a system (pythonfmu; the anvil's "
-                    "modal-data file embedded) and an SSP 1.0 file connecting ram, anvil and "
-                    "pile/soil with the system's parameter values.",
+        description="Build the FMI 2.0 co-simulation units of a system (native C anvils with "
+                    "the modal data embedded, needing a C compiler; pythonfmu ram and "
+                    "pile/soil) and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
+                    "system's parameter values, for Jacobi-type masters such as libcosim.",
     )
     p.add_argument("system", type=Path, help="system file (TOML)")
     p.add_argument("--anvil", choices=("rom", "lumped"), default=None,
                    help="anvil unit of system.ssp (default: [anvil] model of the file)")
+    p.add_argument("--python-anvil", action="store_true",
+                   help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of in C "
+                        "(no C compiler needed; they run in the Python that built them)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_build_fmus)
 
@@ -412,11 +421,185 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_demo)
 
+    p = sub.add_parser(
+        "drive", help="driveability: blow count, stresses and ENTHRU against the tip depth",
+        description="For every tip depth of [driveability]: the pile embedded to that depth "
+                    "with its SRD ([srd]: CPT/layer methods with friction fatigue, tables per "
+                    "tip depth, or [soil] srd), the hammer at the energy of the schedule, one "
+                    "or more blows; writes DIR/driveability.csv, DIR/summary.json and "
+                    "DIR/driveability.png.")
+    p.add_argument("system", type=Path, help="system file (TOML) with a [driveability] table")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--anvil", choices=("rom", "lumped", "classic", "none"), default=None,
+                   help="anvil model (default: the system file's)")
+    p.add_argument("--bound", choices=("lower", "best", "upper"), default=None,
+                   help="SRD bound (default: the file's, else best)")
+    p.add_argument("--compare-anvils", action="store_true",
+                   help="run every anvil model the file supports (rom, lumped, classic) and "
+                        "plot them together")
+    p.add_argument("--bearing-graph", type=float, default=None, metavar="DEPTH",
+                   help="blow count against Rut at this tip depth [m] instead")
+    p.add_argument("--workers", type=int, default=None,
+                   help="processes over the depths (default: all cores)")
+    p.set_defaults(func=_drive)
+
+    p = sub.add_parser(
+        "pda", help="Case method of a gauge record (RTL, RSP, RMX, EMX, FMX, CSX, TSX, BTA)",
+        description="Read a gauge record (time [s], force [N], velocity [m/s]; or raw "
+                    "strains and accelerations) and write DIR/pda.json and DIR/pda.png.")
+    p.add_argument("record", type=Path, help="gauge record (CSV)")
+    p.add_argument("--length", type=float, required=True, help="pile length below the gauges "
+                                                               "[m]")
+    p.add_argument("--area", type=float, required=True, help="steel area at the gauges [m^2]")
+    p.add_argument("--elastic-modulus", type=float, default=210e9, help="[Pa] (steel)")
+    p.add_argument("--wave-speed", type=float, default=None,
+                   help="[m/s] (default sqrt(E / 7850))")
+    p.add_argument("--jc", type=float, required=True, help="Case damping factor [-]")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_pda)
+
+    p = sub.add_parser(
+        "match", help="signal matching: fit the soil of a system file to a gauge record",
+        description="Impose the measured velocity (or wave down) at the gauges on the pile "
+                    "and soil of the system file, fit shaft zones, toe, quakes and dampings by "
+                    "least squares; writes DIR/match.json, the match plots and the simulated "
+                    "static load test.")
+    p.add_argument("record", type=Path, help="gauge record (CSV)")
+    p.add_argument("system", type=Path, help="system file (TOML): pile and starting soil")
+    p.add_argument("--zones", type=int, default=3, help="shaft resistance zones")
+    p.add_argument("--imposed", choices=("velocity", "wave_down"), default="velocity")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_match)
+
+    p = sub.add_parser(
+        "compare-pda", help="the paper's Fig. 4 and 5: a record against the ROM and lumped "
+                            "anvils",
+        description="Measured pile-top force and velocity against the ROM anvil and the "
+                    "lumped anvil of the system file (gravity preload removed as gauges "
+                    "zeroed at rest do).")
+    p.add_argument("record", type=Path, help="gauge record (CSV)")
+    p.add_argument("system", type=Path, help="system file (TOML)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=_compare_pda)
+
     p = sub.add_parser("schema", help="list every key of the input files (unit, default, "
                                       "meaning)")
     p.add_argument("kind", nargs="?", choices=("system", "anvil"), default="system")
     p.set_defaults(func=_schema)
     return parser
+
+
+def _drive(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
+    from . import driveability as dv
+    from .engine import build_engine
+    from .report import write_csv
+    from .system import load_system
+
+    cfg = load_system(args.system)
+    if cfg.drive is None:
+        raise InputError(str(args.system), "driveability", "the drive analysis needs a "
+                                                           "[driveability] table")
+    settings = cfg.drive
+    if args.bound is not None:
+        settings = replace(settings, bound=args.bound)
+    srd = cfg.srd if cfg.srd is not None else dv.load_srd_source(None, cfg.source,
+                                                                 cfg.pile_soil)
+    models = [args.anvil] if args.anvil else [cfg.anvil.model]
+    if args.compare_anvils:
+        models = [m for m in ("rom", "lumped", "classic")
+                  if m == cfg.anvil.model or (m in ("rom", "lumped") and cfg.anvil.spec)
+                  or (m == "classic" and cfg.anvil.classic is not None)]
+    results = {}
+    with ResultWriter(args.out) as out:
+        for k, model in enumerate(models):
+            run_cfg = cfg.with_anvil_model(model)
+            engine = build_engine(run_cfg)
+            if args.bearing_graph is not None:
+                rows = dv.bearing_graph(engine, run_cfg, srd, settings, args.bearing_graph)
+                cols = {n: np.array([r[n] for r in rows], dtype=float) for n in dv.COLUMNS}
+                write_csv(cols, out.part(f"bearing_graph_{model}.csv"))
+                for r in rows:
+                    print(f"{model:7s} Rut {r['srd [N]'] / 1e6:8.2f} MN: "
+                          f"{r['blows_per_0.25m [-]']:8.1f} blows/0.25 m")
+                continue
+            result = dv.run_driveability(run_cfg, srd, settings, engine, workers=args.workers,
+                                         progress=True)
+            prefix = "" if k == 0 else f"{model}/"
+            dv.write_results(result, _Prefixed(out, prefix), run_cfg, settings,
+                             title=f"{Path(args.system).name}: {model} anvil, "
+                                   f"{settings.bound} SRD")
+            for depth in settings.time_series_depths:
+                blow = dv.time_series(engine, run_cfg, srd, settings, float(depth))
+                write_csv(blow.columns, out.part(f"{prefix}blow_{float(depth):g}m.csv"))
+            results[model] = result
+            s = result["summary"]
+            refusal = s["refusal_depth [m]"]
+            print(f"{model:7s} total blows {s['total_blows [-]']:8.0f}, driving time "
+                  f"{s['driving_time [s]'] / 3600:6.2f} h, refusal "
+                  f"{'none' if refusal is None else f'{refusal:g} m'}, max compression "
+                  f"{s['max_compression_stress [Pa]'] / 1e6:6.1f} MPa, max tension "
+                  f"{s['max_tension_stress [Pa]'] / 1e6:6.1f} MPa; {s['depths_analysed [-]']} "
+                  f"depths in {s['wall_time [s]']:.1f} s")
+        if len(results) > 1:
+            from .plots import plot_driveability
+
+            cols = {m: {n: np.array([r[n] for r in res["rows"]], dtype=float)
+                        for n in dv.COLUMNS} for m, res in results.items()}
+            first = next(iter(results))
+            plot_driveability(cols[first], results[first]["summary"],
+                              out.part("driveability_anvils.png"),
+                              title=f"{Path(args.system).name}: anvil models",
+                              others={m: c for m, c in cols.items() if m != first})
+            comparison = {m: res["summary"] for m, res in results.items()}
+            out.part("anvil_comparison.json").write_text(
+                json.dumps(dv._jsonable(comparison), indent=2) + "\n")
+    print(f"-> {args.out}")
+    return 0
+
+
+class _Prefixed:
+    """A ResultWriter view that puts every part under a sub-folder."""
+
+    def __init__(self, out, prefix: str):
+        self.out, self.prefix = out, prefix
+
+    def part(self, name: str):
+        return self.out.part(self.prefix + name)
+
+
+def _pda(args: argparse.Namespace) -> int:
+    from .pda_analysis import run_pda
+
+    s = run_pda(args.record, args.out, length=args.length, area=args.area,
+                elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed, jc=args.jc)
+    print("  ".join(f"{k} {_si(v)}" for k, v in s.items() if isinstance(v, float | int)))
+    print(f"-> {args.out}")
+    return 0
+
+
+def _match(args: argparse.Namespace) -> int:
+    from .pda_analysis import run_match
+
+    s = run_match(args.record, args.system, args.out, shaft_zones=args.zones,
+                  imposed=args.imposed)
+    print(f"Rut {s['rut [N]'] / 1e6:.2f} MN (shaft {s['rut_shaft [N]'] / 1e6:.2f} MN, toe "
+          f"{s['rut_toe [N]'] / 1e6:.2f} MN), match quality {s['match_quality [-]']:.3f} "
+          f"-> {args.out}")
+    return 0
+
+
+def _compare_pda(args: argparse.Namespace) -> int:
+    from .pda_analysis import run_compare_pda
+
+    run_compare_pda(args.record, args.system, args.out)
+    print(f"Fig. 4 and Fig. 5 -> {args.out}")
+    return 0
+
+
+def _si(value) -> str:
+    return f"{value:.4g}"
 
 
 def _schema(args: argparse.Namespace) -> int:

@@ -1,4 +1,4 @@
-"""The in-process system engine: ram -> anvil unit -> pile/soil in one jitted loop per blow.
+"""The in-process system engine: ram -> anvil unit -> pile/soil in one compiled loop per blow.
 
 The step order is the master algorithm of DESIGN.md, the same as the FMI master's:
 
@@ -7,29 +7,40 @@ The step order is the master algorithm of DESIGN.md, the same as the FMI master'
 3. the forces are held over [t_n, t_n+1] while ram, anvil unit and pile/soil each advance.
 
 Time is t_n = t0 + n h, never accumulated, with t0 = -h/2: the ram starts half a step before
-the first contact (t = 0), see :meth:`Engine.run`. The kernels are those of the physics
-packages, called through small adapters that give every anvil unit (ROM, rigid mass, classic
-cushion-helmet system, none) the same signature; one compiled loop serves all of them.
+the first contact (t = 0), see :meth:`Engine.blow`. The kernels are those of the physics
+packages (the FMUs run the same ones): :func:`hammer.ram.ram_advance`,
+:func:`anvil_rom.unit.modal_unit_advance` (or the classic driving system, or no anvil) and
+:func:`pile.kernels.pile_advance`.
+
+Speed (benchmarks/bench_engine.py): everything that does not change during a run is prepared
+once per engine (inverse masses, weights, yield displacements, the anvil's step coefficients
+and its state at rest, the pile's static state, the coupled stability limit), so a blow only
+copies its start state and runs the loop. The loop is compiled per anvil model and per choice
+of recording and energy bookkeeping (the unused branches are removed at compile time, nothing
+is dispatched inside it); it records only every ``record_every`` steps, and the energies only
+there (the works that are integrals over time are summed per mass in the sweeps). With
+``record=False`` it keeps only the blow's summary (stress extremes, EMX, peak head force, toe
+displacement, set), computed inside the loop, so thousands of blows take no memory.
 """
 
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numba import njit
 
 from anvil_rom.contact import contact_force
-from anvil_rom.pipeline import compute_anvil_modes
 from anvil_rom.rom import ModalAnvil
 from anvil_rom.unit import (
     AnvilUnit,
     ContactParameters,
-    modal_unit_energy,
-    modal_unit_forces,
-    modal_unit_outputs,
-    modal_unit_step,
+    modal_unit_advance,
+    modal_unit_contact,
+    modal_unit_energy_at,
+    modal_unit_interface,
 )
 from anvilwave_inputs import InputError
 from hammer.driving_system import (
@@ -39,25 +50,29 @@ from hammer.driving_system import (
     driving_system_step,
     interface_time_step,
 )
-from hammer.ram import leapfrog_energies, ram_step
+from hammer.ram import leapfrog_energies, ram_advance
 from hammer.ram import stable_time_step as ram_stable_time_step
 from pile.kernels import (
-    ENERGY_KINETIC,
-    ENERGY_STRAIN,
+    HEAD_EXTRAPOLATION,
     PILE_STIFFNESS,
+    SOIL_STIFFNESS,
     WORK_GRAVITY,
     WORK_HEAD,
     WORK_PILE_DAMPING,
     WORK_SOIL_DAMPING,
     WORK_SOIL_STATIC,
+    fold_elongations,
     gauge_force,
     gauge_velocity,
+    gravity_work,
     head_displacement,
     head_face_work,
     head_velocity,
-    pile_step,
-    toe_displacement,
-    update_stress_extremes,
+    pile_advance,
+    pile_energies,
+    sum_works,
+    sweep_arrays,
+    update_energy,
 )
 from pile.kernels import stable_time_step as pile_stable_time_step
 from pile.model import initial_state, substeps
@@ -97,6 +112,16 @@ ram force of Table 1 is within 2 % of its h -> 0 value at 0.4 of the limit but 1
 0.84. Chains of equal segments meeting at the Courant number 1 are exact; give that step
 explicitly (simulation.time_step) for such validation cases."""
 
+ENERGY_STEPS = 10
+"""The energy series of a blow is recorded at most every this many master steps by default
+(:meth:`Engine.blow`): its bookkeeping (a pass over every unit's states) costs about what a
+step costs, and the balance needs no finer sampling (each recorded row is exact)."""
+
+# the blow summary the loop fills (BlowResult fields of the same names)
+(S_MAX_COMPRESSION, S_MAX_TENSION, S_EMX_GAUGE, S_EMX_HEAD, S_MAX_HEAD_FORCE, S_MAX_TOE,
+ S_TOE_START, S_TOE_END, S_TOE_VELOCITY_END) = range(9)
+SUMMARY_SIZE = 9
+
 
 def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays,
                              participation_ram=None, participation_pile=None) -> float:
@@ -109,207 +134,325 @@ def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays
     through their participations: their own stiffness needs no limit (they are integrated
     exactly) and their step mobility c_j <= h^2 makes this bound conservative. Without
     participations the contact is one spring from the ram toe to the pile head (no anvil).
-    """
-    from pile.kernels import SOIL_STIFFNESS
 
+    The stiffness matrix is written entry by entry (chains: three diagonals; the anvil: the
+    participations' block), and only its largest eigenvalue is computed; an engine does this
+    once.
+    """
     ram_mass = np.asarray(ram_mass, float)
+    ram_stiffness = np.asarray(ram_stiffness, float)
     pile_mass = pile_arrays.pile[0]
     k_chain = pile_arrays.pile[PILE_STIFFNESS][:-1]
     n_r, n_p = len(ram_mass), len(pile_mass)
     n_a = 0 if participation_ram is None else len(participation_ram)
     n = n_r + n_a + n_p
     K = np.zeros((n, n))
-    M = np.concatenate([ram_mass, np.ones(n_a), pile_mass])
+    diagonal = np.zeros(n)
 
-    def spring(vec_a, vec_b, k):
-        d = vec_a - vec_b
-        K[:] += k * np.outer(d, d)
+    def chain(first, springs):
+        i = np.arange(first, first + len(springs))
+        np.add.at(diagonal, i, springs)
+        np.add.at(diagonal, i + 1, springs)
+        K[i, i + 1] -= springs
+        K[i + 1, i] -= springs
 
-    def unit(i):
-        e = np.zeros(n)
-        e[i] = 1.0
-        return e
-
-    for i, k in enumerate(ram_stiffness):
-        spring(unit(i), unit(i + 1), k)
-    toe = unit(n_r - 1)
-    head = unit(n_r + n_a)
+    chain(0, ram_stiffness)
+    chain(n_r + n_a, k_chain)
+    toe, head = n_r - 1, n_r + n_a
     if n_a:
-        top = np.zeros(n)
-        bottom = np.zeros(n)
-        top[n_r:n_r + n_a] = participation_ram
-        bottom[n_r:n_r + n_a] = participation_pile
-        spring(toe, top, k_ram)
-        spring(bottom, head, k_pile)
+        modes = slice(n_r, n_r + n_a)
+        top = np.asarray(participation_ram, float)
+        bottom = np.asarray(participation_pile, float)
+        # ram contact: k (u_toe - top . q)^2 / 2; pile contact: k (bottom . q - u_head)^2 / 2
+        diagonal[toe] += k_ram
+        K[toe, modes] -= k_ram * top
+        K[modes, toe] -= k_ram * top
+        K[modes, modes] += k_ram * np.outer(top, top) + k_pile * np.outer(bottom, bottom)
+        K[modes, head] -= k_pile * bottom
+        K[head, modes] -= k_pile * bottom
+        diagonal[head] += k_pile
     else:
-        spring(toe, head, k_ram)
-    for i, k in enumerate(k_chain):
-        spring(unit(n_r + n_a + i), unit(n_r + n_a + i + 1), k)
+        diagonal[toe] += k_ram
+        diagonal[head] += k_ram
+        K[toe, head] -= k_ram
+        K[head, toe] -= k_ram
     soil_k = pile_arrays.soil[SOIL_STIFFNESS]
-    idx = np.arange(n_r + n_a, n)
-    K[idx, idx] += soil_k[:n_p]
-    K[n - 1, n - 1] += soil_k[n_p]
+    diagonal[n_r + n_a:] += soil_k[:n_p]
+    diagonal[n - 1] += soil_k[n_p]
+    K[np.arange(n), np.arange(n)] += diagonal
+    M = np.concatenate([ram_mass, np.ones(n_a), pile_mass])
     scale = 1.0 / np.sqrt(M)
-    omega2 = np.linalg.eigvalsh(scale[:, None] * K * scale[None, :]).max()
+    omega2 = np.linalg.eigvalsh(scale[:, None] * K * scale[None, :])[-1]
     return float(2.0 / np.sqrt(omega2))
-
-
-# ----------------------------------------------------------------- anvil-unit adapters
-# Every anvil unit: forces(P, C, S, u_ram, v_ram, u_pile, v_pile) -> (F_ram, F_pile, u_top,
-# u_bottom); step(P, C, S, F_ram, F_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub);
-# energy(P, C, S, u_ram, v_ram, u_pile, v_pile) -> (kinetic, potential).
-@njit(cache=True)
-def modal_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    f_ram, f_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    ut, _, ub, _ = modal_unit_outputs(P, C, S, f_ram, f_pile)
-    return f_ram, f_pile, ut, ub
-
-
-@njit(cache=True)
-def modal_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub):
-    modal_unit_step(P, C, S, f_ram, f_pile)  # exact over h (C holds the h transition)
-
-
-@njit(cache=True)
-def modal_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    return modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
-
-
-@njit(cache=True)
-def direct_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    """No anvil: the ram toe bears on the pile head through one contact spring (P = [k, c])."""
-    f = contact_force(u_ram - u_pile, v_ram - v_pile, P[0], P[1])
-    return f, f, u_pile, u_pile
-
-
-@njit(cache=True)
-def direct_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub):
-    pass
-
-
-@njit(cache=True)
-def direct_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    f = contact_force(u_ram - u_pile, v_ram - v_pile, P[0], P[1])
-    return 0.0, 0.5 * f * f / P[0]
-
-
-@njit(cache=True)
-def classic_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    return driving_system_forces(P, S, u_ram, v_ram, u_pile, v_pile)
-
-
-@njit(cache=True)
-def classic_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub):
-    driving_system_step(P, S, u_ram, v_ram, u_pile, v_pile, h, n_sub)
-
-
-@njit(cache=True)
-def classic_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    kinetic, strain, gravity = driving_system_energy(P, S, u_ram, u_pile)
-    return kinetic, strain + gravity
-
-
-# one compiled loop serves every anvil unit: numba's on-disk cache cannot hold a function
-# specialised on function arguments across processes, so the unit is chosen by a code
-UNIT_MODAL, UNIT_CLASSIC, UNIT_NONE = 0, 1, 2
-
-
-@njit(cache=True)
-def anvil_forces(kind, P, C, S, u_ram, v_ram, u_pile, v_pile):
-    if kind == UNIT_MODAL:
-        return modal_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    if kind == UNIT_CLASSIC:
-        return classic_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    return direct_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
-
-
-@njit(cache=True)
-def anvil_step(kind, P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub):
-    if kind == UNIT_MODAL:
-        modal_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub)
-    elif kind == UNIT_CLASSIC:
-        classic_step(P, C, S, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, n_sub)
-
-
-@njit(cache=True)
-def anvil_energy(kind, P, C, S, u_ram, v_ram, u_pile, v_pile):
-    if kind == UNIT_MODAL:
-        return modal_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    if kind == UNIT_CLASSIC:
-        return classic_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
-    return direct_energy(P, C, S, u_ram, v_ram, u_pile, v_pile)
 
 
 # ----------------------------------------------------------------- the loop
 @njit(cache=True)
-def run_blow(kind,
-             ram_mass, ram_stiffness, ram_u, ram_v, ram_nsub,
-             aP, aC, aS, anvil_nsub,
-             pile, soil, probes, stress_factor, pu, pv, poff, pen, pile_nsub,
-             pile_face0, gravity, t0, h, n_steps, record_every, out, energies, extremes):
+def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
+             soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
+             n_steps, record_every, energy_every, out, energies, works, stresses, summary):
     """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
 
-    Records every ``record_every`` steps into ``out`` (COLUMNS) and ``energies``
-    (ENERGY_COLUMNS); ``extremes`` collects [max compression, max tension] of the pile's
-    springs [N]. ``pile_face0`` is the head face displacement of the static state, the
-    reference of the anvil unit's pile input.
+    The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvil_rom.unit`),
+    ``classic`` = (P, S) (:mod:`hammer.driving_system`) or ``direct`` = [k, c] (one contact
+    spring, no anvil); the other two are None, and the compiler keeps only the code of the
+    given one. ``ram`` = (weight, inverse mass, stiffness, mass); the pile as
+    :func:`pile.kernels.pile_advance` takes it, with ``pile`` and ``probes`` its parameter and
+    probe arrays. ``start`` = (u, v, energy) of the pile at the start of the blow.
+
+    Records every ``record_every`` steps into ``out`` (COLUMNS x rows) and every
+    ``energy_every`` steps and at the last into ``energies`` (time and ENERGY_COLUMNS x rows)
+    unless they are None; ``works`` (per-mass work sums, None: no
+    energy bookkeeping) and ``stresses`` (stress factors and per-spring extremes) as
+    :func:`pile.kernels.pile_advance`; ``summary`` (SUMMARY_SIZE) receives the blow's
+    summary. ``face0`` is the head face displacement the anvil unit's pile input is measured
+    from. Returns the numbers of rows recorded (columns, energies).
     """
+    weight, inverse_mass, ram_stiffness, ram_mass = ram
+    toe = ram_u.shape[0] - 1
+    last = pu.shape[0] - 1
+    extrapolation = probes[HEAD_EXTRAPOLATION]
+    dt_ram = h / ram_nsub
+    dt_pile = h / pile_nsub
+    head_work0 = head_face_work(probes, start[2])
+    pile_mass = pile[0]
+    work_gauge = 0.0
+    power_before = 0.0
+    emx_gauge = 0.0
+    emx_head = 0.0
+    max_head_force = 0.0
+    max_toe = pu[last]
     row = 0
+    countdown = 0
+    energy_row = 0
+    energy_countdown = 0
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
-        u_ram = ram_u[ram_u.shape[0] - 1]
-        v_ram = ram_v[ram_v.shape[0] - 1]
-        u_pile = head_displacement(probes, pu) - pile_face0
+        u_ram = ram_u[toe]
+        v_ram = ram_v[toe]
+        u_pile = pu[0] + extrapolation * (pu[0] - pu[1]) - face0
         v_pile = head_velocity(probes, pv)
-        # 2. contact forces at t_n (feedthrough of the anvil unit)
-        f_ram, f_pile, u_top, u_bottom = anvil_forces(kind, aP, aC, aS, u_ram, v_ram, u_pile,
-                                                      v_pile)
-        update_stress_extremes(stress_factor, pu, extremes)
-        if n % record_every == 0:
-            out[row, 0] = t0 + n * h
-            out[row, 1] = f_ram
-            out[row, 2] = f_pile
-            out[row, 3] = v_pile
-            out[row, 4] = gauge_force(pile, probes, pu, pv)
-            out[row, 5] = gauge_velocity(probes, pv)
-            out[row, 6] = v_ram
-            out[row, 7] = u_top
-            out[row, 8] = u_bottom
-            out[row, 9] = u_pile + pile_face0
-            out[row, 10] = toe_displacement(pu)
-            kin, pot = anvil_energy(kind, aP, aC, aS, u_ram, v_ram, u_pile, v_pile)
-            ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v, gravity,
-                                           h / ram_nsub)
-            energies[row, 0] = ke
-            energies[row, 1] = se
-            energies[row, 2] = pe
-            energies[row, 3] = kin
-            energies[row, 4] = pot
-            energies[row, 5] = pen[ENERGY_KINETIC]
-            energies[row, 6] = pen[ENERGY_STRAIN]
-            energies[row, 7] = pen[WORK_GRAVITY]
-            energies[row, 8] = pen[WORK_SOIL_STATIC]
-            energies[row, 9] = pen[WORK_SOIL_DAMPING]
-            energies[row, 10] = pen[WORK_PILE_DAMPING]
-            energies[row, 11] = pen[WORK_HEAD]
-            energies[row, 12] = head_face_work(probes, pen)
+        # 2. contact forces at t_n (feedthrough of the anvil unit); of the three blocks the
+        # compiler keeps the one whose unit is given (an "is not None" of a None is pruned)
+        f_ram = 0.0
+        f_pile = 0.0
+        u_top = u_pile
+        u_bottom = u_pile
+        if modal is not None:
+            f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
+        if classic is not None:
+            f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
+                                                                   v_ram, u_pile, v_pile)
+        if direct is not None:
+            f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
+            f_pile = f_ram
+        # the blow's summary at t_n
+        f_gauge = gauge_force(pile, probes, pu, pv)
+        v_gauge = gauge_velocity(probes, pv)
+        power = f_gauge * v_gauge
+        if n > 0:
+            work_gauge += 0.5 * (power_before + power) * h
+        power_before = power
+        emx_gauge = max(emx_gauge, work_gauge)
+        emx_head = max(emx_head, head_face_work(probes, pen) - head_work0)
+        max_head_force = max(max_head_force, f_pile)
+        max_toe = max(max_toe, pu[last])
+        if countdown == 0:
+            countdown = record_every
             row += 1
+            if out is not None:
+                if modal is not None:
+                    P = modal[0]
+                    u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
+                    u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
+                out[0, row - 1] = t0 + n * h
+                out[1, row - 1] = f_ram
+                out[2, row - 1] = f_pile
+                out[3, row - 1] = v_pile
+                out[4, row - 1] = f_gauge
+                out[5, row - 1] = v_gauge
+                out[6, row - 1] = v_ram
+                out[7, row - 1] = u_top
+                out[8, row - 1] = u_bottom
+                out[9, row - 1] = u_pile + face0
+                out[10, row - 1] = pu[last]
+        if energies is not None:
+            if energy_countdown == 0 or n == n_steps:
+                energy_countdown = energy_every
+                kin = 0.0
+                pot = 0.0
+                if modal is not None:
+                    kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
+                                                    u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+                if classic is not None:
+                    kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
+                                                                        u_ram, u_pile)
+                    pot = recoverable + potential
+                if direct is not None:
+                    pot = 0.5 * f_ram * f_ram / direct[0]
+                ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v, gravity,
+                                               dt_ram)
+                kinetic, strain, grav, damping, soil_static, soil_damping = pile_energies(
+                    pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1],
+                    works)
+                r = energy_row
+                energies[0, r] = t0 + n * h
+                energies[1, r] = ke
+                energies[2, r] = se
+                energies[3, r] = pe
+                energies[4, r] = kin
+                energies[5, r] = pot
+                energies[6, r] = kinetic
+                energies[7, r] = strain
+                energies[8, r] = start[2][WORK_GRAVITY] + grav
+                energies[9, r] = start[2][WORK_SOIL_STATIC] + soil_static
+                energies[10, r] = start[2][WORK_SOIL_DAMPING] + soil_damping
+                energies[11, r] = start[2][WORK_PILE_DAMPING] + damping
+                energies[12, r] = pen[WORK_HEAD]
+                energies[13, r] = head_face_work(probes, pen)
+                energy_row += 1
+            energy_countdown -= 1
+        countdown -= 1
         if n == n_steps:
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
-        ram_step(ram_mass, ram_stiffness, ram_u, ram_v, f_ram, gravity, h, ram_nsub)
-        anvil_step(kind, aP, aC, aS, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h, anvil_nsub)
-        pile_step(pile, soil, pu, pv, poff, pen, f_pile, gravity, h, pile_nsub)
-    return row
+        ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
+        if modal is not None:
+            modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
+        if classic is not None:
+            driving_system_step(classic[0], classic[1], u_ram, v_ram, u_pile, v_pile, h,
+                                classic[2])
+        fold_elongations(pu, stresses[1], stresses[2])
+        pile_advance(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, f_pile, h, pile_nsub,
+                     works)
+    # the end state: its stresses, energies and works
+    factor, largest, smallest = stresses
+    fold_elongations(pu, largest, smallest)
+    compression = 0.0
+    tension = 0.0
+    for i in range(last):
+        compression = max(compression, factor[i] * largest[i])
+        tension = min(tension, factor[i] * smallest[i])
+    update_energy(pile, pu, pv, pen, dt_pile)
+    if works is not None:
+        damping, soil_static, soil_damping = sum_works(works)
+        pen[WORK_GRAVITY] = start[2][WORK_GRAVITY] + gravity_work(pile_sweep[0], pu, pv,
+                                                                  start[0], start[1], dt_pile)
+        pen[WORK_SOIL_STATIC] = start[2][WORK_SOIL_STATIC] + soil_static
+        pen[WORK_SOIL_DAMPING] = start[2][WORK_SOIL_DAMPING] + soil_damping
+        pen[WORK_PILE_DAMPING] = start[2][WORK_PILE_DAMPING] + damping
+    summary[S_MAX_COMPRESSION] = compression
+    summary[S_MAX_TENSION] = tension
+    summary[S_EMX_GAUGE] = emx_gauge
+    summary[S_EMX_HEAD] = emx_head
+    summary[S_MAX_HEAD_FORCE] = max_head_force
+    summary[S_MAX_TOE] = max_toe
+    summary[S_TOE_START] = start[0][last]
+    summary[S_TOE_END] = pu[last]
+    summary[S_TOE_VELOCITY_END] = pv[last]
+    return row, energy_row
 
 
-# ----------------------------------------------------------------- set-up
+# ----------------------------------------------------------------- results and state
+@dataclass
+class PileState:
+    """The state of the pile and its soil between blows (the engine keeps its own copies).
+
+    u : (N,) displacements [m]; v : (N,) velocities [m/s] (positive down, leapfrog half-step
+    values); soil_offset : (N + 1,) plastic offsets of the soil springs [m] (toe last);
+    energy : (ENERGY_SIZE,) energies and works of :mod:`pile.kernels` [J].
+    """
+
+    u: np.ndarray
+    v: np.ndarray
+    soil_offset: np.ndarray
+    energy: np.ndarray
+    start_soil_offset: np.ndarray | None = field(default=None, repr=False, compare=False)
+    """Of a blow's final state: the soil offsets at the start of that blow [m]."""
+
+    def copy(self) -> PileState:
+        return PileState(self.u.copy(), self.v.copy(), self.soil_offset.copy(),
+                         self.energy.copy())
+
+    @property
+    def toe_displacement(self) -> float:
+        """Displacement of the toe mass [m]."""
+        return float(self.u[-1])
+
+    # the names of the kernel arguments
+    pu = property(lambda self: self.u, doc="Alias of ``u``.")
+    pv = property(lambda self: self.v, doc="Alias of ``v``.")
+    poff = property(lambda self: self.soil_offset, doc="Alias of ``soil_offset``.")
+    pen = property(lambda self: self.energy, doc="Alias of ``energy``.")
+
+    _KEYS = {"pile_u": "u", "pile_v": "v", "soil_offset": "soil_offset",
+             "soil_offset_start": "start_soil_offset", "energy": "energy"}
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        """Mapping access with the keys of earlier versions' ``final_state`` dict."""
+        value = getattr(self, self._KEYS[key])
+        if value is None:
+            raise KeyError(key)
+        return value
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._KEYS and getattr(self, self._KEYS[key]) is not None
+
+
+@dataclass
+class BlowResult:
+    """Time series and summary of one simulated blow (columns: COLUMNS, ENERGY_COLUMNS).
+
+    columns, energies : recorded time series (empty with ``record=False``; energies also
+    empty with ``energy=False``). The summary is computed inside the loop at every step,
+    recorded or not: max_compression_stress, max_tension_stress [Pa] (over all springs and
+    steps; tension negative), emx_gauge [J] (largest running integral of gauge force x gauge
+    velocity, trapezoidal at the master steps), emx_head [J] (largest work done by the head
+    force on the pile-top face since the blow started: ENTHRU at the head, GRLWEAP's
+    location), max_pile_head_force [N] (anvil-pile contact force), max_toe_displacement [m],
+    permanent_set [m] (toe displacement at the end minus at the start), toe_velocity_end [m/s].
+    """
+
+    columns: dict[str, np.ndarray]
+    energies: dict[str, np.ndarray]
+    time_step: float
+    n_steps: int
+    wall_time: float
+    input_energy: float
+    max_compression_stress: float
+    max_tension_stress: float
+    emx_gauge: float
+    emx_head: float
+    max_pile_head_force: float
+    max_toe_displacement: float
+    permanent_set: float
+    toe_velocity_end: float
+    impact_velocity: float
+    initial_state: PileState
+    final_state: PileState
+
+    @property
+    def pile_max_compression_stress(self) -> float:
+        """Alias of ``max_compression_stress`` [Pa]."""
+        return self.max_compression_stress
+
+    @property
+    def pile_max_tension_stress(self) -> float:
+        """Alias of ``max_tension_stress`` [Pa]."""
+        return self.max_tension_stress
+
+
 @dataclass
 class AnvilKernels:
-    """An anvil unit as kernel functions and arrays (P, C, S) with the common signature."""
+    """An anvil unit as kernel arrays: the state at rest S (copied for every blow).
+
+    kind : "rom", "lumped", "classic" or "none"; P, C, S : the kernel arrays (C unused for
+    classic and none); u_top0 : top face at rest [m]; stable_step : the coupled stability
+    limit of this unit [s]; n_sub : its sub-steps (classic); unit : the AnvilUnit or
+    DrivingSystem.
+    """
 
     kind: str
-    code: int
     P: np.ndarray
     C: np.ndarray
     S: np.ndarray
@@ -319,26 +462,17 @@ class AnvilKernels:
     unit: object = None
 
 
-@dataclass
-class BlowResult:
-    """Time series and summary of one simulated blow (columns: COLUMNS, ENERGY_COLUMNS)."""
-
-    columns: dict[str, np.ndarray]
-    energies: dict[str, np.ndarray]
-    time_step: float
-    n_steps: int
-    wall_time: float
-    input_energy: float
-    pile_max_compression_stress: float
-    pile_max_tension_stress: float
-    final_state: dict = field(default_factory=dict)
+_WARM: set = set()
+"""Loop variants already compiled or loaded in this process."""
 
 
 @dataclass
 class Engine:
     """The in-process engine for one system configuration and anvil model.
 
-    Build it with :func:`build_engine`; :meth:`run` simulates consecutive blows.
+    Build it with :func:`build_engine`. :meth:`blow` simulates one blow from a given pile
+    state, :meth:`run` consecutive blows; :meth:`static_state` is the state a blow starts from
+    by default and :meth:`with_pile_soil` the same engine on another soil or penetration.
     """
 
     config: SystemConfig
@@ -350,79 +484,198 @@ class Engine:
     limits: dict[str, float]
     modal: object = None
 
-    def run(self, duration: float | None = None, record_interval: float | None = None,
-            progress: bool = False) -> list[BlowResult]:
-        """Simulate ``config.blows`` consecutive blows of ``duration`` [s] each.
+    def __post_init__(self):
+        g = self.config.gravity
+        self._ram = (self.ram_mass * g, 1.0 / self.ram_mass, self.ram_stiffness, self.ram_mass)
+        self._ram_nsub = substeps(self.time_step,
+                                  ram_stable_time_step(self.ram_mass, self.ram_stiffness))
+        self._prepare_pile()
 
-        Each blow restarts the ram at its impact velocity on the anvil at rest; the pile keeps
-        its permanent set and soil state from the previous blow.
+    def _prepare_pile(self) -> None:
+        a = self.pile_arrays
+        self._sweep = sweep_arrays(a.pile, a.soil, self.config.gravity)
+        self._pile_nsub = substeps(self.time_step, pile_stable_time_step(a.pile, a.soil))
+        factor = self.config.pile_soil.stress_factors()
+        springs = factor.size
+        self._stresses = (factor, np.zeros(springs), np.zeros(springs))
+        n = a.pile.shape[1]
+        self._works = (np.zeros(n), np.zeros(n), np.zeros(n))
+        self._static = None
+
+    # ------------------------------------------------------------------ state
+    @property
+    def static_head_force(self) -> float:
+        """Weight resting on the pile head before a blow [N] (anvil, helmet, assembly)."""
+        return _static_pile_force(self.anvil, self.config.gravity)
+
+    def static_state(self) -> PileState:
+        """The pile and soil at rest under the anvil's (or helmet's) weight and their own
+        (:func:`pile.model.initial_state`): the state a blow starts from by default. A copy."""
+        if self._static is None:
+            s = initial_state(self.pile_arrays, head_force=self.static_head_force,
+                              gravity=self.config.gravity)
+            self._static = PileState(*(np.array(a, dtype=float) for a in s))
+        return self._static.copy()
+
+    def with_pile_soil(self, pile_soil) -> Engine:
+        """This engine for another :class:`pile.model.PileSoil` with the same pile
+        discretisation (another soil, SRD or penetration): the anvil unit, the ram and the time
+        step are shared; only the pile's arrays, its sub-steps and its static state are new.
+
+        The coupled stability limit is not recomputed: the soil springs are orders of magnitude
+        softer than the contact and pile springs that set it, and the pile sub-steps within its
+        own limit (soil included). Raises ValueError if the pile's segments differ.
+        """
+        arrays = pile_soil.arrays()
+        mine = self.pile_arrays.pile
+        if arrays.pile.shape != mine.shape or not np.array_equal(arrays.pile, mine):
+            raise ValueError("with_pile_soil needs the same pile (sections, segment length, "
+                             "material damping): only the soil may change")
+        limits = dict(self.limits)
+        limits["pile"] = float(pile_stable_time_step(arrays.pile, arrays.soil))
+        return Engine(replace(self.config, pile_soil=pile_soil), self.anvil, self.ram_mass,
+                      self.ram_stiffness, arrays, self.time_step, limits, self.modal)
+
+    # ------------------------------------------------------------------ blows
+    def blow(self, state: PileState | None = None, impact_velocity: float | None = None,
+             duration: float | None = None, record_interval: float | None = None,
+             record: bool = True, energy: bool | None = None,
+             energy_interval: float | None = None) -> BlowResult:
+        """Simulate one blow from ``state`` (default :meth:`static_state`; not modified).
+
+        The ram starts at ``impact_velocity`` [m/s] (default: the system's) on the anvil at
+        rest on the pile head; the blow lasts ``duration`` [s] (default: the system's) and is
+        recorded every ``record_interval`` [s] (default: the system's output interval, else
+        every step). record : keep the time series (False: the summary only, no memory per
+        step). energy : keep the energy bookkeeping (the ENERGY_COLUMNS series and the works of
+        the final state; default: as ``record``). energy_interval : spacing of the energy
+        series [s] (default: every record, but at least ENERGY_STEPS master steps apart); the
+        last step is always in it, and each of its rows is exact (the works are summed at
+        every step). The result's ``final_state`` is the state the next blow starts from.
         """
         cfg = self.config
-        duration = cfg.duration if duration is None else duration
-        record_interval = cfg.output_interval if record_interval is None else record_interval
         h = self.time_step
+        duration = cfg.duration if duration is None else float(duration)
+        velocity = cfg.impact_velocity if impact_velocity is None else float(impact_velocity)
+        if not (math.isfinite(duration) and duration > 0.0):
+            raise ValueError(f"duration must be positive [s], got {duration!r}")
+        if not (math.isfinite(velocity) and velocity > 0.0):
+            raise ValueError(f"impact_velocity must be positive [m/s], got {velocity!r}")
+        interval = cfg.output_interval if record_interval is None else record_interval
         n_steps = int(round(duration / h))
-        record_every = 1 if record_interval is None else max(1, int(round(record_interval / h)))
-        arrays = self.pile_arrays
-        static_force = _static_pile_force(self.anvil, cfg.gravity)
-        state = initial_state(arrays, head_force=static_force, gravity=cfg.gravity)
-        pu, pv, poff, pen = (np.array(a) for a in state)
-        results = []
-        blows = range(cfg.blows)
-        if progress and cfg.blows > 1:
+        record_every = 1 if interval is None else max(1, int(round(interval / h)))
+        if energy_interval is None:
+            energy_every = record_every * -(-ENERGY_STEPS // record_every)
+        else:
+            energy_every = max(1, int(round(float(energy_interval) / h)))
+        energy = record if energy is None else bool(energy)
+        start = self.static_state() if state is None else state.copy()
+        pu, pv, poff, pen = (start.u.copy(), start.v.copy(), start.soil_offset.copy(),
+                             start.energy.copy())
+        probes = self.pile_arrays.probes
+        face0 = float(head_displacement(probes, pu))
+        anvil = self.anvil
+        # the ram starts half a step before the first contact (t0 = -h/2): with the leapfrog's
+        # staggered velocities the first two displacement levels are then the exact ones, and
+        # a chain meeting a chain at the Courant number 1 is exact
+        t0 = -0.5 * h
+        ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * velocity)
+        ram_v = np.full(self.ram_mass.shape, velocity)
+        modal = classic = direct = None
+        if anvil.kind in ("rom", "lumped"):
+            S = anvil.S.copy()
+            interface = np.empty(4)
+            modal_unit_interface(anvil.P, anvil.C, S, interface)
+            modal = (anvil.P, anvil.C, S, interface)
+        elif anvil.kind == "classic":
+            classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
+        else:
+            direct = anvil.P
+        n_rows = n_steps // record_every + 1
+        out = np.empty((len(COLUMNS), n_rows)) if record else None
+        energies = (np.empty((1 + len(ENERGY_COLUMNS), n_steps // energy_every + 2))
+                    if record and energy else None)
+        works = None
+        if energy:
+            works = self._works
+            for w in works:
+                w.fill(0.0)
+        stresses = self._stresses
+        stresses[1].fill(0.0)
+        stresses[2].fill(0.0)
+        summary = np.zeros(SUMMARY_SIZE)
+        pile_sweep, soil_sweep, first_soil = self._sweep
+        args = [modal, classic, direct, self._ram, ram_u, ram_v, self._ram_nsub,
+                self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
+                pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
+                h, n_steps, record_every, energy_every, out, energies, works, stresses,
+                summary]
+        _warm_up(args, anvil.kind, record, energy)
+        begin = time.perf_counter()
+        rows, energy_rows = run_blow(*args)
+        wall = time.perf_counter() - begin
+        columns = {} if out is None else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
+        series = {}
+        if energies is not None:
+            series = {name: energies[i, :energy_rows]
+                      for i, name in enumerate(("time [s]",) + ENERGY_COLUMNS)}
+        final = PileState(pu, pv, poff, pen, start_soil_offset=start.soil_offset)
+        return BlowResult(
+            columns=columns, energies=series, time_step=h, n_steps=n_steps, wall_time=wall,
+            input_energy=0.5 * float(self.ram_mass.sum()) * velocity**2,
+            max_compression_stress=float(summary[S_MAX_COMPRESSION]),
+            max_tension_stress=float(summary[S_MAX_TENSION]),
+            emx_gauge=float(summary[S_EMX_GAUGE]), emx_head=float(summary[S_EMX_HEAD]),
+            max_pile_head_force=float(summary[S_MAX_HEAD_FORCE]),
+            max_toe_displacement=float(summary[S_MAX_TOE]),
+            permanent_set=float(summary[S_TOE_END] - summary[S_TOE_START]),
+            toe_velocity_end=float(summary[S_TOE_VELOCITY_END]), impact_velocity=velocity,
+            initial_state=start, final_state=final)
+
+    def run(self, duration: float | None = None, record_interval: float | None = None,
+            progress: bool = False, record: bool = True, energy: bool | None = None,
+            blows: int | None = None, energy_interval: float | None = None
+            ) -> list[BlowResult]:
+        """Simulate ``blows`` (default ``config.blows``) consecutive blows of ``duration``
+        [s] each (:meth:`blow`): each blow restarts the ram at its impact velocity on the anvil
+        at rest; the pile keeps its permanent set and soil state from the previous blow."""
+        count = self.config.blows if blows is None else int(blows)
+        sequence = range(count)
+        if progress and count > 1:
             from tqdm import tqdm
 
-            blows = tqdm(blows, desc="blows", unit="blow")
-        for _ in blows:
-            anvil = self._fresh_anvil()
-            offset_start = poff.copy()
-            face0 = head_displacement(arrays.probes, pu)
-            # the ram starts half a step before the first contact (t0 = -h/2): with the
-            # leapfrog's staggered velocities the first two displacement levels are then the
-            # exact ones, and a chain meeting a chain at the Courant number 1 is exact
-            t0 = -0.5 * h
-            ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * cfg.impact_velocity)
-            ram_v = np.full(self.ram_mass.shape, cfg.impact_velocity)
-            input_energy = 0.5 * self.ram_mass.sum() * cfg.impact_velocity**2
-            n_rows = n_steps // record_every + 1
-            out = np.zeros((n_rows, len(COLUMNS)))
-            energies = np.zeros((n_rows, len(ENERGY_COLUMNS)))
-            extremes = np.zeros(2)
-            pile_nsub = substeps(h, pile_stable_time_step(arrays.pile, arrays.soil))
-            ram_nsub = substeps(h, ram_stable_time_step(self.ram_mass, self.ram_stiffness))
-            args = (anvil.code, self.ram_mass, self.ram_stiffness,
-                    ram_u, ram_v, ram_nsub, anvil.P, anvil.C, anvil.S, anvil.n_sub,
-                    arrays.pile, arrays.soil, arrays.probes,
-                    cfg.pile_soil.stress_factors(), pu, pv, poff,
-                    pen, pile_nsub,
-                    face0, cfg.gravity, t0, h)
-            _warm_up(args, out.shape[1], energies.shape[1])
-            start = time.perf_counter()
-            rows = run_blow(*args, n_steps, record_every, out, energies, extremes)
-            wall = time.perf_counter() - start
-            results.append(BlowResult(
-                columns={name: out[:rows, i].copy() for i, name in enumerate(COLUMNS)},
-                energies={name: energies[:rows, i].copy() for i, name in enumerate(ENERGY_COLUMNS)},
-                time_step=h, n_steps=n_steps, wall_time=wall, input_energy=input_energy,
-                pile_max_compression_stress=float(extremes[0]),
-                pile_max_tension_stress=float(extremes[1]),
-                final_state={"pile_u": pu.copy(), "soil_offset": poff.copy(),
-                             "soil_offset_start": offset_start},
-            ))
+            sequence = tqdm(sequence, desc="blows", unit="blow")
+        results = []
+        state = None
+        for _ in sequence:
+            result = self.blow(state, duration=duration, record_interval=record_interval,
+                               record=record, energy=energy, energy_interval=energy_interval)
+            state = result.final_state
+            results.append(result)
         return results
 
-    def _fresh_anvil(self) -> AnvilKernels:
-        return _anvil_kernels(self.config, self.ram_mass, self.pile_arrays, self.time_step,
-                              self.modal)
 
-
-def _warm_up(args, n_columns, n_energy) -> None:
-    """Compile (or load from cache) the loop on copies, so the timing excludes compilation."""
+def _warm_up(args, kind: str, record: bool, energy: bool) -> None:
+    """Compile (or load from numba's cache) this variant of the loop on copies, once per
+    process, so that the timing of the blow excludes it."""
+    key = ("modal" if kind in ("rom", "lumped") else kind, record, energy)
+    if key in _WARM:
+        return
     from .kernels import announce_compilation
 
-    announce_compilation()
-    copies = tuple(a.copy() if isinstance(a, np.ndarray) else a for a in args)
-    run_blow(*copies, 1, 1, np.zeros((2, n_columns)), np.zeros((2, n_energy)), np.zeros(2))
+    announce_compilation((run_blow,))
+
+    def copy(a):
+        if isinstance(a, np.ndarray):
+            return a.copy()
+        if isinstance(a, tuple):
+            return tuple(copy(x) for x in a)
+        return a
+
+    trial = [copy(a) for a in args]
+    trial[22] = 0  # n_steps: the loop's first record only
+    run_blow(*trial)
+    _WARM.add(key)
 
 
 def _static_pile_force(anvil: AnvilKernels, gravity: float) -> float:
@@ -433,7 +686,8 @@ def _static_pile_force(anvil: AnvilKernels, gravity: float) -> float:
     return anvil.unit.anvil.total_mass * gravity
 
 
-def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilKernels:
+def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass) -> AnvilKernels:
+    """The anvil unit at rest and its coupled stability limit (the step is set later)."""
     settings = cfg.anvil
     if settings.model == "none":
         # ram toe and pile head: the two contact springs in series (ram_contact_damping acts)
@@ -441,17 +695,15 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
         k = 1.0 / (1.0 / contact.ram_stiffness + 1.0 / contact.pile_stiffness)
         P = np.array([k, contact.ram_damping])
         limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness, k, k, pile_arrays)
-        return AnvilKernels("none", UNIT_NONE, P,
-                            np.zeros((1, 1)), np.zeros(1), 0.0, float(limit), 1, None)
+        return AnvilKernels("none", P, np.zeros((1, 1)), np.zeros(1), 0.0, float(limit), 1,
+                            None)
     if settings.model == "classic":
         ds = settings.classic
         P = ds.parameters(cfg.gravity)
         S = ds.initial_state(P)
         limit = min(driving_system_stable_time_step(P),
                     interface_time_step(P, ram_mass[-1], pile_arrays.pile[0, 0]))
-        n_sub = 1 if h is None else max(1, int(np.ceil(h / driving_system_stable_time_step(P))))
-        return AnvilKernels("classic", UNIT_CLASSIC, P,
-                            np.zeros((1, 1)), S, 0.0, limit, n_sub, ds)
+        return AnvilKernels("classic", P, np.zeros((1, 1)), S, 0.0, float(limit), 1, ds)
     if settings.model == "rom":
         try:
             rom = ModalAnvil.from_modal_data(modal, fmax=settings.fmax,
@@ -461,16 +713,25 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, h, modal) -> AnvilK
         except InputError as exc:
             raise InputError(cfg.source, f"anvil.{exc.key}", exc.rule) from None
     else:
-        rom = ModalAnvil.rigid(settings.mass if settings.mass is not None else modal.total_mass)
+        rom = ModalAnvil.rigid(mass)
     unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity)
     u_top0, _ = unit.rest_on_pile(0.0)
     limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness,
                                      unit.contact.ram_stiffness, unit.contact.pile_stiffness,
                                      pile_arrays, rom.participation_ram, rom.participation_pile)
-    if h is not None:
-        unit.set_step(h)
-    return AnvilKernels(settings.model, UNIT_MODAL, unit.P, unit.C,
-                        unit.S, u_top0, limit, 1, unit)
+    return AnvilKernels(settings.model, unit.P, unit.C, unit.S, u_top0, float(limit), 1, unit)
+
+
+def _set_step(anvil: AnvilKernels, h: float) -> AnvilKernels:
+    """The anvil unit prepared for the master step h [s]."""
+    if anvil.kind == "classic":
+        n_sub = max(1, int(np.ceil(h / driving_system_stable_time_step(anvil.P))))
+        return replace(anvil, n_sub=n_sub)
+    if anvil.kind in ("rom", "lumped"):
+        anvil.unit.set_step(h)
+        return replace(anvil, P=anvil.unit.P.copy(), C=anvil.unit.C.copy(),
+                       S=anvil.unit.S.copy())
+    return anvil
 
 
 def contact_stiffnesses(cfg: SystemConfig) -> tuple[float, float]:
@@ -499,30 +760,50 @@ def _contact(cfg: SystemConfig) -> ContactParameters:
     return ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
 
 
-def build_engine(cfg: SystemConfig, modal=None) -> Engine:
-    """Assemble the components of a system (computing the anvil modes when needed).
+def anvil_modal_data(cfg: SystemConfig):
+    """The modal data of the system's anvil, from the modal-data cache
+    (:func:`anvilwave.cache.cached_modal_data`: computed once per machine)."""
+    from .cache import cached_modal_data
 
-    modal : precomputed ModalData of the anvil (else computed from the anvil file).
+    try:
+        return cached_modal_data(cfg.anvil.spec, fmax=cfg.anvil.fmax)
+    except InputError as exc:
+        if exc.key != "fmax" or cfg.anvil.fmax is None:
+            raise
+        raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
+
+
+def build_engine(cfg: SystemConfig, modal=None) -> Engine:
+    """Assemble the components of a system.
+
+    modal : precomputed ModalData of the anvil; default: the ROM anvil's from the modal-data
+    cache (computed on a miss), the lumped anvil's mass from its geometry without modes
+    (:func:`anvil_rom.geometry.solid_mass`).
     """
     ram = cfg.hammer.ram
     ram_mass = np.ascontiguousarray(ram.mass, dtype=float)
     ram_stiffness = np.ascontiguousarray(ram.stiffness, dtype=float)
     arrays = cfg.pile_soil.arrays()
-    if cfg.anvil.model in ("rom", "lumped") and modal is None:
-        try:
-            modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
-        except InputError as exc:
-            if exc.key != "fmax" or cfg.anvil.fmax is None:
-                raise
-            raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
-    probe = _anvil_kernels(cfg, ram_mass, arrays, None, modal)
+    if cfg.anvil.model == "rom" and modal is None:
+        modal = anvil_modal_data(cfg)
+    mass = None
+    if cfg.anvil.model == "lumped":
+        if cfg.anvil.mass is not None:
+            mass = cfg.anvil.mass
+        elif modal is not None:
+            mass = modal.total_mass
+        else:
+            from anvil_rom.geometry import solid_mass
+
+            mass = solid_mass(cfg.anvil.spec)
+    anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass)
     limits = {
         "ram": float(ram_stable_time_step(ram_mass, ram_stiffness)),
         "pile": float(pile_stable_time_step(arrays.pile, arrays.soil)),
-        "anvil coupling": float(probe.stable_step),
+        "anvil coupling": float(anvil.stable_step),
     }
     if cfg.anvil.model == "rom":
-        fmax = probe.unit.anvil.fmax
+        fmax = anvil.unit.anvil.fmax
         limits["anvil fmax sampling"] = 1.0 / (STEPS_PER_PERIOD_AT_FMAX * fmax)
     stable = min(limits["ram"], limits["pile"], limits["anvil coupling"])
     if cfg.time_step is None:
@@ -539,4 +820,5 @@ def build_engine(cfg: SystemConfig, modal=None) -> Engine:
                              f"{h:g} s is above the stable limit of the anvil contact coupling "
                              f"({limits['anvil coupling']:.3g} s): use a smaller step or omit "
                              "time_step for the automatic choice")
-    return Engine(cfg, probe, ram_mass, ram_stiffness, arrays, float(h), limits, modal)
+    anvil = _set_step(anvil, float(h))
+    return Engine(cfg, anvil, ram_mass, ram_stiffness, arrays, float(h), limits, modal)

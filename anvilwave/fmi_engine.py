@@ -2,7 +2,8 @@
 
 :func:`run_fmi` is the ``--engine fmi`` counterpart of :meth:`anvilwave.engine.Engine.run`
 (``--engine direct``): it builds the system's FMUs
-(:func:`anvilwave.fmus.build_system_fmus`), drives them with
+(:func:`anvilwave.fmus.build_system_fmus`: the native anvil when a C compiler is found, else
+the pythonfmu anvil with a warning; Ram and PileSoil by pythonfmu), drives them with
 :class:`fmu.fmi_master.BlowMaster` at the engine's time step (DESIGN.md step order,
 consecutive blows as the engine: the pile keeps its permanent set and soil state, ram and
 anvil restart) and returns per blow the engine's result columns
@@ -91,7 +92,8 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
             duration: float | None = None, record_interval: float | None = None,
             progress: bool | None = None, fmus: dict[str, Any] | None = None,
             parameters: dict[str, dict[str, Any]] | None = None,
-            time_step: float | None = None) -> list[FmiBlowResult]:
+            time_step: float | None = None,
+            native_anvil: bool | None = None) -> list[FmiBlowResult]:
     """Simulate ``cfg.blows`` blows with the FMUs of the system; one result per blow.
 
     out_dir_for_fmus : folder the FMUs and ``system.ssp`` are built into.
@@ -102,12 +104,14 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     fmus : the dict of an earlier :func:`anvilwave.fmus.build_system_fmus` (skips the build).
     parameters : ``{"ram" | "anvil" | "pile": {name: value}}`` FMU parameters to change.
     time_step : master step h [s] (default: the engine's, ``build_engine(cfg).time_step``).
+    native_anvil : the anvil FMUs to build (``build_system_fmus``): None (default) native
+        when a C compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
     """
     from .fmus import build_system_fmus
 
     if fmus is None:
         fmus = build_system_fmus(cfg, out_dir_for_fmus, anvil_model, time_step=time_step,
-                                 ssp=True)
+                                 ssp=True, native_anvil=native_anvil)
         h = float(fmus["time_step"])
     elif time_step is None:  # the engine's step for this system (its anvil model may differ)
         from .engine import build_engine

@@ -1,9 +1,32 @@
 """The FMUs of a system file: the four units with the system's parameter values and
-``system.ssp`` (the system layer's side of :mod:`fmu.ssp`, which knows no system files)."""
+``system.ssp`` (the system layer's side of :mod:`fmu.ssp`, which knows no system files).
+
+Anvil units. ``Anvil.fmu`` and ``AnvilLumped.fmu`` are native by default
+(:func:`fmu.native_build.build_native_anvil_fmu`: C, no Python at run time, the C sources
+inside, so that tools that are not Python can run them); ``native_anvil=False`` (command line
+``build-fmus --python-anvil``) builds the pythonfmu anvils of :mod:`fmu.units.anvil` under the
+same names instead (same variables and value references, same numbers to round-off). The native
+build needs a C compiler: without one, ``native_anvil=True`` stops with an
+:class:`~anvilwave_inputs.InputError` naming what is missing, and ``native_anvil=None`` (what
+``impact --engine fmi`` uses) falls back to the pythonfmu anvils with a warning. Ram and
+PileSoil are pythonfmu units (their status shim runs them in C hosts when the Python that built
+them, with anvilwave, is still installed: :mod:`fmu.fmi_build`).
+
+``system.ssp`` is for Jacobi-type masters (OSP libcosim and most SSP runners: every unit steps,
+then the outputs are exchanged, so the anvil's forces reach ram and pile one step late). Its
+anvil turns ``input_extrapolation`` on (:mod:`fmu.coupling`: the inputs extrapolated to the
+unit's time, the missed contact impulse given back) and its fixed step is the engine's step h
+over :data:`SSP_STEP_DIVISOR`, from -step/2 (the ram touches the anvil half a step after the
+start, as in the engine). Measured on Table 1 (modal ram, ROM anvil) with libcosim at h/4: peak
+forces within 0.3 % of the fmpy master (DESIGN.md order) on the same step. The FMUs themselves
+keep ``input_extrapolation`` off, so the fmpy master and ``run_fmi`` run the DESIGN order as
+before (with it on they would give the same bits).
+"""
 
 from __future__ import annotations
 
 import tempfile
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -69,23 +92,31 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
     return {"Ram": ram, "Anvil": rom, "AnvilLumped": lumped, "PileSoil": pile, "_rest": rest}
 
 
-SSP_STEP_DIVISOR = 64
-"""The SSP's default fixed step is the engine's step over this (see the module docstring)."""
+SSP_STEP_DIVISOR = 4
+"""The SSP's fixed step is the engine's step over this (module docstring)."""
+SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
+"""Anvil parameters that ``system.ssp`` sets on top of the build's (module docstring)."""
 
 
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
-                      time_step: float | None = None, ssp: bool = True) -> dict[str, Any]:
+                      time_step: float | None = None, ssp: bool = True,
+                      native_anvil: bool | None = True) -> dict[str, Any]:
     """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
     ``system.ssp`` for a system into ``out_dir`` (module docstring).
 
     anvil_model : precomputed modal data of the anvil (``ModalData`` or a ``.npz`` path);
         default: computed from the system's anvil file (as :func:`anvilwave.engine.build_engine`).
     time_step : master step h [s] (default: the engine's); the SSP's default experiment
-        starts at -h/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+        starts at -step/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+    native_anvil : True: native anvils (InputError without a C compiler); False: the
+        pythonfmu anvils; None: native when a C compiler is found, else pythonfmu with a
+        warning.
 
     Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
     "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
-    "parameters": {fmu type: {name: value}}, "time_step": h [s], "modal_data": ModalData,
+    "anvil_implementation": "native" or "pythonfmu",
+    "parameters": {fmu type: {name: value}}, "time_step": h [s], "ssp_step": [s],
+    "modal_data": ModalData,
     "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
     The anvil model of the system must be "rom" or "lumped" (InputError otherwise).
     """
@@ -95,6 +126,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         raise InputError(cfg.source, "anvil.model",
                          f"the FMI units model the anvil as 'rom' or 'lumped', not "
                          f"{cfg.anvil.model!r}")
+    native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)
     rest = parameters.pop("_rest")
@@ -103,28 +135,58 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
 
         time_step = build_engine(cfg, modal).time_step
     out_dir = Path(out_dir)
+    step = float(time_step) / SSP_STEP_DIVISOR
     result: dict[str, Any] = {"anvil": ANVIL_FMU[cfg.anvil.model], "parameters": parameters,
-                              "time_step": float(time_step), "modal_data": modal,
-                              "anvil_rest": rest}
+                              "time_step": float(time_step), "ssp_step": step,
+                              "modal_data": modal, "anvil_rest": rest,
+                              "anvil_implementation": "native" if native else "pythonfmu"}
     with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
-        modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
         result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
-        result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
-        result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
-                                                **parameters["AnvilLumped"])
+        if native:
+            from fmu.native_build import build_native_anvil_fmu
+
+            result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
+                                                     **parameters["Anvil"])
+            result["AnvilLumped"] = build_native_anvil_fmu(modal, out_dir / "AnvilLumped.fmu",
+                                                           lumped=True,
+                                                           **parameters["AnvilLumped"])
+        else:
+            modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
+            result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
+            result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
+                                                    **parameters["AnvilLumped"])
         result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
                                                  **parameters["PileSoil"])
     if ssp:
         kind = result["anvil"]
-        h = float(time_step)
         result["ssp"] = write_ssp(
             out_dir / "system.ssp",
             {"Ram": result["Ram"], "Anvil": result[kind], "PileSoil": result["PileSoil"]},
-            {"Ram": parameters["Ram"], "Anvil": parameters[kind],
+            {"Ram": parameters["Ram"], "Anvil": {**parameters[kind], **SSP_ANVIL_PARAMETERS},
              "PileSoil": parameters["PileSoil"]},
-            name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * h,
-            stop_time=cfg.duration, step_size=h / SSP_STEP_DIVISOR)
+            name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * step,
+            stop_time=cfg.duration, step_size=step)
     return result
+
+
+def _native_anvil_wanted(native_anvil: bool | None) -> bool:
+    """Whether to build the native anvils (module docstring); InputError when they are asked
+    for and cannot be built here."""
+    if native_anvil is False:
+        return False
+    from fmu.native_build import NativeBuildError, find_compiler
+
+    try:
+        find_compiler()
+    except NativeBuildError as exc:
+        if native_anvil is None:
+            warnings.warn(f"the native anvil FMUs cannot be built ({exc}): using the pythonfmu "
+                          "anvils (the same numbers)", stacklevel=3)
+            return False
+        raise InputError("native Anvil FMU", "compiler",
+                         f"{exc}; or build the pythonfmu anvils instead (anvilwave build-fmus "
+                         "--python-anvil, build_system_fmus(native_anvil=False))") from None
+    return True
 
 

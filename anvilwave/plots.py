@@ -97,3 +97,56 @@ def plot_columns(columns: dict, path: str | Path, title: str = "") -> Path:
     from types import SimpleNamespace
 
     return plot_impact_blows([SimpleNamespace(columns=columns)], path, title=title)
+
+
+def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str = "",
+                      others: dict | None = None) -> Path:
+    """SRD, blow count, stresses and ENTHRU against the tip depth (depth down), refusal
+    marked; ``others`` = {label: columns} overlays further runs (other anvil models)."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 4, figsize=(14, 6), sharey=True)
+    runs = {summary.get("anvil_model", "run"): columns, **(others or {})}
+    for k, (label, c) in enumerate(runs.items()):
+        z = c["depth [m]"]
+        style = dict(color=f"C{k}", lw=1.5)
+        if k == 0:
+            axes[0].plot(c["srd [N]"] / 1e6, z, label="total", **style)
+            axes[0].plot(c["srd_shaft [N]"] / 1e6, z, "--", color="C7", label="shaft")
+            axes[0].plot(c["srd_toe [N]"] / 1e6, z, ":", color="C7", label="toe")
+        bpq = np.minimum(c["blows_per_0.25m [-]"], 2 * summary["refusal_criterion "
+                                                                 "[blows/0.25m]"])
+        axes[1].plot(bpq, z, label=label, **style)
+        axes[2].plot(c["max_compression_stress [Pa]"] / 1e6, z, label=f"{label} compression",
+                     **style)
+        axes[2].plot(c["max_tension_stress [Pa]"] / 1e6, z, ":", color=f"C{k}",
+                     label=f"{label} tension")
+        axes[3].plot(c["enthru [J]"] / 1e3, z, label=f"{label} ENTHRU", **style)
+        if k == 0:
+            axes[3].plot(c["energy_setting [J]"] / 1e3, z, "--", color="C7",
+                         label="energy setting")
+    refusal = summary.get("refusal_criterion [blows/0.25m]")
+    top = max(float(np.nanmax(np.minimum(c["blows_per_0.25m [-]"], 2 * (refusal or 1e9))))
+              for c in runs.values())
+    if refusal and refusal <= 1.5 * top:
+        axes[1].axvline(refusal, color="r", lw=1, ls="--", label="refusal")
+    else:
+        axes[1].set_title(f"(refusal at {refusal:g})" if refusal else "", fontsize=8)
+    axes[1].set_xlim(0.0, 1.15 * max(top, 1.0) if not refusal or refusal > 1.5 * top
+                     else 1.1 * refusal)
+    if summary.get("refusal_depth [m]") is not None:
+        for ax in axes:
+            ax.axhline(summary["refusal_depth [m]"], color="r", lw=0.8)
+    axes[0].set_xlabel("SRD [MN]")
+    axes[1].set_xlabel("blows / 0.25 m")
+    axes[2].set_xlabel("max stress along the pile [MPa]\n(compression +, tension -)")
+    axes[3].set_xlabel("energy [kJ]")
+    axes[0].set_ylabel("tip depth below mudline [m]")
+    axes[0].invert_yaxis()
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle(title or "driveability")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return Path(path)

@@ -44,7 +44,23 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.classic": ("-", None, "table of the classic driving system (model 'classic')"),
     "anvil.classic.helmet_mass": ("kg", REQUIRED, "helmet mass"),
     "anvil.classic.assembly_mass": ("kg", 0.0, "hammer assembly (housing) mass"),
-    "anvil.classic.assembly_stiffness": ("N/m", REQUIRED, "assembly spring to the helmet"),
+    "anvil.classic.assembly_stiffness": ("N/m", None, "assembly spring to the helmet "
+                                                      "(required with assembly_mass)"),
+    "anvil.classic.assembly_masses": ("kg", None, "assembly chain, top first (GRLWEAP)"),
+    "anvil.classic.assembly_stiffnesses": ("N/m", None, "spring below each assembly mass; the "
+                                                        "last bears on the helmet"),
+    "anvil.classic.assembly_restitution": ("-", 1.0, "CoR of the assembly contact"),
+    "anvil.classic.assembly_round_out": ("m", 0.0, "round-out of the assembly contact"),
+    "anvil.classic.ram_bottom_stiffness": ("N/m", None, "spring below the ram's lowest "
+                                                        "segment, in series with the cushion"),
+    "anvil.classic.hammer_damping": ("N s/m", 0.0, "dashpot parallel to the hammer cushion"),
+    "anvil.classic.hammer_damping_ratio": ("-", None, "GRLWEAP's rule: c = 2 ratio sqrt(m k) "
+                                                      "(0.02 gives 2/50 sqrt(m k))"),
+    "anvil.classic.ram_bottom_mass": ("kg", None, "the ram's lowest segment (with "
+                                                  "hammer_damping_ratio)"),
+    "anvil.classic.pile_contact_restitution": ("-", 1.0, "CoR of the helmet-pile contact"),
+    "anvil.classic.pile_contact_round_out": ("m", 0.0, "round-out of the helmet-pile "
+                                                       "contact"),
     "anvil.classic.hammer_cushion": ("-", REQUIRED, "cushion table (below)"),
     "anvil.classic.pile_cushion": ("-", None, "cushion table (below)"),
     "anvil.classic.pile_contact_stiffness": ("N/m", REQUIRED, "helmet-pile contact spring"),
@@ -58,6 +74,9 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "pile.segment_length": ("m", 0.5, "target segment length (upper bound per section)"),
     "pile.gauge_depth": ("m", 2.0, "gauge position below the head"),
     "pile.material_damping": ("-", 0.01, "fraction of critical per segment"),
+    "pile.material_damping_model": ("-", "segment", "'segment' (2 zeta sqrt(k m) per spring) "
+                                                    "or 'uniform' (GRLWEAP: 2 zeta EA/c at "
+                                                    "mid-length)"),
     "pile.sections": ("-", REQUIRED, "[[pile.sections]], head first"),
     "pile.sections.length": ("m", REQUIRED, "section length"),
     "pile.sections.outer_diameter": ("m", REQUIRED, "outer diameter"),
@@ -66,9 +85,10 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "pile.sections.density": ("kg/m^3", 7850.0, "density"),
     # [soil]
     "soil.model": ("-", "smith-viscous", "'smith', 'smith-viscous' or 'lysmer-toe'"),
-    "soil.penetration": ("m", REQUIRED, "embedded length (tip depth below the mudline)"),
+    "soil.penetration": ("m", REQUIRED, "embedded length (tip depth below the mudline); with "
+                                        "[srd]: default the last drive depth"),
     "soil.srd": ("[m, Pa, Pa]", REQUIRED, "rows depth, unit shaft friction, unit toe "
-                                          "resistance"),
+                                          "resistance (optional with [srd])"),
     "soil.quake_shaft": ("m", 0.0025, "shaft quake"),
     "soil.quake_toe": ("m", 0.0025, "toe quake (not lysmer-toe)"),
     "soil.damping_shaft": ("s/m", 0.65, "Smith shaft damping"),
@@ -78,6 +98,56 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "soil.toe_shear_modulus": ("Pa", None, "lysmer-toe: soil shear modulus"),
     "soil.toe_density": ("kg/m^3", None, "lysmer-toe: soil density"),
     "soil.toe_poisson_ratio": ("-", 0.3, "lysmer-toe: Poisson's ratio"),
+    # [driveability] (anvilwave drive)
+    "driveability.depths": ("m", None, "tip depths below the mudline (or start/stop/step)"),
+    "driveability.start": ("m", None, "first tip depth"),
+    "driveability.stop": ("m", None, "last tip depth"),
+    "driveability.step": ("m", None, "depth step"),
+    "driveability.blows_per_depth": ("-", 1, "> 1: residual-stress analysis (each blow from "
+                                             "the state the previous one left)"),
+    "driveability.refusal": ("blows/0.25m", 250.0, "refusal blow count"),
+    "driveability.blow_rate": ("blows/min", 30.0, "for the driving time"),
+    "driveability.set_rule": ("-", "permanent", "'permanent' (toe at rest) or 'grlweap' "
+                                                "(max toe displacement - toe quake)"),
+    "driveability.enthru_location": ("-", "gauge", "'gauge' (PDA) or 'head' (GRLWEAP)"),
+    "driveability.energy": ("[m, J]", None, "energy schedule: rows tip depth, blow energy"),
+    "driveability.bound": ("-", "best", "'lower', 'best' or 'upper' SRD"),
+    "driveability.lower_multiplier": ("-", 0.8, "SRD factor of the lower bound"),
+    "driveability.upper_multiplier": ("-", 1.25, "SRD factor of the upper bound"),
+    "driveability.time_series_depths": ("m", None, "depths whose blow time series are written"),
+    "driveability.duration": ("s", None, "blow window; default simulation.duration"),
+    # [srd] (the SRD of a drive analysis)
+    "srd.method": ("-", REQUIRED, "'table' ([soil] srd), 'tip-table', 'alm-hamre-2001', "
+                                  "'stevens-1982'"),
+    "srd.pile_mode": ("-", "coring", "'coring' (friction outside and inside, toe on the "
+                                     "annulus) or 'plugged' (outside, full toe)"),
+    "srd.faces": ("-", None, "'outside' or 'outside+inside' overriding pile_mode's"),
+    "srd.cpt": ("-", None, "CPT file (CSV: depth, qc, fs, u2 with units in the header)"),
+    "srd.cpt_qc_unit": ("-", None, "'Pa', 'kPa' or 'MPa' when the header has none"),
+    "srd.cpt_fs_unit": ("-", None, "as cpt_qc_unit"),
+    "srd.cpt_u2_unit": ("-", None, "as cpt_qc_unit"),
+    "srd.cpt_depth_reference": ("-", "mudline", "'mudline' or 'sea-level' (needs "
+                                                "water_depth)"),
+    "srd.water_depth": ("m", None, "water depth"),
+    "srd.net_area_ratio": ("-", 0.8, "cone net area ratio for qt = qc + (1 - a) u2"),
+    "srd.sand_toe_factor": ("-", 0.15, "Alm & Hamre sand toe factor (0.10: 2018 revision)"),
+    "srd.clay_residual_floor": ("-", "zero", "'zero', '0.002qt' or 'clamp'"),
+    "srd.stevens_bound": ("-", "lower", "Stevens et al. K: 'lower' 0.5 or 'upper' 0.7"),
+    "srd.file": ("-", None, "tip-table: a GRLWEAP input decoded to JSON"),
+    "srd.format": ("-", "grlweap-model-json", "tip-table file format"),
+    "srd.tables": ("-", None, "tip-table inline: [[srd.tables]] tip_depth, rows"),
+    "srd.tables.tip_depth": ("m", REQUIRED, "tip depth of the table"),
+    "srd.tables.rows": ("[m, Pa, Pa]", REQUIRED, "depth, unit shaft, unit toe"),
+    "srd.layers": ("-", None, "[[srd.layers]] of the CPT/layer methods"),
+    "srd.layers.top": ("m", REQUIRED, "layer top below the mudline"),
+    "srd.layers.bottom": ("m", REQUIRED, "layer bottom"),
+    "srd.layers.soil": ("-", REQUIRED, "'sand' or 'clay'"),
+    "srd.layers.submerged_unit_weight": ("N/m^3", REQUIRED, "submerged unit weight"),
+    "srd.layers.interface_friction_angle": ("deg", None, "sand: delta"),
+    "srd.layers.friction_angle": ("deg", None, "sand: phi' (delta = phi' - 5)"),
+    "srd.layers.undrained_shear_strength": ("Pa", None, "clay: su at the top"),
+    "srd.layers.undrained_shear_strength_gradient": ("Pa/m", 0.0, "clay: su increase"),
+    "srd.layers.plasticity_index": ("-", None, "clay: PI as a fraction (0.3 = 30 %)"),
 }
 
 ANVIL: dict[str, tuple[str, object, str]] = {

@@ -37,6 +37,8 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+import numpy as np
+
 from anvil_rom.geometry import DEFAULT_FMAX, AnvilSpec, load_anvil
 from anvilwave_inputs import InputError, Table
 from hammer.database import Hammer, available_hammers, load_hammer
@@ -45,6 +47,7 @@ from hammer.modal_ram import modal_ram
 from pile.model import PileSoil
 
 from .budget import check_run_budget
+from .cache import cached_modal_data
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
 RAM_MODELS = ("rod", "modal")
@@ -77,6 +80,8 @@ class SystemConfig:
     gravity : [m/s^2].
     blows : number of consecutive blows.
     impact_velocity : ram velocity at first contact [m/s].
+    drive : the ``[driveability]`` settings (:class:`anvilwave.driveability.DriveSettings`).
+    srd : the ``[srd]`` source of a drive analysis (:class:`anvilwave.driveability.SrdSource`).
     """
 
     source: str
@@ -89,6 +94,16 @@ class SystemConfig:
     impact_velocity: float
     anvil: AnvilSettings
     pile_soil: PileSoil
+    drive: object = None
+    srd: object = None
+
+    @property
+    def blow_energy(self) -> float:
+        """Blow energy of the system's impact velocity [J]: m v^2 / (2 efficiency) (the
+        kinetic energy where the hammer has no efficiency)."""
+        kinetic = 0.5 * float(np.sum(self.hammer.ram.mass)) * self.impact_velocity**2
+        eff = self.hammer.efficiency
+        return kinetic / eff if eff == eff and eff > 0 else kinetic
 
     def with_energy(self, energy: float) -> SystemConfig:
         """The same system at another blow energy [J] (the hammer's efficiency applies)."""
@@ -126,10 +141,31 @@ def load_system(path: str | Path) -> SystemConfig:
 
     hammer, velocity, ram_options = _hammer(root.table("hammer"), gravity)
     anvil = _anvil(root.table("anvil"))
-    pile_soil = PileSoil.from_tables(root.table("pile"), root.table("soil", required=False))
+    drive = srd = None
+    if root.has("driveability"):
+        from .driveability import load_drive_settings
+
+        drive = load_drive_settings(root.table("driveability"), source)
+    srd_table = root.table("srd", required=False)
+    pile_soil = PileSoil.from_tables(
+        root.table("pile"), root.table("soil", required=False),
+        srd_optional=srd_table is not None,
+        default_penetration=float(drive.depths[-1]) if drive is not None else None)
+    if srd_table is not None:
+        from .driveability import load_srd_source, pile_soil_at
+
+        if pile_soil.soil is None:
+            raise root.error("soil", "an [srd] table needs a [soil] table (soil model, quakes "
+                                     "and dampings)")
+        srd = load_srd_source(srd_table, source, pile_soil)
+        if pile_soil.soil.srd is None:  # the impact's soil: the [srd] at the penetration
+            try:
+                pile_soil = pile_soil_at(pile_soil, srd, pile_soil.soil.penetration, 1.0)[0]
+            except ValueError as exc:
+                raise InputError(source, "srd", str(exc)) from None
     root.finish()
     config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
-                          velocity, anvil, pile_soil)
+                          velocity, anvil, pile_soil, drive, srd)
     check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
     if ram_options["ram_model"] == "modal":
         config = replace(config, hammer=_modal_hammer(hammer, anvil,
@@ -145,7 +181,8 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
     else:
         fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
     try:
-        ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source)
+        ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
+                        modes=cached_modal_data)
     except InputError as exc:
         if exc.key == "fmax":  # the mesh does not resolve fmax
             key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"

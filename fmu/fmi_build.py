@@ -15,13 +15,21 @@
 5. on Linux, installs the status shim (``fmu/units/fmi2_status_shim.c``, compiled with the
    system C compiler) as the FMU binary in front of the pythonfmu library, so that an error
    logged by a slave is returned as ``fmi2Error`` (stock pythonfmu cannot return it; see
-   :mod:`fmu.units.base`). Without a compiler the stock binary stays and a warning says so: a
-   slave error is then reported as ``fmi2Discard`` by the next ``fmi2DoStep``;
+   :mod:`fmu.units.base`), and so that the FMU runs in a host that is not Python: the shim
+   loads the libpython of the Python that built the FMU (recorded in
+   ``resources/anvilwave_python.txt``, :func:`python_runtime`), initializes it with that
+   Python's executable (a venv's: its site-packages, so anvilwave imports), never finalizes it,
+   and works around pythonfmu 0.7.0's double release of its Python state at unload (the
+   "free(): corrupted unsorted chunks" abort of C hosts at exit). Without a compiler the stock
+   binary stays and a warning says so: a slave error is then reported as ``fmi2Discard`` by
+   the next ``fmi2DoStep``, and only Python hosts can load the FMU;
 6. checks the result with ``fmpy.validation.validate_fmu`` (when fmpy is installed) and moves
    the ``.fmu`` into ``out_dir`` in one step.
 
 The FMUs run in a Python that has anvilwave (and pythonfmu) installed: the slave scripts import
-their classes from :mod:`fmu.units`.
+their classes from :mod:`fmu.units`. In a Python host (fmpy, libcosimpy) that is the host's
+Python; in a C host it is the Python that built the FMU, or, when that one is gone, the first
+``python3.X`` of the same version on the PATH (the shim logs a warning naming it).
 
 Helpers per FMU type: :func:`build_anvil_fmu` (``Anvil.fmu`` / ``AnvilLumped.fmu`` from a
 modal-data file), :func:`build_ram_fmu` (``Ram.fmu`` from a hammer: its segments embedded as
@@ -57,6 +65,7 @@ from anvilwave_inputs import InputError
 UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"
 SHIM_INNER_LIBRARY = "pythonfmu-export.so"  # must match INNER_LIBRARY in the shim source
+RUNTIME_FILE = "anvilwave_python.txt"  # must match RUNTIME_FILE in the shim source
 FORMAT = "anvilwave-fmu-parameters"
 
 KINDS: dict[str, Path] = {
@@ -117,6 +126,9 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
                                         "parameters": parameters}, indent=2,
                                        allow_nan=False) + "\n")
         staged.append(defaults)
+        runtime = stage / RUNTIME_FILE
+        runtime.write_text(python_runtime_text(), encoding="utf-8")
+        staged.append(runtime)
         slave = _checked_slave(cls, stage)
         built = _pythonfmu_build(script, scratch / "build", staged)
         shim = _compile_shim(scratch, status_shim)
@@ -262,6 +274,11 @@ def pile_soil_toml(model) -> str:
                                      "gauge_depth": pile.gauge_depth,
                                      "material_damping": pile.material_damping,
                                      "sections": sections}}
+    if pile.material_damping_model != "segment":
+        root["pile"]["material_damping_model"] = pile.material_damping_model
+    if soil is not None and soil.capacities is not None:
+        raise ValueError("a PileSoil FMU embeds its SRD table: a soil given by capacities per "
+                         "segment (a drive analysis depth) has none")
     if soil is not None:
         table: dict[str, Any] = {
             "model": soil.model, "penetration": soil.penetration,
@@ -334,6 +351,48 @@ def _toml_value(value: Any) -> str:
     raise TypeError(f"cannot write {type(value).__name__} to TOML")
 
 
+# ---------------------------------------------------------------------------- Python runtime
+def python_runtime() -> dict[str, Any]:
+    """The Python that builds the FMUs, as the status shim needs it to run them in a C host.
+
+    ``executable``: ``sys.executable`` (a venv's python as such, not resolved: initialized with
+    it as program name, Python finds the venv and its site-packages); ``library``: its shared
+    libpython (``sysconfig`` ``LIBDIR`` / ``INSTSONAME``; None for a Python without one, whose
+    FMUs run in Python hosts only); ``version``: ``"3.X"``; ``site``: its site-packages folders
+    and the folder holding the ``fmu`` package (for a checkout that is not installed).
+    """
+    import site
+    import sysconfig
+
+    version = f"{sys.version_info[0]}.{sys.version_info[1]}"
+    library = None
+    name = sysconfig.get_config_var("INSTSONAME") or f"libpython{version}.so.1.0"
+    folders = [sysconfig.get_config_var("LIBDIR"), sysconfig.get_config_var("LIBPL")]
+    multiarch = sysconfig.get_config_var("MULTIARCH")
+    if folders[0] and multiarch:
+        folders.append(str(Path(folders[0]) / multiarch))
+    for folder in filter(None, folders):
+        if (Path(folder) / name).is_file():
+            library = str(Path(folder) / name)
+            break
+    sites = [p for p in site.getsitepackages() if Path(p).is_dir()]
+    sites.append(str(UNITS_DIR.parents[1]))
+    return {"executable": sys.executable, "library": library, "version": version,
+            "site": sites}
+
+
+def python_runtime_text(runtime: dict[str, Any] | None = None) -> str:
+    """``resources/anvilwave_python.txt``: :func:`python_runtime` as ``key = value`` lines."""
+    runtime = python_runtime() if runtime is None else runtime
+    lines = ["# anvilwave: the Python that built this FMU. A host that is not Python loads its",
+             "# library and runs the unit in it (fmu/units/fmi2_status_shim.c).",
+             f"executable = {runtime['executable'] or ''}",
+             f"library = {runtime['library'] or ''}",
+             f"version = {runtime['version']}"]
+    lines += [f"site = {folder}" for folder in runtime["site"]]
+    return "\n".join(lines) + "\n"
+
+
 # ---------------------------------------------------------------------------- steps
 def _defaults_file() -> str:
     from .units.base import DEFAULTS_FILE
@@ -352,7 +411,7 @@ def _script(kind: str | Path) -> Path:
 
 
 def _stage_resources(resources, stage: Path, script: Path) -> list[Path]:
-    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu"}
+    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu", RUNTIME_FILE}
     staged = []
     for res in resources:
         res = Path(res)
@@ -455,11 +514,15 @@ def _compile_shim(scratch: Path, wanted: bool | None) -> Path | None:
     else:
         out = scratch / "shim.so"
         cmd = [compiler, "-shared", "-fPIC", "-O2", "-fvisibility=hidden", "-o", str(out),
-               str(SHIM_SOURCE), "-ldl"]
-        run = subprocess.run(cmd, capture_output=True, text=True)
-        if run.returncode == 0:
-            return out
-        reason = f"compiling the status shim failed: {run.stderr.strip()}"
+               str(SHIM_SOURCE), "-ldl", "-lpthread"]
+        try:
+            run = subprocess.run(cmd, capture_output=True, text=True)
+        except OSError as exc:  # e.g. $CC names no program
+            reason = f"cannot run the C compiler {compiler!r}: {exc}"
+        else:
+            if run.returncode == 0:
+                return out
+            reason = f"compiling the status shim failed: {run.stderr.strip()}"
     if wanted:
         raise RuntimeError(reason)
     warnings.warn(f"{reason}; the FMU keeps the stock pythonfmu binary (a slave error is "

@@ -455,7 +455,8 @@ class BlowMaster(ChainMaster):
         output is read and passed on, so the anvil's forces, read right after its step, are
         those of its inputs of the step before (a one-step lag through its feedthrough). Only
         for comparing with such masters: the lag makes the stiff contacts lose accuracy (and
-        energy balance) at the engine's step.
+        energy balance) at the engine's step; the anvil's ``input_extrapolation`` parameter
+        (:mod:`fmu.coupling`, set by ``system.ssp``) makes up for it.
     """
 
     EXCHANGES = ("design", "jacobi")

@@ -63,6 +63,8 @@ import numpy as np
 
 from anvilwave_inputs import InputError
 
+from .coupling import INPUT_EXTRAPOLATION_DESCRIPTION
+
 NATIVE_DIR = Path(__file__).resolve().parent / "native"
 """The C sources and headers of the native anvil FMU."""
 C_SOURCES = ("anvil_fmu.c", "anvil_model.c")
@@ -134,6 +136,7 @@ _COMMON = (
                                       "(else undeformed at zero displacement) [-]", "Boolean"),
     _parameter("initial_pile_head_displacement", "m",
                "Pile head displacement the anvil rests on at the start, positive down [m]"),
+    _parameter("input_extrapolation", None, INPUT_EXTRAPOLATION_DESCRIPTION, "Boolean"),
     Variable("u_ram", "U_RAM", "Real", "input", "m", "Ram toe displacement, positive down [m]"),
     Variable("v_ram", "V_RAM", "Real", "input", "m/s", "Ram toe velocity, positive down [m/s]"),
     Variable("u_pile", "U_PILE", "Real", "input", "m", "Pile head displacement, positive down [m]"),
@@ -163,7 +166,7 @@ FEEDTHROUGH = {
 FALLBACKS: dict[str, Any] = {
     "ram_contact_damping": 0.0, "pile_contact_damping": 0.0, "gravity": GRAVITY,
     "start_at_rest": True, "initial_pile_head_displacement": 0.0, "static_correction": False,
-    "modal_data_file": MODAL_RESOURCE,
+    "modal_data_file": MODAL_RESOURCE, "input_extrapolation": False,
 }
 """Start values of parameters the build does not set (contact stiffnesses have none)."""
 
@@ -339,7 +342,8 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
     parameters : start values of the FMU parameters, SI units: ``ram_contact_stiffness``
         [N/m] and ``pile_contact_stiffness`` [N/m] (required), ``ram_contact_damping``,
         ``pile_contact_damping`` [N s/m], ``gravity`` [m/s^2], ``start_at_rest``,
-        ``initial_pile_head_displacement`` [m]; ROM: ``fmax`` [Hz] (default the data's; 0
+        ``initial_pile_head_displacement`` [m], ``input_extrapolation`` (default off; on for
+        Jacobi-type masters, see :mod:`fmu.coupling`); ROM: ``fmax`` [Hz] (default the data's; 0
         keeps all modes), ``damping_ratio`` [-] (default the data's), ``static_correction``
         (default off, on for a ModalAnvil that has one); lumped: ``mass`` [kg].
 

@@ -145,7 +145,8 @@ class Hammer:
             else:
                 velocity = impact_velocity_from_stroke(stroke, efficiency, gravity)
         if stroke is None and rated_energy is not None:
-            stroke = equivalent_stroke(rated_energy, mass, gravity)
+            stroke = (equivalent_stroke(rated_energy, mass, gravity) if gravity > 0.0
+                      else math.nan)
         source_table = table.table("source", required=require_source)
         source = HammerSource.from_table(source_table) if source_table is not None else None
         table.finish()

@@ -128,7 +128,8 @@ def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fma
     spec = AnvilSpec("ram", material, outline=outline, interfaces=toe, mesh_size=mesh_size,
                      fmax=fmax, source=source)
     if modes is None:
-        
+        from anvil_rom.pipeline import compute_anvil_modes
+
         data = compute_anvil_modes(spec, fmax=fmax).modal_data
     else:
         data = modes(spec, fmax)

@@ -88,20 +88,232 @@ def soil_resistance(u, v, offset, capacity, tension, stiffness, smith, dashpot):
     """
     if stiffness <= 0.0:
         return 0.0, 0.0, offset
+    return _soil_spring(u, v, offset, capacity, tension, stiffness, smith, dashpot,
+                        capacity / stiffness, tension / stiffness)
+
+
+@njit(cache=True, inline='always')
+def _soil_spring(u, v, offset, capacity, tension, stiffness, smith, dashpot, yield_down,
+                 yield_up):
+    """:func:`soil_resistance` of a spring with stiffness > 0, its yield displacements
+    capacity / stiffness and tension / stiffness [m] given (no division)."""
     r = stiffness * (u - offset)
     if r > capacity:
         r = capacity
-        offset = u - capacity / stiffness
+        offset = u - yield_down
     elif r < -tension:
         if tension > 0.0:
             r = -tension
-            offset = u + tension / stiffness
+            offset = u + yield_up
         else:
             return 0.0, 0.0, offset
     rd = (smith * abs(r) + dashpot) * v
     if tension <= 0.0 and r + rd < 0.0:
         rd = -r
     return r, rd, offset
+
+
+# ------------------------------------------------------------------ the time step
+# The step works on 1D arrays prepared once (:func:`sweep_arrays`): no division per segment
+# (inverse masses, yield displacements), the segments above the first soil spring in a loop
+# without soil, and the works as per-segment sums (no running total carried from segment to
+# segment), so that the compiler can vectorise the free length of the pile.
+SWEEP_PILE = ("weight", "inverse_mass", "stiffness", "dashpot")
+"""The ``pile_sweep`` tuple of :func:`sweep_arrays`, (N,) arrays: m g [N], 1 / m [1/kg], the
+spring and the dashpot below each mass [N/m], [N s/m] (0 below the toe mass)."""
+SWEEP_SOIL = ("capacity", "tension", "stiffness", "smith", "dashpot", "yield_down", "yield_up")
+"""The ``soil_sweep`` tuple of :func:`sweep_arrays`, (N + 1,) arrays: the soil rows and the
+yield displacements capacity / k and tension / k [m] (0 where k = 0)."""
+SWEEP_WORKS = ("pile_damping", "soil_static", "soil_damping")
+"""The ``works`` tuple of :func:`pile_advance`, (N,) arrays [J]: work of each mass's pile
+dashpots, soil static and soil damping resistance (the toe spring's on the last mass)."""
+
+
+def sweep_arrays(pile: np.ndarray, soil: np.ndarray, gravity: float):
+    """(pile_sweep, soil_sweep, first_soil) of :func:`pile_advance` for a pile and soil.
+
+    pile, soil : the kernel parameter arrays (module docstring); gravity [m/s^2].
+    first_soil : index of the first mass with a shaft soil spring (N - 1 when none above the
+    toe mass).
+    """
+    mass = pile[PILE_MASS]
+    pile_sweep = (np.ascontiguousarray(mass * gravity), np.ascontiguousarray(1.0 / mass),
+                  np.ascontiguousarray(pile[PILE_STIFFNESS]),
+                  np.ascontiguousarray(pile[PILE_DASHPOT]))
+    k = soil[SOIL_STIFFNESS]
+    stiff = k > 0.0
+    yield_down = np.zeros_like(k)
+    yield_up = np.zeros_like(k)
+    yield_down[stiff] = soil[SOIL_CAPACITY, stiff] / k[stiff]
+    yield_up[stiff] = soil[SOIL_TENSION, stiff] / k[stiff]
+    soil_sweep = tuple(np.ascontiguousarray(soil[row]) for row in range(SOIL_ROWS))
+    soil_sweep += (yield_down, yield_up)
+    n = mass.size
+    shaft = np.flatnonzero(stiff[:n - 1])
+    first_soil = int(shaft[0]) if shaft.size else n - 1
+    return pile_sweep, soil_sweep, first_soil
+
+
+@njit(cache=True, inline='always')
+def pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, head_force, h,
+                 n_sub, works):
+    """Advance the pile and soil over a communication step h [s] in n_sub sub-steps.
+
+    The physics of :func:`pile_step` on the arrays of :func:`sweep_arrays`. Works in place on
+    u, v, soil_offset; adds the head works (WORK_HEAD, WORK_HEAD_SHORTENING) to ``energy``.
+    works : None, or the per-mass work sums (SWEEP_WORKS) to add to; the gravity work is not
+    summed (:func:`gravity_work` has it from the states) and ENERGY_KINETIC / ENERGY_STRAIN
+    are not updated (:func:`update_energy`).
+    """
+    dt = h / n_sub
+    for _ in range(n_sub):
+        v0 = v[0]
+        v1 = v[1]
+        _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt, works)
+        du_top = 0.5 * dt * (v0 + v[0])
+        du_next = 0.5 * dt * (v1 + v[1])
+        energy[WORK_HEAD] += head_force * du_top
+        energy[WORK_HEAD_SHORTENING] += head_force * (du_top - du_next)
+
+
+@njit(cache=True, inline='always')
+def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt, works):
+    """One leapfrog sub-step of dt [s] (module docstring), top to toe, in place."""
+    weight, inverse_mass, k, c = pile_sweep
+    capacity, tension, soil_k, smith, dashpot, yield_down, yield_up = soil_sweep
+    n = u.size
+    last = n - 1
+    free_end = min(first_soil, last)
+    spring_above = head_force  # compression force acting on the top of mass i
+    dash_above = 0.0
+    # the free length: no soil, nothing carried from segment to segment but the spring force
+    for i in range(free_end):
+        e = u[i] - u[i + 1]
+        spring_below = k[i] * e
+        dash_below = c[i] * (v[i] - v[i + 1])
+        force = weight[i] + spring_above + dash_above - spring_below - dash_below
+        v_new = v[i] + dt * force * inverse_mass[i]
+        if works is not None:
+            du = 0.5 * dt * (v[i] + v_new)
+            works[0][i] += (dash_below - dash_above) * du
+        v[i] = v_new
+        u[i] += dt * v_new
+        spring_above = spring_below
+        dash_above = dash_below
+    # the embedded length (unsigned indices: no negative-index handling in the loop)
+    one = np.uint64(1)
+    for i in range(np.uint64(free_end), np.uint64(last)):
+        e = u[i] - u[i + one]
+        spring_below = k[i] * e
+        dash_below = c[i] * (v[i] - v[i + one])
+        rs = 0.0
+        rd = 0.0
+        if soil_k[i] > 0.0:
+            rs, rd, soil_offset[i] = _soil_spring(u[i], v[i], soil_offset[i], capacity[i],
+                                                  tension[i], soil_k[i], smith[i], dashpot[i],
+                                                  yield_down[i], yield_up[i])
+        force = weight[i] + spring_above + dash_above - spring_below - dash_below - rs - rd
+        v_new = v[i] + dt * force * inverse_mass[i]
+        if works is not None:
+            du = 0.5 * dt * (v[i] + v_new)
+            works[0][i] += (dash_below - dash_above) * du
+            works[1][i] += rs * du
+            works[2][i] += rd * du
+        v[i] = v_new
+        u[i] += dt * v_new
+        spring_above = spring_below
+        dash_above = dash_below
+    # the toe mass: its shaft spring and the toe spring
+    rs = 0.0
+    rd = 0.0
+    if soil_k[last] > 0.0:
+        rs, rd, soil_offset[last] = _soil_spring(
+            u[last], v[last], soil_offset[last], capacity[last], tension[last], soil_k[last],
+            smith[last], dashpot[last], yield_down[last], yield_up[last])
+    if soil_k[n] > 0.0:
+        ts, td, soil_offset[n] = _soil_spring(
+            u[last], v[last], soil_offset[n], capacity[n], tension[n], soil_k[n], smith[n],
+            dashpot[n], yield_down[n], yield_up[n])
+        rs += ts
+        rd += td
+    force = weight[last] + spring_above + dash_above - 0.0 - 0.0 - rs - rd
+    v_new = v[last] + dt * force * inverse_mass[last]
+    if works is not None:
+        du = 0.5 * dt * (v[last] + v_new)
+        works[0][last] += (0.0 - dash_above) * du
+        works[1][last] += rs * du
+        works[2][last] += rd * du
+    v[last] = v_new
+    u[last] += dt * v_new
+
+
+@njit(cache=True)
+def gravity_work(weight, u, v, u_start, v_start, dt):
+    """Work done by gravity on the pile since the state (u_start, v_start) [J].
+
+    With sub-steps of a constant dt [s] the leapfrog's centred increments du = dt (v_old +
+    v_new) / 2 sum to u - u_start + dt (v_start - v) / 2 for every mass, so the work
+    sum m g du needs no running total. weight : m g per mass [N].
+    """
+    work = 0.0
+    for i in range(u.size):
+        work += weight[i] * ((u[i] - u_start[i]) + 0.5 * dt * (v_start[i] - v[i]))
+    return work
+
+
+ENERGY_SUMS = {"reassoc"}
+"""The fastmath flags of the energy bookkeeping's sums (:func:`pile_energies`,
+:func:`hammer.ram.leapfrog_energies`, :func:`anvil_rom.unit.modal_unit_energy_at`): only
+reassociation, so that the compiler may add the terms in any order (and vectorise the sums);
+that changes their last bits and nothing else (tests/test_engine_loop.py checks them against
+exactly rounded sums). The time stepping itself is compiled without fastmath."""
+
+
+@njit(cache=True, fastmath=ENERGY_SUMS)
+def pile_energies(mass, stiffness, weight, u, v, dt, u_start, v_start, works):
+    """The pile's energies at a record point in one pass [J]: (kinetic, strain, gravity work
+    since (u_start, v_start), pile damping work, soil static work, soil damping work).
+
+    kinetic and strain as :func:`update_energy` (sub-step dt [s]), the gravity work as
+    :func:`gravity_work`, the other works the totals of the per-mass sums ``works`` of
+    :func:`pile_advance` (SWEEP_WORKS order).
+    """
+    n = u.size
+    kinetic = 0.0
+    strain = 0.0
+    gravity = 0.0
+    damping = 0.0
+    soil_static = 0.0
+    soil_damping = 0.0
+    pile_damping_work, soil_static_work, soil_damping_work = works
+    for i in range(n - 1):
+        kinetic += 0.5 * mass[i] * v[i] * v[i]
+        e = u[i] - u[i + 1]
+        strain += 0.5 * stiffness[i] * e * (e - dt * (v[i] - v[i + 1]))
+        gravity += weight[i] * ((u[i] - u_start[i]) + 0.5 * dt * (v_start[i] - v[i]))
+        damping += pile_damping_work[i]
+        soil_static += soil_static_work[i]
+        soil_damping += soil_damping_work[i]
+    i = n - 1
+    kinetic += 0.5 * mass[i] * v[i] * v[i]
+    gravity += weight[i] * ((u[i] - u_start[i]) + 0.5 * dt * (v_start[i] - v[i]))
+    damping += pile_damping_work[i]
+    soil_static += soil_static_work[i]
+    soil_damping += soil_damping_work[i]
+    return kinetic, strain, gravity, damping, soil_static, soil_damping
+
+
+@njit(cache=True)
+def sum_works(works):
+    """Totals of the per-mass work sums of :func:`pile_advance` [J] (SWEEP_WORKS order)."""
+    a = 0.0
+    b = 0.0
+    c = 0.0
+    for i in range(works[0].size):
+        a += works[0][i]
+        b += works[1][i]
+        c += works[2][i]
+    return a, b, c
 
 
 @njit(cache=True)
@@ -115,60 +327,36 @@ def pile_step(pile, soil, u, v, soil_offset, energy, head_force, gravity, h, n_s
     gravity : gravitational acceleration applied to the pile masses [m/s^2] (0 switches it off).
     h : communication step [s]; n_sub : number of equal sub-steps (an int), h / n_sub must not
         exceed :func:`stable_time_step` (:func:`pile.model.substeps` chooses it).
+
+    A convenience form of :func:`pile_advance` that prepares its arrays on every call and keeps
+    every entry of ``energy`` up to date.
     """
     n = u.size
-    dt = h / n_sub
     mass = pile[PILE_MASS]
-    k = pile[PILE_STIFFNESS]
-    c = pile[PILE_DASHPOT]
-    for _ in range(n_sub):
-        w_head = 0.0
-        du_top = 0.0
-        w_grav = 0.0
-        w_soil_s = 0.0
-        w_soil_d = 0.0
-        w_damp = 0.0
-        spring_above = head_force  # compression force acting on the top of mass i
-        dash_above = 0.0
-        for i in range(n):
-            spring_below = 0.0
-            dash_below = 0.0
-            if i < n - 1:
-                spring_below = k[i] * (u[i] - u[i + 1])
-                dash_below = c[i] * (v[i] - v[i + 1])
-            rs, rd, offset = soil_resistance(
-                u[i], v[i], soil_offset[i], soil[SOIL_CAPACITY, i], soil[SOIL_TENSION, i],
-                soil[SOIL_STIFFNESS, i], soil[SOIL_SMITH, i], soil[SOIL_DASHPOT, i])
-            soil_offset[i] = offset
-            if i == n - 1:
-                ts, td, offset = soil_resistance(
-                    u[i], v[i], soil_offset[n], soil[SOIL_CAPACITY, n], soil[SOIL_TENSION, n],
-                    soil[SOIL_STIFFNESS, n], soil[SOIL_SMITH, n], soil[SOIL_DASHPOT, n])
-                soil_offset[n] = offset
-                rs += ts
-                rd += td
-            weight = mass[i] * gravity
-            force = weight + spring_above + dash_above - spring_below - dash_below - rs - rd
-            v_new = v[i] + dt * force / mass[i]
-            du = 0.5 * dt * (v[i] + v_new)
-            if i == 0:
-                w_head += head_force * du
-                du_top = du
-            elif i == 1:
-                energy[WORK_HEAD_SHORTENING] += head_force * (du_top - du)
-            w_grav += weight * du
-            w_soil_s += rs * du
-            w_soil_d += rd * du
-            w_damp += (dash_below - dash_above) * du
-            v[i] = v_new
-            u[i] += dt * v_new
-            spring_above = spring_below
-            dash_above = dash_below
-        energy[WORK_HEAD] += w_head
-        energy[WORK_GRAVITY] += w_grav
-        energy[WORK_SOIL_STATIC] += w_soil_s
-        energy[WORK_SOIL_DAMPING] += w_soil_d
-        energy[WORK_PILE_DAMPING] += w_damp
+    pile_sweep = (mass * gravity, 1.0 / mass, pile[PILE_STIFFNESS], pile[PILE_DASHPOT])
+    k = soil[SOIL_STIFFNESS]
+    yield_down = np.zeros(n + 1)
+    yield_up = np.zeros(n + 1)
+    first_soil = n - 1
+    for i in range(n + 1):
+        if k[i] > 0.0:
+            yield_down[i] = soil[SOIL_CAPACITY, i] / k[i]
+            yield_up[i] = soil[SOIL_TENSION, i] / k[i]
+            if i < first_soil:
+                first_soil = i
+    soil_sweep = (soil[SOIL_CAPACITY], soil[SOIL_TENSION], k, soil[SOIL_SMITH],
+                  soil[SOIL_DASHPOT], yield_down, yield_up)
+    works = (np.zeros(n), np.zeros(n), np.zeros(n))
+    u_start = u.copy()
+    v_start = v.copy()
+    pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, head_force, h,
+                 n_sub, works)
+    dt = h / n_sub
+    damping, soil_static, soil_damping = sum_works(works)
+    energy[WORK_GRAVITY] += gravity_work(pile_sweep[0], u, v, u_start, v_start, dt)
+    energy[WORK_SOIL_STATIC] += soil_static
+    energy[WORK_SOIL_DAMPING] += soil_damping
+    energy[WORK_PILE_DAMPING] += damping
     update_energy(pile, u, v, energy, dt)
 
 
@@ -210,7 +398,7 @@ def energy_residual(energy, energy_initial):
     return stored - stored0 - supplied
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def head_face_work(probes, energy):
     """Work done by the head force on the pile-top face [J] (:func:`head_displacement`).
 
@@ -275,13 +463,13 @@ def head_displacement(probes, u):
     return u[0] + probes[HEAD_EXTRAPOLATION] * (u[0] - u[1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def head_velocity(probes, v):
     """Velocity of the pile-top face [m/s], positive down (as :func:`head_displacement`)."""
     return v[0] + probes[HEAD_EXTRAPOLATION] * (v[0] - v[1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def spring_force(pile, u, v, j):
     """Axial force in spring j (between masses j and j+1) incl. material damping [N], compr. +."""
     return (pile[PILE_STIFFNESS, j] * (u[j] - u[j + 1])
@@ -294,7 +482,7 @@ def top_force(pile, u, v):
     return spring_force(pile, u, v, 0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def gauge_force(pile, probes, u, v):
     """Axial force at the gauge depth [N], compression positive.
 
@@ -309,7 +497,7 @@ def gauge_force(pile, probes, u, v):
     return force
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def gauge_velocity(probes, v):
     """Pile velocity at the gauge depth [m/s], linear between the mass centres around it."""
     i = int(probes[GAUGE_MASS])
@@ -352,6 +540,20 @@ def soil_forces(soil, u, v, soil_offset, static_out, total_out):
             soil[SOIL_STIFFNESS, i], soil[SOIL_SMITH, i], soil[SOIL_DASHPOT, i])
         static_out[i] = rs
         total_out[i] = rs + rd
+
+
+@njit(cache=True, inline='always')
+def fold_elongations(u, largest, smallest):
+    """Fold the shortening u_i - u_i+1 of every spring into per-spring extremes [m] (in
+    place): with the positive stress factors of :func:`update_stress_extremes` the extreme
+    stresses are then stress_factor * largest and * smallest, exactly (rounding is
+    monotonic). One short pass the compiler vectorises."""
+    for i in range(largest.size):
+        e = u[i] - u[i + 1]
+        if e > largest[i]:
+            largest[i] = e
+        if e < smallest[i]:
+            smallest[i] = e
 
 
 @njit(cache=True)

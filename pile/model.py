@@ -59,10 +59,14 @@ class PileSoil:
     soil: SoilSpec | None = None
 
     @classmethod
-    def from_tables(cls, pile_table: Table, soil_table: Table | None) -> PileSoil:
-        """From the ``[pile]`` and (optional) ``[soil]`` tables of an input file."""
+    def from_tables(cls, pile_table: Table, soil_table: Table | None,
+                    srd_optional: bool = False,
+                    default_penetration: float | None = None) -> PileSoil:
+        """From the ``[pile]`` and (optional) ``[soil]`` tables of an input file
+        (``srd_optional``, ``default_penetration``: see :func:`pile.soil.soil_from_table`)."""
         pile = pile_from_table(pile_table)
-        soil = soil_from_table(soil_table, pile.length) if soil_table is not None else None
+        soil = (soil_from_table(soil_table, pile.length, srd_optional, default_penetration)
+                if soil_table is not None else None)
         return cls(pile, soil)
 
     def arrays(self, extrapolate_head: bool = False) -> PileSoilArrays:

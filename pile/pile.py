@@ -29,6 +29,9 @@ with zeta = ``material_damping`` and m_i* the mean of the two masses. For a unif
 c_i = 2 zeta E A / c = 2 zeta Z, independent of dx (GRLWEAP-style "pile damping in percent of
 critical"); the damping ratio of a wave of angular frequency omega is zeta omega dx / c, i.e.
 it acts mainly near the cut-off and is 2 zeta there. Default 1 %.
+``material_damping_model = "uniform"`` takes GRLWEAP's rule instead: one dashpot value for every
+spring, 2 zeta E A / c of the section at the pile's mid-length (GRLWEAP's "1 %" pile damping is
+0.02 EA/c at mid-length, applied at every segment interface).
 
 The gauge (PDA strain gauges and accelerometers) sits ``gauge_depth`` below the head. The gauge
 force is interpolated linearly between the two springs (segment boundaries) around that depth
@@ -125,12 +128,15 @@ class PileSpec:
     segment_length : target segment length [m] (an upper bound per section).
     gauge_depth : depth of the gauges below the pile head [m].
     material_damping : pile damping, fraction of critical of one segment [-].
+    material_damping_model : "segment" (each spring's own 2 zeta sqrt(k m*)) or "uniform"
+        (GRLWEAP: 2 zeta EA/c at mid-length for every spring).
     """
 
     sections: tuple[Section, ...]
     segment_length: float = DEFAULT_SEGMENT_LENGTH
     gauge_depth: float = DEFAULT_GAUGE_DEPTH
     material_damping: float = DEFAULT_MATERIAL_DAMPING
+    material_damping_model: str = "segment"
 
     @property
     def length(self) -> float:
@@ -239,8 +245,21 @@ def pile_parameters(pile: PileSpec, segments: Segments | None = None) -> np.ndar
     params = np.zeros((PILE_ROWS, seg.count))
     params[PILE_MASS] = mass
     params[PILE_STIFFNESS, :-1] = k
-    params[PILE_DASHPOT, :-1] = spring_dashpots(k, mass, pile.material_damping)
+    if pile.material_damping_model == "uniform":
+        params[PILE_DASHPOT, :-1] = grlweap_uniform_pile_damping(pile, seg)
+    else:
+        params[PILE_DASHPOT, :-1] = spring_dashpots(k, mass, pile.material_damping)
     return params
+
+
+def grlweap_uniform_pile_damping(pile: PileSpec, segments: Segments) -> float:
+    """GRLWEAP's pile damping: 2 zeta E A / c of the section at mid-length [N s/m] for every
+    spring (zeta = ``material_damping``; GRLWEAP's "1 %" is zeta = 0.01). Rausche, Likins,
+    Liang & Hussein, GRLWEAP background report (Pile Dynamics Inc.)."""
+    mid = int(np.searchsorted(segments.bottom, 0.5 * pile.length))
+    mid = min(mid, segments.count - 1)
+    e, a, rho = (segments.youngs_modulus[mid], segments.area[mid], segments.density[mid])
+    return 2.0 * pile.material_damping * a * math.sqrt(e * rho)
 
 
 def _bracket(positions: np.ndarray, depth: float) -> tuple[int, float]:
@@ -304,6 +323,8 @@ def pile_from_table(table: Table) -> PileSpec:
     """Read and validate the ``[pile]`` table (see the module docstring)."""
     segment_length = table.number("segment_length", DEFAULT_SEGMENT_LENGTH, gt=0.0, unit="m")
     damping = table.number("material_damping", DEFAULT_MATERIAL_DAMPING, ge=0.0, lt=1.0)
+    damping_model = table.string("material_damping_model", "segment",
+                                 choices=("segment", "uniform"))
     sections = tuple(section_from_table(t) for t in table.tables("sections"))
     if not sections:
         raise table.error("sections", "needs at least one [[pile.sections]] entry")
@@ -320,7 +341,7 @@ def pile_from_table(table: Table) -> PileSpec:
             f"{segment_length / c:.2g} s ({steps:.3g} steps and {steps * n_segments:.3g} "
             f"segment updates per 25 ms blow; limit {MAX_SEGMENTS} segments); use at least "
             f"{length / MAX_SEGMENTS:.3g} m")
-    pile = PileSpec(sections, segment_length, gauge_depth, damping)
+    pile = PileSpec(sections, segment_length, gauge_depth, damping, damping_model)
     if discretise(pile).count < 2:
         raise table.error("segment_length",
                           f"must give at least 2 segments over the {length:g} m pile")

@@ -102,11 +102,14 @@ class SoilSpec:
     toe_shear_modulus : soil shear modulus below the toe G [Pa] ("lysmer-toe").
     toe_density : soil density below the toe [kg/m^3] ("lysmer-toe").
     toe_poisson_ratio : soil Poisson's ratio below the toe [-] ("lysmer-toe").
+    capacities : optional (shaft per segment (N,) [N], toe [N]) given directly (an SRD
+        distribution computed elsewhere, e.g. per tip depth with friction fatigue); when set,
+        ``srd``, ``friction_perimeter`` and ``toe_area`` do not enter the capacities.
     """
 
     model: str
     penetration: float
-    srd: SoilResistanceTable
+    srd: SoilResistanceTable | None
     quake_shaft: float = DEFAULT_QUAKE
     quake_toe: float = DEFAULT_QUAKE
     damping_shaft: float = DEFAULT_DAMPING_SHAFT
@@ -116,6 +119,7 @@ class SoilSpec:
     toe_shear_modulus: float = 0.0
     toe_density: float = 0.0
     toe_poisson_ratio: float = DEFAULT_TOE_POISSON_RATIO
+    capacities: tuple | None = None
 
 
 def lysmer_stiffness(shear_modulus: float, radius: float, poisson_ratio: float) -> float:
@@ -151,6 +155,13 @@ def smith_springs(capacity, quake, damping, viscous: bool) -> tuple:
 def soil_capacities(soil: SoilSpec, pile: PileSpec, segments: Segments | None = None):
     """Static shaft resistance per segment (N,) [N] and toe resistance [N]."""
     seg = segments if segments is not None else discretise(pile)
+    if soil.capacities is not None:
+        shaft, toe = soil.capacities
+        shaft = np.asarray(shaft, dtype=float)
+        if shaft.shape != (seg.count,):
+            raise ValueError(f"capacities: {shaft.shape[0]} shaft values for "
+                             f"{seg.count} segments")
+        return shaft.copy(), float(toe)
     mudline = pile.length - soil.penetration
     shaft = shaft_capacities(soil.srd, seg.top, seg.bottom, mudline, seg.outer_diameter,
                              seg.wall_thickness, soil.friction_perimeter)
@@ -196,21 +207,30 @@ def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
 
 
 # ---------------------------------------------------------------------------- input
-def soil_from_table(table: Table, pile_length: float) -> SoilSpec:
+def soil_from_table(table: Table, pile_length: float, srd_optional: bool = False,
+                    default_penetration: float | None = None) -> SoilSpec:
     """Read and validate the ``[soil]`` table (module docstring).
 
     pile_length : length of the pile the soil is for [m] (bounds the penetration).
+    srd_optional : the SRD comes from elsewhere (a drive analysis's ``[srd]`` table): ``srd``
+        may be omitted, and ``penetration`` then defaults to ``default_penetration`` [m].
     """
     model = table.string("model", DEFAULT_MODEL, choices=MODELS)
-    penetration = table.number("penetration", ge=0.0, le=pile_length, unit="m")
-    rows = table.array("srd", columns=3)
-    srd = SoilResistanceTable.from_rows(rows)
-    problem = srd.check()
-    if problem is None and srd.depth[-1] < penetration:
-        problem = (f"must reach the penetration depth {penetration:g} m "
-                   f"(last row at {srd.depth[-1]:g} m)")
-    if problem is not None:
-        raise table.error("srd", problem)
+    if srd_optional and default_penetration is not None:
+        penetration = table.number("penetration", min(default_penetration, pile_length),
+                                   ge=0.0, le=pile_length, unit="m")
+    else:
+        penetration = table.number("penetration", ge=0.0, le=pile_length, unit="m")
+    srd = None
+    if table.has("srd") or not srd_optional:
+        rows = table.array("srd", columns=3)
+        srd = SoilResistanceTable.from_rows(rows)
+        problem = srd.check()
+        if problem is None and srd.depth[-1] < penetration:
+            problem = (f"must reach the penetration depth {penetration:g} m "
+                       f"(last row at {srd.depth[-1]:g} m)")
+        if problem is not None:
+            raise table.error("srd", problem)
     common = dict(
         model=model, penetration=penetration, srd=srd,
         quake_shaft=table.number("quake_shaft", DEFAULT_QUAKE, gt=0.0, unit="m"),

@@ -13,6 +13,19 @@ from anvil_rom.mesh import mesh_outline, to_skfem
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
+SHARED = ROOT.parent / "shared"
+"""The shared reference data beside the repository (never copied into it)."""
+NEEDS_SHARED = {"grlweap_s4000.toml"}
+"""Example files that read data from the shared folder."""
+
+
+def example_systems() -> list[str]:
+    """Names of the example system files that can be loaded here (those reading the shared
+    folder only when it is present)."""
+    names = sorted(p.name for p in EXAMPLES.glob("*.toml"))
+    if not (SHARED / "reference").is_dir():
+        names = [n for n in names if n not in NEEDS_SHARED]
+    return names
 
 
 def cylinder_model(length: float, diameter: float = 1.0, size: float = 0.05):

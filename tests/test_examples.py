@@ -6,9 +6,9 @@ import pytest
 
 from anvilwave.system import load_system
 
-from .conftest import EXAMPLES
+from .conftest import EXAMPLES, example_systems
 
-SYSTEMS = sorted(p.name for p in EXAMPLES.glob("*.toml"))
+SYSTEMS = example_systems()
 
 
 @pytest.mark.parametrize("name", SYSTEMS)

@@ -1,12 +1,14 @@
 """The system FMUs (Ram, Anvil, AnvilLumped, PileSoil), system.ssp and the FMI engine.
 
-Built once per module from examples/table1.toml (anvil modes ~2-5 s, four FMUs ~3 s). The FMU
-chain under the fmpy master (``run_fmi``) must reproduce the in-process engine
-(``build_engine(cfg).run()``): both run the same kernels with the same initialisation,
-sub-stepping and step order, so they agree to round-off. The tolerance of 1e-6 x peak asked
-for is therefore very loose; what is left (~1e-12 measured) is the order of floating-point
-sums (the anvil's top face at rest is read back from the anvil unit instead of reused, the
-anvil starts on the pile head of the blow in the frame of the first blow).
+Built once per module from examples/table1.toml (anvil modes ~2-5 s, four FMUs ~3 s), with the
+native anvils when a C compiler is found (else the pythonfmu anvils, and the tests that need
+the native ones say so). The FMU chain under the fmpy master (``run_fmi``) must reproduce the
+in-process engine (``build_engine(cfg).run()``): both run the same kernels (the native anvil:
+the same operations in C) with the same initialisation, sub-stepping and step order, so they
+agree to round-off. The tolerance of 1e-9 x peak is therefore loose; what is left (~1e-12
+measured) is the order of floating-point sums (the anvil's top face at rest is read back from
+the anvil unit instead of reused, the anvil starts on the pile head of the blow in the frame of
+the first blow, numpy's dot against a plain sum in C).
 """
 
 from __future__ import annotations
@@ -65,8 +67,14 @@ def system(tmp_path_factory):
     cfg = load_system(EXAMPLES / "table1.toml")
     modal = load_anvil_modal_data(cfg)
     out = tmp_path_factory.mktemp("system_fmus")
-    fmus = build_system_fmus(cfg, out, modal)
+    fmus = build_system_fmus(cfg, out, modal, native_anvil=None)
     return {"cfg": cfg, "modal": modal, "fmus": fmus, "out": out}
+
+
+def native(system) -> None:
+    """Skip (with the reason) when the anvils could not be built natively (no C compiler)."""
+    if system["fmus"]["anvil_implementation"] != "native":
+        pytest.skip("the native anvil FMUs need a C compiler (cc / gcc / $CC): none found")
 
 
 @pytest.fixture(scope="module")
@@ -82,8 +90,8 @@ def relative_difference(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.abs(a - b).max() / np.abs(b).max())
 
 
-def assert_same_blows(fmi, direct, tolerance=1e-6):
-    """Every column of every blow within ``tolerance`` x its peak (forces: the issue's 1e-6)."""
+def assert_same_blows(fmi, direct, tolerance=1e-9):
+    """Every column of every blow within ``tolerance`` x its peak."""
     assert len(fmi) == len(direct)
     for f, d in zip(fmi, direct, strict=True):
         assert f.time_step == d.time_step and f.n_steps == d.n_steps
@@ -122,9 +130,11 @@ def test_interfaces_are_the_design_contract(system):
     for kind in ("Ram", "PileSoil"):
         md = read_model_description(str(system["fmus"][kind]))
         assert all(not u.dependencies for u in md.outputs)
-    # resources: the ram's segments, the pile/soil tables, the modal-data file
+    # resources: the ram's segments, the pile/soil tables, the modal data (native: binary)
+    modes = ("modal_data.bin" if system["fmus"]["anvil_implementation"] == "native"
+             else "xl8_modes.npz")
     for kind, resource in (("Ram", "hammer.toml"), ("PileSoil", "pile_soil.toml"),
-                           ("Anvil", "xl8_modes.npz")):
+                           ("Anvil", modes)):
         with zipfile.ZipFile(system["fmus"][kind]) as zf:
             assert f"resources/{resource}" in zf.namelist()
 
@@ -164,13 +174,17 @@ def test_system_ssp_is_valid_ssp_1_0(system):
         assert {"resources/Ram.fmu", "resources/Anvil.fmu", "resources/PileSoil.fmu"} <= set(
             zf.namelist())
         xml = zf.read("SystemStructure.ssd").decode()
-    # every parameter value of the build is in the SSP (exactly, repr round trip)
-    for component in ("Ram", "Anvil", "PileSoil"):
-        for name, value in fmus["parameters"][component].items():
+    # every parameter value of the build is in the SSP (exactly, repr round trip), and the
+    # anvil's input extrapolation for Jacobi masters
+    ssp_anvil = {**fmus["parameters"]["Anvil"], "input_extrapolation": True}
+    for values in (fmus["parameters"]["Ram"], ssp_anvil, fmus["parameters"]["PileSoil"]):
+        for name, value in values.items():
             text = ("true" if value else "false") if isinstance(value, bool) else repr(value)
             assert f'<ssv:Parameter name="{name}">' in xml and f'value="{text}"' in xml
     step = round(fmus["time_step"] * 1e9 / SSP_STEP_DIVISOR) * 1e-9
     assert f'baseStepSize="{step!r}"' in xml and "osp:FixedStepAlgorithm" in xml
+    assert SSP_STEP_DIVISOR <= 4  # the SSP step is at least h/4 of the fmpy master's h
+    assert f'startTime="{-0.5 * fmus["ssp_step"]!r}"' in xml  # contact at half a step
 
 
 def test_build_rejects_an_anvil_model_without_fmus(system, tmp_path):
@@ -216,7 +230,9 @@ def test_ram_fmu_from_the_hammer_database(system, tmp_path):
 # ---------------------------------------------------------------------------- equivalence
 @pytest.mark.parametrize("model", ["rom", "lumped"])
 def test_fmi_engine_equals_direct_engine(system, direct, model):
-    """Anvil and AnvilLumped from ONE build: swapping the anvil changes no other unit."""
+    """The native Anvil and AnvilLumped from ONE build equal the direct engine to 1e-9 of the
+    peak: swapping the anvil changes no other unit."""
+    native(system)
     cfg = system["cfg"].with_anvil_model(model)
     fmi = run_fmi(cfg, system["out"], fmus=system["fmus"])
     assert_same_blows(fmi, direct[model])
@@ -340,13 +356,14 @@ def test_invalid_parameters_give_fmi2error_and_the_host_survives(system, kind, p
                                                                  reason):
     path = system["fmus"][kind]
     with zipfile.ZipFile(path) as zf:
-        shim = f"binaries/linux64/{SHIM_INNER_LIBRARY}" in zf.namelist()
+        names = zf.namelist()  # the status shim or a native unit returns fmi2Error at once
+        at_once = f"binaries/linux64/{SHIM_INNER_LIBRARY}" in names or "sources/" in str(names)
     fmu = Driven(path)
     try:
         fmu.fmu.setupExperiment(startTime=0.0)
         fmu.set(**parameters)
         fmu.fmu.enterInitializationMode()
-        if shim:
+        if at_once:
             with pytest.raises(FMICallException) as error:
                 fmu.fmu.exitInitializationMode()
             assert error.value.status == 3  # fmi2Error, not fmi2Fatal
@@ -418,54 +435,47 @@ def run_libcosim(ssp: Path, step_ns: int, n_steps: int, out: Path) -> np.ndarray
     return np.load(out)
 
 
-@pytest.fixture(scope="module")
-def libcosim(system, tmp_path_factory):
-    """Table 1 with Smith's rod ram (the hammer's database ram), its FMUs and system.ssp.
-
-    The exchange tests below measure a master algorithm, so they use the ram whose toe contact
-    is the half segment 2 E A / dx. The modal ram's toe contact (1 / residual flexibility,
-    2.7x stiffer, on a lighter toe mass) amplifies a Jacobi master's one-step lag much more:
-    with it the first-order band below is exceeded already at h/16 (measured 83 % of the peak
-    over 5 ms), so a Jacobi tool needs a far finer step for it than the SSP's h/64.
-    """
-    pytest.importorskip("libcosimpy")
-    cfg = system["cfg"]
-    rod = dataclasses.replace(cfg, hammer=load_hammer("illustrative_5500kj"))  # table1.toml
-    out = tmp_path_factory.mktemp("libcosim_fmus")
-    return {"cfg": rod, "modal": system["modal"], "out": out,
-            "fmus": build_system_fmus(rod, out, system["modal"])}
-
-
-def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int):
+def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int,
+             anvil: dict | None = None):
     """The fmpy master on the SSP's units and parameter values, on libcosim's time grid."""
     fmus = system["fmus"]
     ram = system["fmus"]["parameters"]["Ram"]
     parameters = {"ram": {"contact_displacement": ram["contact_displacement"],
-                          "contact_time": ram["contact_time"]}}
+                          "contact_time": ram["contact_time"]}, "anvil": dict(anvil or {})}
     with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"], parameters,
-                    exchange=exchange) as master:
+                    exchange=exchange, compiled=False) as master:
         return master.run_blows(1, n_steps, step_ns * 1e-9, start_time=start_ns * 1e-9)[0]
 
 
-def engine_step_ns(system) -> int:
-    """The engine's step in whole nanoseconds (libcosim's time unit)."""
-    return max(1, round(system["fmus"]["time_step"] * 1e9))
+def ssp_step_ns(system) -> int:
+    """The step written into system.ssp in whole nanoseconds (libcosim's time unit)."""
+    return max(1, round(system["fmus"]["ssp_step"] * 1e9))
 
 
-def test_libcosim_runs_system_ssp_in_its_jacobi_exchange_order(libcosim, tmp_path):
-    """libcosim (Open Simulation Platform) loads system.ssp and simulates the 25 ms blow.
+@pytest.fixture(scope="module")
+def libcosim_blow(system, tmp_path_factory):
+    """libcosim (OSP, a Jacobi master) on system.ssp of Table 1 at the SSP's own step over the
+    whole blow: (time [ns], F_ram [N], F_pile [N]) after every step."""
+    pytest.importorskip("libcosimpy")
+    step_ns = ssp_step_ns(system)
+    n_steps = int(round(system["cfg"].duration / (step_ns * 1e-9)))
+    return run_libcosim(system["fmus"]["ssp"], 0, n_steps,
+                        tmp_path_factory.mktemp("libcosim") / "lc.npy")
+
+
+def test_libcosim_runs_system_ssp_in_its_jacobi_exchange_order(system, libcosim_blow):
+    """libcosim loads system.ssp and simulates the 25 ms blow at the step written into it.
 
     Its fixed-step algorithm steps every unit, then reads every output and passes it on: the
-    anvil's forces, read right after its step, are computed from its inputs of the previous
-    step (a one-step lag through the feedthrough). The fmpy master run in that same exchange
-    order (``exchange="jacobi"``) reproduces libcosim to round-off: band 1e-9 x peak.
+    anvil's forces are read after its step with its inputs of the step before. The fmpy master
+    in that same exchange order (``exchange="jacobi"``, with the SSP's
+    ``input_extrapolation``) reproduces libcosim to round-off: band 1e-9 x peak.
     """
-    system = libcosim
-    step_ns = engine_step_ns(system)
-    n_steps = int(round(system["cfg"].duration / (step_ns * 1e-9)))
-    lc = run_libcosim(system["fmus"]["ssp"], step_ns, n_steps, tmp_path / "lc.npy")
-    start_ns = int(lc[0, 0]) - step_ns
-    jacobi = fmpy_run(system, "jacobi", step_ns, n_steps, start_ns)
+    lc = libcosim_blow
+    step_ns = ssp_step_ns(system)
+    assert np.all(np.diff(lc[:, 0]) == step_ns)
+    jacobi = fmpy_run(system, "jacobi", step_ns, len(lc), int(lc[0, 0]) - step_ns,
+                      {"input_extrapolation": True})
     np.testing.assert_allclose(lc[:, 0] * 1e-9, jacobi.time[1:], rtol=0, atol=1e-12)
     for j, name in ((1, "F_ram"), (2, "F_pile")):
         reference = jacobi[name][1:]
@@ -473,42 +483,66 @@ def test_libcosim_runs_system_ssp_in_its_jacobi_exchange_order(libcosim, tmp_pat
         assert relative_difference(lc[:, j], reference) <= 1e-9
 
 
-def test_libcosim_forces_approach_the_design_order_at_first_order(libcosim, tmp_path):
-    """Against the DESIGN.md order (fmpy), the Jacobi lag is a first-order error.
+def test_libcosim_on_system_ssp_matches_the_fmpy_master(system, libcosim_blow):
+    """The must-show of the Jacobi coupling: libcosim on system.ssp of the default Table 1
+    system (modal ram, ROM anvil), at the step written into the SSP (h/4 of the fmpy master's
+    h), gives the peak ram and pile forces within 1 % of the fmpy master (DESIGN.md order) on
+    the same time grid. Measured: -0.21 % (ram) and +0.04 % (pile); the whole time series stay
+    within 1.1 % and 0.4 % of the peaks (lift-off and re-impact of the anvil move by a fraction
+    of a step). Without input extrapolation the same run is 77 % / 35 % off.
 
-    Band: the lag feeds a contact the neighbour's displacement of one step before, which
-    changes its force by k_c |u_n - u_n-1| <= k_c h v_max (k_c the contact spring, v_max the
-    largest toe / head speed of the DESIGN run). Over the impact (the first 5 ms: ram-anvil
-    contact and the first pile-head force rise) that local error is what remains: the band
-    asserted is k_c h v_max (measured 0.5-0.7 of it), at h/16 and h/64 of the engine's step h
-    (h/64 is the SSP's default step, used by libcosim from the file), and the RMS difference
-    must shrink at least 2.5x from h/16 to h/64 (first order: 4x).
-    Later in the blow, lift-off and re-impact of the anvil shift in time and the
-    difference grows to several k_c h v_max (about 7% of the peak at h/64 over 25 ms).
+    Against the fmpy master at its own step h (the engine's, 4x coarser) the pile peak is
+    3.3 % lower: that is the fmpy master's own time-discretisation error at h (it is 3.9 %
+    above its converged value, the DESIGN order at h/64), not the coupling's (libcosim at h/4
+    is within 0.4 % of that converged value); it is printed, not asserted.
     """
-    system = libcosim
-    k = {"F_ram": system["fmus"]["parameters"]["Anvil"]["ram_contact_stiffness"],
-         "F_pile": system["fmus"]["parameters"]["Anvil"]["pile_contact_stiffness"]}
-    rms = {}
-    for divisor in (16, SSP_STEP_DIVISOR):  # the second: the SSP's own default step
-        step_ns = max(1, round(system["fmus"]["time_step"] * 1e9 / divisor))
-        n_steps = int(round(5e-3 / (step_ns * 1e-9)))
-        lc = run_libcosim(system["fmus"]["ssp"], 0 if divisor == SSP_STEP_DIVISOR else step_ns,
-                          n_steps, tmp_path / f"lc{divisor}.npy")
-        assert np.all(np.diff(lc[:, 0]) == step_ns)
-        design = fmpy_run(system, "design", step_ns, n_steps, int(lc[0, 0]) - step_ns)
-        h = step_ns * 1e-9
-        speed = max(np.abs(np.diff(design["u_toe"])).max(),
-                    np.abs(np.diff(design["u_head"])).max()) / h
-        for j, name in ((1, "F_ram"), (2, "F_pile")):
-            diff = np.abs(lc[:, j] - design[name][1:]).max()
-            band = k[name] * h * speed
-            print(f"\nh/{divisor} = {h:.4g} s {name}: max |libcosim - fmpy| = {diff:.3e} N "
-                  f"({diff / np.abs(design[name]).max():.2%} of the peak), band {band:.3e} N")
-            assert diff <= band
-            rms[divisor, name] = np.sqrt(np.mean((lc[:, j] - design[name][1:]) ** 2))
-    for name in k:
-        assert rms[16, name] >= 2.5 * rms[SSP_STEP_DIVISOR, name]
+    lc = libcosim_blow
+    fmus = system["fmus"]
+    assert fmus["ssp_step"] >= fmus["time_step"] / 4
+    step_ns = ssp_step_ns(system)
+    design = fmpy_run(system, "design", step_ns, len(lc), int(lc[0, 0]) - step_ns)
+    h = fmus["time_step"]
+    with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"]) as master:
+        coarse = master.run_blows(1, int(round(system["cfg"].duration / h)), h)[0]
+    for j, name in ((1, "F_ram"), (2, "F_pile")):
+        peak, reference = lc[:, j].max(), design[name].max()
+        band = np.abs(lc[:, j] - design[name][1:]).max() / reference
+        print(f"\n{name}: libcosim at h/{h / fmus['ssp_step']:.0f} {peak / 1e6:.2f} MN, fmpy "
+              f"master on the same step {reference / 1e6:.2f} MN ({peak / reference - 1:+.3%}; "
+              f"band {band:.2%}), fmpy master at h {coarse[name].max() / 1e6:.2f} MN "
+              f"({peak / coarse[name].max() - 1:+.3%})")
+        assert abs(peak / reference - 1.0) <= 0.01
+        assert band <= 0.02  # measured 1.1 % / 0.4 %: anvil re-impact timing
+
+
+def test_input_extrapolation_converges_and_leaves_the_design_order_alone(system):
+    """The fmpy master in libcosim's Jacobi exchange with ``input_extrapolation`` against the
+    DESIGN order on the same step: the largest force difference over the first 6 ms (impact,
+    lift-off and re-impact of the anvil) falls at least 8x (third order) per halving of the
+    step from h/4 (measured 1.1e-2, 5.9e-4, 4.6e-5: 19x and 13x); with the option off it is a
+    one-step lag, tens of % at h/4. In the DESIGN order the option changes no bit.
+    """
+    h = system["fmus"]["time_step"]
+    errors = {}
+    for divisor in (4, 8, 16):
+        step_ns = round(h * 1e9 / divisor)
+        n = int(round(6e-3 / (step_ns * 1e-9)))
+        design = fmpy_run(system, "design", step_ns, n, -step_ns // 2)
+        jacobi = fmpy_run(system, "jacobi", step_ns, n, -step_ns // 2,
+                          {"input_extrapolation": True})
+        errors[divisor] = max(relative_difference(jacobi[f], design[f])
+                              for f in ("F_ram", "F_pile"))
+        if divisor == 4:
+            lagging = fmpy_run(system, "jacobi", step_ns, n, -step_ns // 2)
+            assert max(relative_difference(lagging[f], design[f])
+                       for f in ("F_ram", "F_pile")) > 0.1
+            same = fmpy_run(system, "design", step_ns, n, -step_ns // 2,
+                            {"input_extrapolation": True})
+            assert np.array_equal(same.data, design.data, equal_nan=True)
+    print("\nJacobi with input extrapolation vs DESIGN order, max |dF| / peak: "
+          + ", ".join(f"h/{d}: {e:.2e}" for d, e in errors.items()))
+    assert errors[4] <= 0.02
+    assert errors[4] >= 8 * errors[8] and errors[8] >= 8 * errors[16]
 
 
 # ---------------------------------------------------------------------------- outputs
@@ -522,3 +556,70 @@ def test_fmi_results_write_like_the_engines(system, tmp_path):
     np.savetxt(path, table, delimiter=",", header=",".join(header), comments="")
     assert path.read_text().splitlines()[0].startswith("time [s],")
     json.dumps({"wall_time [s]": fmi[0].wall_time, "time_step [s]": fmi[0].time_step})
+
+
+# ---------------------------------------------------------------------------- the user's side
+def test_fmpy_cosim_example_swaps_the_anvil_with_fmpy_alone(direct, tmp_path):
+    """examples/fmpy_cosim.py on the FMUs of ``anvilwave build-fmus examples/table1.toml``: its
+    own master loop (fmpy only: ``import anvilwave`` is made to fail) runs Anvil.fmu, then
+    AnvilLumped.fmu swapped in, and plots the pile-head force. Its loop is the DESIGN order with
+    the engine's initialisation, so its peaks are the direct engine's (printed to 1 kN)."""
+    from anvilwave.cli import main
+    from fmu.native_build import NativeBuildError, find_compiler
+
+    try:
+        find_compiler()
+        options = []
+    except NativeBuildError:  # the example runs the pythonfmu anvils just the same
+        options = ["--python-anvil"]
+    fmus, figure = tmp_path / "fmus", tmp_path / "pile_head_force.png"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(fmus),
+                 *options]) == 0
+    script = EXAMPLES / "fmpy_cosim.py"
+    code = ("import runpy, sys; sys.modules['anvilwave'] = None; "
+            f"sys.argv = [{str(script)!r}, {str(fmus)!r}, '--plot', {str(figure)!r}]; "
+            f"runpy.run_path({str(script)!r}, run_name='__main__')")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=600)
+    assert run.returncode == 0, run.stderr[-3000:]
+    print("\n" + run.stdout)
+    peaks = {line.split(":")[0]: float(line.split("force ")[1].split(" MN")[0])
+             for line in run.stdout.splitlines() if "peak pile-head force" in line}
+    assert list(peaks) == ["Anvil.fmu (modal ROM)", "AnvilLumped.fmu (rigid)"]
+    for (label, peak), model in zip(peaks.items(), ("rom", "lumped"), strict=True):
+        expected = direct[model][0].columns["anvil_pile_force [N]"].max() / 1e6
+        assert peak == pytest.approx(expected, abs=1.5e-3), label  # printed to 1 kN
+    assert figure.stat().st_size > 10_000
+
+
+def test_build_fmus_without_a_c_compiler_names_it(tmp_path, monkeypatch, capsys):
+    """build-fmus wants the native anvils: without a compiler it stops (exit 2) before any
+    work, naming what is missing and the --python-anvil way out; nothing is written."""
+    from anvilwave.cli import main
+
+    monkeypatch.setenv("CC", str(tmp_path / "no-such-cc"))
+    out = tmp_path / "fmus"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(out)]) == 2
+    message = capsys.readouterr().err
+    assert "no-such-cc" in message and "not found" in message and "--python-anvil" in message
+    assert not out.exists()
+
+
+def test_python_anvils_give_the_native_numbers(system, tmp_path):
+    """native_anvil=False (build-fmus --python-anvil) builds the pythonfmu anvils under the
+    same names; swapped into the fmpy master they give the native anvil's forces (one formula,
+    two implementations: 1e-12 of the peak)."""
+    native(system)
+    python = build_system_fmus(system["cfg"], tmp_path, system["modal"], ssp=False,
+                               native_anvil=False)
+    assert python["anvil_implementation"] == "pythonfmu"
+    fmus = system["fmus"]
+    for kind in ("Anvil", "AnvilLumped"):
+        with zipfile.ZipFile(python[kind]) as zf:
+            assert "resources/pythonfmu/__init__.py" in zf.namelist()
+        blows = []
+        for anvil in (fmus[kind], python[kind]):
+            with BlowMaster(fmus["Ram"], anvil, fmus["PileSoil"]) as master:
+                blows.append(master.run_blows(1, 400, fmus["time_step"])[0])
+        for name in ("F_ram", "F_pile"):
+            assert relative_difference(blows[1][name], blows[0][name]) <= 1e-12, (kind, name)

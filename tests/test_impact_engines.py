@@ -14,12 +14,26 @@ from .conftest import EXAMPLES
 
 
 @pytest.mark.parametrize("anvil", ["rom", "lumped"])
-def test_fmi_and_direct_outputs_agree(tmp_path, anvil):
+def test_fmi_and_direct_outputs_agree(tmp_path, anvil, monkeypatch):
+    """--engine fmi runs the native anvil FMU (when a C compiler is found) and writes the
+    direct engine's numbers (1e-9 of each value)."""
+    import fmu.native_build as native_build
+
+    built = []
+    build = native_build.build_native_anvil_fmu
+    monkeypatch.setattr(native_build, "build_native_anvil_fmu",
+                        lambda *args, **kwargs: built.append(kwargs.get("lumped", False))
+                        or build(*args, **kwargs))
     out = {}
     for engine in ("direct", "fmi"):
         out[engine] = tmp_path / engine
         assert main(["impact", str(EXAMPLES / "table1.toml"), "--engine", engine, "--anvil",
                      anvil, "--out", str(out[engine])]) == 0
+    try:
+        native_build.find_compiler()
+        assert built == [False, True]  # the native Anvil and AnvilLumped were built and run
+    except native_build.NativeBuildError:
+        assert built == []  # no compiler: the pythonfmu anvil (with a warning)
     a = json.loads((out["direct"] / "summary.json").read_text())
     b = json.loads((out["fmi"] / "summary.json").read_text())
     # the same kernels in the same order: only round-off differs (measured <= 1e-12)

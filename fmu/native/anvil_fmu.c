@@ -17,6 +17,15 @@
  *   of h rescales the two-step state (anvil_unit_set_step).
  * - At the end of initialization the anvil rests on the pile in static equilibrium under
  *   gravity (start_at_rest) with the pile head at initial_pile_head_displacement [m].
+ * - Input extrapolation (Boolean parameter input_extrapolation, for Jacobi-type masters that
+ *   read the forces after the step, with the inputs of the step before): the operations of
+ *   fmu/coupling.py (InputExtrapolation, extrapolated_input), in the same order. Inputs set
+ *   at a new communication point keep the velocities of the point before (the neighbours'
+ *   accelerations); the outputs use the inputs extrapolated to the unit's time; fmi2DoStep
+ *   steps with the forces at the step start and keeps their difference to the forces of the
+ *   last output read since the step before as an impulse correction of the force outputs.
+ *   With inputs set at the unit's time before the outputs are read (the DESIGN.md order),
+ *   nothing changes.
  * - The ROM reads its modes from the modal-data resource named by the String parameter
  *   modal_data_file (a relative name is looked up in the FMU's resources folder, given by
  *   fmuResourceLocation). fmi2Instantiate reads the embedded file; another file named before
@@ -74,6 +83,14 @@ typedef struct {
     int built;         /* unit made from the current parameters */
     int outputs_valid; /* outputs computed from the current inputs and state */
     double time;       /* current communication point [s] */
+    /* input extrapolation (input_extrapolation) */
+    double input_time;           /* when the inputs were last set [s] */
+    double input_interval;       /* from the point before to input_time [s]; 0: none */
+    double previous_velocity[2]; /* v_ram, v_pile at the point before [m/s] */
+    double correction[2];        /* impulse correction of F_ram, F_pile [N] */
+    double evaluated[2];         /* forces of the last output evaluation, uncorrected [N] */
+    double sent[2];              /* ... of the last output read since the last step [N] */
+    int has_evaluated, has_sent;
     char reason[MESSAGE_SIZE];
 } Instance;
 
@@ -294,6 +311,62 @@ static int load_modal_data(Instance *inst)
 }
 #endif
 
+/* Python: extrapolated_input. A neighbour's (displacement [m], velocity [m/s]) age [s] after it
+ * was received; velocity is its half-step value, previous_velocity the one received interval
+ * [s] earlier (interval 0: no acceleration). */
+static void extrapolated_input(double displacement, double velocity, double previous_velocity,
+                               double age, double interval, double *u, double *v)
+{
+    double acceleration;
+    if (age == 0.0) {
+        *u = displacement;
+        *v = velocity;
+        return;
+    }
+    acceleration = interval > 0.0 ? (velocity - previous_velocity) / interval : 0.0;
+    *u = displacement + age * (velocity + 0.5 * interval * acceleration) +
+         0.5 * acceleration * age * age;
+    *v = velocity + acceleration * age;
+}
+
+static int extrapolating(const Instance *inst)
+{
+    return inst->built && inst->boolean[ANVIL_INPUT_EXTRAPOLATION];
+}
+
+/* Python: InputExtrapolation(time), a fresh state at the unit's time. */
+static void start_extrapolation(Instance *inst)
+{
+    inst->input_time = inst->time;
+    inst->input_interval = 0.0;
+    inst->previous_velocity[0] = inst->previous_velocity[1] = 0.0;
+    inst->correction[0] = inst->correction[1] = 0.0;
+    inst->has_evaluated = inst->has_sent = 0;
+}
+
+/* Python: InputExtrapolation.note_inputs, before new inputs are stored. */
+static void note_inputs(Instance *inst)
+{
+    if (inst->time > inst->input_time) {
+        inst->previous_velocity[0] = inst->real[ANVIL_V_RAM];
+        inst->previous_velocity[1] = inst->real[ANVIL_V_PILE];
+        inst->input_interval = inst->time - inst->input_time;
+        inst->input_time = inst->time;
+    }
+}
+
+/* Python: InputExtrapolation.extrapolated, the inputs at the unit's time. */
+static void extrapolated_inputs(const Instance *inst, double *u_ram, double *v_ram,
+                                double *u_pile, double *v_pile)
+{
+    const double *r = inst->real;
+    double age = inst->time - inst->input_time;
+    extrapolated_input(r[ANVIL_U_RAM], r[ANVIL_V_RAM], inst->previous_velocity[0], age,
+                       inst->input_interval, u_ram, v_ram);
+    extrapolated_input(r[ANVIL_U_PILE], r[ANVIL_V_PILE], inst->previous_velocity[1], age,
+                       inst->input_interval, u_pile, v_pile);
+}
+
 static void drop_unit(Instance *inst)
 {
     if (inst->built) anvil_unit_free(&inst->unit);
@@ -331,21 +404,37 @@ static int build(Instance *inst)
         anvil_unit_rest_on_pile(&inst->unit, r[ANVIL_INITIAL_PILE_HEAD_DISPLACEMENT]);
     inst->built = 1;
     inst->outputs_valid = 0;
+    start_extrapolation(inst);
     return 1;
 }
 
-/* Python: anvil_outputs (forces, then the displacements under them) */
+/* Python: anvil_outputs (forces, then the displacements under them); with input extrapolation
+ * (Python: AnvilSlaveBase.compute_outputs) at the inputs extrapolated to the unit's time, the
+ * forces plus the impulse correction. */
 static void compute_outputs(Instance *inst)
 {
     double *r = inst->real;
     double force_ram, force_pile, u_top, u_bottom;
-    anvil_unit_forces(&inst->unit, r[ANVIL_U_RAM], r[ANVIL_V_RAM], r[ANVIL_U_PILE],
-                      r[ANVIL_V_PILE], &force_ram, &force_pile);
+    if (extrapolating(inst)) {
+        double u_ram, v_ram, u_pile, v_pile;
+        extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
+        anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
+    } else {
+        anvil_unit_forces(&inst->unit, r[ANVIL_U_RAM], r[ANVIL_V_RAM], r[ANVIL_U_PILE],
+                          r[ANVIL_V_PILE], &force_ram, &force_pile);
+    }
     anvil_unit_outputs(&inst->unit, force_ram, force_pile, &u_top, NULL, &u_bottom, NULL);
     r[ANVIL_F_RAM] = force_ram;
     r[ANVIL_F_PILE] = force_pile;
     r[ANVIL_U_TOP] = u_top;
     r[ANVIL_U_BOTTOM] = u_bottom;
+    if (extrapolating(inst)) {
+        inst->evaluated[0] = force_ram;
+        inst->evaluated[1] = force_pile;
+        inst->has_evaluated = 1;
+        r[ANVIL_F_RAM] += inst->correction[0];
+        r[ANVIL_F_PILE] += inst->correction[1];
+    }
     inst->outputs_valid = 1;
 }
 
@@ -488,6 +577,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     REQUIRE_STATE(inst, "fmi2SetupExperiment", ST_INSTANTIATED);
     if (!isfinite(startTime)) return refuse(inst, "fmi2SetupExperiment: startTime must be finite");
     inst->time = startTime;
+    if (inst->built) start_extrapolation(inst); /* Python rebuilds its component here */
     return fmi2OK;
 }
 
@@ -583,6 +673,11 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         }
         value[i] = inst->real[v->slot];
     }
+    if (extrapolating(inst) && inst->has_evaluated) { /* Python: AnvilSlaveBase.get_real */
+        inst->sent[0] = inst->evaluated[0];
+        inst->sent[1] = inst->evaluated[1];
+        inst->has_sent = 1;
+    }
     return fmi2OK;
 }
 
@@ -603,6 +698,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
             if (check_parameter_change(inst, v) != fmi2OK) return fmi2Error;
             LOG_CALL(inst, "fmi2SetReal: %s = %.17g", v->name, value[i]);
         } else {
+            if (extrapolating(inst)) note_inputs(inst);
             inst->outputs_valid = 0;
         }
         inst->real[v->slot] = value[i];
@@ -818,9 +914,25 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
     if (!(isfinite(h) && h > 0.0))
         return fail(inst, "step at t = %.9g s: communication step: must be positive, got %g s",
                     currentCommunicationPoint, h);
-    if (!inst->outputs_valid) compute_outputs(inst);
-    anvil_unit_set_step(&inst->unit, h);
-    anvil_unit_step(&inst->unit, inst->real[ANVIL_F_RAM], inst->real[ANVIL_F_PILE]);
+    if (extrapolating(inst)) {
+        /* Python: AnvilSlaveBase.advance and InputExtrapolation.stepped */
+        double u_ram, v_ram, u_pile, v_pile, force_ram, force_pile;
+        extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
+        anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
+        if (inst->has_sent) {
+            inst->correction[0] = force_ram - inst->sent[0];
+            inst->correction[1] = force_pile - inst->sent[1];
+        } else {
+            inst->correction[0] = inst->correction[1] = 0.0;
+        }
+        inst->has_sent = 0;
+        anvil_unit_set_step(&inst->unit, h);
+        anvil_unit_step(&inst->unit, force_ram, force_pile);
+    } else {
+        if (!inst->outputs_valid) compute_outputs(inst);
+        anvil_unit_set_step(&inst->unit, h);
+        anvil_unit_step(&inst->unit, inst->real[ANVIL_F_RAM], inst->real[ANVIL_F_PILE]);
+    }
     inst->outputs_valid = 0;
     inst->time = currentCommunicationPoint + h;
     return fmi2OK;

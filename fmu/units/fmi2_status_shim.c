@@ -18,15 +18,23 @@
  * recorded, not forwarded; categories are not filtered). Forwarded messages have '%' doubled
  * because the host logger treats the message as a printf format.
  *
- * Build (done by fmu/fmi_build.py): cc -shared -fPIC -O2 -fvisibility=hidden -o X.so this.c -ldl
+ * Python in a host that is not Python: see "the Python runtime" below (libpython of the
+ * Python that built the FMU, loaded and initialized before pythonfmu, never finalized).
+ *
+ * Build (done by fmu/fmi_build.py):
+ *   cc -shared -fPIC -O2 -fvisibility=hidden -o X.so this.c -ldl -lpthread
  */
 
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <errno.h>
+#include <pthread.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+#include <wchar.h>
 
 #define EXPORT __attribute__((visibility("default")))
 #define INNER_LIBRARY "pythonfmu-export.so"
@@ -113,7 +121,303 @@ typedef struct {
 #define DECLARE_POINTER(ret, name, args) ret(*name) args;
 static struct { INNER_FUNCTIONS(DECLARE_POINTER) } inner;
 static void *inner_handle = NULL;
-static char load_error[1024] = "";
+static char load_error[8192] = "";
+
+/* ---- the Python runtime, for hosts that are not Python ----
+ *
+ * pythonfmu's library calls the Python C API but is not linked with libpython: in a Python
+ * process (fmpy, libcosimpy) the interpreter's symbols are already there; a C host has none
+ * ("undefined symbol: _Py_NoneStruct"). Before loading that library the shim
+ *
+ * 1. looks for the C API in the process (Py_IsInitialized); if it is there, uses it;
+ * 2. otherwise loads the libpython of the Python that built the FMU, which the build records
+ *    in resources/anvilwave_python.txt (RUNTIME_FILE: executable, library, version, site
+ *    directories), with RTLD_GLOBAL (its symbols resolve pythonfmu's) and RTLD_NODELETE (it is
+ *    never unloaded). When that Python is gone, the first pythonX.Y (the recorded version) on
+ *    the PATH is taken, with the libpythonX.Y.so beside it (../lib) or on the library path;
+ * 3. if the interpreter is not initialized, initializes it (no signal handlers) with that
+ *    executable as program name: for a venv's python, sys.prefix is the venv and its
+ *    site-packages (with the .pth files of editable installs) are on sys.path, so anvilwave
+ *    imports; the recorded site directories are added too. Then it releases the GIL.
+ *
+ * The interpreter is never finalized. pythonfmu 0.7.0, when it finds Python uninitialized,
+ * initializes it on a thread of its own and finalizes it there when its state is released
+ * (see release_pythonfmu). A finalized interpreter cannot be brought back for the extension
+ * modules the units import (numpy refuses a second initialization in one process), and these
+ * stay loaded with their threads (OpenBLAS, numba) whatever Python does. Initialized by the
+ * shim first, Python is left alone by pythonfmu: the process exits with the interpreter alive,
+ * and a host may free and instantiate the FMU again as often as it likes.
+ */
+#define RUNTIME_FILE "anvilwave_python.txt"
+#define RUNTIME_TEXT 8192
+
+typedef struct {
+    char executable[4096];
+    char library[4096];
+    char version[32];
+    char sites[RUNTIME_TEXT]; /* site directories, one a line */
+} Runtime;
+
+typedef int (*IsInitializedFunction)(void);
+
+static int python_ready = 0;
+static char python_note[8192] = ""; /* a warning for the host (another Python was taken) */
+static pthread_mutex_t load_lock = PTHREAD_MUTEX_INITIALIZER;
+
+static int hex_value(char c)
+{
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+/* The resources folder of a file URI (file:///p, file:/p, file://localhost/p; %XX decoded). */
+static void resource_folder(const char *uri, char *out, size_t size)
+{
+    const char *p = uri != NULL ? uri : "";
+    size_t j = 0;
+    if (strncmp(p, "file://localhost/", 17) == 0) p += 16;
+    else if (strncmp(p, "file:///", 8) == 0) p += 7;
+    else if (strncmp(p, "file:/", 6) == 0) p += 5;
+    for (; *p != '\0' && j + 1 < size; p++) {
+        if (p[0] == '%' && hex_value(p[1]) >= 0 && hex_value(p[2]) >= 0) {
+            out[j++] = (char)(16 * hex_value(p[1]) + hex_value(p[2]));
+            p += 2;
+        } else {
+            out[j++] = *p;
+        }
+    }
+    while (j > 1 && out[j - 1] == '/') j--;
+    out[j] = '\0';
+}
+
+/* resources/RUNTIME_FILE: "key = value" lines (executable, library, version, site ...). */
+static int read_runtime(const char *resources, Runtime *rt)
+{
+    char path[4200], line[4200];
+    FILE *file;
+    memset(rt, 0, sizeof *rt);
+    snprintf(path, sizeof path, "%.4000s/%s", resources, RUNTIME_FILE);
+    file = fopen(path, "r");
+    if (file == NULL) {
+        snprintf(load_error, sizeof load_error, "%.4000s: %s (the FMU was built without it: "
+                 "rebuild it with anvilwave)", path, strerror(errno));
+        return 0;
+    }
+    while (fgets(line, sizeof line, file) != NULL) {
+        char *eq = strchr(line, '='), *key = line, *value, *end;
+        if (line[0] == '#' || eq == NULL) continue;
+        *eq = '\0';
+        value = eq + 1;
+        while (*key == ' ') key++;
+        for (end = eq; end > key && end[-1] == ' '; end--) end[-1] = '\0';
+        while (*value == ' ') value++;
+        value[strcspn(value, "\r\n")] = '\0';
+        if (strcmp(key, "executable") == 0)
+            snprintf(rt->executable, sizeof rt->executable, "%s", value);
+        else if (strcmp(key, "library") == 0)
+            snprintf(rt->library, sizeof rt->library, "%s", value);
+        else if (strcmp(key, "version") == 0)
+            snprintf(rt->version, sizeof rt->version, "%s", value);
+        else if (strcmp(key, "site") == 0 && strlen(rt->sites) + strlen(value) + 2 <
+                 sizeof rt->sites) {
+            strcat(rt->sites, value);
+            strcat(rt->sites, "\n");
+        }
+    }
+    fclose(file);
+    return 1;
+}
+
+/* The first "python<version>" on the PATH, into out; 0 if none. */
+static int python_on_path(const char *version, char *out, size_t size)
+{
+    const char *path = getenv("PATH"), *p;
+    if (path == NULL || version[0] == '\0') return 0;
+    for (p = path; *p != '\0';) {
+        size_t n = strcspn(p, ":");
+        snprintf(out, size, "%.*s/python%s", (int)n, p, version);
+        if (n > 0 && access(out, X_OK) == 0) return 1;
+        p += n;
+        if (*p == ':') p++;
+    }
+    return 0;
+}
+
+/* dlopen a libpython for the global namespace, kept for the life of the process. */
+static void *open_python(const char *library)
+{
+    return dlopen(library, RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
+}
+
+/* libpython<version> of an executable found on the PATH: ../lib beside its real path, else the
+ * library path. */
+static void *python_library_of(const char *executable, const char *version, char *used,
+                               size_t size)
+{
+    char real[4096], *slash;
+    void *handle;
+    static const char *names[] = {"lib/libpython%s.so.1.0", "lib/libpython%s.so"};
+    size_t i;
+    if (realpath(executable, real) != NULL && (slash = strrchr(real, '/')) != NULL) {
+        *slash = '\0';
+        slash = strrchr(real, '/');
+        if (slash != NULL) slash[1] = '\0';
+        for (i = 0; i < sizeof names / sizeof names[0]; i++) {
+            char name[64];
+            snprintf(name, sizeof name, names[i], version);
+            snprintf(used, size, "%.4000s%s", real, name);
+            if ((handle = open_python(used)) != NULL) return handle;
+        }
+    }
+    snprintf(used, size, "libpython%s.so.1.0", version);
+    return open_python(used);
+}
+
+/* Python code (for PyRun_SimpleString) that adds the site directories of rt->sites. */
+static void site_code(const Runtime *rt, char *code, size_t size)
+{
+    const char *p = rt->sites;
+    size_t j;
+    j = (size_t)snprintf(code, size, "import os, site, sys\nfor d in [");
+    while (*p != '\0' && j + 16 < size) {
+        size_t n = strcspn(p, "\n");
+        code[j++] = '\'';
+        for (; n > 0 && j + 8 < size; n--, p++) {
+            if (*p == '\\' || *p == '\'') code[j++] = '\\';
+            code[j++] = *p;
+        }
+        code[j++] = '\'';
+        code[j++] = ',';
+        if (*p == '\n') p++;
+    }
+    snprintf(code + j, size - j, "]:\n    if os.path.isdir(d) and d not in sys.path:\n"
+             "        site.addsitedir(d)\n");
+}
+
+/* Make the Python C API available and initialized (see the comment above); 1 when ready,
+ * 0 with the reason in load_error. */
+static int ensure_python(const char *resource_uri)
+{
+    typedef wchar_t *(*DecodeFunction)(const char *, size_t *);
+    typedef void (*SetNameFunction)(const wchar_t *);
+    typedef void (*InitializeFunction)(int);
+    typedef void *(*SaveThreadFunction)(void);
+    typedef int (*RunFunction)(const char *);
+    char resources[4096], used[4096], code[RUNTIME_TEXT * 2 + 256];
+    const char *executable = NULL;
+    IsInitializedFunction is_initialized;
+    Runtime rt;
+    void *python = NULL;
+    if (python_ready) return 1;
+    *(void **)(&is_initialized) = dlsym(RTLD_DEFAULT, "Py_IsInitialized");
+    resource_folder(resource_uri, resources, sizeof resources);
+    if (is_initialized == NULL) { /* a host without Python: load the FMU's */
+        if (!read_runtime(resources, &rt)) return 0;
+        if (rt.library[0] == '\0' && rt.executable[0] == '\0') {
+            snprintf(load_error, sizeof load_error, "%.999s/%s names no Python", resources,
+                     RUNTIME_FILE);
+            return 0;
+        }
+        if (rt.library[0] != '\0' && access(rt.library, R_OK) == 0) {
+            python = open_python(rt.library);
+            if (python == NULL) {
+                const char *reason = dlerror();
+                snprintf(load_error, sizeof load_error, "cannot load %.999s (the libpython "
+                         "of %.999s, which built this FMU): %.999s", rt.library, rt.executable,
+                         reason ? reason : "?");
+                return 0;
+            }
+            executable = rt.executable;
+        } else {
+            char found[4096];
+            if (!python_on_path(rt.version, found, sizeof found)) {
+                snprintf(load_error, sizeof load_error, "this FMU runs its unit in Python "
+                         "%.99s with anvilwave installed: the Python that built it (%.999s, "
+                         "library %.999s) is gone and no python%.99s is on the PATH",
+                         rt.version, rt.executable,
+                         rt.library[0] ? rt.library : "none: a static build", rt.version);
+                return 0;
+            }
+            python = python_library_of(found, rt.version, used, sizeof used);
+            if (python == NULL) {
+                const char *reason = dlerror();
+                snprintf(load_error, sizeof load_error, "the Python that built this FMU "
+                         "(%.999s) is gone; %.999s on the PATH has no loadable libpython%.99s "
+                         "(%.999s): %.999s", rt.executable, found, rt.version, used,
+                         reason ? reason : "?");
+                return 0;
+            }
+            snprintf(python_note, sizeof python_note, "the Python that built this FMU (%.999s) "
+                     "is gone: running its unit in %.999s from the PATH (library %.999s)",
+                     rt.executable, found, used);
+            memcpy(rt.executable, found, sizeof found);
+            rt.sites[0] = '\0'; /* the recorded site directories belong to the other Python */
+            executable = rt.executable;
+        }
+        *(void **)(&is_initialized) = dlsym(python, "Py_IsInitialized");
+        if (is_initialized == NULL) {
+            snprintf(load_error, sizeof load_error, "%.999s is not a libpython (no "
+                     "Py_IsInitialized)", rt.library);
+            return 0;
+        }
+    } else {
+        rt.sites[0] = '\0';
+    }
+    if (!is_initialized()) {
+        DecodeFunction decode;
+        SetNameFunction set_name;
+        InitializeFunction initialize;
+        SaveThreadFunction save_thread;
+        RunFunction run;
+        *(void **)(&decode) = dlsym(RTLD_DEFAULT, "Py_DecodeLocale");
+        *(void **)(&set_name) = dlsym(RTLD_DEFAULT, "Py_SetProgramName");
+        *(void **)(&initialize) = dlsym(RTLD_DEFAULT, "Py_InitializeEx");
+        *(void **)(&save_thread) = dlsym(RTLD_DEFAULT, "PyEval_SaveThread");
+        *(void **)(&run) = dlsym(RTLD_DEFAULT, "PyRun_SimpleString");
+        if (initialize == NULL || save_thread == NULL || run == NULL) {
+            snprintf(load_error, sizeof load_error, "the Python C API lacks Py_InitializeEx, "
+                     "PyEval_SaveThread or PyRun_SimpleString");
+            return 0;
+        }
+        if (executable != NULL && executable[0] != '\0' && decode != NULL && set_name != NULL) {
+            /* kept for the life of the interpreter, as Py_SetProgramName requires */
+            wchar_t *name = decode(executable, NULL);
+            if (name != NULL) set_name(name);
+        }
+        initialize(0);
+        if (rt.sites[0] != '\0') {
+            site_code(&rt, code, sizeof code);
+            run(code);
+        }
+        save_thread(); /* the GIL is released; pythonfmu takes it per call */
+    }
+    python_ready = 1;
+    return 1;
+}
+
+
+/* pythonfmu 0.7.0 keeps its Python state in a static std::shared_ptr (pyState) and releases it
+ * twice when its library goes: once by the C++ destructor of the static, registered with
+ * __cxa_atexit when the library is loaded, and once more by its ELF destructor
+ * (onLibraryUnload -> finalizePythonInterpreter: pyState = nullptr), which runs after the first
+ * on the destroyed object: the state's control block is freed twice. Its library is never
+ * unloaded by dlclose (its STB_GNU_UNIQUE symbols make it RTLD_NODELETE), so both run at exit,
+ * and the corrupted heap aborts the host in a later free() ("free(): corrupted unsorted
+ * chunks", e.g. in libgfortran's destructor). The shim releases the state first, through the
+ * library's own finalizePythonInterpreter, when it is unloaded itself or at exit (an atexit
+ * handler registered after pythonfmu's static, so it runs before it): both later releases
+ * then find an empty pointer. A new instance after that simply makes a new state. */
+typedef void (*ReleaseFunction)(void);
+static ReleaseFunction release_state = NULL;
+
+static void release_pythonfmu(void)
+{
+    ReleaseFunction release = release_state;
+    release_state = NULL;
+    if (release != NULL) release();
+}
 
 static int load_inner(void)
 {
@@ -144,11 +448,14 @@ static int load_inner(void)
         return 0;                                                                                \
     }
     INNER_FUNCTIONS(LOAD_POINTER)
+    *(void **)(&release_state) = dlsym(inner_handle, "finalizePythonInterpreter");
+    if (release_state != NULL) atexit(release_pythonfmu);
     return 1;
 }
 
 __attribute__((destructor)) static void unload_inner(void)
 {
+    release_pythonfmu();
     if (inner_handle != NULL) dlclose(inner_handle);
     inner_handle = NULL;
 }
@@ -208,13 +515,22 @@ EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType,
                                      fmi2Boolean visible, fmi2Boolean loggingOn)
 {
     Shim *s;
+    int python, loaded = 0;
     if (functions == NULL) return NULL;
-    if (!load_inner()) {
+    pthread_mutex_lock(&load_lock);
+    python = ensure_python(fmuResourceLocation);
+    if (python) loaded = load_inner();
+    pthread_mutex_unlock(&load_lock);
+    if (!loaded) {
         if (functions->logger != NULL)
             functions->logger(functions->componentEnvironment, instanceName, fmi2Fatal, "",
-                              "cannot load " INNER_LIBRARY ": %s", load_error);
+                              python ? "cannot load " INNER_LIBRARY ": %s"
+                                     : "cannot start Python: %s", load_error);
         return NULL;
     }
+    if (python_note[0] != '\0' && functions->logger != NULL)
+        functions->logger(functions->componentEnvironment, instanceName, fmi2Warning, "",
+                          "%s", python_note);
     s = (Shim *)calloc(1, sizeof(Shim));
     if (s == NULL) return NULL;
     s->host = *functions;
