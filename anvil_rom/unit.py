@@ -182,8 +182,9 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
 
 @njit(cache=True, fastmath={"reassoc"})
 def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
-    """:func:`modal_unit_energy` in one sweep over the modes, given the interface sums of the
-    state (:func:`modal_unit_interface`) and the contact forces of these neighbour states.
+    """:func:`modal_unit_energy` in one sweep over the modes, given the interface
+    displacements of the state (``interface[0]``, ``interface[2]``, :func:`modal_unit_interface`)
+    and the contact forces of these neighbour states.
     The sums may be added in any order (fastmath reassociation only: their last bits)."""
     n = C.shape[0]
     h = P[8]
@@ -192,6 +193,8 @@ def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram
     potential = 0.0
     ut_prev = 0.0
     ub_prev = 0.0
+    vt = 0.0
+    vb = 0.0
     for j in range(n):
         q, qp = S[j], S[n + j]
         rate = (q - qp) * inverse_step
@@ -199,7 +202,9 @@ def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram
         potential += 0.5 * C[j, 7] ** 2 * q * qp - P[7] * C[j, 6] * 0.5 * (q + qp)
         ut_prev += C[j, 4] * qp
         ub_prev += C[j, 5] * qp
-    ut, vt, ub, vb = interface[0], interface[1], interface[2], interface[3]
+        vt += C[j, 4] * rate
+        vb += C[j, 5] * rate
+    ut, ub = interface[0], interface[2]
     if P[4] == 0.0 and P[5] == 0.0 and P[6] == 0.0:
         # contact springs in the same shadow form, k d_n d_n-1 / 2 (d_n-1 = d_n - h d')
         potential += _shadow_contact(u_ram - ut, v_ram - vt, h, P[0])

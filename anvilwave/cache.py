@@ -5,7 +5,9 @@ anvil's geometry (outline or mesh file), material, mesh size, interfaces, fmax a
 ratio, and on the code that computes it. :func:`cached_modal_data` keys the modal data by all
 of these and keeps it as a modal-data file (:mod:`anvil_rom.modalfile`) in a user cache
 directory, so that every later process, on this machine or on a cluster node sharing the
-directory (dask workers), reads it in milliseconds instead of solving again.
+directory (dask workers), reads it in milliseconds instead of solving again. The modal ram's
+spring-mass chain, realised from its modes in multiple precision, is kept the same way
+(:func:`cached_chain`, an ``.npz`` of two arrays).
 
 Where: ``$ANVILWAVE_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/anvilwave``, else
 ``~/.cache/anvilwave`` (the XDG / platformdirs convention). ``anvilwave cache info`` shows
@@ -27,15 +29,20 @@ import hashlib
 import json
 import os
 import tempfile
+import zipfile
 from functools import lru_cache
 from pathlib import Path
+
+import numpy as np
 
 ENVIRONMENT_VARIABLE = "ANVILWAVE_CACHE_DIR"
 """Environment variable that overrides the cache directory."""
 CACHE_VERSION = 1
 """Layout version of the cache entries (part of every key)."""
-CODE_FILES = ("geometry.py", "mesh.py", "fe.py", "modes.py", "pipeline.py", "modalfile.py")
-"""Source files of :mod:`anvil_rom` that define the modal data (hashed into every key)."""
+CODE_FILES = ("geometry.py", "mesh.py", "fe.py", "modes.py", "pipeline.py", "modalfile.py",
+              "chain.py")
+"""Source files of :mod:`anvil_rom` that define the modal data and the modal ram's chain
+(hashed into every key)."""
 SUFFIX = ".npz"
 
 
@@ -111,18 +118,62 @@ def cached_modal_data(spec, fmax: float | None = None):
     return data
 
 
+CHAIN_SUFFIX = ".chain.npz"
+
+
+def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`anvil_rom.chain.chain_from_modes` of ``omega`` [rad/s] and ``participation``
+    [kg^-1/2], from the cache or realised and stored: (masses [kg], springs [N/m])."""
+    omega = np.ascontiguousarray(omega, dtype=float)
+    participation = np.ascontiguousarray(participation, dtype=float)
+    h = hashlib.sha256(b"chain")
+    h.update(omega.tobytes())
+    h.update(participation.tobytes())
+    h.update(code_version().encode())
+    path = cache_dir() / (h.hexdigest() + CHAIN_SUFFIX)
+    if path.is_file():
+        try:
+            with np.load(path, allow_pickle=False) as npz:
+                mass, stiffness = npz["mass"], npz["stiffness"]
+            if mass.ndim == 1 and stiffness.shape == (mass.size - 1,):
+                return mass, stiffness
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            pass  # unreadable: realised again and replaced below
+    from anvil_rom.chain import chain_from_modes
+
+    mass, stiffness = chain_from_modes(omega, participation)
+    _write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
+    return mass, stiffness
+
+
+def _write_atomic(path: Path, write) -> None:
+    """``write(file object)`` into a temporary file beside ``path``, then rename it onto
+    ``path``; a cache that cannot be written is skipped (the value is only not reused)."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=path.name[:16] + "-", suffix=".part", dir=path.parent)
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                write(fh)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+    except OSError:
+        pass
+
+
 def _store(data, path: Path) -> None:
-    """Write modal data atomically; a cache that cannot be written is skipped silently (the
-    result is still returned, only not reused)."""
+    """Write modal data atomically: a modal-data file under a unique temporary name beside
+    ``path`` (:func:`anvil_rom.modalfile.save_modal_data`), renamed onto ``path``."""
     from anvil_rom.modalfile import save_modal_data
 
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=path.stem[:16] + "-", suffix=".part",
-                                   dir=path.parent)
+        fd, tmp = tempfile.mkstemp(prefix=path.name[:16] + "-", suffix=".part", dir=path.parent)
         os.close(fd)
         try:
-            save_modal_data(data, tmp)  # its own .part file, renamed onto tmp
+            save_modal_data(data, tmp)
             os.replace(tmp, path)
         finally:
             if os.path.exists(tmp):
@@ -132,19 +183,25 @@ def _store(data, path: Path) -> None:
 
 
 def cache_info() -> dict:
-    """``{"directory": str, "entries": int, "bytes": int, "files": [{"name", "bytes",
-    "frequencies", "fmax [Hz]", "n_dof", "source"}, ...]}`` of the cache."""
+    """``{"directory": str, "entries": int, "bytes": int, "files": [...]}`` of the cache; each
+    file ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
+    data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain) or ``"unreadable"``."""
     directory = cache_dir()
     files = sorted(directory.glob("*" + SUFFIX)) if directory.is_dir() else []
     rows = []
     for path in files:
         row = {"name": path.name, "bytes": path.stat().st_size}
         try:
-            from anvil_rom.modalfile import load_modal_data
+            if path.name.endswith(CHAIN_SUFFIX):
+                with np.load(path, allow_pickle=False) as npz:
+                    row.update({"chain_masses": int(npz["mass"].size),
+                                "total_mass [kg]": float(npz["mass"].sum())})
+            else:
+                from anvil_rom.modalfile import load_modal_data
 
-            data = load_modal_data(path)
-            row.update({"modes": data.n_modes, "fmax [Hz]": data.fmax, "n_dof": data.n_dof,
-                        "total_mass [kg]": data.total_mass})
+                data = load_modal_data(path)
+                row.update({"modes": data.n_modes, "fmax [Hz]": data.fmax, "n_dof": data.n_dof,
+                            "total_mass [kg]": data.total_mass})
         except Exception:  # an unreadable entry is listed as such
             row["unreadable"] = True
         rows.append(row)

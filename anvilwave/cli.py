@@ -9,7 +9,6 @@ from pathlib import Path
 
 import numpy as np
 
-from anvil_rom.modes import ModeSolveError
 from anvilwave_inputs import InputError
 
 from .output import ResultWriter
@@ -444,6 +443,19 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_drive)
 
     p = sub.add_parser(
+        "install", help="blow-by-blow installation with fatigue damage and force spectra",
+        description="Every blow from the self-weight penetration to the target depth or "
+                    "refusal, the pile and soil state carried from blow to blow; writes "
+                    "DIR/blows.csv, DIR/fatigue.csv, DIR/spectra.csv, DIR/summary.json and "
+                    "DIR/installation.png.")
+    p.add_argument("system", type=Path, help="system file (TOML) with [driveability] and "
+                                             "optionally [installation]")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--anvil", choices=("rom", "lumped", "classic", "none"), default=None,
+                   help="anvil model (default: the system file's)")
+    p.set_defaults(func=_install)
+
+    p = sub.add_parser(
         "pda", help="Case method of a gauge record (RTL, RSP, RMX, EMX, FMX, CSX, TSX, BTA)",
         description="Read a gauge record (time [s], force [N], velocity [m/s]; or raw "
                     "strains and accelerations) and write DIR/pda.json and DIR/pda.png.")
@@ -481,6 +493,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("system", type=Path, help="system file (TOML)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_compare_pda)
+
+    p = sub.add_parser(
+        "cache", help="the modal-data cache: where it is and what it holds, or empty it",
+        description="The modes of every anvil (and modal ram) are computed once and kept in a "
+                    "user cache directory ($ANVILWAVE_CACHE_DIR, else $XDG_CACHE_HOME/anvilwave "
+                    "or ~/.cache/anvilwave), keyed by geometry, material, mesh, fmax, damping "
+                    "and the code version. 'info' lists it, 'clear' deletes its entries.")
+    p.add_argument("action", choices=("info", "clear"))
+    p.set_defaults(func=_cache)
 
     p = sub.add_parser("schema", help="list every key of the input files (unit, default, "
                                       "meaning)")
@@ -569,6 +590,38 @@ class _Prefixed:
         return self.out.part(self.prefix + name)
 
 
+def _install(args: argparse.Namespace) -> int:
+    from . import driveability as dv
+    from . import installation as ins
+    from .engine import build_engine
+    from .system import load_system
+
+    cfg = load_system(args.system)
+    if args.anvil is not None:
+        cfg = cfg.with_anvil_model(args.anvil)
+    if cfg.drive is None:
+        raise InputError(str(args.system), "driveability", "the installation takes its energy "
+                                                           "schedule and refusal from a "
+                                                           "[driveability] table")
+    srd = cfg.srd if cfg.srd is not None else dv.load_srd_source(None, cfg.source,
+                                                                 cfg.pile_soil)
+    settings = cfg.install if cfg.install is not None else ins.InstallSettings()
+    engine = build_engine(cfg)
+    result = ins.run_installation(cfg, srd, cfg.drive, settings, engine, progress=True)
+    result["summary"]["system"] = str(args.system)
+    with ResultWriter(args.out) as out:
+        ins.write_results(result, out, title=f"{Path(args.system).name}: installation, "
+                                             f"{cfg.anvil.model} anvil")
+    s = result["summary"]
+    print(f"{Path(args.system).name} [{cfg.anvil.model}]: {s['total_blows [-]']} blows from "
+          f"{s['start_depth [m]']:.1f} to {s['final_depth [m]']:.2f} m ({s['stopped_by']}), "
+          f"driving time {s['driving_time [s]'] / 3600:.2f} h, max damage "
+          f"{s['max_damage [-]']:.3g} at {s['max_damage_depth_below_head [m]']:.1f} m below "
+          f"the head; {s['wall_time [s]']:.1f} s ({s['seconds_per_blow [s]'] * 1e3:.1f} ms "
+          f"per blow) -> {args.out}")
+    return 0
+
+
 def _pda(args: argparse.Namespace) -> int:
     from .pda_analysis import run_pda
 
@@ -602,6 +655,33 @@ def _si(value) -> str:
     return f"{value:.4g}"
 
 
+def _cache(args: argparse.Namespace) -> int:
+    from .cache import cache_info, clear_cache
+
+    if args.action == "clear":
+        count, size = clear_cache()
+        info = cache_info()
+        print(f"removed {_entries(count)} ({size / 2**20:.1f} MiB) from {info['directory']}")
+        return 0
+    info = cache_info()
+    print(f"{info['directory']}: {_entries(info['entries'])}, {info['bytes'] / 2**20:.1f} MiB")
+    for row in info["files"]:
+        name, size = row["name"][:16], f"{row['bytes'] / 1024:.0f} KiB"
+        if row.get("unreadable"):
+            print(f"  {name}  unreadable, {size}")
+        elif "chain_masses" in row:
+            print(f"  {name}  modal ram chain of {row['chain_masses']} masses, "
+                  f"{row['total_mass [kg]'] / 1e3:.1f} t, {size}")
+        else:
+            print(f"  {name}  {row['modes']:4d} modes to {row['fmax [Hz]']:g} Hz, "
+                  f"{row['n_dof']} DOF, {row['total_mass [kg]'] / 1e3:.1f} t, {size}")
+    return 0
+
+
+def _entries(count: int) -> str:
+    return f"{count} entr{'y' if count == 1 else 'ies'}"
+
+
 def _schema(args: argparse.Namespace) -> int:
     from .schema import describe
 
@@ -609,12 +689,23 @@ def _schema(args: argparse.Namespace) -> int:
     return 0
 
 
+def _user_error(exc: Exception) -> bool:
+    """An input error, or a modal analysis that cannot be solved (its module is only loaded,
+    and so only checked, when modes were computed: the command line imports it lazily)."""
+    if isinstance(exc, InputError):
+        return True
+    modes = sys.modules.get("anvil_rom.modes")
+    return modes is not None and isinstance(exc, modes.ModeSolveError)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except (InputError, ModeSolveError) as exc:
+    except Exception as exc:
+        if not _user_error(exc):
+            raise
         print(f"anvilwave: error: {exc}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # output piped into head, less ...

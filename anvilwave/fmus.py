@@ -39,7 +39,8 @@ from .system import SystemConfig
 
 def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
     """The modal data of the system's anvil: ``anvil_model`` (a ModalData or a modal-data
-    ``.npz`` path) or computed from the anvil file as the engine does."""
+    ``.npz`` path) or that of the anvil file, from the modal-data cache as the engine takes it
+    (:func:`anvilwave.cache.cached_modal_data`)."""
     from anvil_rom.modalfile import ModalData, load_modal_data
 
     if isinstance(anvil_model, ModalData):
@@ -50,9 +51,9 @@ def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
         raise InputError(cfg.source, "anvil.file", "the FMUs need the anvil geometry (the "
                                                    "Anvil and AnvilLumped units are built "
                                                    "from its modes)")
-    from anvil_rom.pipeline import compute_anvil_modes
+    from .engine import anvil_modal_data
 
-    return compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+    return anvil_modal_data(cfg)
 
 
 def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:

@@ -150,3 +150,60 @@ def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return Path(path)
+
+
+def plot_installation(result: dict, path: str | Path, title: str = "",
+                      driveability: dict | None = None) -> Path:
+    """Blow count and stresses against the tip depth, fatigue damage against the position
+    along the pile, pile-head force band levels of the chosen depths."""
+    from .installation import blow_count_profile
+
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 4, figsize=(15, 6))
+    rows = result["blows"]
+    z, n = blow_count_profile(rows)
+    ax = axes[0]
+    ax.step(n, z, where="post", label="installation (every blow)")
+    if driveability is not None:
+        ax.plot(driveability["blows_per_0.25m [-]"], driveability["depth [m]"], "o-", ms=3,
+                label="driveability (one blow per depth)")
+    ax.set_xlabel("blows / 0.25 m")
+    ax.set_ylabel("tip depth below mudline [m]")
+    ax.invert_yaxis()
+    ax.legend(fontsize=7)
+    ax = axes[1]
+    tip = np.array([r["tip_depth [m]"] for r in rows])
+    ax.plot([r["max_compression_stress [Pa]"] / 1e6 for r in rows], tip, lw=0.8,
+            label="max compression")
+    ax.plot([r["max_tension_stress [Pa]"] / 1e6 for r in rows], tip, lw=0.8,
+            label="max tension")
+    ax.set_xlabel("stress along the pile per blow [MPa]")
+    ax.invert_yaxis()
+    ax.legend(fontsize=7)
+    ax = axes[2]
+    fat = result["fatigue"]
+    d = np.array([r["depth_below_head [m]"] for r in fat])
+    dmg = np.array([r["damage [-]"] for r in fat])
+    ax.semilogx(np.maximum(dmg, 1e-12), d, ".-", ms=3)
+    ax.set_xlabel("Miner damage of the installation [-]")
+    ax.set_ylabel("position below the pile head [m]")
+    ax.invert_yaxis()
+    ax = axes[3]
+    spectra = result["spectra"]
+    depths = sorted({r["tip_depth [m]"] for r in spectra})
+    for k, depth in enumerate(depths):
+        sel = [r for r in spectra if r["tip_depth [m]"] == depth and r["valid [-]"]]
+        ax.semilogx([r["band_centre [Hz]"] for r in sel],
+                    [r["band_energy_level [dB]"] for r in sel], "o-", ms=3, color=f"C{k}",
+                    label=f"tip {depth:.1f} m")
+    ax.set_xlabel("one-third-octave band centre [Hz]")
+    ax.set_ylabel("pile-head force band energy [dB re 1 N^2 s]")
+    if depths:
+        ax.legend(fontsize=7)
+    for a in axes:
+        a.grid(True, alpha=0.3, which="both")
+    fig.suptitle(title or "installation")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return Path(path)

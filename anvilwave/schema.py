@@ -148,6 +148,21 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "srd.layers.undrained_shear_strength": ("Pa", None, "clay: su at the top"),
     "srd.layers.undrained_shear_strength_gradient": ("Pa/m", 0.0, "clay: su increase"),
     "srd.layers.plasticity_index": ("-", None, "clay: PI as a fraction (0.3 = 30 %)"),
+    # [installation] (anvilwave install)
+    "installation.start_depth": ("m", None, "tip depth of the first blow; default the "
+                                            "self-weight penetration"),
+    "installation.target_depth": ("m", None, "final tip depth; default the last drive depth"),
+    "installation.max_blows": ("-", 20000, "safety limit on the number of blows"),
+    "installation.srd_update": ("m", 0.05, "tip movement that rebuilds the SRD"),
+    "installation.weld_depths": ("m", None, "fatigue sections below the head; default every "
+                                            "spring"),
+    "installation.sn_curve": ("-", "D", "DNV-RP-C203 S-N curve (B1 ... W3)"),
+    "installation.environment": ("-", "seawater-cp", "'air', 'seawater-cp', "
+                                                     "'free-corrosion'"),
+    "installation.edition": ("-", "2016", "DNV-RP-C203 edition"),
+    "installation.scf": ("-", 1.0, "stress concentration factor"),
+    "installation.spectra_depths": ("m", None, "tip depths of the head-force spectra"),
+    "installation.record_interval": ("s", None, "sampling of the stress histories"),
 }
 
 ANVIL: dict[str, tuple[str, object, str]] = {

@@ -47,7 +47,7 @@ from hammer.modal_ram import modal_ram
 from pile.model import PileSoil
 
 from .budget import check_run_budget
-from .cache import cached_modal_data
+from .cache import cached_chain, cached_modal_data
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
 RAM_MODELS = ("rod", "modal")
@@ -82,6 +82,7 @@ class SystemConfig:
     impact_velocity : ram velocity at first contact [m/s].
     drive : the ``[driveability]`` settings (:class:`anvilwave.driveability.DriveSettings`).
     srd : the ``[srd]`` source of a drive analysis (:class:`anvilwave.driveability.SrdSource`).
+    install : the ``[installation]`` settings (:class:`anvilwave.installation.InstallSettings`).
     """
 
     source: str
@@ -96,6 +97,7 @@ class SystemConfig:
     pile_soil: PileSoil
     drive: object = None
     srd: object = None
+    install: object = None
 
     @property
     def blow_energy(self) -> float:
@@ -146,6 +148,11 @@ def load_system(path: str | Path) -> SystemConfig:
         from .driveability import load_drive_settings
 
         drive = load_drive_settings(root.table("driveability"), source)
+    install = None
+    if root.has("installation"):
+        from .installation import load_install_settings
+
+        install = load_install_settings(root.table("installation"))
     srd_table = root.table("srd", required=False)
     pile_soil = PileSoil.from_tables(
         root.table("pile"), root.table("soil", required=False),
@@ -165,7 +172,7 @@ def load_system(path: str | Path) -> SystemConfig:
                 raise InputError(source, "srd", str(exc)) from None
     root.finish()
     config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
-                          velocity, anvil, pile_soil, drive, srd)
+                          velocity, anvil, pile_soil, drive, srd, install)
     check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
     if ram_options["ram_model"] == "modal":
         config = replace(config, hammer=_modal_hammer(hammer, anvil,
@@ -182,7 +189,7 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
         fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
     try:
         ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
-                        modes=cached_modal_data)
+                        modes=cached_modal_data, realise=cached_chain)
     except InputError as exc:
         if exc.key == "fmax":  # the mesh does not resolve fmax
             key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"

@@ -88,14 +88,15 @@ def default_mesh_size(sections: np.ndarray, material: Material, fmax: float) -> 
 
 def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
               mesh_size: float | None = None, source: str = "hammer",
-              modes: Callable | None = None) -> RamRod:
+              modes: Callable | None = None, realise: Callable | None = None) -> RamRod:
     """The modal ROM of ``ram`` (given by its sections) up to ``fmax`` [Hz], as a RamRod.
 
     poisson_ratio [-]; mesh_size [m] (default :func:`default_mesh_size`). Errors name
     ``source`` and the key: a ram without sections (rigid, explicit segments) has no shape to
     mesh. modes : ``modes(spec, fmax) -> ModalData`` of the ram's section (default: computed,
-    :func:`anvil_rom.pipeline.compute_anvil_modes`); the system layer passes its modal-data
-    cache.
+    :func:`anvil_rom.pipeline.compute_anvil_modes`); realise : ``realise(omega, participation)
+    -> (mass, stiffness)`` of the chain (default :func:`anvil_rom.chain.chain_from_modes`). The
+    system layer passes its modal-data cache for both.
     """
     if ram.sections is None or not math.isfinite(ram.elastic_modulus):
         raise InputError(source, "ram", "a modal ram needs the ram's shape (diameter and mass "
@@ -109,15 +110,15 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
     size = default_mesh_size(ram.sections, material, fmax) if mesh_size is None else mesh_size
     mass, stiffness, toe_stiffness = _modal_chain(
         np.ascontiguousarray(ram.sections, float).tobytes(), ram.sections.shape[0],
-        material, float(fmax), float(size), source, modes)
+        material, float(fmax), float(size), source, modes, realise)
     return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
                                toe_stiffness=toe_stiffness, fmax=float(fmax))
 
 
 @lru_cache(maxsize=16)
 def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fmax: float,
-                 mesh_size: float, source: str, modes: Callable | None
-                 ) -> tuple[np.ndarray, np.ndarray, float]:
+                 mesh_size: float, source: str, modes: Callable | None,
+                 realise: Callable | None = None) -> tuple[np.ndarray, np.ndarray, float]:
     """Chain masses and springs (toe first) and the toe stiffness; cached per ram and fmax."""
     sections = np.frombuffer(sections_bytes).reshape(n_sections, 3)
     outline = ram_outline(sections)
@@ -136,7 +137,7 @@ def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fma
     omega = 2.0 * np.pi * np.asarray(data.frequencies)
     p_toe = np.asarray(data.participation_pile)
     r = residual_flexibility(data.elastic_flexibility, omega, data.participation_ram, p_toe)
-    mass, stiffness = chain_from_modes(omega, p_toe)
+    mass, stiffness = (chain_from_modes if realise is None else realise)(omega, p_toe)
     mass.flags.writeable = False
     stiffness.flags.writeable = False
     return mass, stiffness, float(1.0 / r[1, 1])

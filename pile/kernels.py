@@ -116,17 +116,17 @@ def _soil_spring(u, v, offset, capacity, tension, stiffness, smith, dashpot, yie
 # ------------------------------------------------------------------ the time step
 # The step works on 1D arrays prepared once (:func:`sweep_arrays`): no division per segment
 # (inverse masses, yield displacements), the segments above the first soil spring in a loop
-# without soil, and the works as per-segment sums (no running total carried from segment to
-# segment), so that the compiler can vectorise the free length of the pile.
+# without soil and without running totals (the soil's works are summed per mass), so that the
+# compiler can vectorise the free length of the pile.
 SWEEP_PILE = ("weight", "inverse_mass", "stiffness", "dashpot")
 """The ``pile_sweep`` tuple of :func:`sweep_arrays`, (N,) arrays: m g [N], 1 / m [1/kg], the
 spring and the dashpot below each mass [N/m], [N s/m] (0 below the toe mass)."""
+SWEEP_WORKS = ("soil_static", "soil_damping")
+"""The ``soil_works`` tuple of :func:`pile_advance`, (N,) arrays [J]: work done on the soil by
+its static and its damping resistance at each mass (the toe spring's on the last mass)."""
 SWEEP_SOIL = ("capacity", "tension", "stiffness", "smith", "dashpot", "yield_down", "yield_up")
 """The ``soil_sweep`` tuple of :func:`sweep_arrays`, (N + 1,) arrays: the soil rows and the
 yield displacements capacity / k and tension / k [m] (0 where k = 0)."""
-SWEEP_WORKS = ("pile_damping", "soil_static", "soil_damping")
-"""The ``works`` tuple of :func:`pile_advance`, (N,) arrays [J]: work of each mass's pile
-dashpots, soil static and soil damping resistance (the toe spring's on the last mass)."""
 
 
 def sweep_arrays(pile: np.ndarray, soil: np.ndarray, gravity: float):
@@ -156,20 +156,24 @@ def sweep_arrays(pile: np.ndarray, soil: np.ndarray, gravity: float):
 
 @njit(cache=True, inline='always')
 def pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, head_force, h,
-                 n_sub, works):
+                 n_sub, soil_works=None, damping_work=None):
     """Advance the pile and soil over a communication step h [s] in n_sub sub-steps.
 
     The physics of :func:`pile_step` on the arrays of :func:`sweep_arrays`. Works in place on
     u, v, soil_offset; adds the head works (WORK_HEAD, WORK_HEAD_SHORTENING) to ``energy``.
-    works : None, or the per-mass work sums (SWEEP_WORKS) to add to; the gravity work is not
-    summed (:func:`gravity_work` has it from the states) and ENERGY_KINETIC / ENERGY_STRAIN
-    are not updated (:func:`update_energy`).
+    soil_works : None, or the per-mass soil work sums (SWEEP_WORKS) to add to;
+    damping_work : None, or the per-mass sums of the pile dashpots' work. The gravity work is
+    not summed (:func:`gravity_work` has it from the states) and ENERGY_KINETIC /
+    ENERGY_STRAIN are not updated (:func:`update_energy`). The dashpots' work is also the
+    remainder of the exact energy balance (module docstring): the in-process engine books it
+    that way, without a sum over the free length of the pile.
     """
     dt = h / n_sub
     for _ in range(n_sub):
         v0 = v[0]
         v1 = v[1]
-        _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt, works)
+        _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt,
+                    soil_works, damping_work)
         du_top = 0.5 * dt * (v0 + v[0])
         du_next = 0.5 * dt * (v1 + v[1])
         energy[WORK_HEAD] += head_force * du_top
@@ -177,7 +181,8 @@ def pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, 
 
 
 @njit(cache=True, inline='always')
-def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt, works):
+def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_force, dt,
+                soil_works, damping_work):
     """One leapfrog sub-step of dt [s] (module docstring), top to toe, in place."""
     weight, inverse_mass, k, c = pile_sweep
     capacity, tension, soil_k, smith, dashpot, yield_down, yield_up = soil_sweep
@@ -193,9 +198,9 @@ def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_forc
         dash_below = c[i] * (v[i] - v[i + 1])
         force = weight[i] + spring_above + dash_above - spring_below - dash_below
         v_new = v[i] + dt * force * inverse_mass[i]
-        if works is not None:
+        if damping_work is not None:
             du = 0.5 * dt * (v[i] + v_new)
-            works[0][i] += (dash_below - dash_above) * du
+            damping_work[i] += (dash_below - dash_above) * du
         v[i] = v_new
         u[i] += dt * v_new
         spring_above = spring_below
@@ -214,11 +219,13 @@ def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_forc
                                                   yield_down[i], yield_up[i])
         force = weight[i] + spring_above + dash_above - spring_below - dash_below - rs - rd
         v_new = v[i] + dt * force * inverse_mass[i]
-        if works is not None:
+        if soil_works is not None:
             du = 0.5 * dt * (v[i] + v_new)
-            works[0][i] += (dash_below - dash_above) * du
-            works[1][i] += rs * du
-            works[2][i] += rd * du
+            soil_works[0][i] += rs * du
+            soil_works[1][i] += rd * du
+        if damping_work is not None:
+            du = 0.5 * dt * (v[i] + v_new)
+            damping_work[i] += (dash_below - dash_above) * du
         v[i] = v_new
         u[i] += dt * v_new
         spring_above = spring_below
@@ -238,11 +245,13 @@ def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_forc
         rd += td
     force = weight[last] + spring_above + dash_above - 0.0 - 0.0 - rs - rd
     v_new = v[last] + dt * force * inverse_mass[last]
-    if works is not None:
+    if soil_works is not None:
         du = 0.5 * dt * (v[last] + v_new)
-        works[0][last] += (0.0 - dash_above) * du
-        works[1][last] += rs * du
-        works[2][last] += rd * du
+        soil_works[0][last] += rs * du
+        soil_works[1][last] += rd * du
+    if damping_work is not None:
+        du = 0.5 * dt * (v[last] + v_new)
+        damping_work[last] += (0.0 - dash_above) * du
     v[last] = v_new
     u[last] += dt * v_new
 
@@ -270,42 +279,40 @@ exactly rounded sums). The time stepping itself is compiled without fastmath."""
 
 
 @njit(cache=True, fastmath=ENERGY_SUMS)
-def pile_energies(mass, stiffness, weight, u, v, dt, u_start, v_start, works):
+def pile_energies(mass, stiffness, weight, u, v, dt, u_start, v_start, soil_works):
     """The pile's energies at a record point in one pass [J]: (kinetic, strain, gravity work
-    since (u_start, v_start), pile damping work, soil static work, soil damping work).
+    since (u_start, v_start), soil static work, soil damping work).
 
     kinetic and strain as :func:`update_energy` (sub-step dt [s]), the gravity work as
-    :func:`gravity_work`, the other works the totals of the per-mass sums ``works`` of
+    :func:`gravity_work`, the soil works the totals of the per-mass sums ``soil_works`` of
     :func:`pile_advance` (SWEEP_WORKS order).
     """
     n = u.size
     kinetic = 0.0
     strain = 0.0
     gravity = 0.0
-    damping = 0.0
     soil_static = 0.0
     soil_damping = 0.0
-    pile_damping_work, soil_static_work, soil_damping_work = works
+    static_work, damping_work = soil_works
     for i in range(n - 1):
         kinetic += 0.5 * mass[i] * v[i] * v[i]
         e = u[i] - u[i + 1]
         strain += 0.5 * stiffness[i] * e * (e - dt * (v[i] - v[i + 1]))
         gravity += weight[i] * ((u[i] - u_start[i]) + 0.5 * dt * (v_start[i] - v[i]))
-        damping += pile_damping_work[i]
-        soil_static += soil_static_work[i]
-        soil_damping += soil_damping_work[i]
+        soil_static += static_work[i]
+        soil_damping += damping_work[i]
     i = n - 1
     kinetic += 0.5 * mass[i] * v[i] * v[i]
     gravity += weight[i] * ((u[i] - u_start[i]) + 0.5 * dt * (v_start[i] - v[i]))
-    damping += pile_damping_work[i]
-    soil_static += soil_static_work[i]
-    soil_damping += soil_damping_work[i]
-    return kinetic, strain, gravity, damping, soil_static, soil_damping
+    soil_static += static_work[i]
+    soil_damping += damping_work[i]
+    return kinetic, strain, gravity, soil_static, soil_damping
 
 
 @njit(cache=True)
 def sum_works(works):
-    """Totals of the per-mass work sums of :func:`pile_advance` [J] (SWEEP_WORKS order)."""
+    """Totals of per-mass work sums [J]: (damping, soil static, soil damping) of the three
+    arrays of :func:`pile_step`."""
     a = 0.0
     b = 0.0
     c = 0.0
@@ -350,7 +357,7 @@ def pile_step(pile, soil, u, v, soil_offset, energy, head_force, gravity, h, n_s
     u_start = u.copy()
     v_start = v.copy()
     pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, head_force, h,
-                 n_sub, works)
+                 n_sub, (works[1], works[2]), works[0])
     dt = h / n_sub
     damping, soil_static, soil_damping = sum_works(works)
     energy[WORK_GRAVITY] += gravity_work(pile_sweep[0], u, v, u_start, v_start, dt)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +23,8 @@ NEEDS_SHARED = {"grlweap_s4000.toml"}
 def example_systems() -> list[str]:
     """Names of the example system files that can be loaded here (those reading the shared
     folder only when it is present)."""
-    names = sorted(p.name for p in EXAMPLES.glob("*.toml"))
+    names = sorted(p.name for p in EXAMPLES.glob("*.toml")
+                   if not p.name.startswith("campaign_"))  # campaign files: test_campaign
     if not (SHARED / "reference").is_dir():
         names = [n for n in names if n not in NEEDS_SHARED]
     return names
@@ -37,3 +39,21 @@ def cylinder_model(length: float, diameter: float = 1.0, size: float = 0.05):
 @pytest.fixture(scope="session")
 def examples_dir() -> Path:
     return EXAMPLES
+
+
+@pytest.fixture(scope="session", autouse=True)
+def modal_cache(tmp_path_factory) -> Path:
+    """The modal-data cache of the test session (anvilwave.cache): a folder of the session's
+    temporary tree, shared by the xdist workers (so concurrent writes are exercised), never
+    the user's cache. Tests that check the cache itself point it elsewhere."""
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent
+    path = root / "anvilwave-cache"
+    saved = os.environ.get("ANVILWAVE_CACHE_DIR")
+    os.environ["ANVILWAVE_CACHE_DIR"] = str(path)
+    yield path
+    if saved is None:
+        os.environ.pop("ANVILWAVE_CACHE_DIR", None)
+    else:
+        os.environ["ANVILWAVE_CACHE_DIR"] = saved

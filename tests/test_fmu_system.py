@@ -608,7 +608,10 @@ def test_build_fmus_without_a_c_compiler_names_it(tmp_path, monkeypatch, capsys)
 def test_python_anvils_give_the_native_numbers(system, tmp_path):
     """native_anvil=False (build-fmus --python-anvil) builds the pythonfmu anvils under the
     same names; swapped into the fmpy master they give the native anvil's forces (one formula,
-    two implementations: 1e-12 of the peak)."""
+    two implementations). 1e-11 of the peak over 400 coupled steps: the kernels agree to
+    1e-13 on the same inputs (tests/test_native_anvil.py); numpy's BLAS dot products and
+    vectorised exp against the C loops differ in the last bit, and the contact exchanges
+    carry those bits forward (2e-12 seen)."""
     native(system)
     python = build_system_fmus(system["cfg"], tmp_path, system["modal"], ssp=False,
                                native_anvil=False)
@@ -622,4 +625,4 @@ def test_python_anvils_give_the_native_numbers(system, tmp_path):
             with BlowMaster(fmus["Ram"], anvil, fmus["PileSoil"]) as master:
                 blows.append(master.run_blows(1, 400, fmus["time_step"])[0])
         for name in ("F_ram", "F_pile"):
-            assert relative_difference(blows[1][name], blows[0][name]) <= 1e-12, (kind, name)
+            assert relative_difference(blows[1][name], blows[0][name]) <= 1e-11, (kind, name)

@@ -23,7 +23,7 @@ The scalar settings are FMU parameters and replace the file's values of the same
 the ``lysmer-toe`` constants of ``[soil]``); their defaults are the values the FMU was built
 with. Each combination is validated like a system file (:meth:`pile.model.PileSoil.from_tables`).
 
-Stepping: :func:`pile.kernels.pile_step` with ``F_head`` held, sub-stepped within the stable
+Stepping: :func:`pile.kernels.pile_advance` with ``F_head`` held, sub-stepped within the stable
 limit, ``n_sub = pile.model.substeps(h, stable_time_step)``, as in the in-process engine; any
 communication step is accepted. The soil state (permanent set) carries on over consecutive
 blows for as long as the instance lives (a master resets only the ram and the anvil).
@@ -44,8 +44,9 @@ from pile.kernels import (
     gauge_velocity,
     head_displacement,
     head_velocity,
-    pile_step,
+    pile_advance,
     stable_time_step,
+    sweep_arrays,
     toe_displacement,
     update_stress_extremes,
 )
@@ -82,17 +83,20 @@ class PileSoilState:
         update_stress_extremes(self.stress_factor, self.u, self.extremes)
         self._h = math.nan
         self._n_sub = 1
+        # the step's arrays, prepared once (pile.kernels.sweep_arrays), as the engine does
+        self.sweep = sweep_arrays(self.arrays.pile, self.arrays.soil, self.gravity)
         # compile (or load) the kernel now, on copies, not inside the first doStep
-        pile_step(self.arrays.pile, self.arrays.soil, self.u.copy(), self.v.copy(),
-                  self.offset.copy(), self.energy.copy(), 0.0, 0.0, 1e-9, 1)
+        pile_advance(*self.sweep, self.u.copy(), self.v.copy(), self.offset.copy(),
+                     self.energy.copy(), 0.0, 1e-9, 1, None)
 
     def step(self, head_force: float, h: float) -> None:
+        """Advance over h [s] (:func:`pile.kernels.pile_advance`; the head works of
+        ``energy`` are kept, the other works are not summed: the FMU does not output them)."""
         if h != self._h:
             self._n_sub = substeps(h, self.stable_step)
             self._h = h
-        a = self.arrays
-        pile_step(a.pile, a.soil, self.u, self.v, self.offset, self.energy, head_force,
-                  self.gravity, h, self._n_sub)
+        pile_advance(*self.sweep, self.u, self.v, self.offset, self.energy, head_force, h,
+                     self._n_sub, None)
         update_stress_extremes(self.stress_factor, self.u, self.extremes)
 
 

@@ -4,8 +4,8 @@ Interface (DESIGN.md, the contract): input ``F_toe`` [N] (ram-anvil contact forc
 positive, pushes the toe up); outputs ``u_toe`` [m], ``v_toe`` [m/s] (toe mass, z down). The
 outputs are states: no feedthrough of ``F_toe``.
 
-The ram is the lumped chain of :mod:`hammer.ram` stepped by :func:`hammer.ram.ram_step` (the
-kernel of the in-process engine) with ``F_toe`` held over each communication step. Any
+The ram is the lumped chain of :mod:`hammer.ram` stepped by :func:`hammer.ram.ram_advance`
+(the kernel of the in-process engine) with ``F_toe`` held over each communication step. Any
 communication step ``h`` is accepted: the slave sub-steps within the chain's stable limit,
 ``n_sub = pile.model.substeps(h, stable_time_step)``, exactly as the engine does.
 
@@ -31,7 +31,7 @@ from pythonfmu import DefaultExperiment
 
 from anvilwave_inputs import InputError
 from hammer.database import available_hammers, load_hammer
-from hammer.ram import ram_step, stable_time_step
+from hammer.ram import ram_advance, stable_time_step
 from pile.model import substeps
 
 from .base import UnitSlave
@@ -51,8 +51,12 @@ class RamState:
         self.stable_step = float(stable_time_step(self.mass, self.stiffness))
         self._h = math.nan
         self._n_sub = 1
+        # the step's arrays, prepared once, as the engine does
+        self.weight = self.mass * self.gravity
+        self.inverse_mass = 1.0 / self.mass
         # compile (or load) the kernel now, on copies, not inside the first doStep
-        ram_step(self.mass, self.stiffness, self.u.copy(), self.v.copy(), 0.0, 0.0, 1e-9, 1)
+        ram_advance(self.weight, self.inverse_mass, self.stiffness, self.u.copy(),
+                    self.v.copy(), 0.0, 1e-9, 1)
 
     def start(self, displacement: float, velocity: float) -> None:
         self.u[:] = displacement
@@ -62,8 +66,8 @@ class RamState:
         if h != self._h:
             self._n_sub = substeps(h, self.stable_step)
             self._h = h
-        ram_step(self.mass, self.stiffness, self.u, self.v, toe_force, self.gravity, h,
-                 self._n_sub)
+        ram_advance(self.weight, self.inverse_mass, self.stiffness, self.u, self.v, toe_force,
+                    h, self._n_sub)
 
 
 class RamSlave(UnitSlave):
