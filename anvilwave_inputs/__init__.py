@@ -32,6 +32,11 @@ class InputError(Exception):
         where = f"{self.source}: {key}" if key else self.source
         super().__init__(f"{where}: {rule}")
 
+    def __reduce__(self):
+        """Pickled with its three fields, so an error raised in a worker process reaches the
+        parent as itself (process pools, dask)."""
+        return (InputError, (self.source, self.key, self.rule))
+
 
 def read_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML file, turning I/O and syntax problems into :class:`InputError`."""

@@ -1,0 +1,942 @@
+"""ISFOG 2020 pile driving prediction event: back-analysis of the calibration piles and blind
+prediction of the prediction piles (2.48 m jacket pin piles, North Sea; issue 16).
+
+Run: python benchmarks/isfog_backanalysis.py [--data ../shared/reference/isfog2020] --out DIR
+
+The records lie in ``../shared/reference/isfog2020/`` beside the repository (read its README);
+they are read from there and never copied into the repository. Without them this script
+prints a message and exits with status 0 (a benchmark, not a test).
+
+Model (the same for every pile; nothing is tuned per pile)
+----------------------------------------------------------
+* Soil: the pile's CPT (the 0.5 m series of its foundation; for the prediction piles the
+  full-resolution CPT of their foundation, first 0.3 m of every push dropped). Sand and clay
+  layers from Robertson's (2009) soil behaviour type index, Ic < 2.6 sand
+  (:func:`pile.cpt_classification.soil_layers_from_cpt`). ASSUMED submerged unit weights
+  10 kN/m^3 (sand) and 9 kN/m^3 (clay); sea water 10.05 kN/m^3 for u0 below the mudline; the
+  water depth plays no part (the cone is zeroed at the seabed). Full-resolution CPTs: layers
+  thinner than 0.5 m are merged into their neighbours and the toe resistance is averaged over
+  1 m centred on the tip, the resolution of the calibration CPTs (their half-metre values are
+  means of 1 m).
+* SRD: Alm & Hamre (2001) from the CPT (qt with a net area ratio of 0.8), with friction
+  fatigue, rebuilt for every tip depth; coring pile (toe on the steel annulus), the method's
+  default faces (sand 0.5 outside + 0.5 inside, clay 1.0 + 1.0), the sand toe factor 0.10 of
+  the 2018 revision in practice (``--sand-toe-factor 0.15`` for the 2001 paper's; on these
+  records 0.10 lowers the RMSE and the depth trend of the residuals: the 0.15 toe makes the
+  shallow dense sand, where the toe dominates, too hard against the deeper metres), ASSUMED
+  constant-volume interface friction angle 29 deg in sand.
+* Soil model: Smith-viscous springs and dashpots, quakes 2.5 mm shaft and toe (GRLWEAP for
+  the coring toe of an open pile), Smith damping 0.16 s/m in sand and 0.65 s/m in clay on the
+  shaft (one factor per tip depth: the mean weighted by the segments' static resistance, which
+  keeps the total shaft dashpot), 0.5 s/m at the toe.
+* Pile: D 2.48 m with the given bottom wall thickness over its whole length (the upper wall
+  make-up is not given: ASSUMED uniform), length = final penetration + 10 m stick-up
+  (ASSUMED), steel 210 GPa, 7850 kg/m^3, segments of 0.5 m.
+* Hammer: IHC S-800 class hydraulic hammer (800 kJ, 40 t ram, efficiency 0.95; hammer/data):
+  the README's class for a 2.48 m pile is a hydraulic hammer of about 500-1200 kJ, and the
+  S-800 is a usual hammer for 2-3 m jacket pin piles. The fit must keep the largest blow
+  energy (0.89 E_ref: the largest normalised energy of the records) within its rating; it
+  does with the SRD multiplier, not with the energy alone (E_ref would be about 1.3 MJ). A
+  heavier ram (``--hammer ihc_s1800``, 90 t) fits the records as well, with the energy alone
+  inside its rating: the blow counts do not tell the class apart (see the note on the fit).
+  The classic driving system (GRLWEAP's model of a hydrohammer, no cushion material): the
+  steel striker contact as a stiff "hammer cushion", helmet (anvil + pile sleeve), the hammer
+  housing resting on it, the steel helmet-pile contact. The values are class ESTIMATES scaled
+  from GRLWEAP's S-4000 model (examples/grlweap_s4000.toml) by the ram's face area (contact)
+  and mass (masses, housing spring); see :func:`driving_system`.
+* Driving: one blow per tip depth from static equilibrium under the hammer's weight, blow
+  window 0.2 s (the pile has come to rest), the permanent set (the default rule of
+  :mod:`anvilwave.driveability`). Where the SRD does not carry the weight of pile and
+  hammer the pile runs: blow count 0. The blow energy at depth z is the normalised hammer energy
+  of the record at z times ONE reference energy E_ref [J], and the SRD is scaled by at most
+  ONE global multiplier; both are fitted on all calibration piles at once.
+
+Fit (fast): for each calibration pile and whole-metre depth the blow count is simulated on a
+grid of reference energies (7, log-spaced, 150-3200 kJ) and SRD multipliers (6, 0.25-1.4), in
+parallel over the piles; during the fit log(blow count) is interpolated in log(E_ref)
+(piecewise cubic) and log(multiplier) (linear) instead of re-simulating
+(:class:`GridInterpolator`). The
+misfit is the root mean square of (predicted - measured) blow count [blows/m] over every
+whole-metre record of the calibration piles. The fit with the energy alone (multiplier 1)
+is reported beside it. Finally every calibration and prediction pile is simulated directly
+at the fitted values (the calibration RMSE reported is that of the direct runs; the
+interpolation error is reported too).
+E_ref and the multiplier are nearly interchangeable (a harder soil driven with more energy
+gives about the same sets: the misfit has a long valley, E_ref rising about as the
+multiplier), so the energy-only fit is reported beside the two-parameter one, and the hammer
+class decides which end of the valley is plausible: the largest blow energy must stay within
+the hammer's rating (``largest_blow_energy_within_rating`` in the summary).
+
+Outputs in DIR: ``calibration_fit.csv`` (RMSE and bias = mean of predicted - measured, per
+pile and overall),
+``calibration_summary.json`` (fitted values, RMSE, bias, ranges, assumptions, run time),
+``calibration_blowcount.csv`` (every calibration record: measured and predicted),
+``prediction_piles_blowcount.csv`` (``location_id``, ``z [m]``, ``blowcount [blows/m]`` at
+every whole metre where the prediction piles were driven: where their record gives a hammer
+energy), ``prediction_details.csv``, ``calibration_profiles.png``, ``calibration_fit.png``,
+``prediction_piles.png``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+DEFAULT_DATA = ROOT.parent / "shared" / "reference" / "isfog2020"
+
+REFUSAL_COUNT = 1000.0
+"""Blow count reported for a refusal (set below the engine's smallest set) [blows/m]: the
+refusal criterion of 250 blows/0.25 m."""
+COUNT_FLOOR = 1.0
+"""Blow counts below this [blows/m] (a pile run: 0) enter the log interpolation as this."""
+HALF_METRE_OPTIONS = dict(missing="interpolate", negative_fs="zero")
+"""Reading of the 0.5 m CPT series (three foundations have a slightly negative fs at 0.5 m:
+zero drift of the sleeve, set to 0)."""
+FULLRES_OPTIONS = dict(push_column="push (derived)", skip_push_start=0.3,
+                       missing="interpolate", duplicate_depths="average", negative_fs="zero")
+"""Cleaning of the full-resolution CPTs (their README: drop the first ~0.3 m of every push)."""
+PREDICTION_CSV_COLUMNS = ("location_id", "z [m]", "blowcount [blows/m]")
+"""Columns of prediction_piles_blowcount.csv (blow count 0: the pile runs under the weight of
+pile and hammer, its SRD being below it)."""
+
+
+# ----------------------------------------------------------------------------- model
+@dataclass(frozen=True)
+class Model:
+    """Every assumption of the back-analysis (module docstring), the same for every pile."""
+
+    hammer: str = "ihc_s800"
+    stick_up: float = 10.0              # [m] pile length = final penetration + stick-up
+    outer_diameter: float = 2.48        # [m]
+    segment_length: float = 0.5         # [m]
+    gauge_depth: float = 2.0            # [m] below the pile head
+    duration: float = 0.2               # [s] blow window
+    sand_unit_weight: float = 10.0e3    # [N/m^3] submerged
+    clay_unit_weight: float = 9.0e3     # [N/m^3] submerged
+    sand_delta: float = 29.0            # [deg] constant-volume interface friction angle
+    ic_boundary: float = 2.6            # [-] Robertson (2009)
+    quake_shaft: float = 0.0025         # [m]
+    quake_toe: float = 0.0025           # [m]
+    damping_sand: float = 0.16          # [s/m] Smith shaft damping, sand
+    damping_clay: float = 0.65          # [s/m] Smith shaft damping, clay
+    damping_toe: float = 0.5            # [s/m]
+    net_area_ratio: float = 0.8         # [-] cone
+    fullres_min_layer: float = 0.5      # [m] thinnest layer kept from a full-resolution CPT
+    fullres_toe_window: float = 1.0     # [m] toe averaging window, full-resolution CPT
+    sand_toe_factor: float = 0.10       # [-] the 2018 revision (0.15: Alm & Hamre 2001)
+    faces: str | None = None            # friction faces; None: the coring default
+    blows_per_depth: int = 1            # > 1: each blow starts from the state the last left
+
+
+@dataclass(frozen=True)
+class PileRecord:
+    """One pile of the records: geometry, CPT and the whole-metre depths it was driven at.
+
+    depths : whole-metre tip depths [m]; energy : normalised hammer energy there [-];
+    measured : blow count there [blows/m] (None for a prediction pile);
+    cpt_file, cpt_options : where and how its CPT is read; fullres : a full-resolution CPT.
+    """
+
+    location_id: str
+    cpt_group: str
+    wall_thickness: float
+    final_penetration: float
+    depths: np.ndarray
+    energy: np.ndarray
+    measured: np.ndarray | None
+    cpt_file: str
+    cpt_options: dict
+    fullres: bool = False
+
+
+def driving_system(model: Model) -> dict:
+    """The classic driving system of the hammer class (GRLWEAP's model of a hydrohammer),
+    ESTIMATES scaled from GRLWEAP's IHC S-4000 model (examples/grlweap_s4000.toml: hammer
+    cushion 3.8487e10 N/m for a ram face of 1.23044 m, CoR 0.8, round-out 3 mm; housing
+    2 x 109.25 t on springs of 2.11e11 N/m for a 201.5 t ram; helmet 1.3 x the ram mass for a
+    3.5 m pile): the striker contact by the ram's face area, the housing (one mass) and its
+    spring by the ram mass, the helmet (anvil and pile sleeve of a 2.48 m pile) = the ram
+    mass. Returns the ``[anvil.classic]`` values (SI)."""
+    from hammer.database import load_hammer
+
+    hammer = load_hammer(model.hammer)
+    ram_mass = float(np.sum(hammer.ram.mass))
+    face = (float(hammer.ram.toe_diameter) / 1.23044) ** 2
+    return {"hammer": hammer.name, "rated_energy [J]": float(hammer.rated_energy),
+            "ram_mass [kg]": ram_mass, "efficiency [-]": float(hammer.efficiency),
+            "helmet_mass [kg]": ram_mass,
+            "hammer_cushion_stiffness [N/m]": 3.8487e10 * face,
+            "hammer_cushion_restitution [-]": 0.8, "hammer_cushion_round_out [m]": 0.003,
+            "assembly_mass [kg]": 1.08 * ram_mass,
+            "assembly_stiffness [N/m]": 2.109736e11 * ram_mass / 201_544.0,
+            "assembly_restitution [-]": 0.85, "assembly_round_out [m]": 0.003}
+
+
+def system_toml(pile: PileRecord, model: Model) -> str:
+    """The system file of one pile (its SRD is rebuilt per tip depth, :func:`simulate_pile`;
+    the ``[soil] srd`` rows are a placeholder)."""
+    ds = driving_system(model)
+    length = pile.final_penetration + model.stick_up
+    t = pile.wall_thickness
+    area = math.pi * (model.outer_diameter - t) * t
+    contact = 210e9 * area / model.segment_length  # GRLWEAP: E A / dx of the first segment
+    return f"""
+[simulation]
+duration = {model.duration!r}
+gravity = 9.81
+
+[hammer]
+database = "{model.hammer}"
+
+[anvil]
+model = "classic"
+
+[anvil.classic]
+helmet_mass = {ds["helmet_mass [kg]"]!r}
+assembly_mass = {ds["assembly_mass [kg]"]!r}
+assembly_stiffness = {ds["assembly_stiffness [N/m]"]!r}
+assembly_restitution = {ds["assembly_restitution [-]"]!r}
+assembly_round_out = {ds["assembly_round_out [m]"]!r}
+pile_contact_stiffness = {contact!r}
+pile_contact_round_out = 0.003
+
+[anvil.classic.hammer_cushion]
+stiffness = {ds["hammer_cushion_stiffness [N/m]"]!r}
+restitution = {ds["hammer_cushion_restitution [-]"]!r}
+round_out = {ds["hammer_cushion_round_out [m]"]!r}
+
+[pile]
+segment_length = {model.segment_length!r}
+gauge_depth = {model.gauge_depth!r}
+
+[[pile.sections]]
+length = {length!r}
+outer_diameter = {model.outer_diameter!r}
+wall_thickness = {t!r}
+youngs_modulus = 210e9
+density = 7850.0
+
+[soil]
+model = "smith-viscous"
+penetration = {pile.final_penetration!r}
+quake_shaft = {model.quake_shaft!r}
+quake_toe = {model.quake_toe!r}
+damping_shaft = {model.damping_sand!r}
+damping_toe = {model.damping_toe!r}
+srd = [[0.0, 1.0, 1.0], [{length!r}, 1.0, 1.0]]
+"""
+
+
+def soil_profile(pile: PileRecord, model: Model):
+    """The pile's CPT and its Robertson (2009) sand / clay layers."""
+    from pile.cpt import read_cpt_csv
+    from pile.cpt_classification import soil_layers_from_cpt
+    from pile.soil_profile import SoilProfile
+
+    cpt = read_cpt_csv(pile.cpt_file, **pile.cpt_options)
+    layers, _ = soil_layers_from_cpt(
+        cpt, sand_unit_weight=model.sand_unit_weight, clay_unit_weight=model.clay_unit_weight,
+        sand_interface_friction_angle=model.sand_delta, net_area_ratio=model.net_area_ratio,
+        boundary=model.ic_boundary,
+        min_layer_thickness=model.fullres_min_layer if pile.fullres else 0.0)
+    return SoilProfile(layers, cpt=cpt, net_area_ratio=model.net_area_ratio)
+
+
+def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarray,
+                  model: Model) -> float:
+    """Smith shaft damping of a tip depth [s/m]: the sand and clay factors weighted by the
+    static resistance of each segment (sum J_i R_i / sum R_i, the total dashpot kept)."""
+    total = float(np.sum(shaft))
+    if total <= 0.0:
+        return model.damping_sand
+    top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
+    bottom = np.clip(seg.top + seg.length - (pile_length - tip), 0.0, tip)
+    sand = profile.is_sand[profile.layer_index(0.5 * (top + bottom))]
+    j = np.where(sand, model.damping_sand, model.damping_clay)
+    return float(np.sum(j * shaft) / total)
+
+
+def simulate_pile(job: tuple) -> dict:
+    """Blow counts of one pile at every depth for every (multiplier, reference energy).
+
+    job : (PileRecord, Model, reference energies [J], SRD multipliers [-]).
+    Returns arrays of shape (multipliers, energies, depths): ``count`` [blows/m] (refusal:
+    :data:`REFUSAL_COUNT`; a pile run: 0), ``enthru`` [J], ``compression`` and ``tension``
+    [Pa]; and per depth ``srd_shaft``, ``srd_toe`` [N] (multiplier 1), ``damping_shaft``
+    [s/m] and ``run_multiplier`` [-], the SRD multiplier at and below which the pile runs
+    under its weight (the SRD scales with the multiplier, so the threshold is exact).
+    """
+    from anvilwave.driveability import (
+        SrdSource,
+        blow_count,
+        driving_weight,
+        pile_soil_at,
+        set_of_blow,
+    )
+    from anvilwave.engine import build_engine
+    from anvilwave.system import load_system
+    from pile.soil_profile import AlmHamre2001
+
+    pile, model, energies, multipliers = job
+    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
+        path = Path(tmp) / f"{pile.location_id}.toml"
+        path.write_text(system_toml(pile, model))
+        cfg = load_system(path)
+    engine = build_engine(cfg)
+    profile = soil_profile(pile, model)
+    srd = SrdSource("alm-hamre-2001", profile, AlmHamre2001(
+        sand_toe_factor=model.sand_toe_factor,
+        toe_window=model.fullres_toe_window if pile.fullres else 0.0), "coring", model.faces)
+    weight = driving_weight(cfg, engine.static_head_force)
+    seg = cfg.pile_soil.pile.discretise()
+    length = cfg.pile_soil.pile.length
+    shape = (len(multipliers), len(energies), len(pile.depths))
+    out = {k: np.full(shape, np.nan) for k in ("count", "enthru", "compression", "tension")}
+    per_depth = {k: np.zeros(len(pile.depths)) for k in ("srd_shaft", "srd_toe",
+                                                          "damping_shaft", "run_multiplier")}
+    for iz, tip in enumerate(pile.depths):
+        ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, float(tip), 1.0)
+        cap_shaft, cap_toe = ps.soil.capacities
+        j = shaft_damping(profile, seg, length, float(tip), cap_shaft, model)
+        per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
+        per_depth["damping_shaft"][iz] = j
+        per_depth["run_multiplier"][iz] = weight / (shaft + toe) if shaft + toe > 0 else np.inf
+        for im, m in enumerate(multipliers):
+            soil = replace(ps.soil, capacities=(m * cap_shaft, m * cap_toe), damping_shaft=j)
+            if m * (shaft + toe) <= weight:  # the pile runs under the weight: no blows
+                out["count"][im, :, iz] = 0.0
+                continue
+            eng = engine.with_pile_soil(replace(ps, soil=soil))
+            try:
+                state = eng.static_state()
+            except ValueError:  # no static equilibrium under the weight: a run
+                out["count"][im, :, iz] = 0.0
+                continue
+            for ie, e_ref in enumerate(energies):
+                velocity = cfg.hammer.impact_velocity_at(float(pile.energy[iz] * e_ref))
+                blow, start = None, state
+                for _ in range(model.blows_per_depth):
+                    blow = eng.blow(state=start, impact_velocity=velocity,
+                                    duration=model.duration, record=False, energy=False)
+                    start = blow.final_state
+                count = blow_count(set_of_blow(blow, "permanent", model.quake_toe))
+                out["count"][im, ie, iz] = min(count, REFUSAL_COUNT)
+                out["enthru"][im, ie, iz] = blow.emx_gauge
+                out["compression"][im, ie, iz] = blow.max_compression_stress
+                out["tension"][im, ie, iz] = blow.max_tension_stress
+    return {**out, **per_depth}
+
+
+
+# ----------------------------------------------------------------------------- records
+def _rows(path: Path) -> list[dict]:
+    with open(path, newline="", encoding="utf-8") as handle:
+        return list(csv.DictReader(handle))
+
+
+def _number(text: str) -> float:
+    return float(text) if text.strip() else math.nan
+
+
+def _whole_metre(z: float) -> bool:
+    return abs(z - round(z)) < 1e-6
+
+
+def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRecord]:
+    """The calibration piles: blow counts at the whole metres between their first and last
+    blow-count depth (calibration_piles.csv), with the normalised hammer energy there."""
+    series = data / "calibration_piles_0p5m.csv"
+    by_pile: dict[str, list[dict]] = {}
+    for row in _rows(series):
+        by_pile.setdefault(row["location_id"], []).append(row)
+    piles = []
+    for summary in _rows(data / "calibration_piles.csv"):
+        pid = summary["location_id"]
+        if only and pid not in only:
+            continue
+        first = float(summary["first blowcount depth [m]"])
+        last = float(summary["last blowcount depth [m]"])
+        z, energy, measured = [], [], []
+        for row in by_pile[pid]:
+            depth = float(row["z [m]"])
+            count = _number(row["blowcount [blows/m]"])
+            e = _number(row["normalised hammer energy [-]"])
+            if (_whole_metre(depth) and first - 1e-6 <= depth <= last + 1e-6
+                    and math.isfinite(count) and math.isfinite(e) and e > 0.0):
+                z.append(depth)
+                energy.append(e)
+                measured.append(count)
+        piles.append(PileRecord(
+            pid, summary["cpt_group"], float(summary["bottom wall thickness [mm]"]) / 1e3,
+            float(summary["final penetration [m]"]), np.array(z), np.array(energy),
+            np.array(measured), str(series), {"rows_where": {"location_id": pid},
+                                              **HALF_METRE_OPTIONS}))
+    if only:
+        missing = sorted(set(only) - {p.location_id for p in piles})
+        if missing:
+            raise SystemExit(f"unknown calibration piles: {', '.join(missing)}")
+    return piles
+
+
+def prediction_piles(data: Path, only: list[str] | None = None,
+                     cpt: str = "fullres") -> list[PileRecord]:
+    """The prediction piles at every whole metre where their record gives a hammer energy
+    (from the first to the last such depth: where they were driven)."""
+    series = data / "prediction_piles_0p5m.csv"
+    by_pile: dict[str, list[dict]] = {}
+    for row in _rows(series):
+        by_pile.setdefault(row["location_id"], []).append(row)
+    piles = []
+    for summary in _rows(data / "prediction_piles.csv"):
+        pid = summary["location_id"]
+        if only and pid not in only:
+            continue
+        rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]))
+                for r in by_pile[pid]]
+        driven = [z for z, e in rows if math.isfinite(e) and e > 0.0]
+        first, last = math.ceil(min(driven) - 1e-6), math.floor(max(driven) + 1e-6)
+        z_all = np.array([z for z, e in rows if math.isfinite(e)])
+        e_all = np.array([e for z, e in rows if math.isfinite(e)])
+        depths = np.arange(first, last + 1, dtype=float)
+        energy = np.interp(depths, z_all, e_all)  # whole metres carry their own value
+        group = summary["cpt_group"]
+        fullres = data / f"cpt_fullres_{group.replace('/', '-')}.csv"
+        if cpt == "fullres" and fullres.exists():
+            source, options, is_full = str(fullres), dict(FULLRES_OPTIONS), True
+        else:
+            source, options, is_full = (str(series), {"rows_where": {"location_id": pid},
+                                                      **HALF_METRE_OPTIONS}, False)
+        piles.append(PileRecord(pid, group, float(summary["bottom wall thickness [mm]"]) / 1e3,
+                                float(summary["final penetration [m]"]), depths, energy, None,
+                                source, options, is_full))
+    if only:
+        missing = sorted(set(only) - {p.location_id for p in piles})
+        if missing:
+            raise SystemExit(f"unknown prediction piles: {', '.join(missing)}")
+    return piles
+
+
+# ----------------------------------------------------------------------------- runs
+def run_piles(piles, model: Model, energies, multipliers, workers: int) -> list[dict]:
+    """:func:`simulate_pile` for every pile, over ``workers`` processes."""
+    jobs = [(p, model, np.asarray(energies, float), np.asarray(multipliers, float))
+            for p in piles]
+    if workers <= 1 or len(jobs) <= 1:
+        return [_simulate(j) for j in jobs]
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(min(workers, len(jobs)),
+                             mp_context=mp.get_context("fork")) as pool:
+        return list(pool.map(_simulate, jobs))
+
+
+def _simulate(job: tuple) -> dict:
+    """:func:`simulate_pile`, its errors named after the pile (and picklable)."""
+    try:
+        return simulate_pile(job)
+    except Exception as exc:
+        raise RuntimeError(f"pile {job[0].location_id}: {type(exc).__name__}: {exc}") from None
+
+
+def warm_up(model: Model, pile: PileRecord) -> None:
+    """Load the compiled kernels once in this process (the pool's forks inherit them)."""
+    short = replace(pile, depths=pile.depths[-1:], energy=pile.energy[-1:],
+                    measured=None if pile.measured is None else pile.measured[-1:])
+    simulate_pile((short, replace(model, duration=0.01), np.array([5e5]), np.array([1.0])))
+
+
+# ----------------------------------------------------------------------------- fit
+class GridInterpolator:
+    """log(blow count) between the grid's nodes: shape-preserving piecewise cubic (PCHIP) in
+    log(E_ref), linear in log(multiplier).
+
+    energies : (nE,) reference energies [J]; multipliers : (nm,) [-]; counts : (nm, nE, n)
+    blow counts of n records [blows/m]; run_multiplier : (n,) the multiplier at and below
+    which each record's pile runs under its weight (blow count 0 there, exactly). The blow
+    count jumps at that threshold (from 0 to tens of blows/m at the small energies of the
+    first metres), so between a run node and the next one it is extrapolated from the two
+    nodes above instead of interpolated.
+    """
+
+    def __init__(self, energies, multipliers, counts, run_multiplier=None):
+        self.le = np.log(np.asarray(energies, float))
+        self.lm = np.log(np.asarray(multipliers, float))
+        self.lc = np.log(np.clip(np.asarray(counts, float), COUNT_FLOOR, REFUSAL_COUNT))
+        self.run = (np.zeros(self.lc.shape[-1]) if run_multiplier is None
+                    else np.asarray(run_multiplier, float))
+        self._energy = None
+        if self.le.size > 1:
+            from scipy.interpolate import PchipInterpolator
+
+            self._energy = [PchipInterpolator(self.le, self.lc[m], axis=0)
+                            for m in range(self.lm.size)]
+
+    @staticmethod
+    def _weights(nodes: np.ndarray, x: float) -> tuple[int, float]:
+        if nodes.size == 1:
+            return 0, 0.0
+        x = float(np.clip(x, nodes[0], nodes[-1]))
+        i = int(np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, nodes.size - 2))
+        return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+
+    def __call__(self, energy: float, multiplier: float = 1.0) -> np.ndarray:
+        """Blow counts [blows/m] at a reference energy [J] and SRD multiplier [-]."""
+        x = float(np.clip(math.log(energy), self.le[0], self.le[-1]))
+        im, wm = self._weights(self.lm, math.log(multiplier))
+
+        def at(m):
+            return self.lc[m, 0] if self._energy is None else self._energy[m](x)
+
+        if self.lm.size == 1:
+            lc = at(im)
+        else:
+            low, high = at(im), at(im + 1)
+            lc = (1 - wm) * low + wm * high
+            # the blow count jumps from 0 to a finite value at the run threshold: where the
+            # lower node is a run, extrapolate from the two nodes above it instead
+            lm = self.lm[im] + wm * (self.lm[im + 1] - self.lm[im])
+            below = np.exp(self.lm[im]) <= self.run
+            if np.any(below):
+                slope = 0.0
+                if im + 2 < self.lm.size:
+                    slope = (at(im + 2) - high) / (self.lm[im + 2] - self.lm[im + 1])
+                lc = np.where(below, high + slope * (lm - self.lm[im + 1]), lc)
+        return np.where(multiplier <= self.run, 0.0, np.exp(lc))
+
+
+def rmse(predicted, measured) -> float:
+    d = np.asarray(predicted, float) - np.asarray(measured, float)
+    return float(np.sqrt(np.mean(d * d)))
+
+
+def fit(interp: GridInterpolator, measured: np.ndarray, with_multiplier: bool) -> dict:
+    """E_ref (and the SRD multiplier) minimising the RMSE of the blow counts [blows/m]:
+    a scan of the grid's box (log-spaced, 241 x 121 points), refined by Nelder-Mead inside it."""
+    from scipy.optimize import minimize
+
+    le, lm = interp.le, interp.lm
+    if not with_multiplier or lm.size == 1:
+        m_fixed = 1.0 if lm.size > 1 else float(np.exp(lm[0]))
+        if lm.size > 1 and not (lm[0] - 1e-12 <= 0.0 <= lm[-1] + 1e-12):
+            raise SystemExit("the energy-only fit needs the multiplier 1 inside the grid")
+        lm_scan = np.array([math.log(m_fixed)])
+    else:
+        lm_scan = np.linspace(lm[0], lm[-1], 121)
+    le_scan = np.linspace(le[0], le[-1], 241)
+    best = (math.inf, 0.0, 0.0)
+    for y in lm_scan:
+        for x in le_scan:
+            r = rmse(interp(math.exp(x), math.exp(y)), measured)
+            if r < best[0]:
+                best = (r, x, y)
+
+    def objective(p):
+        x = float(np.clip(p[0], le[0], le[-1]))
+        y = float(np.clip(p[1], lm_scan[0], lm_scan[-1])) if lm_scan.size > 1 else lm_scan[0]
+        return rmse(interp(math.exp(x), math.exp(y)), measured)
+
+    start = [best[1], best[2]] if lm_scan.size > 1 else [best[1]]
+    res = minimize(objective, start, method="Nelder-Mead",
+                   options={"xatol": 1e-4, "fatol": 1e-6})
+    x = float(np.clip(res.x[0], le[0], le[-1]))
+    y = float(np.clip(res.x[1], lm_scan[0], lm_scan[-1])) if lm_scan.size > 1 else lm_scan[0]
+    if objective([x, y]) > best[0]:
+        x, y = best[1], best[2]
+    predicted = interp(math.exp(x), math.exp(y))
+    at_edge = bool(np.isclose(x, le[0]) or np.isclose(x, le[-1])
+                   or (lm_scan.size > 1 and (np.isclose(y, lm[0]) or np.isclose(y, lm[-1]))))
+    curve = [[float(math.exp(v)), rmse(interp(math.exp(v), math.exp(y)), measured)]
+             for v in le_scan[::4]]
+    return {"E_ref [J]": math.exp(x), "srd_multiplier [-]": math.exp(y),
+            "rmse_interpolated [blows/m]": rmse(predicted, measured),
+            "bias_interpolated [blows/m]": float(np.mean(predicted - measured)),
+            "at_grid_edge": at_edge, "rmse_curve": curve}
+
+
+def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
+    rows = []
+    for p, pred in zip(piles, predicted, strict=True):
+        rows.append({"location_id": p.location_id, "cpt_group": p.cpt_group,
+                     "points [-]": len(p.depths),
+                     "rmse [blows/m]": rmse(pred, p.measured),
+                     "bias [blows/m]": float(np.mean(pred - p.measured)),
+                     "measured_mean [blows/m]": float(np.mean(p.measured)),
+                     "predicted_mean [blows/m]": float(np.mean(pred))})
+    every_p = np.concatenate(predicted)
+    every_m = np.concatenate([p.measured for p in piles])
+    rows.append({"location_id": "overall", "cpt_group": "",
+                 "points [-]": int(every_m.size), "rmse [blows/m]": rmse(every_p, every_m),
+                 "bias [blows/m]": float(np.mean(every_p - every_m)),
+                 "measured_mean [blows/m]": float(np.mean(every_m)),
+                 "predicted_mean [blows/m]": float(np.mean(every_p))})
+    return rows
+
+
+# ----------------------------------------------------------------------------- output
+def write_csv(path: Path, rows: list[dict]) -> None:
+    with open(path, "w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
+                             for k, v in row.items()})
+
+
+def _jsonable(x):
+    if isinstance(x, dict):
+        return {k: _jsonable(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.generic):
+        return _jsonable(x.item())
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    return x
+
+
+def plot_calibration(path: Path, piles, predicted, table, summary) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    order = np.argsort([r["rmse [blows/m]"] for r in table[:-1]])
+    picks = list(dict.fromkeys(int(order[int(round(q * (len(order) - 1)))])
+                               for q in np.linspace(0.0, 1.0, min(8, len(order)))))
+    cols = 4
+    rows = -(-len(picks) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(3.2 * cols, 4.2 * rows), squeeze=False,
+                             sharey=True)
+    for ax in axes.flat[len(picks):]:
+        ax.set_visible(False)
+    for ax, k in zip(axes.flat, picks, strict=False):
+        p = piles[k]
+        ax.plot(p.measured, p.depths, "o", ms=3, color="0.3", label="measured")
+        ax.plot(predicted[k], p.depths, "-", color="C3", label="predicted")
+        ax.set_title(f"{p.location_id} ({p.cpt_group})\nRMSE {table[k]['rmse [blows/m]']:.0f}, "
+                     f"bias {table[k]['bias [blows/m]']:+.0f} blows/m", fontsize=8)
+        ax.set_xlabel("blow count [blows/m]")
+        ax.grid(alpha=0.3)
+    axes[0, 0].invert_yaxis()
+    for ax in axes[:, 0]:
+        ax.set_ylabel("tip depth below mudline [m]")
+    axes[0, 0].legend(fontsize=7)
+    fit_ = summary["fit"]
+    fig.suptitle(f"ISFOG 2020 calibration piles, from best to worst fit: E_ref "
+                 f"{fit_['E_ref [J]'] / 1e3:.0f} kJ, SRD x {fit_['srd_multiplier [-]']:.2f}",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_fit(path: Path, piles, predicted, table, summary) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(15, 4.6))
+    every_m = np.concatenate([p.measured for p in piles])
+    every_p = np.concatenate(predicted)
+    a.plot(every_m, every_p, ".", ms=3, alpha=0.4)
+    top = max(every_m.max(), every_p.max()) * 1.05
+    a.plot([0, top], [0, top], "k-", lw=0.8)
+    a.set_xlim(0, top)
+    a.set_ylim(0, top)
+    a.set_xlabel("measured blow count [blows/m]")
+    a.set_ylabel("predicted blow count [blows/m]")
+    over = table[-1]
+    a.set_title(f"{over['points [-]']} records of {len(piles)} piles: RMSE "
+                f"{over['rmse [blows/m]']:.1f}, bias {over['bias [blows/m]']:+.1f} blows/m",
+                fontsize=9)
+    a.grid(alpha=0.3)
+    r = np.array([t["rmse [blows/m]"] for t in table[:-1]])
+    s = np.array([t["bias [blows/m]"] for t in table[:-1]])
+    b.plot(s, r, "o", ms=4)
+    for t in table[:-1]:
+        b.annotate(t["location_id"], (t["bias [blows/m]"], t["rmse [blows/m]"]), fontsize=5)
+    b.axvline(0.0, color="k", lw=0.8)
+    b.set_xlabel("bias per pile [blows/m]")
+    b.set_ylabel("RMSE per pile [blows/m]")
+    b.grid(alpha=0.3)
+    for key, label in (("fit_energy_and_multiplier", "fitted multiplier"),
+                       ("fit_energy_only", "multiplier 1")):
+        if key in summary:
+            curve = np.array(summary[key]["rmse_curve"])
+            c.semilogx(curve[:, 0] / 1e3, curve[:, 1],
+                       label=f"{label} ({summary[key]['srd_multiplier [-]']:.2f})")
+    c.axvline(summary["fit"]["E_ref [J]"] / 1e3, color="k", lw=0.8)
+    c.set_xlabel("reference energy E_ref [kJ]")
+    c.set_ylabel("RMSE (grid interpolation) [blows/m]")
+    c.legend(fontsize=8)
+    c.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_predictions(path: Path, piles, results, e_ref: float) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cols = min(3, len(piles))
+    rows = -(-len(piles) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(3.6 * cols, 4.2 * rows), squeeze=False,
+                             sharey=True)
+    for ax in axes.flat[len(piles):]:
+        ax.set_visible(False)
+    for ax, p, r in zip(axes.flat, piles, results, strict=False):
+        ax.plot(r["count"][0, 0], p.depths, "-o", ms=3, color="C3", label="blow count")
+        ax.set_xlabel("predicted blow count [blows/m]")
+        ax.set_title(f"{p.location_id} ({p.cpt_group}, t {p.wall_thickness * 1e3:.0f} mm)",
+                     fontsize=9)
+        ax.grid(alpha=0.3)
+        twin = ax.twiny()
+        twin.plot(p.energy * e_ref / 1e3, p.depths, "--", color="C0", lw=0.8)
+        twin.set_xlabel("blow energy [kJ]", color="C0", fontsize=8)
+    axes[0, 0].invert_yaxis()
+    for ax in axes[:, 0]:
+        ax.set_ylabel("tip depth below mudline [m]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# ----------------------------------------------------------------------------- main
+def _list(text: str | None) -> list[str] | None:
+    return [t.strip() for t in text.split(",") if t.strip()] if text else None
+
+
+def parse_args(argv=None) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--data", type=Path, default=DEFAULT_DATA,
+                        help="the ISFOG 2020 records (default: ../shared/reference/isfog2020 "
+                             "beside the repository)")
+    parser.add_argument("--out", type=Path, default=ROOT / "results" / "isfog_backanalysis")
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                        help="processes over the piles (default: the machine's cores)")
+    parser.add_argument("--hammer", default=Model.hammer, help="hammer of hammer/data")
+    parser.add_argument("--piles", help="calibration piles to use, e.g. AD,AE (default: all)")
+    parser.add_argument("--prediction-piles", help="prediction piles (default: all)")
+    parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="fullres",
+                        help="CPT of the prediction piles (default: full resolution)")
+    parser.add_argument("--energies", type=int, default=7,
+                        help="reference energies of the grid (log-spaced)")
+    parser.add_argument("--energy-range", default="150e3,3200e3",
+                        help="smallest and largest reference energy of the grid [J]")
+    parser.add_argument("--multipliers", default="0.25,0.35,0.5,0.7,1.0,1.4",
+                        help="SRD multipliers of the grid; '1' fits the energy alone")
+    parser.add_argument("--fit", choices=("energy", "energy+multiplier"),
+                        default="energy+multiplier", help="the fit used for the predictions")
+    parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
+                        help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
+    parser.add_argument("--segment-length", type=float, default=Model.segment_length,
+                        help="pile segment length [m]")
+    parser.add_argument("--duration", type=float, default=Model.duration,
+                        help="blow window [s]")
+    return parser.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    args = parse_args(argv)
+    data = args.data.resolve()
+    needed = ("calibration_piles.csv", "calibration_piles_0p5m.csv", "prediction_piles.csv",
+              "prediction_piles_0p5m.csv")
+    if not all((data / n).exists() for n in needed):
+        print(f"isfog_backanalysis: skipped, the ISFOG 2020 records were not found in {data} "
+              "(expected beside the repository in ../shared/reference/isfog2020; give "
+              "--data DIR)")
+        return 0
+    start = time.perf_counter()
+    times = {}
+    model = replace(Model(), hammer=args.hammer, segment_length=args.segment_length,
+                    duration=args.duration, sand_toe_factor=args.sand_toe_factor)
+    try:
+        e_low, e_high = (float(v) for v in args.energy_range.split(","))
+        multipliers = np.array(sorted(float(v) for v in args.multipliers.split(",")))
+    except ValueError:
+        raise SystemExit("--energy-range takes two energies [J] and --multipliers a list of "
+                         "numbers, comma-separated") from None
+    if not (0.0 < e_low <= e_high) or np.any(multipliers <= 0.0) or args.energies < 1 \
+            or args.workers < 1:
+        raise SystemExit("energies and multipliers must be positive, --energies and --workers "
+                         "at least 1")
+    energies = np.geomspace(e_low, e_high, args.energies) if args.energies > 1 else \
+        np.array([math.sqrt(e_low * e_high)])
+    with_multiplier = args.fit == "energy+multiplier" and multipliers.size > 1
+    if not with_multiplier and multipliers.size > 1 and not np.any(np.isclose(multipliers, 1)):
+        raise SystemExit("--fit energy needs the multiplier 1 among --multipliers")
+    calibration = calibration_piles(data, _list(args.piles))
+    prediction = prediction_piles(data, _list(args.prediction_piles), args.prediction_cpt)
+    out = args.out
+    out.mkdir(parents=True, exist_ok=True)
+    print(f"{len(calibration)} calibration piles ({sum(len(p.depths) for p in calibration)} "
+          f"records), {len(prediction)} prediction piles; grid {energies.size} energies x "
+          f"{multipliers.size} multipliers; {args.workers} workers")
+
+    t = time.perf_counter()
+    warm_up(model, calibration[0])
+    times["warm_up [s]"] = time.perf_counter() - t
+    t = time.perf_counter()
+    grid = run_piles(calibration, model, energies, multipliers, args.workers)
+    times["grid [s]"] = time.perf_counter() - t
+    blows = energies.size * multipliers.size * sum(len(p.depths) for p in calibration)
+    print(f"grid: {blows} blows in {times['grid [s]']:.1f} s")
+
+    measured = np.concatenate([p.measured for p in calibration])
+    interp = GridInterpolator(energies, multipliers,
+                              np.concatenate([g["count"] for g in grid], axis=2),
+                              np.concatenate([g["run_multiplier"] for g in grid]))
+    t = time.perf_counter()
+    fits = {}
+    if multipliers.size > 1:
+        fits["fit"] = fit(interp, measured, True)
+    if multipliers.size == 1 or np.any(np.isclose(multipliers, 1.0)):
+        fits["fit_energy_only"] = fit(interp, measured, False)
+    chosen = fits["fit"] if with_multiplier else fits["fit_energy_only"]
+    times["fit [s]"] = time.perf_counter() - t
+    e_ref, mult = chosen["E_ref [J]"], chosen["srd_multiplier [-]"]
+    print(f"fit: E_ref {e_ref / 1e3:.1f} kJ, SRD multiplier {mult:.3f} (interpolated RMSE "
+          f"{chosen['rmse_interpolated [blows/m]']:.1f} blows/m)")
+
+    t = time.perf_counter()
+    direct = run_piles(calibration + prediction, model, [e_ref], [mult], args.workers)
+    times["direct [s]"] = time.perf_counter() - t
+    cal_direct, pred_direct = direct[:len(calibration)], direct[len(calibration):]
+    predicted = [r["count"][0, 0] for r in cal_direct]
+    table = per_pile_table(calibration, predicted)
+    write_csv(out / "calibration_fit.csv", table)
+
+    details = []
+    for p, r, g in zip(calibration, cal_direct, grid, strict=True):
+        interp_p = GridInterpolator(energies, multipliers, g["count"],
+                                    g["run_multiplier"])(e_ref, mult)
+        for k, z in enumerate(p.depths):
+            details.append({
+                "location_id": p.location_id, "z [m]": float(z),
+                "normalised_hammer_energy [-]": float(p.energy[k]),
+                "energy_setting [J]": float(p.energy[k] * e_ref),
+                "blowcount_measured [blows/m]": float(p.measured[k]),
+                "blowcount [blows/m]": float(r["count"][0, 0, k]),
+                "blowcount_interpolated [blows/m]": float(interp_p[k]),
+                "srd [N]": float(mult * (r["srd_shaft"][k] + r["srd_toe"][k])),
+                "srd_shaft [N]": float(mult * r["srd_shaft"][k]),
+                "srd_toe [N]": float(mult * r["srd_toe"][k]),
+                "damping_shaft [s/m]": float(r["damping_shaft"][k]),
+                "enthru [J]": float(r["enthru"][0, 0, k]),
+                "max_compression_stress [Pa]": float(r["compression"][0, 0, k]),
+                "max_tension_stress [Pa]": float(r["tension"][0, 0, k])})
+    write_csv(out / "calibration_blowcount.csv", details)
+
+    pred_rows, pred_details = [], []
+    for p, r in zip(prediction, pred_direct, strict=True):
+        for k, z in enumerate(p.depths):
+            count = float(r["count"][0, 0, k])
+            pred_rows.append(dict(zip(PREDICTION_CSV_COLUMNS, (p.location_id, float(z), count),
+                                      strict=True)))
+            pred_details.append({
+                "location_id": p.location_id, "z [m]": float(z),
+                "normalised_hammer_energy [-]": float(p.energy[k]),
+                "energy_setting [J]": float(p.energy[k] * e_ref),
+                "blowcount [blows/m]": count,
+                "srd [N]": float(mult * (r["srd_shaft"][k] + r["srd_toe"][k])),
+                "srd_shaft [N]": float(mult * r["srd_shaft"][k]),
+                "srd_toe [N]": float(mult * r["srd_toe"][k]),
+                "damping_shaft [s/m]": float(r["damping_shaft"][k]),
+                "enthru [J]": float(r["enthru"][0, 0, k]),
+                "max_compression_stress [Pa]": float(r["compression"][0, 0, k]),
+                "max_tension_stress [Pa]": float(r["tension"][0, 0, k]),
+                "cpt": Path(p.cpt_file).name})
+    if pred_rows:
+        write_csv(out / "prediction_piles_blowcount.csv", pred_rows)
+        write_csv(out / "prediction_details.csv", pred_details)
+
+    every_direct = np.concatenate(predicted)
+    every_interp = np.array([d["blowcount_interpolated [blows/m]"] for d in details])
+    enthru = np.array([d["enthru [J]"] / d["energy_setting [J]"] for d in details])
+    per_pile = table[:-1]
+    ds = driving_system(model)
+    max_energy = float(max(p.energy.max() for p in calibration + prediction) * e_ref)
+    summary = {
+        "fit": chosen,
+        "fit_used_for_predictions": "energy+multiplier" if with_multiplier else "energy",
+        "E_ref [J]": e_ref, "srd_multiplier [-]": mult,
+        "rmse [blows/m]": table[-1]["rmse [blows/m]"],
+        "bias [blows/m]": table[-1]["bias [blows/m]"],
+        "rmse_per_pile_range [blows/m]": [min(r["rmse [blows/m]"] for r in per_pile),
+                                          max(r["rmse [blows/m]"] for r in per_pile)],
+        "bias_per_pile_range [blows/m]": [min(r["bias [blows/m]"] for r in per_pile),
+                                          max(r["bias [blows/m]"] for r in per_pile)],
+        "rmse_per_pile_median [blows/m]": float(np.median([r["rmse [blows/m]"]
+                                                           for r in per_pile])),
+        "interpolation_error_rms [blows/m]": rmse(every_interp, every_direct),
+        "calibration_piles [-]": len(calibration), "calibration_records [-]": int(measured.size),
+        "prediction_piles [-]": len(prediction), "prediction_records [-]": len(pred_rows),
+        "largest_blow_energy [J]": max_energy,
+        "largest_blow_energy_within_rating": bool(max_energy <= ds["rated_energy [J]"] * 1.0001),
+        "enthru_over_energy_median [-]": float(np.nanmedian(enthru)) if enthru.size else None,
+        "grid_energies [J]": energies.tolist(), "grid_multipliers [-]": multipliers.tolist(),
+        "driving_system": ds,
+        "model": {k: getattr(model, k) for k in Model.__dataclass_fields__},
+        "assumptions": {
+            "pile": "D 2.48 m, the bottom wall thickness over the whole length (uniform), "
+                    f"length = final penetration + {model.stick_up:g} m stick-up",
+            "soil": "Robertson (2009) Ic < 2.6 sand, else clay; submerged unit weights "
+                    f"{model.sand_unit_weight / 1e3:g} (sand) and "
+                    f"{model.clay_unit_weight / 1e3:g} kN/m^3 (clay); water depth irrelevant",
+            "srd": "Alm & Hamre (2001) from the CPT, coring, delta "
+                   f"{model.sand_delta:g} deg, sand toe factor {model.sand_toe_factor:g}, "
+                   "one global multiplier",
+            "hammer": f"{ds['hammer']}, classic driving system (estimates scaled from "
+                      "GRLWEAP's S-4000 model)",
+            "energy": "blow energy = normalised hammer energy x E_ref (one value for all)",
+            "prediction_depths": "every whole metre where the prediction record gives a "
+                                 "hammer energy",
+            "prediction_cpt": args.prediction_cpt,
+        },
+        "data": str(data),
+        "times": times,
+        "workers [-]": args.workers,
+    }
+    for key, label in (("fit", "fit_energy_and_multiplier"),
+                       ("fit_energy_only", "fit_energy_only")):
+        if key in fits:
+            summary[label] = fits[key]
+    t = time.perf_counter()
+    plot_calibration(out / "calibration_profiles.png", calibration, predicted, table, summary)
+    plot_fit(out / "calibration_fit.png", calibration, predicted, table, summary)
+    if prediction:
+        plot_predictions(out / "prediction_piles.png", prediction, pred_direct, e_ref)
+    times["plots [s]"] = time.perf_counter() - t
+    summary["wall_time [s]"] = time.perf_counter() - start
+    (out / "calibration_summary.json").write_text(
+        json.dumps(_jsonable(summary), indent=2) + "\n")
+    print(f"calibration ({len(calibration)} piles, {measured.size} records, direct runs): "
+          f"RMSE {summary['rmse [blows/m]']:.1f} blows/m, bias "
+          f"{summary['bias [blows/m]']:+.1f} blows/m; per pile RMSE "
+          f"{summary['rmse_per_pile_range [blows/m]'][0]:.1f}-"
+          f"{summary['rmse_per_pile_range [blows/m]'][1]:.1f}, bias "
+          f"{summary['bias_per_pile_range [blows/m]'][0]:+.1f} to "
+          f"{summary['bias_per_pile_range [blows/m]'][1]:+.1f}")
+    print(f"wall time {summary['wall_time [s]']:.1f} s; results in {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,161 @@
+"""Soil classification from a CPT (Robertson's Ic) and the ISFOG 2020 back-analysis benchmark
+(benchmarks/isfog_backanalysis.py) on two calibration piles with a coarse setting."""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import math
+import sys
+
+import numpy as np
+import pytest
+
+from pile.cpt_classification import (
+    merge_thin_layers,
+    robertson_1990_normalised_cone_resistance,
+    robertson_1990_normalised_friction_ratio,
+    robertson_1990_soil_behaviour_type_index,
+    robertson_2009_is_sand,
+    robertson_2009_soil_behaviour_type_index,
+    robertson_2009_stress_exponent,
+    robertson_wride_1998_soil_behaviour_type_index,
+    soil_layers_from_cpt,
+)
+from pile.soil_profile import Cpt
+
+from .conftest import ROOT, SHARED
+
+ISFOG = SHARED / "reference" / "isfog2020"
+
+
+# ---------------------------------------------------------------- Robertson, by hand
+def test_robertson_1990_normalisation_and_ic_by_hand():
+    # qt 10 MPa, fs 50 kPa, sigma_v0 200 kPa, sigma'v0 100 kPa:
+    # Q = 9800 / 100 = 98; F = 100 x 50 / 9800 = 0.510204 %;
+    # Ic = sqrt((3.47 - 1.991226)^2 + (-0.292256 + 1.22)^2) = sqrt(2.186772 + 0.860709)
+    #    = 1.745704 (sand-like)
+    q = robertson_1990_normalised_cone_resistance(10e6, 200e3, 100e3)
+    f = robertson_1990_normalised_friction_ratio(50e3, 10e6, 200e3)
+    assert q == pytest.approx(98.0, rel=1e-12)
+    assert f == pytest.approx(0.5102041, rel=1e-6)
+    assert robertson_wride_1998_soil_behaviour_type_index(q, f) == pytest.approx(1.745704,
+                                                                                 abs=1e-6)
+    assert robertson_1990_soil_behaviour_type_index(10e6, 50e3, 200e3, 100e3) == \
+        pytest.approx(1.745704, abs=1e-6)
+    # sigma'v0 = pa: Qtn = Q for any n, so the 2009 index is the same; n = 0.381 Ic - 0.1
+    ic, n = robertson_2009_soil_behaviour_type_index(10e6, 50e3, 200e3, 100e3)
+    assert ic == pytest.approx(1.745704, abs=1e-6)
+    assert n == pytest.approx(0.381 * 1.745704 + 0.05 - 0.15, abs=1e-6)
+    assert robertson_2009_stress_exponent(4.0, 300e3) == 1.0  # n is capped at 1
+
+
+def test_robertson_2009_iteration_by_hand():
+    # qt 10 MPa, fs 50 kPa, sigma_v0 400 kPa, sigma'v0 200 kPa: F = 0.520833 %; the fixed
+    # point of n = 0.381 Ic + 0.05 x 2 - 0.15 with Qtn = 96 x 0.5^n, iterated by hand (plain
+    # arithmetic, 200 steps): Qtn = 59.5981, Ic = 1.936399, n = 0.687768. Robertson (1990)
+    # (n = 1): Q = 48, Ic = 2.019174.
+    ic, n = robertson_2009_soil_behaviour_type_index(10e6, 50e3, 400e3, 200e3)
+    assert ic == pytest.approx(1.936399, abs=1e-5)
+    assert n == pytest.approx(0.687768, abs=1e-5)
+    assert robertson_1990_soil_behaviour_type_index(10e6, 50e3, 400e3, 200e3) == \
+        pytest.approx(2.019174, abs=1e-6)
+    # a soft clay: qt 1.5 MPa, fs 50 kPa, sigma_v0 190 kPa, sigma'v0 90 kPa -> n = 1 (capped),
+    # Qtn = 1310 / 90 = 14.5556, F = 3.816794 %, Ic = 2.927155
+    ic, n = robertson_2009_soil_behaviour_type_index(1.5e6, 50e3, 190e3, 90e3)
+    assert n == 1.0
+    assert ic == pytest.approx(2.927155, abs=1e-6)
+    assert list(robertson_2009_is_sand([1.936399, 2.927155, 2.6])) == [True, False, False]
+
+
+def test_chart_limits_keep_ic_finite():
+    # zero sleeve friction and qt below sigma_v0 (next to the mudline) stay on the chart
+    ic = robertson_wride_1998_soil_behaviour_type_index([0.0, -5.0, 5000.0], [0.0, 50.0, 0.0])
+    assert np.all(np.isfinite(ic))
+    # Q = 1000 (clipped from 5000), F = 0.1 %: sqrt(0.47^2 + 0.22^2)
+    assert ic[2] == pytest.approx(math.hypot(0.47, 0.22), abs=1e-12)
+
+
+def test_merge_thin_layers():
+    sand = np.array([True, True, False, True, True, False, False, False])
+    tops = np.arange(8) * 0.5
+    bottoms = tops + 0.5
+    # the single clay reading (0.5 m) joins the sand around it; the 1.5 m clay stays
+    merged = merge_thin_layers(sand, tops, bottoms, 1.0)
+    assert list(merged) == [True] * 5 + [False] * 3
+    assert list(merge_thin_layers(sand, tops, bottoms, 0.0)) == list(sand)
+
+
+def test_soil_layers_from_a_synthetic_cpt():
+    # dense sand (qc 30 MPa, fs 0.2 MPa) over a clay (qc 1.5 MPa, fs 0.06 MPa) over sand
+    z = np.arange(0.5, 12.01, 0.5)
+    clay = (z > 4.2) & (z < 7.8)
+    qc = np.where(clay, 1.5e6, 30e6)
+    fs = np.where(clay, 0.06e6, 0.2e6)
+    cpt = Cpt(z, qc, fs, np.zeros_like(z))
+    layers, ic = soil_layers_from_cpt(cpt, sand_unit_weight=10e3, clay_unit_weight=9e3,
+                                      sand_interface_friction_angle=29.0)
+    assert [layer.soil_type for layer in layers] == ["sand", "clay", "sand"]
+    assert [(layer.top, layer.bottom) for layer in layers] == [(0.0, 4.25), (4.25, 7.75),
+                                                               (7.75, 12.0)]
+    assert layers[0].submerged_unit_weight == 10e3 and layers[1].submerged_unit_weight == 9e3
+    assert layers[0].interface_friction_angle == 29.0
+    assert layers[1].interface_friction_angle is None
+    assert np.all(ic[clay] > 2.6) and np.all(ic[~clay] < 2.6)
+
+
+# ---------------------------------------------------------------- the benchmark
+def _benchmark():
+    name = "isfog_backanalysis"
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_benchmark_without_the_records_exits_cleanly(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert _benchmark().main(["--data", str(tmp_path / "absent"), "--out", str(out)]) == 0
+    assert "not found" in capsys.readouterr().out
+    assert not out.exists()
+
+
+def _csv(path):
+    with open(path, newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+@pytest.mark.skipif(not (ISFOG / "calibration_piles_0p5m.csv").exists(),
+                    reason=f"the ISFOG 2020 records are not in {ISFOG} (they are read from "
+                           "../shared beside the repository, never copied into it)")
+def test_backanalysis_on_two_calibration_piles(tmp_path):
+    out = tmp_path / "isfog"
+    code = _benchmark().main(["--data", str(ISFOG), "--out", str(out), "--piles", "AD,AE",
+                              "--prediction-piles", "AA", "--energies", "3",
+                              "--multipliers", "0.7,1.0", "--segment-length", "1.0",
+                              "--duration", "0.12", "--workers", "1"])
+    assert code == 0
+    fit = _csv(out / "calibration_fit.csv")
+    assert [r["location_id"] for r in fit] == ["AD", "AE", "overall"]
+    assert {"rmse [blows/m]", "bias [blows/m]", "points [-]"} <= set(fit[0])
+    summary = json.loads((out / "calibration_summary.json").read_text())
+    for key in ("rmse [blows/m]", "bias [blows/m]", "E_ref [J]", "srd_multiplier [-]"):
+        assert math.isfinite(summary[key]), key
+    assert summary["E_ref [J]"] > 0 and 0.7 <= summary["srd_multiplier [-]"] <= 1.0
+    assert summary["rmse [blows/m]"] == pytest.approx(float(fit[-1]["rmse [blows/m]"]),
+                                                      rel=1e-5)
+    assert "fit_energy_only" in summary and "fit_energy_and_multiplier" in summary
+    points = _csv(out / "calibration_blowcount.csv")
+    assert len(points) == int(fit[-1]["points [-]"]) == 47  # AD: 3-26 m, AE: 4-26 m
+    prediction = _csv(out / "prediction_piles_blowcount.csv")
+    assert list(prediction[0]) == ["location_id", "z [m]", "blowcount [blows/m]"]
+    z = [float(r["z [m]"]) for r in prediction]
+    assert {r["location_id"] for r in prediction} == {"AA"}
+    assert z == list(np.arange(z[0], z[-1] + 1.0))  # every whole metre driven
+    assert all(math.isfinite(float(r["blowcount [blows/m]"])) for r in prediction)
+    for name in ("calibration_profiles.png", "calibration_fit.png", "prediction_piles.png"):
+        assert (out / name).stat().st_size > 0
