@@ -50,6 +50,7 @@ from anvilwave_inputs import InputError
 from hammer.driving_system import (
     driving_system_energy,
     driving_system_forces,
+    driving_system_losses,
     driving_system_stable_time_step,
     driving_system_step,
     interface_time_step,
@@ -390,7 +391,9 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 if classic is not None:
                     kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
                                                                         u_ram, u_pile)
-                    pot = recoverable + potential
+                    # the cushions' restitution losses are energy the system no longer holds
+                    pot = recoverable + potential + driving_system_losses(classic[0],
+                                                                          classic[1])
                 if direct is not None:
                     pot = 0.5 * f_ram * f_ram / direct[0]
                 ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v, gravity,
