@@ -62,7 +62,8 @@ COLUMNS = ("depth [m]", "srd [N]", "srd_shaft [N]", "srd_toe [N]", "blow_count [
            "max_compression_stress [Pa]", "max_tension_stress [Pa]",
            "max_pile_head_force [N]", "emx_gauge [J]", "emx_head [J]",
            "permanent_set [m]", "grlweap_set [m]", "impact_velocity [m/s]",
-           "energy_residual_relative [-]", "toe_velocity_end [m/s]")
+           "energy_residual_relative [-]", "toe_velocity_end [m/s]", "FMX [N]", "RMX [N]",
+           "case_damping [-]")
 """Columns of ``driveability.csv`` (the DESIGN.md contract first, then extra columns)."""
 
 
@@ -242,9 +243,11 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     except ValueError:  # no static equilibrium: the SRD does not carry the weight
         return DepthResult(_run_row(depth, shaft, toe, energy, velocity))
     blow = None
-    for _ in range(settings.blows_per_depth):
+    for k in range(settings.blows_per_depth):
+        last = k == settings.blows_per_depth - 1
+        # the last blow records its gauge signals (for the Case method; 2-7 % of its cost)
         blow = eng.blow(state=state, impact_velocity=velocity, duration=settings.duration,
-                        record=record)
+                        record=record or last, energy=record)
         state = blow.final_state
     quake_toe = float(ps.soil.quake_toe)
     permanent = max(float(blow.permanent_set), 0.0)
@@ -253,7 +256,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     count = blow_count(set_m)
     enthru = blow.emx_gauge if settings.enthru_location == "gauge" else blow.emx_head
     residual = float("nan")
-    if getattr(blow, "energies", None):
+    if record and getattr(blow, "energies", None):
         from .report import energy_balance
 
         residual = energy_balance(blow)["residual_relative [-]"]
@@ -270,7 +273,20 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         "energy_residual_relative [-]": residual,
         "toe_velocity_end [m/s]": float(getattr(blow, "toe_velocity_end", float("nan"))),
     }
+    row.update(_case_method(blow, replace(cfg, pile_soil=ps)))
     return DepthResult(row, blow if record else None)
+
+
+def _case_method(blow, cfg) -> dict:
+    """FMX, RMX (and the Jc used) of the blow's gauge signals by the Case method."""
+    from .pda_analysis import pda_summary
+
+    try:
+        p = pda_summary(blow.columns, cfg)
+    except (ValueError, KeyError):
+        return {}
+    return {"FMX [N]": p["FMX [N]"], "RMX [N]": float("nan") if p["RMX [N]"] is None
+            else float(p["RMX [N]"]), "case_damping [-]": p["case_damping [-]"]}
 
 
 def _run_row(depth, shaft, toe, energy, velocity) -> dict:

@@ -122,6 +122,13 @@ def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge:
         # the toe soil's plastic offset gained in the blow (the set as the soil sees it)
         summary["toe_soil_set [m]"] = float(final["soil_offset"][-1]
                                             - final["soil_offset_start"][-1])
+    # the Case method on the simulated gauge signals, as a PDA reports a blow
+    from .pda_analysis import pda_summary
+
+    try:
+        summary.update(pda_summary(c, config))
+    except (ValueError, KeyError):  # a record too short or without a velocity peak
+        pass
     if getattr(result, "energies", None):
         summary["energy_balance"] = energy_balance(result)
     else:
