@@ -456,6 +456,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_install)
 
     p = sub.add_parser(
+        "batch", help="a wind-farm campaign of driveability cases on dask.distributed",
+        description="Every case of a campaign file (positions x SRD bounds x hammers x anvil "
+                    "models x energy schedules), each one driveability, on a LocalCluster of "
+                    "processes or an existing dask scheduler; results per case in "
+                    "DIR/cases/<case>/ as each finishes, indexed by DIR/campaign.csv; a rerun "
+                    "skips finished cases.")
+    p.add_argument("campaign", type=Path, help="campaign file (TOML)")
+    p.add_argument("--out", type=Path, required=True, metavar="DIR", help="campaign folder")
+    p.add_argument("--workers", type=int, default=None,
+                   help="worker processes of the local cluster (default: all cores)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="address of an existing dask scheduler (e.g. tcp://host:8786, one "
+                        "started by dask-jobqueue on Slurm or PBS)")
+    p.set_defaults(func=_batch)
+
+    p = sub.add_parser(
         "pda", help="Case method of a gauge record (RTL, RSP, RMX, EMX, FMX, CSX, TSX, BTA)",
         description="Read a gauge record (time [s], force [N], velocity [m/s]; or raw "
                     "strains and accelerations) and write DIR/pda.json and DIR/pda.png.")
@@ -620,6 +636,16 @@ def _install(args: argparse.Namespace) -> int:
           f"the head; {s['wall_time [s]']:.1f} s ({s['seconds_per_blow [s]'] * 1e3:.1f} ms "
           f"per blow) -> {args.out}")
     return 0
+
+
+def _batch(args: argparse.Namespace) -> int:
+    from .campaign import run_campaign
+
+    r = run_campaign(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler)
+    print(f"{r['cases']} cases: {r['ran']} run, {r['skipped']} already finished, {r['ok']} ok, "
+          f"{r['error']} with errors; {r['wall_time [s]']:.1f} s on {r['workers']} workers "
+          f"-> {r['campaign_csv']}")
+    return 0 if not r.get("pending") else 1
 
 
 def _pda(args: argparse.Namespace) -> int:
