@@ -641,11 +641,17 @@ def _install(args: argparse.Namespace) -> int:
 def _batch(args: argparse.Namespace) -> int:
     from .campaign import run_campaign
 
-    r = run_campaign(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler)
-    print(f"{r['cases']} cases: {r['ran']} run, {r['skipped']} already finished, {r['ok']} ok, "
-          f"{r['error']} with errors; {r['wall_time [s]']:.1f} s on {r['workers']} workers "
-          f"-> {r['campaign_csv']}")
-    return 0 if not r.get("pending") else 1
+    if args.workers is not None and args.scheduler is not None:
+        raise InputError("--workers", "", "give --workers (a local cluster) or --scheduler (a "
+                                          "running one), not both")
+    if args.workers is not None and args.workers < 1:
+        raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
+    r = run_campaign(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler,
+                     progress=True)
+    print(f"{r['cases']} cases: {r['ok']} ok, {r['error']} failed, {r['pending']} pending "
+          f"({r['ran']} run, {r['skipped']} finished before) on {r['workers']} workers in "
+          f"{r['wall_time [s]']:.1f} s -> {r['campaign_csv']}")
+    return 0 if r["error"] == 0 and r["pending"] == 0 else 1
 
 
 def _pda(args: argparse.Namespace) -> int:
