@@ -177,7 +177,7 @@ def _compare(args: argparse.Namespace) -> int:
 
 
 def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> dict:
-    from .compare import compare, comparison_bandwidth, plot_comparison, run_models
+    from .compare import compare, comparison_bandwidth, plot_comparison, plot_spectra, run_models
     from .report import write_csv
 
     with _progress("FEA") as progress:
@@ -195,6 +195,8 @@ def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> dict:
                     "Ram impact force (ram-anvil contact): FEA vs simulation", band)
     plot_comparison(runs, "anvil_pile_force [N]", out.part("fig3_pile_force.png"),
                     "Pile-top impact force (anvil-pile contact): FEA vs simulation", band)
+    if "pile_head_force_spectra" in comparison:
+        plot_spectra(comparison["pile_head_force_spectra"], out.part("fig_spectra.png"))
     return comparison
 
 

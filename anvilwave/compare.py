@@ -215,7 +215,104 @@ def compare(runs: dict[str, ModelRun], preload: float, bandwidth: float) -> dict
     if reference is not None:
         out["fea_over_rom_wall_time [-]"] = reference.wall_time / max(runs["rom"].wall_time,
                                                                       1e-12)
+    out["pile_head_force_spectra"] = band_levels(runs, bandwidth)
     return out
+
+
+SPECTRUM_KEY = "anvil_pile_force [N]"
+"""The force whose spectra are compared: the pile-head (anvil-pile contact) force."""
+
+
+def band_levels(runs: dict[str, ModelRun], bandwidth: float,
+                key: str = SPECTRUM_KEY) -> dict:
+    """One-third-octave band levels of ``key`` of every model and their deviations from the
+    FEA's [dB], for comparison.json (:func:`pile.spectra.third_octave_band_energies`).
+
+    Each model's own samples are used (no resampling, which would filter its top bands); the
+    force is taken relative to its value at the first sample (the static weight on the pile
+    carries no sound). The bands run from 10 Hz to the lowest Nyquist frequency of the
+    models. The valid band is where every model's spectrum is trustworthy
+    (:func:`pile.spectra.valid_band`: from 1 / T of the shortest record up to a tenth of the
+    lowest sampling rate) and no higher than ``bandwidth`` [Hz], the comparison band of the
+    1D models (:func:`comparison_bandwidth`).
+    """
+    from pile.spectra import band_numbers_between, third_octave_band_energies
+
+    def step(run):
+        t = run.columns["time [s]"]
+        return float(t[-1] - t[0]) / (len(t) - 1)
+
+    nyquist = min(0.5 / step(run) for run in runs.values())
+    numbers = band_numbers_between(8.9, nyquist)
+    bands = {}
+    for name, run in runs.items():
+        force = np.asarray(run.columns[key], float)
+        bands[name] = third_octave_band_energies(force - force[0], step(run), numbers)
+    low = max(b.valid_range[0] for b in bands.values())
+    high = min(min(b.valid_range[1] for b in bands.values()), bandwidth)
+    first = next(iter(bands.values()))
+    valid = (first.lower_frequency >= low) & (first.upper_frequency <= high)
+
+    def listed(values):
+        return [float(x) if math.isfinite(x) else None for x in values]
+
+    out = {
+        "force": key,
+        "band_centre_frequency [Hz]": listed(first.centre_frequency),
+        "valid_band [Hz]": [low, high],
+        "valid [-]": valid.astype(int).tolist(),
+        "band_level [dB re 1 N^2 s]": {name: listed(b.level) for name, b in bands.items()},
+    }
+    if "fea" in bands:
+        reference = bands["fea"].level
+        deviation = {name: b.level - reference for name, b in bands.items() if name != "fea"}
+        out["deviation_from_fea [dB]"] = {name: listed(d) for name, d in deviation.items()}
+        out["max_abs_deviation_in_valid_band [dB]"] = {
+            name: float(np.max(np.abs(d[valid]))) if valid.any() else None
+            for name, d in deviation.items()}
+    return out
+
+
+def plot_spectra(spectra: dict, path, title: str = "Pile-head force, one-third-octave bands"):
+    """Band levels of every model (:func:`band_levels` output) with the valid band shaded
+    out of it; the lower panel the deviations from the FEA [dB]."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    styles = {"fea": ("k", "o", "FEA (reference)"), "rom": ("tab:red", "s", "ROM anvil"),
+              "lumped": ("tab:blue", "^", "lumped-mass anvil")}
+    centre = np.asarray(spectra["band_centre_frequency [Hz]"], float)
+    low, high = spectra["valid_band [Hz]"]
+    deviations = spectra.get("deviation_from_fea [dB]", {})
+    fig, axes = plt.subplots(2 if deviations else 1, 1, figsize=(9, 6.5 if deviations else 4.5),
+                             sharex=True, constrained_layout=True, squeeze=False)
+    ax = axes[0, 0]
+    for name, level in spectra["band_level [dB re 1 N^2 s]"].items():
+        color, marker, label = styles.get(name, ("0.5", "x", name))
+        ax.semilogx(centre, np.array(level, float), color=color, marker=marker, ms=3.5,
+                    lw=1.2, label=label)
+    ax.set_ylabel("band level [dB re 1 N$^2$ s]")
+    ax.set_title(f"{title}\n(valid band {low:.0f}-{high:.0f} Hz, unshaded)")
+    if deviations:
+        dev_ax = axes[1, 0]
+        for name, dev in deviations.items():
+            color, marker, label = styles.get(name, ("0.5", "x", name))
+            dev_ax.semilogx(centre, np.array(dev, float), color=color, marker=marker, ms=3.5,
+                            lw=1.2, label=f"{label} - FEA")
+        dev_ax.axhspan(-1.0, 1.0, color="tab:green", alpha=0.2, zorder=1, label="+-1 dB")
+        dev_ax.set_ylabel("deviation from FEA [dB]")
+        dev_ax.set_ylim(-25.0, 15.0)
+        dev_ax.legend(fontsize=8)
+    for row in axes[:, 0]:
+        row.axvspan(centre.min() / 1.2, low, color="0.92", zorder=0)
+        row.axvspan(high, centre.max() * 1.2, color="0.92", zorder=0)
+        row.grid(alpha=0.3, which="both")
+    axes[0, 0].legend(fontsize=8)
+    axes[-1, 0].set_xlabel("one-third-octave band centre frequency [Hz]")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
 
 
 def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,

@@ -55,6 +55,7 @@ from hammer.driving_system import (
     driving_system_step,
     interface_time_step,
 )
+from hammer.modal_ram import ModalRamUnit, modal_ram_advance, modal_ram_energies
 from hammer.ram import leapfrog_energies, ram_advance
 from hammer.ram import stable_time_step as ram_stable_time_step
 from pile.kernels import (
@@ -186,6 +187,42 @@ def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays
     return float(2.0 / math.sqrt(_largest_eigenvalue(*arrays)))
 
 
+def modal_ram_coupled_stable_time_step(participation_toe, k_ram, k_pile, pile_arrays,
+                                       participation_ram, participation_pile) -> float:
+    """:func:`coupled_stable_time_step` with a modal ram unit [s]: the ram's modes, like the
+    anvil's, enter as free unit masses coupled through their toe participations (each is
+    integrated exactly; the bound is conservative). One dense symmetric eigenvalue problem of
+    the ram's and the anvil's modes and the pile chain (a few hundred to a few thousand rows).
+    """
+    from scipy.linalg import eigvalsh
+
+    pile_mass = np.asarray(pile_arrays.pile[0], float)
+    k_chain = np.asarray(pile_arrays.pile[PILE_STIFFNESS][:-1], float)
+    soil_k = pile_arrays.soil[SOIL_STIFFNESS]
+    toe = np.asarray(participation_toe, float)
+    top = np.asarray(participation_ram, float)
+    bottom = np.asarray(participation_pile, float)
+    n_r, n_a, n_p = toe.size, top.size, pile_mass.size
+    # ram contact k (toe . q_r - top . q_a)^2 / 2, pile contact k (bottom . q_a - u_head)^2 / 2
+    ram_side = np.concatenate((toe, -top, np.zeros(n_p)))
+    pile_side = np.concatenate((np.zeros(n_r), bottom, np.zeros(n_p)))
+    pile_side[n_r + n_a] = -1.0 / math.sqrt(pile_mass[0])
+    a = k_ram * np.outer(ram_side, ram_side) + k_pile * np.outer(pile_side, pile_side)
+    r = 1.0 / np.sqrt(pile_mass)
+    diagonal = np.zeros(n_p)
+    diagonal[:-1] += k_chain
+    diagonal[1:] += k_chain
+    diagonal += soil_k[:n_p]
+    diagonal[-1] += soil_k[n_p]
+    j = np.arange(n_r + n_a, n_r + n_a + n_p)
+    a[j, j] += diagonal * r * r
+    a[j[:-1], j[1:]] -= k_chain * r[:-1] * r[1:]
+    a[j[1:], j[:-1]] -= k_chain * r[:-1] * r[1:]
+    n = a.shape[0]
+    largest = float(eigvalsh(a, subset_by_index=[n - 1, n - 1])[0])
+    return 2.0 / math.sqrt(largest)
+
+
 @njit(cache=True)
 def _below_spectrum(sigma, ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
                     pile_diagonal, pile_off, work):
@@ -281,7 +318,7 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
 def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
              soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
              n_steps, record_every, energy_every, out, energies, works, stresses, summary,
-             sections=None):
+             sections=None, modal_ram=None):
     """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
 
     The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvil_rom.unit`),
@@ -300,8 +337,9 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     blow's summary. ``face0`` is the head face displacement the anvil unit's pile input is
     measured from. ``sections`` = (spring indices, buffer (n_sections, rows)) records the
     elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
-    recorded or not (stress histories for fatigue). Returns the numbers of rows recorded
-    (columns, energies).
+    recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
+    :class:`hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``, ``ram_v``
+    are then unused). Returns the numbers of rows recorded (columns, energies).
     """
     weight, inverse_mass, ram_stiffness, ram_mass = ram
     toe = ram_u.shape[0] - 1
@@ -328,8 +366,12 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     energy_countdown = 0
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
-        u_ram = ram_u[toe]
-        v_ram = ram_v[toe]
+        if modal_ram is not None:
+            u_ram = modal_ram[2][0]
+            v_ram = modal_ram[2][1]
+        else:
+            u_ram = ram_u[toe]
+            v_ram = ram_v[toe]
         u_pile = pu[0] + extrapolation * (pu[0] - pu[1]) - face0
         v_pile = head_velocity(probes, pv)
         # 2. contact forces at t_n (feedthrough of the anvil unit); of the three blocks the
@@ -396,8 +438,11 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                                                                           classic[1])
                 if direct is not None:
                     pot = 0.5 * f_ram * f_ram / direct[0]
-                ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v, gravity,
-                                               dt_ram)
+                if modal_ram is not None:
+                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], gravity, h)
+                else:
+                    ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v,
+                                                   gravity, dt_ram)
                 kinetic, strain, grav, soil_static, soil_damping = pile_energies(
                     pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1],
                     works)
@@ -425,7 +470,10 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         if n == n_steps:
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
-        ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
+        if modal_ram is not None:
+            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, gravity, h, modal_ram[2])
+        else:
+            ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
         if modal is not None:
             modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
         if classic is not None:
@@ -608,6 +656,8 @@ class Engine:
     time_step: float
     limits: dict[str, float]
     modal: object = None
+    ram_modes: object = None
+    """:class:`hammer.modal_ram.RamToeModes` of a modal ram unit (None: the ram chain)."""
 
     def __post_init__(self):
         g = self.config.gravity
@@ -659,7 +709,8 @@ class Engine:
         limits = dict(self.limits)
         limits["pile"] = float(pile_stable_time_step(arrays.pile, arrays.soil))
         return Engine(replace(self.config, pile_soil=pile_soil), self.anvil, self.ram_mass,
-                      self.ram_stiffness, arrays, self.time_step, limits, self.modal)
+                      self.ram_stiffness, arrays, self.time_step, limits, self.modal,
+                      self.ram_modes)
 
     # ------------------------------------------------------------------ blows
     def blow(self, state: PileState | None = None, impact_velocity: float | None = None,
@@ -706,6 +757,11 @@ class Engine:
         t0 = -0.5 * h
         ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * velocity)
         ram_v = np.full(self.ram_mass.shape, velocity)
+        modal_ram = None
+        if self.ram_modes is not None:
+            unit = ModalRamUnit(self.ram_modes, cfg.gravity)
+            unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
+            modal_ram = (unit.C, unit.S, unit.toe)
         modal = classic = direct = None
         if anvil.kind in ("rom", "lumped"):
             S = anvil.S.copy()
@@ -741,7 +797,7 @@ class Engine:
                 self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
                 pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
                 h, n_steps, record_every, energy_every, out, energies, works, stresses,
-                summary, section_args]
+                summary, section_args, modal_ram]
         _warm_up(args, anvil.kind, record, energy, section_args is not None)
         begin = time.perf_counter()
         rows, energy_rows = run_blow(*args)
@@ -804,7 +860,8 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
     """Compile (or load from numba's cache) this variant of the loop, once per process, and
     run it for a few steps on copies of the states, so that the blow's timing excludes the
     compilation and the first touch of the code and of the parameter arrays."""
-    key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections)
+    key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
+           args[31] is not None)
     if key in _WARM:
         return
     from .kernels import announce_compilation
@@ -829,6 +886,8 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
     trial[22] = min(trial[22], WARM_UP_STEPS)  # n_steps
     if trial[30] is not None:  # the sections' buffer is written
         trial[30] = (trial[30][0], trial[30][1].copy())
+    if trial[31] is not None:  # the modal ram's (C, S, toe): the last two change
+        trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
     run_blow(*trial)
     _WARM.add(key)
 
@@ -841,9 +900,13 @@ def _static_pile_force(anvil: AnvilKernels, gravity: float) -> float:
     return anvil.unit.anvil.total_mass * gravity
 
 
-def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass) -> AnvilKernels:
+def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass,
+                   ram_modes=None) -> AnvilKernels:
     """The anvil unit at rest and its coupled stability limit (the step is set later)."""
     settings = cfg.anvil
+    if ram_modes is not None and settings.model not in ("rom", "lumped"):
+        raise InputError(cfg.source, "hammer.ram_model", "the modal ram unit runs with the "
+                                                         "ROM or lumped anvil")
     if settings.model == "none":
         # ram toe and pile head: the two contact springs in series (ram_contact_damping acts)
         contact = _contact(cfg)
@@ -871,9 +934,15 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass) -> Anv
         rom = ModalAnvil.rigid(mass)
     unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity)
     u_top0, _ = unit.rest_on_pile(0.0)
-    limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness,
-                                     unit.contact.ram_stiffness, unit.contact.pile_stiffness,
-                                     pile_arrays, rom.participation_ram, rom.participation_pile)
+    if ram_modes is not None:
+        limit = modal_ram_coupled_stable_time_step(
+            ram_modes.participation, unit.contact.ram_stiffness, unit.contact.pile_stiffness,
+            pile_arrays, rom.participation_ram, rom.participation_pile)
+    else:
+        limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness,
+                                         unit.contact.ram_stiffness,
+                                         unit.contact.pile_stiffness, pile_arrays,
+                                         rom.participation_ram, rom.participation_pile)
     return AnvilKernels(settings.model, unit.P, unit.C, unit.S, u_top0, float(limit), 1, unit)
 
 
@@ -928,16 +997,25 @@ def anvil_modal_data(cfg: SystemConfig):
         raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
 
 
-def build_engine(cfg: SystemConfig, modal=None) -> Engine:
+def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
     """Assemble the components of a system.
 
     modal : precomputed ModalData of the anvil; default: the ROM anvil's from the modal-data
     cache (computed on a miss), the lumped anvil's mass from its geometry without modes
     (:func:`anvil_rom.geometry.solid_mass`).
+    ram_modes : :class:`hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
+    (:class:`hammer.modal_ram.ModalRamUnit`, exact per mode, its residual flexibility the ram's
+    side of the contact) instead of the system's ram chain; None: the chain.
     """
+    if ram_modes is not None:
+        ram = replace(cfg.hammer.ram, toe_stiffness=ram_modes.toe_stiffness)
+        cfg = replace(cfg, hammer=replace(cfg.hammer, ram=ram))
     ram = cfg.hammer.ram
     ram_mass = np.ascontiguousarray(ram.mass, dtype=float)
     ram_stiffness = np.ascontiguousarray(ram.stiffness, dtype=float)
+    if ram_modes is not None:  # a one-mass stand-in: the input energy; the kernel skips it
+        ram_mass = np.array([ram_modes.total_mass])
+        ram_stiffness = np.zeros(0)
     arrays = cfg.pile_soil.arrays()
     if cfg.anvil.model == "rom" and modal is None:
         modal = anvil_modal_data(cfg)
@@ -951,7 +1029,7 @@ def build_engine(cfg: SystemConfig, modal=None) -> Engine:
             from anvil_rom.geometry import solid_mass
 
             mass = solid_mass(cfg.anvil.spec)
-    anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass)
+    anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass, ram_modes)
     limits = {
         "ram": float(ram_stable_time_step(ram_mass, ram_stiffness)),
         "pile": float(pile_stable_time_step(arrays.pile, arrays.soil)),
@@ -976,4 +1054,5 @@ def build_engine(cfg: SystemConfig, modal=None) -> Engine:
                              f"({limits['anvil coupling']:.3g} s): use a smaller step or omit "
                              "time_step for the automatic choice")
     anvil = _set_step(anvil, float(h))
-    return Engine(cfg, anvil, ram_mass, ram_stiffness, arrays, float(h), limits, modal)
+    return Engine(cfg, anvil, ram_mass, ram_stiffness, arrays, float(h), limits, modal,
+                  ram_modes)

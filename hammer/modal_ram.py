@@ -19,6 +19,12 @@ parameter) are projected on the striking face (uniform pressure on the toe), and
   static correction) becomes the ram's side of the contact spring, ``toe_stiffness``
   = 1 / r_toe, the role the toe half segment 2 E A / dx plays in Smith's ram. The static
   toe compliance is then exact whatever fmax.
+
+The same modes also run as a modal unit (:class:`ModalRamUnit`, kernel
+:func:`modal_ram_advance`), like the anvil's: every mode advanced exactly over a step with the
+toe force held (:func:`anvil_rom.rom.modal_transition`), the residual flexibility the same
+series toe spring. It needs no chain, so it has no double-precision range limit (fmax 10 kHz
+builds for the Table 1 ram, whose chain stops at about 500 modes), and no sub-steps.
 """
 
 from __future__ import annotations
@@ -26,13 +32,15 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 
 from anvil_rom.chain import chain_from_modes
 from anvil_rom.geometry import AnvilSpec, Interfaces, Material, validate_outline
-from anvil_rom.rom import residual_flexibility
+from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave_inputs import InputError
 
 from .ram import RamRod
@@ -98,6 +106,41 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
     -> (mass, stiffness)`` of the chain (default :func:`anvil_rom.chain.chain_from_modes`). The
     system layer passes its modal-data cache for both.
     """
+    toe_modes = modal_ram_modes(ram, fmax, poisson_ratio=poisson_ratio, mesh_size=mesh_size,
+                                source=source, modes=modes)
+    mass, stiffness = _chain(toe_modes, realise)
+    return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
+                               toe_stiffness=toe_modes.toe_stiffness, fmax=float(fmax))
+
+
+@dataclass(frozen=True, eq=False)
+class RamToeModes:
+    """The ram's free-free modes seen at its toe (one port).
+
+    omega : (n,) circular frequencies [rad/s]; exactly one 0 (the rigid-body mode).
+    participation : (n,) b_toe^T phi_j at the toe [kg^-1/2].
+    participation_gravity : (n,) phi_j^T M e_z [kg^1/2] (only the rigid mode's is non-zero).
+    total_mass : [kg]. toe_stiffness : 1 / residual toe flexibility of the truncated modes
+    [N/m]. fmax : frequency content [Hz].
+    """
+
+    omega: np.ndarray
+    participation: np.ndarray
+    participation_gravity: np.ndarray
+    total_mass: float
+    toe_stiffness: float
+    fmax: float
+
+    @property
+    def n_modes(self) -> int:
+        return int(self.omega.size)
+
+
+def modal_ram_modes(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
+                    mesh_size: float | None = None, source: str = "hammer",
+                    modes: Callable | None = None) -> RamToeModes:
+    """The toe modes of ``ram`` up to ``fmax`` [Hz] (parameters as :func:`modal_ram`), no chain:
+    any number of modes (no double-precision range limit)."""
     if ram.sections is None or not math.isfinite(ram.elastic_modulus):
         raise InputError(source, "ram", "a modal ram needs the ram's shape (diameter and mass "
                                         "or length, or a profile), not a rigid mass or "
@@ -108,18 +151,25 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
         raise InputError(source, "poisson_ratio", f"must be in [0, 0.5), got {poisson_ratio!r}")
     material = Material(ram.elastic_modulus, poisson_ratio, ram.density)
     size = default_mesh_size(ram.sections, material, fmax) if mesh_size is None else mesh_size
-    mass, stiffness, toe_stiffness = _modal_chain(
-        np.ascontiguousarray(ram.sections, float).tobytes(), ram.sections.shape[0],
-        material, float(fmax), float(size), source, modes, realise)
-    return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
-                               toe_stiffness=toe_stiffness, fmax=float(fmax))
+    return _toe_modes(np.ascontiguousarray(ram.sections, float).tobytes(),
+                      ram.sections.shape[0], material, float(fmax), float(size), source, modes)
 
 
 @lru_cache(maxsize=16)
-def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fmax: float,
-                 mesh_size: float, source: str, modes: Callable | None,
-                 realise: Callable | None = None) -> tuple[np.ndarray, np.ndarray, float]:
-    """Chain masses and springs (toe first) and the toe stiffness; cached per ram and fmax."""
+def _chain(toe_modes: RamToeModes, realise: Callable | None
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Chain masses and springs (toe first) of the toe modes; cached per modes."""
+    mass, stiffness = (chain_from_modes if realise is None else realise)(
+        toe_modes.omega, toe_modes.participation)
+    mass.flags.writeable = False
+    stiffness.flags.writeable = False
+    return mass, stiffness
+
+
+@lru_cache(maxsize=16)
+def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax: float,
+               mesh_size: float, source: str, modes: Callable | None) -> RamToeModes:
+    """The toe modes and the toe stiffness; cached per ram and fmax."""
     sections = np.frombuffer(sections_bytes).reshape(n_sections, 3)
     outline = ram_outline(sections)
     validate_outline(outline, source, "ram")
@@ -137,7 +187,103 @@ def _modal_chain(sections_bytes: bytes, n_sections: int, material: Material, fma
     omega = 2.0 * np.pi * np.asarray(data.frequencies)
     p_toe = np.asarray(data.participation_pile)
     r = residual_flexibility(data.elastic_flexibility, omega, data.participation_ram, p_toe)
-    mass, stiffness = (chain_from_modes if realise is None else realise)(omega, p_toe)
-    mass.flags.writeable = False
-    stiffness.flags.writeable = False
-    return mass, stiffness, float(1.0 / r[1, 1])
+    arrays = [omega, p_toe, np.asarray(data.participation_gravity, float)]
+    for a in arrays:
+        a.flags.writeable = False
+    return RamToeModes(*arrays, total_mass=float(data.total_mass),
+                       toe_stiffness=float(1.0 / r[1, 1]), fmax=float(fmax))
+
+
+# ------------------------------------------------------------------------- the modal unit
+class ModalRamUnit:
+    """The modal ram as a unit: its toe modes advanced exactly with the toe force held.
+
+    Kernel data (float64): ``C`` (7, n), rows a, b, c, m_e, p_toe, p_grav, omega of the modes for
+    step (:func:`anvil_rom.rom.modal_transition`, undamped), ``S`` = [q (n) at t_n, q (n) at
+    t_n-1], ``toe`` = [u_toe, v_toe] [m, m/s] of the state (modal part; the residual
+    flexibility is the contact's series spring ``toe_stiffness``, as for the chain).
+    Velocities are half-step values (q_n - q_n-1) / h, as in the leapfrog units.
+
+    toe_modes : :func:`modal_ram_modes`. gravity : [m/s^2].
+    """
+
+    def __init__(self, toe_modes: RamToeModes, gravity: float = 9.81):
+        self.modes = toe_modes
+        self.gravity = float(gravity)
+        n = toe_modes.n_modes
+        self.C = np.zeros((7, n))  # one row per quantity: contiguous sweeps over the modes
+        self.C[4] = toe_modes.participation
+        self.C[5] = toe_modes.participation_gravity
+        self.C[6] = toe_modes.omega
+        self.S = np.zeros(2 * n)
+        self.toe = np.zeros(2)
+        self.h = math.nan
+
+    @property
+    def toe_stiffness(self) -> float:
+        """The ram's side of the contact spring, 1 / residual toe flexibility [N/m]."""
+        return self.modes.toe_stiffness
+
+    def start(self, toe_displacement: float, velocity: float, h: float) -> None:
+        """Undeformed rigid motion at ``velocity`` [m/s] with the toe at ``toe_displacement``
+        [m] at t_n (and h velocity earlier at t_n-1): the exact state of a falling ram."""
+        self.C[:4] = modal_transition(self.modes.omega, 0.0, h).T
+        self.h = float(h)
+        n = self.modes.n_modes
+        rigid = int(np.flatnonzero(self.modes.omega == 0.0)[0])
+        p = self.modes.participation[rigid]
+        self.S[:] = 0.0
+        self.S[rigid] = toe_displacement / p
+        self.S[n + rigid] = (toe_displacement - h * velocity) / p
+        self.toe[:] = toe_displacement, velocity
+
+    def step(self, toe_force: float) -> tuple[float, float]:
+        """Advance over h with the toe force [N] (compression, pushes up) held; returns the
+        new (u_toe, v_toe) [m, m/s]."""
+        modal_ram_advance(self.C, self.S, toe_force, self.gravity, self.h, self.toe)
+        return float(self.toe[0]), float(self.toe[1])
+
+    def energies(self) -> tuple[float, float, float]:
+        """(kinetic, strain, gravity potential) [J] of the state (:func:`modal_ram_energies`)."""
+        return modal_ram_energies(self.C, self.S, self.gravity, self.h)
+
+
+@njit(cache=True, inline='always')
+def modal_ram_advance(C, S, toe_force, gravity, h, toe):
+    """Advance every toe mode over h [s] with ``toe_force`` [N] (compression positive, pushes
+    the toe up) held, in place; writes the new modal (u_toe, v_toe) [m, m/s] into ``toe``.
+
+    eta_j,n+1 = a eta_j,n + b eta_j,n-1 + c (-p_toe,j F + p_grav,j g): exact per mode for a
+    held force, at any h (unconditionally stable; no sub-steps)."""
+    n = C.shape[1]
+    u = 0.0
+    rate = 0.0
+    for j in range(n):
+        p = C[4, j]
+        q = S[j]
+        q_new = C[0, j] * q + C[1, j] * S[n + j] + C[2, j] * (C[5, j] * gravity - p * toe_force)
+        S[n + j] = q
+        S[j] = q_new
+        u += p * q_new
+        rate += p * (q_new - q)
+    toe[0] = u
+    toe[1] = rate / h
+
+
+@njit(cache=True)
+def modal_ram_energies(C, S, gravity, h):
+    """(kinetic, strain, gravity potential) [J] of the modal ram in the conserved (shadow) form
+    of the two-step scheme, as the anvil's (:func:`anvil_rom.unit.modal_unit_energy`):
+    sum m_e ((q_n - q_n-1) / h)^2 / 2, sum w^2 q_n q_n-1 / 2 and -g sum p_grav (q_n + q_n-1) / 2.
+    The residual flexibility is the contact's series spring: its energy is the contact's."""
+    n = C.shape[1]
+    kinetic = 0.0
+    strain = 0.0
+    potential = 0.0
+    for j in range(n):
+        q, qp = S[j], S[n + j]
+        rate = (q - qp) / h
+        kinetic += 0.5 * C[3, j] * rate * rate
+        strain += 0.5 * C[6, j] ** 2 * q * qp
+        potential -= gravity * C[5, j] * 0.5 * (q + qp)
+    return kinetic, strain, potential

@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 
 from anvilwave.cli import main
-from anvilwave.compare import arrival_time, lift_off_intervals, lowpass
+from anvilwave.compare import (
+    ModelRun,
+    arrival_time,
+    band_levels,
+    lift_off_intervals,
+    lowpass,
+    plot_spectra,
+)
 
 
 @pytest.fixture(scope="module")
@@ -21,6 +28,7 @@ def demo(tmp_path_factory):
 def test_demo_writes_everything(demo):
     out, _ = demo
     for name in ("summary.json", "comparison.json", "fig2_ram_force.png", "fig3_pile_force.png",
+                 "fig_spectra.png",
                  "fea.csv", "rom.csv", "lumped.csv", "modes/modes.npz", "fmus/Anvil.fmu",
                  "fmus/Ram.fmu", "fmus/PileSoil.fmu", "fmus/AnvilLumped.fmu", "fmus/system.ssp"):
         assert (out / name).exists(), name
@@ -85,3 +93,39 @@ def test_comparison_helpers():
     # (forward-backward); the ends carry the filter's start-up transient
     np.testing.assert_allclose(smooth[300:-300], np.sin(2 * np.pi * 100 * t)[300:-300],
                                atol=2e-3)
+
+
+def test_table1_pile_head_force_band_levels(demo, tmp_path):
+    """One-third-octave band levels of the pile-head force (the noise argument). The valid
+    band runs from 1 / T (40 Hz, T = 25 ms) to the 3.3 kHz comparison band (a tenth of the
+    ROM's 40 kHz sampling would allow 4 kHz). Measured, ROM - FEA: within 0.9 dB in every band
+    from 50 Hz to 1 kHz (largest -0.87 dB at 251 Hz, +0.75 dB at 1 kHz), then +1.4, +2.7,
+    +5.4 and +8.5 dB in the 1.26, 1.6, 2 and 2.5 kHz bands (+12.7 dB at 3.15 kHz): the 1 dB
+    target holds up to 1 kHz, not up to 4 kHz. The lumped anvil is -1.8 dB at 100 Hz, -10 to
+    -24 dB from 316 Hz to 2.5 kHz (it cannot carry the anvil's wave)."""
+    _, cmp = demo
+    spectra = cmp["pile_head_force_spectra"]
+    low, high = spectra["valid_band [Hz]"]
+    assert low == pytest.approx(40.0, rel=0.01)
+    assert high == pytest.approx(cmp["comparison_bandwidth [Hz]"])
+    centre = np.array(spectra["band_centre_frequency [Hz]"])
+    valid = np.array(spectra["valid [-]"], bool)
+    rom = np.array(spectra["deviation_from_fea [dB]"]["rom"])
+    lumped = np.array(spectra["deviation_from_fea [dB]"]["lumped"])
+    up_to_1k = valid & (centre <= 1001.0)
+    assert up_to_1k.sum() == 14
+    assert np.all(np.abs(rom[up_to_1k]) <= 1.0)
+    above_100 = valid & (centre >= 99.0)
+    assert np.all(np.abs(rom[above_100]) < np.abs(lumped[above_100]))
+    assert np.all(lumped[valid & (centre >= 316.0)] < -9.0)
+    plot_spectra(spectra, tmp_path / "fig_spectra.png")
+    assert (tmp_path / "fig_spectra.png").stat().st_size > 10_000
+
+
+def test_band_levels_of_identical_runs_agree():
+    t = np.arange(0.0, 0.025, 1e-5)
+    force = 1e6 + 4e8 * np.exp(-t / 2e-3) * (1.0 - np.exp(-t / 1e-4))
+    run = ModelRun("x", {"time [s]": t, "anvil_pile_force [N]": force}, 0.0, {})
+    spectra = band_levels({"fea": run, "rom": run}, bandwidth=3300.0)
+    assert spectra["valid_band [Hz]"] == [pytest.approx(40.0, rel=0.01), 3300.0]
+    assert np.allclose(spectra["deviation_from_fea [dB]"]["rom"], 0.0)
