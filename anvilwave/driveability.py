@@ -250,9 +250,9 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
                         record=record or last, energy=record)
         state = blow.final_state
     quake_toe = float(ps.soil.quake_toe)
-    permanent = max(float(blow.permanent_set), 0.0)
-    grl = max(float(blow.max_toe_displacement) - quake_toe, 0.0)
-    set_m = grl if settings.set_rule == "grlweap" else permanent
+    permanent = set_of_blow(blow, "permanent", quake_toe)
+    grl = set_of_blow(blow, "grlweap", quake_toe)
+    set_m = set_of_blow(blow, settings.set_rule, quake_toe)
     count = blow_count(set_m)
     enthru = blow.emx_gauge if settings.enthru_location == "gauge" else blow.emx_head
     residual = float("nan")
