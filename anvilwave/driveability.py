@@ -80,6 +80,9 @@ class DriveSettings:
     enthru_location : "gauge" or "head".
     energy_schedule : (n, 2) rows [tip depth [m], blow energy [J]], linear between rows and
         constant beyond; None = the hammer's energy of the system file.
+    stroke_schedule : (n, 2) rows [tip depth [m], stroke [m]] instead of energies (the
+        energy is m g stroke).
+    efficiency_schedule : (n, 2) rows [tip depth [m], efficiency [-]]; None = the hammer's.
     bound : "lower", "best" or "upper"; multipliers : SRD factor of each bound [-].
     time_series_depths : depths whose blow time series are written [m].
     duration : blow window [s] (default: the system's duration).
@@ -97,6 +100,8 @@ class DriveSettings:
                                                        "upper": 1.25})
     time_series_depths: tuple = ()
     duration: float | None = None
+    stroke_schedule: np.ndarray | None = None
+    efficiency_schedule: np.ndarray | None = None
 
     @property
     def multiplier(self) -> float:
@@ -156,6 +161,10 @@ def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
                                         "increasing, non-negative depths")
         if np.any(schedule[:, 1] <= 0.0):
             raise table.error("energy", "energies must be positive [J]")
+    stroke = _schedule(table, "stroke", "stroke [m]", upper=10.0)
+    efficiency = _schedule(table, "efficiency", "efficiency [-]", upper=1.0)
+    if stroke is not None and schedule is not None:
+        raise table.error("stroke", "give an energy or a stroke schedule, not both")
     bound = table.string("bound", "best", choices=BOUNDS)
     multipliers = {"lower": table.number("lower_multiplier", 0.8, gt=0.0, le=1.0),
                    "best": 1.0,
@@ -167,7 +176,42 @@ def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
                          blow_rate=rate, set_rule=set_rule, enthru_location=enthru,
                          energy_schedule=schedule, bound=bound, multipliers=multipliers,
                          time_series_depths=tuple(series) if series is not None else (),
-                         duration=duration)
+                         duration=duration, stroke_schedule=stroke,
+                         efficiency_schedule=efficiency)
+
+
+def _schedule(table: Table, key: str, what: str, upper: float):
+    """A per-depth schedule: rows [tip depth [m], value], depths strictly increasing."""
+    rows = table.array(key, None, columns=2)
+    if rows is None:
+        return None
+    if np.any(np.diff(rows[:, 0]) <= 0.0) or np.any(rows[:, 0] < 0.0):
+        raise table.error(key, f"rows [tip depth [m], {what}] need strictly increasing, "
+                               "non-negative depths")
+    if np.any(rows[:, 1] <= 0.0) or np.any(rows[:, 1] > upper):
+        raise table.error(key, f"values must be in (0, {upper:g}]")
+    return rows
+
+
+def impact_at(settings: DriveSettings, depth: float, cfg) -> tuple[float, float]:
+    """(blow energy [J], impact velocity [m/s]) of the schedules at a tip depth: energy or
+    stroke, and efficiency, each linear between rows and constant beyond; the system's blow
+    energy and the hammer's efficiency where no schedule is given."""
+    from hammer.impact import impact_velocity_from_energy
+
+    mass = float(np.sum(cfg.hammer.ram.mass))
+    eff = cfg.hammer.efficiency
+    if settings.efficiency_schedule is not None:
+        e = settings.efficiency_schedule
+        eff = float(np.interp(depth, e[:, 0], e[:, 1]))
+    if settings.stroke_schedule is not None:
+        s = settings.stroke_schedule
+        energy = mass * cfg.gravity * float(np.interp(depth, s[:, 0], s[:, 1]))
+    else:
+        energy = energy_at(settings, depth, cfg.blow_energy)
+    if not eff == eff:  # a hammer given by its impact velocity: no efficiency
+        eff = 1.0
+    return energy, impact_velocity_from_energy(energy, mass, eff)
 
 
 def energy_at(settings: DriveSettings, depth: float, default: float) -> float:
@@ -232,8 +276,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
                   record: bool = False) -> DepthResult:
     """Simulate the blows of one tip depth and summarise them (one CSV row)."""
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, depth, settings.multiplier)
-    energy = energy_at(settings, depth, cfg.blow_energy)
-    velocity = cfg.hammer.impact_velocity_at(energy)
+    energy, velocity = impact_at(settings, depth, cfg)
     weight = driving_weight(cfg, engine.static_head_force)
     if shaft + toe <= weight:  # the pile runs (or stands) under its own weight: no blows
         return DepthResult(_run_row(depth, shaft, toe, energy, velocity))

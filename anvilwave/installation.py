@@ -134,7 +134,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     from pile.fatigue import StreamingMinerDamage, sn_curve
     from pile.spectra import third_octave_band_energies
 
-    from .driveability import energy_at, pile_soil_at
+    from .driveability import impact_at, pile_soil_at
 
     start_wall = time.perf_counter()
     multiplier = drive.multiplier
@@ -176,8 +176,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                 ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, tip, multiplier)
                 eng = engine.with_pile_soil(ps)
                 built_at = tip
-            energy = energy_at(drive, tip, cfg.blow_energy)
-            velocity = cfg.hammer.impact_velocity_at(energy)
+            energy, velocity = impact_at(drive, tip, cfg)
             spectrum = bool(pending_spectra) and tip >= pending_spectra[0]
             blow = eng.blow(state=state, impact_velocity=velocity, duration=drive.duration,
                             record_interval=settings.record_interval, record=spectrum,

@@ -111,6 +111,9 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
                                                 "(max toe displacement - toe quake)"),
     "driveability.enthru_location": ("-", "gauge", "'gauge' (PDA) or 'head' (GRLWEAP)"),
     "driveability.energy": ("[m, J]", None, "energy schedule: rows tip depth, blow energy"),
+    "driveability.stroke": ("[m, m]", None, "or a stroke schedule: rows tip depth, stroke"),
+    "driveability.efficiency": ("[m, -]", None, "efficiency schedule: rows tip depth, "
+                                                "efficiency; default the hammer's"),
     "driveability.bound": ("-", "best", "'lower', 'best' or 'upper' SRD"),
     "driveability.lower_multiplier": ("-", 0.8, "SRD factor of the lower bound"),
     "driveability.upper_multiplier": ("-", 1.25, "SRD factor of the upper bound"),

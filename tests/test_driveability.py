@@ -240,3 +240,24 @@ def test_grlweap_benchmark_blow_closes_its_energy_balance():
     row = analyse_depth(engine, cfg, cfg.srd, cfg.drive, 30.0, record=True).row
     assert abs(row["energy_residual_relative [-]"]) < 0.005
     assert row["blow_count [1/m]"] > 0.0
+
+
+def test_stroke_and_efficiency_schedules_give_the_impact_velocity(tmp_path):
+    """Per depth, v = sqrt(2 g h eta) from the stroke and efficiency schedules (hand values)."""
+    from anvilwave.driveability import impact_at
+
+    text = (EXAMPLES / "table1.toml").read_text().replace('file = "anvils/xl8.toml"',
+                                                          f'file = "{EXAMPLES}/anvils/xl8.toml"')
+    text += ("\n[driveability]\ndepths = [5.0]\nstroke = [[0.0, 1.0], [10.0, 2.0]]\n"
+             "efficiency = [[0.0, 0.8], [10.0, 0.9]]\n")
+    path = tmp_path / "stroke.toml"
+    path.write_text(text)
+    cfg = load_system(path)
+    energy, velocity = impact_at(cfg.drive, 5.0, cfg)
+    mass = float(np.sum(cfg.hammer.ram.mass))
+    assert energy == pytest.approx(mass * 9.81 * 1.5, rel=1e-12)
+    assert velocity == pytest.approx(math.sqrt(2 * 9.81 * 1.5 * 0.85), rel=1e-12)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("[10.0, 0.9]", "[10.0, 1.9]"))
+    with pytest.raises(InputError, match="driveability.efficiency"):
+        load_system(bad)
