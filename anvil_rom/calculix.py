@@ -45,7 +45,7 @@ import meshio
 import numpy as np
 from scipy.spatial import cKDTree
 
-from anvilwave_inputs import InputError
+from anvilwave_inputs import InputError, read_text
 
 from .fe import AxisymmetricModel, assemble
 from .geometry import Material
@@ -260,12 +260,7 @@ def run_ccx(inp_path: str | Path, workdir: str | Path | None = None,
 
 # ---------------------------------------------------------------------------------- readers
 def _read_lines(path: Path) -> list[str]:
-    try:
-        return path.read_text(encoding="latin-1").splitlines()
-    except FileNotFoundError:
-        raise InputError(path, "", "file not found") from None
-    except OSError as exc:
-        raise InputError(path, "", f"cannot be read ({exc})") from None
+    return read_text(path, encoding="latin-1").splitlines()
 
 
 def read_dat_frequencies(path: str | Path) -> np.ndarray:

@@ -110,7 +110,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave_inputs import InputError, Table, read_toml
+from anvilwave_inputs import InputError, Table, read_toml, toml_dumps
 
 ALLOWED_FAILURES = 3
 """Worker deaths a case survives on the LocalCluster before it is recorded as failed."""
@@ -575,7 +575,7 @@ def _case(campaign, base, p: Position, bound, j, h: HammerEntry, model, schedule
     if h.table is not None:
         d["hammer"] = dict(h.table)
     d["anvil"] = {**d["anvil"], **h.anvil, "model": model}
-    body = toml_text(d)  # its hash identifies the case's input (paths in it are absolute)
+    body = toml_dumps(d)  # its hash identifies the case's input (paths in it are absolute)
     header = (f"# Case {name} of the campaign\n# {Path(campaign.source).resolve()}:\n# its "
               f"base system file\n# {campaign.base_path.resolve()}\n# with the position's "
               "pile and SRD and the case's axes (anvilwave.campaign).\n# A complete system "
@@ -586,64 +586,6 @@ def _case(campaign, base, p: Position, bound, j, h: HammerEntry, model, schedule
     cost = n_depths * drive.get("blows_per_depth", 1) * segments
     return Case(name, axes, header + body, hashlib.sha256(body.encode()).hexdigest(), j,
                 p.error, float(cost))
-
-
-# ----------------------------------------------------------------------------- TOML text
-_BARE_KEY = re.compile(r"^[A-Za-z0-9_-]+$")
-
-
-def toml_text(data: dict) -> str:
-    """A TOML document of nested tables, arrays of tables and arrays of numbers / strings
-    (what a system file holds); ``tomllib.loads(toml_text(d)) == d``."""
-    lines: list[str] = []
-    _toml_table(data, [], lines, header=False)
-    return "\n".join(lines).strip("\n") + "\n"
-
-
-def _toml_key(key: str) -> str:
-    return key if _BARE_KEY.match(key) else json.dumps(key)
-
-
-def _toml_value(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int | np.integer):
-        return str(int(value))
-    if isinstance(value, float | np.floating):
-        value = float(value)
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value)  # a TOML basic string (json's escapes are TOML's)
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
-                               for k, v in value.items()) + "}"
-    raise TypeError(f"cannot write {type(value).__name__} to TOML")
-
-
-def _is_table_array(value) -> bool:
-    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
-
-
-def _toml_table(table: dict, path: list[str], lines: list[str], header: bool) -> None:
-    dotted = ".".join(_toml_key(p) for p in path)
-    if header:
-        lines += ["", f"[{dotted}]"]
-    for k, v in table.items():
-        if not isinstance(v, dict) and not _is_table_array(v):
-            lines.append(f"{_toml_key(k)} = {_toml_value(v)}")
-    for k, v in table.items():
-        if isinstance(v, dict):
-            _toml_table(v, path + [k], lines, header=True)
-        elif _is_table_array(v):
-            for item in v:
-                lines += ["", f"[[{'.'.join(_toml_key(p) for p in path + [k])}]]"]
-                _toml_table(item, path + [k], lines, header=False)
 
 
 # ----------------------------------------------------------------------------- one case

@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave_inputs import InputError
+from anvilwave_inputs import InputError, read_text
 from pile.kernels import SOIL_CAPACITY, SOIL_DASHPOT, SOIL_SMITH
 from pile.pda import case_method, pile_impedance, transferred_energy, wave_down, wave_up
 from pile.pda_records import (
@@ -70,13 +70,7 @@ def load_record(path: str | Path, *, area: float | None = None,
     Returns (record, comment lines, ``"gauge"`` or ``"raw"``).
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(path, "", "file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(path, "", f"cannot be read ({exc})") from None
-    lines = text.splitlines(keepends=True)
+    lines = read_text(path).splitlines(keepends=True)
     notes = []
     while lines and lines[0].lstrip().startswith("#"):
         notes.append(lines.pop(0).strip().lstrip("#").strip())

@@ -1,4 +1,4 @@
-"""Validated reading of TOML input files.
+"""Validated reading of TOML input files (and the one TOML writer, :func:`toml_dumps`).
 
 Every user-facing configuration (anvil, hammer, pile, system) is read through :class:`Table`,
 so that a bad value always stops with one line naming the file, the key and the rule that was
@@ -7,7 +7,9 @@ broken, and an unknown key is rejected instead of silently ignored.
 
 from __future__ import annotations
 
+import json
 import math
+import numbers
 import re
 import tomllib
 from pathlib import Path
@@ -38,15 +40,21 @@ class InputError(Exception):
         return (InputError, (self.source, self.key, self.rule))
 
 
-def read_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML file, turning I/O and syntax problems into :class:`InputError`."""
+def read_text(path: str | Path, encoding: str = "utf-8") -> str:
+    """The text of an input file; a missing or unreadable file is an :class:`InputError`."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        return path.read_text(encoding=encoding)
     except FileNotFoundError:
         raise InputError(path, "", "file not found") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(path, "", f"cannot be read ({exc})") from None
+
+
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML file, turning I/O and syntax problems into :class:`InputError`."""
+    path = Path(path)
+    text = read_text(path)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -215,3 +223,60 @@ class Table:
 
 def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
+
+
+# ---------------------------------------------------------------------------- writing
+def toml_dumps(root: dict[str, Any]) -> str:
+    """TOML text of a nested dict of strings, booleans, numbers, lists and tables.
+
+    Floats are written with ``repr`` so they read back bit for bit.
+    """
+    lines: list[str] = []
+    _toml_table(root, [], lines)
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _toml_table(table: dict[str, Any], path: list[str], lines: list[str]) -> None:
+    def is_table(v):
+        return isinstance(v, dict)
+
+    def is_table_array(v):
+        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
+
+    for key, value in table.items():
+        if not (is_table(value) or is_table_array(value)):
+            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
+    for key, value in table.items():
+        if is_table(value):
+            lines += ["", f"[{'.'.join(map(_toml_key, path + [key]))}]"]
+            _toml_table(value, path + [key], lines)
+        elif is_table_array(value):
+            for item in value:
+                lines += ["", f"[[{'.'.join(map(_toml_key, path + [key]))}]]"]
+                _toml_table(item, path + [key], lines)
+
+
+def _toml_key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool | np.bool_):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        value = float(value)
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a JSON string is a valid TOML basic string
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # an inline table (inside an array of mixed values)
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
+                               for k, v in value.items()) + "}"
+    raise TypeError(f"cannot write {type(value).__name__} to TOML")

@@ -60,7 +60,7 @@ from typing import Any
 
 import numpy as np
 
-from anvilwave_inputs import InputError
+from anvilwave_inputs import InputError, toml_dumps
 
 UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"
@@ -296,59 +296,6 @@ def pile_soil_toml(model) -> str:
     return ("# anvilwave PileSoil FMU resource: the [pile] and [soil] tables of a system file.\n"
             "# The FMU parameters of the same names replace the scalar values here.\n"
             + toml_dumps(root))
-
-
-def toml_dumps(root: dict[str, Any]) -> str:
-    """TOML text of a nested dict of strings, booleans, numbers, lists and tables.
-
-    Floats are written with ``repr`` so they read back bit for bit.
-    """
-    lines: list[str] = []
-    _toml_table(root, [], lines)
-    return "\n".join(lines).lstrip("\n") + "\n"
-
-
-def _toml_table(table: dict[str, Any], path: list[str], lines: list[str]) -> None:
-    def is_table(v):
-        return isinstance(v, dict)
-
-    def is_table_array(v):
-        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
-
-    for key, value in table.items():
-        if not (is_table(value) or is_table_array(value)):
-            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
-    for key, value in table.items():
-        if is_table(value):
-            lines += ["", f"[{'.'.join(map(_toml_key, path + [key]))}]"]
-            _toml_table(value, path + [key], lines)
-        elif is_table_array(value):
-            for item in value:
-                lines += ["", f"[[{'.'.join(map(_toml_key, path + [key]))}]]"]
-                _toml_table(item, path + [key], lines)
-
-
-def _toml_key(key: str) -> str:
-    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool | np.bool_):
-        return "true" if value else "false"
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    if isinstance(value, numbers.Real):
-        value = float(value)
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value)  # a JSON string is a valid TOML basic string
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise TypeError(f"cannot write {type(value).__name__} to TOML")
 
 
 # ---------------------------------------------------------------------------- Python runtime

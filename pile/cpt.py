@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave_inputs import InputError
+from anvilwave_inputs import InputError, read_text
 
 from .soil_profile import Cpt
 
@@ -193,12 +193,7 @@ def _check_choice(source: str, key: str, value: str, choices) -> None:
 
 def _read_rows(path: Path):
     """(header cells, [(row cells, line number)]) without comment and blank lines."""
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except FileNotFoundError:
-        raise InputError(path, "", "file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(path, "", f"cannot be read ({exc})") from None
+    text = read_text(path, encoding="utf-8-sig")
     header = None
     rows = []
     for number, cells in enumerate(csv.reader(text.splitlines()), start=1):

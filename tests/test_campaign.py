@@ -23,9 +23,9 @@ from anvilwave.campaign import (
     load_campaign,
     read_campaign_csv,
     run_campaign,
-    toml_text,
 )
 from anvilwave_inputs import InputError, Table
+from anvilwave_inputs import toml_dumps as toml_text
 
 from .conftest import EXAMPLES
 
