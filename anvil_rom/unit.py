@@ -213,8 +213,8 @@ def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram
         # complementary energy of contacts + residual flexibility, F_n^T A F_n-1 / 2 with
         # A = [[1/k_ram + r00, -r01], [-r01, 1/k_pile + r11]] and F_n-1 the forces one step
         # earlier (neighbours moved back by h v, modes at q_n-1)
-        fr0, fp0 = anvil_contact_forces(u_ram - h * v_ram, v_ram, u_pile - h * v_pile, v_pile,
-                                        ut_prev, 0.0, ub_prev, 0.0, P[0], P[1], P[2], P[3],
+        fr0, fp0 = anvil_contact_forces(u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0,
+                                        ut_prev, 0.0, ub_prev, 0.0, P[0], 0.0, P[2], 0.0,
                                         P[4], P[5], P[6])
         a11 = 1.0 / P[0] + P[4]
         a22 = 1.0 / P[2] + P[6]
@@ -277,6 +277,24 @@ def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
     interface[1] = vt
     interface[2] = ub
     interface[3] = vb
+
+
+@njit(cache=True, inline='always')
+def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+    """(F_e,ram, F_e,pile, power): the contact forces without the dashpots [N] (the elastic
+    parts, whose complementary energy the contacts store) and the power [W] the dashpots
+    dissipate at the contact forces ``f_ram``, ``f_pile`` of :func:`modal_unit_contact`.
+
+    With the dashpots folded into an equivalent overlap (:func:`anvil_rom.rom.
+    anvil_contact_forces`) the force is F = A^-1 (d + T d') with T = diag(c / k): its elastic
+    part A^-1 d stores d^T A^-1 d / 2, whose rate is F_e . d', so the rest, (F - F_e) . d',
+    is dissipated (d' the relative velocities of the modal faces, rest to the contacts)."""
+    fe_ram, fe_pile = anvil_contact_forces(u_ram, 0.0, u_pile, 0.0, interface[0], 0.0,
+                                           interface[2], 0.0, P[0], 0.0, P[2], 0.0, P[4], P[5],
+                                           P[6])
+    power = ((f_ram - fe_ram) * (v_ram - interface[1])
+             + (f_pile - fe_pile) * (interface[3] - v_pile))
+    return fe_ram, fe_pile, power
 
 
 @njit(cache=True, inline='always')

@@ -271,7 +271,10 @@ def _demo(args: argparse.Namespace) -> int:
         plot_modes(modes, out.part("modes/modes.png"))
         print(f"    {modes.modes.n_modes} modes up to {modes.modes.fmax:g} Hz, "
               f"{modes.model.n_dof} DOF, {modes.wall_time:.1f} s")
-        if ram_model == "modal":
+        if ram.is_modal_unit:
+            print(f"    ram: modal ROM up to {ram.fmax:g} Hz, {ram.modes.n_modes} modes (modal "
+                  "unit)")
+        elif ram_model == "modal":
             print(f"    ram: modal ROM up to {ram.fmax:g} Hz, realised as a {ram.n_masses}-mass "
                   "chain")
         else:
@@ -290,7 +293,9 @@ def _demo(args: argparse.Namespace) -> int:
             "system": str(system),
             "anvil_modes": modes.modes.n_modes, "anvil_fmax [Hz]": modes.modes.fmax,
             "anvil_fe_dof": modes.model.n_dof,
-            "ram_model": ram_model, "ram_masses": ram.n_masses,
+            "ram_model": ram_model,
+            "ram_modes" if ram.is_modal_unit else "ram_masses":
+                ram.modes.n_modes if ram.is_modal_unit else ram.n_masses,
             "comparison_bandwidth [Hz]": comparison["comparison_bandwidth [Hz]"],
             "rom_vs_fea": {k: v for k, v in rom.items() if k.endswith("[-]") or
                            k.endswith("error [s]")},

@@ -43,6 +43,7 @@ from anvil_rom.unit import (
     ContactParameters,
     modal_unit_advance,
     modal_unit_contact,
+    modal_unit_dashpot_power,
     modal_unit_energy_at,
     modal_unit_interface,
 )
@@ -101,7 +102,7 @@ ENERGY_COLUMNS = (
     "anvil_kinetic [J]", "anvil_potential [J]",
     "pile_kinetic [J]", "pile_strain [J]", "pile_gravity_work [J]",
     "soil_static_work [J]", "soil_damping_work [J]", "pile_damping_work [J]",
-    "pile_head_work [J]", "pile_head_face_work [J]",
+    "pile_head_work [J]", "pile_head_face_work [J]", "contact_damping_work [J]",
 )
 STEPS_PER_PERIOD_AT_FMAX = 8
 """The automatic step samples the ROM's highest frequency fmax at least this often: the contact
@@ -355,6 +356,12 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                                                  pv, dt_pile, pu, pv, works)
         stored0 = kinetic + strain
     work_gauge = 0.0
+    work_contact = 0.0  # dissipated by the contact dashpots since the blow started
+    damped = False
+    if modal is not None:
+        damped = modal[0][1] != 0.0 or modal[0][3] != 0.0
+    if direct is not None:
+        damped = direct[1] != 0.0
     power_before = 0.0
     emx_gauge = 0.0
     emx_head = 0.0
@@ -380,14 +387,26 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         f_pile = 0.0
         u_top = u_pile
         u_bottom = u_pile
+        fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
+        fe_pile = 0.0
         if modal is not None:
             f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
+            fe_ram = f_ram
+            fe_pile = f_pile
+            if damped:
+                fe_ram, fe_pile, power = modal_unit_dashpot_power(
+                    modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+                work_contact += h * power
         if classic is not None:
             f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
                                                                    v_ram, u_pile, v_pile)
         if direct is not None:
             f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
             f_pile = f_ram
+            fe_ram = f_ram
+            if damped:
+                fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
+                work_contact += h * (f_ram - fe_ram) * (v_ram - v_pile)
         # the blow's summary at t_n
         f_gauge = gauge_force(pile, probes, pu, pv)
         v_gauge = gauge_velocity(probes, pv)
@@ -429,7 +448,8 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 pot = 0.0
                 if modal is not None:
                     kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
-                                                    u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+                                                    u_ram, v_ram, u_pile, v_pile, fe_ram,
+                                                    fe_pile)
                 if classic is not None:
                     kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
                                                                         u_ram, u_pile)
@@ -437,7 +457,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                     pot = recoverable + potential + driving_system_losses(classic[0],
                                                                           classic[1])
                 if direct is not None:
-                    pot = 0.5 * f_ram * f_ram / direct[0]
+                    pot = 0.5 * fe_ram * fe_ram / direct[0]
                 if modal_ram is not None:
                     ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], gravity, h)
                 else:
@@ -464,6 +484,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 energies[11, r] = start[2][WORK_PILE_DAMPING] + damping
                 energies[12, r] = pen[WORK_HEAD]
                 energies[13, r] = head_face_work(probes, pen)
+                energies[14, r] = work_contact
                 energy_row += 1
             energy_countdown -= 1
         countdown -= 1
@@ -997,6 +1018,20 @@ def anvil_modal_data(cfg: SystemConfig):
         raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
 
 
+def _modal_ram_as_chain(cfg: SystemConfig):
+    """The system's modal-unit ram as its equivalent chain (cached)."""
+    from hammer.modal_ram import modal_ram_chain
+
+    from .cache import cached_chain
+
+    try:
+        return modal_ram_chain(cfg.hammer.ram, cfg.hammer.ram.modes, cached_chain)
+    except InputError as exc:
+        raise InputError(cfg.source, "anvil.model", f"the {cfg.anvil.model} anvil steps the "
+                                                    f"modal ram as its chain: {exc.rule}"
+                         ) from None
+
+
 def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
     """Assemble the components of a system.
 
@@ -1005,8 +1040,16 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
     (:func:`anvil_rom.geometry.solid_mass`).
     ram_modes : :class:`hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
     (:class:`hammer.modal_ram.ModalRamUnit`, exact per mode, its residual flexibility the ram's
-    side of the contact) instead of the system's ram chain; None: the chain.
+    side of the contact) instead of the system's ram chain; None: the system's ram (a modal
+    ram given as toe modes, ``ram_model = "modal"``, runs as the unit with the ROM and lumped
+    anvils and as its equivalent chain with the classic driving system, whose kernel steps a
+    ram chain).
     """
+    if ram_modes is None and cfg.hammer.ram.is_modal_unit:
+        if cfg.anvil.model in ("rom", "lumped"):
+            ram_modes = cfg.hammer.ram.modes
+        else:
+            cfg = replace(cfg, hammer=replace(cfg.hammer, ram=_modal_ram_as_chain(cfg)))
     if ram_modes is not None:
         ram = replace(cfg.hammer.ram, toe_stiffness=ram_modes.toe_stiffness)
         cfg = replace(cfg, hammer=replace(cfg.hammer, ram=ram))

@@ -59,6 +59,8 @@ def energy_balance(result) -> dict[str, float]:
         "soil_static_work [J]": change("soil_static_work [J]"),
         "soil_damping_work [J]": change("soil_damping_work [J]"),
         "pile_damping_work [J]": change("pile_damping_work [J]"),
+        "contact_damping_work [J]": (change("contact_damping_work [J]")
+                                     if "contact_damping_work [J]" in E else 0.0),
         "gravity_work_ram_and_pile [J]": (-change("ram_gravity_potential [J]")
                                           + change("pile_gravity_work [J]")),
     }
@@ -76,7 +78,7 @@ def total_energy(E: dict[str, np.ndarray]) -> np.ndarray:
             + E["anvil_kinetic [J]"] + E["anvil_potential [J]"]
             + E["pile_kinetic [J]"] + E["pile_strain [J]"] - E["pile_gravity_work [J]"]
             + E["soil_static_work [J]"] + E["soil_damping_work [J]"]
-            + E["pile_damping_work [J]"])
+            + E["pile_damping_work [J]"] + E.get("contact_damping_work [J]", 0.0))
 
 
 def gauge_steel_area(config) -> float:

@@ -39,7 +39,8 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.mass": ("kg", None, "lumped anvil mass; default the FE mass"),
     "anvil.ram_contact_stiffness": ("N/m", None, "default the ram's toe half segment"),
     "anvil.pile_contact_stiffness": ("N/m", None, "default the pile's top half segment"),
-    "anvil.ram_contact_damping": ("N s/m", 0.0, "dashpot parallel to the ram contact"),
+    "anvil.ram_contact_damping": ("N s/m", 0.0, "dashpot parallel to the ram contact, or "
+                                                "'ram-impedance' (the ram's toe A sqrt(E rho))"),
     "anvil.pile_contact_damping": ("N s/m", 0.0, "dashpot parallel to the pile contact"),
     "anvil.classic": ("-", None, "table of the classic driving system (model 'classic')"),
     "anvil.classic.helmet_mass": ("kg", REQUIRED, "helmet mass"),

@@ -27,6 +27,8 @@ A system file is TOML (every key is checked; units in brackets)::
     damping_ratio = 0.0         # [-] optional
     static_correction = true    # optional
     ram_contact_stiffness = 1e12    # [N/m] optional, default: the ram's toe half segment
+    ram_contact_damping = "ram-impedance"   # [N s/m] optional (default 0), a number or the
+                                # ram's toe bar impedance A sqrt(E rho)
     pile_contact_stiffness = 1e12   # [N/m] optional, default: the pile's top half segment
 
     [pile]      # see pile/pile.py          [soil]      # see pile/soil.py
@@ -47,7 +49,7 @@ from hammer.modal_ram import modal_ram
 from pile.model import PileSoil
 
 from .budget import check_run_budget
-from .cache import cached_chain, cached_modal_data
+from .cache import cached_modal_data
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
 RAM_MODELS = ("rod", "modal")
@@ -142,7 +144,7 @@ def load_system(path: str | Path) -> SystemConfig:
         raise sim.error("output_interval", "must not exceed the duration")
 
     hammer, velocity, ram_options = _hammer(root.table("hammer"), gravity)
-    anvil = _anvil(root.table("anvil"))
+    anvil = _anvil(root.table("anvil"), hammer, source)
     drive = srd = None
     if root.has("driveability"):
         from .driveability import load_drive_settings
@@ -189,7 +191,7 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
         fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
     try:
         ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
-                        modes=cached_modal_data, realise=cached_chain)
+                        modes=cached_modal_data)
     except InputError as exc:
         if exc.key == "fmax":  # the mesh does not resolve fmax
             key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"
@@ -232,7 +234,27 @@ def _hammer(table: Table, gravity: float) -> tuple[Hammer, float, dict]:
     return hammer, velocity, options
 
 
-def _anvil(table: Table) -> AnvilSettings:
+CONTACT_DAMPING_RULES = ("ram-impedance",)
+"""Named values of ``ram_contact_damping``: "ram-impedance" is the bar impedance E A / c of the
+ram's striking section (:attr:`hammer.ram.RamRod.toe_impedance`)."""
+
+
+def _ram_contact_damping(table: Table, hammer: Hammer, source: str) -> float:
+    """``ram_contact_damping`` [N s/m]: a number, or "ram-impedance" (the ram's toe bar
+    impedance A sqrt(E rho): a dashpot that lets what the modes above fmax would carry away
+    from the contact, as waves into the ram, leave the contact instead of ringing in it)."""
+    if isinstance(table.data.get("ram_contact_damping"), str):
+        table.string("ram_contact_damping", choices=CONTACT_DAMPING_RULES)
+        value = hammer.ram.toe_impedance
+        if not np.isfinite(value):
+            raise InputError(source, "anvil.ram_contact_damping",
+                             "\"ram-impedance\" needs a ram given by its shape (diameter and "
+                             "mass or length, or a profile)")
+        return float(value)
+    return table.number("ram_contact_damping", 0.0, ge=0.0, unit="N s/m")
+
+
+def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
     model = table.string("model", choices=ANVIL_MODELS)
     spec = None
     if table.has("file"):
@@ -257,7 +279,7 @@ def _anvil(table: Table) -> AnvilSettings:
         mass=table.number("mass", None, gt=0.0, unit="kg"),
         ram_contact_stiffness=table.number("ram_contact_stiffness", None, gt=0.0, unit="N/m"),
         pile_contact_stiffness=table.number("pile_contact_stiffness", None, gt=0.0, unit="N/m"),
-        ram_contact_damping=table.number("ram_contact_damping", 0.0, ge=0.0, unit="N s/m"),
+        ram_contact_damping=_ram_contact_damping(table, hammer, source),
         pile_contact_damping=table.number("pile_contact_damping", 0.0, ge=0.0, unit="N s/m"),
         classic=classic,
     )

@@ -90,8 +90,8 @@ def main() -> None:
     parser.add_argument("fmus", type=Path, help="folder written by anvilwave build-fmus")
     parser.add_argument("--pile", type=Path, default=None,
                         help="another pile/soil FMU for a third run")
-    parser.add_argument("--step", type=float, default=25e-6,
-                        help="communication step h [s] (default 25 us, table1.toml's)")
+    parser.add_argument("--step", type=float, default=20e-6,
+                        help="communication step h [s] (default 20 us, table1.toml's)")
     parser.add_argument("--duration", type=float, default=0.025, help="[s] (default 25 ms)")
     parser.add_argument("--plot", type=Path, default=None, help="write the figure (PNG)")
     args = parser.parse_args()

@@ -11,7 +11,7 @@ one, made like a field record from a simulation:
    fits: RMX can move t1 over a full round trip): the 80 m pile and the anvil still ring at
    +-0.5 m/s then, and a PDA's drift correction assumes the pile at rest at the record's end.
 2. The gauges are zeroed at rest (the anvil and pile weights removed from the force) and a
-   2 ms pre-trigger at rest is put before the impact (sample interval 25 us, the simulation's).
+   2 ms pre-trigger at rest is put before the impact (sample interval 20 us, the simulation's).
 3. Noise: white Gaussian, standard deviation 2 % of the signal's peak, on the force and on the
    velocity (seed SEED: the files are reproducible).
 4. Unequal gauges: the two strain gauges read the mean strain plus and minus a bending strain

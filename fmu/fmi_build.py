@@ -250,17 +250,22 @@ def pile_soil_parameters(model) -> dict[str, Any]:
 # ---------------------------------------------------------------------------- TOML resources
 def hammer_toml(hammer) -> str:
     """A hammer file (TOML) that reads back as ``hammer``'s ram exactly: its segment masses
-    [kg] and springs [N/m] and its impact velocity [m/s]."""
+    [kg] and springs [N/m] (or a modal ram's toe modes) and its impact velocity [m/s]."""
     ram = hammer.ram
-    ram_table: dict[str, Any] = {"segment_masses": [float(m) for m in ram.mass],
-                                 "segment_stiffnesses": [float(k) for k in ram.stiffness]}
+    if ram.is_modal_unit:  # the toe modes of a modal ram (hammer.modal_ram)
+        from hammer.modal_ram import toe_modes_table
+
+        ram_table: dict[str, Any] = toe_modes_table(ram.modes)
+    else:
+        ram_table = {"segment_masses": [float(m) for m in ram.mass],
+                     "segment_stiffnesses": [float(k) for k in ram.stiffness]}
     if math.isfinite(ram.toe_diameter):
         ram_table["diameter"] = float(ram.toe_diameter)
     root = {"name": hammer.name, "manufacturer": hammer.manufacturer,
             "description": f"Written by anvilwave from the hammer {hammer.name!r} "
-                           "(segments of its ram model).",
+                           "(its ram model).",
             "impact_velocity": float(hammer.impact_velocity), "ram": ram_table}
-    return "# anvilwave Ram FMU resource: the ram of a system file as lumped segments.\n" \
+    return "# anvilwave Ram FMU resource: the ram of a system file (segments or toe modes).\n" \
         + toml_dumps(root)
 
 

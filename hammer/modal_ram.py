@@ -10,21 +10,22 @@ about 5 % high; with Poisson's ratio set to 0 in the FEA's ram the 1D ram matche
 
 Here the ram gets the anvil's treatment: its section (the hammer's ``sections``) is meshed and
 assembled like an anvil (:mod:`anvil_rom`), its free-free modes up to fmax (the same single
-parameter) are projected on the striking face (uniform pressure on the toe), and
+parameter) are projected on the striking face (uniform pressure on the toe), and they run as a
+modal unit (:class:`ModalRamUnit`, kernel :func:`modal_ram_advance`), like the anvil's:
 
-* the modes are realised as the equivalent spring-mass chain (:mod:`anvil_rom.chain`): the
-  same driving-point receptance sum p_j^2 / (omega_j^2 - w^2), the same total mass, so the
-  leapfrog ram kernel, the Ram FMU and the coupled stability bound run it unchanged;
+* every mode is advanced exactly over a step with the toe force held
+  (:func:`anvil_rom.rom.modal_transition`): unconditionally stable, no sub-steps, and no limit
+  on the number of modes (fmax 10 kHz builds for the Table 1 ram, 20 kHz for the IHC S-800's);
 * the residual flexibility of the truncated modes at the toe (inertia relief, as the anvil's
-  static correction) becomes the ram's side of the contact spring, ``toe_stiffness``
-  = 1 / r_toe, the role the toe half segment 2 E A / dx plays in Smith's ram. The static
-  toe compliance is then exact whatever fmax.
+  static correction) is massless and in series with the contact: it becomes the ram's side of
+  the contact spring, ``toe_stiffness`` = 1 / r_toe, the role the toe half segment 2 E A / dx
+  plays in Smith's ram. The static toe compliance is then exact whatever fmax.
 
-The same modes also run as a modal unit (:class:`ModalRamUnit`, kernel
-:func:`modal_ram_advance`), like the anvil's: every mode advanced exactly over a step with the
-toe force held (:func:`anvil_rom.rom.modal_transition`), the residual flexibility the same
-series toe spring. It needs no chain, so it has no double-precision range limit (fmax 10 kHz
-builds for the Table 1 ram, whose chain stops at about 500 modes), and no sub-steps.
+The same modes can also be realised as the equivalent spring-mass chain
+(:mod:`anvil_rom.chain`, ``realisation="chain"``): the same driving-point receptance sum
+p_j^2 / (omega_j^2 - w^2) and total mass, run by the leapfrog ram kernel. The chain is kept for
+the classic driving system (whose kernel steps a ram chain) and as the unit's cross-check; it
+stops at about 500 modes (its masses fall by 1e-70 per 125 modes: double-precision range).
 """
 
 from __future__ import annotations
@@ -94,23 +95,90 @@ def default_mesh_size(sections: np.ndarray, material: Material, fmax: float) -> 
                      walls.min() / ELEMENTS_PER_RADIUS))
 
 
+REALISATIONS = ("unit", "chain")
+"""How a modal ram runs: the modal unit (default) or the equivalent chain."""
+
+
 def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
               mesh_size: float | None = None, source: str = "hammer",
-              modes: Callable | None = None, realise: Callable | None = None) -> RamRod:
+              modes: Callable | None = None, realise: Callable | None = None,
+              realisation: str = "unit") -> RamRod:
     """The modal ROM of ``ram`` (given by its sections) up to ``fmax`` [Hz], as a RamRod.
 
     poisson_ratio [-]; mesh_size [m] (default :func:`default_mesh_size`). Errors name
     ``source`` and the key: a ram without sections (rigid, explicit segments) has no shape to
     mesh. modes : ``modes(spec, fmax) -> ModalData`` of the ram's section (default: computed,
-    :func:`anvil_rom.pipeline.compute_anvil_modes`); realise : ``realise(omega, participation)
-    -> (mass, stiffness)`` of the chain (default :func:`anvil_rom.chain.chain_from_modes`). The
-    system layer passes its modal-data cache for both.
+    :func:`anvil_rom.pipeline.compute_anvil_modes`). realisation : "unit" (the RamRod carries
+    the toe modes, :attr:`RamRod.modes`, for :class:`ModalRamUnit`) or "chain" (the masses and
+    springs of the equivalent chain, from ``realise(omega, participation) -> (mass,
+    stiffness)``, default :func:`anvil_rom.chain.chain_from_modes`). The system layer passes
+    its modal-data cache for both.
     """
+    if realisation not in REALISATIONS:
+        raise ValueError(f"realisation must be one of {REALISATIONS}, got {realisation!r}")
     toe_modes = modal_ram_modes(ram, fmax, poisson_ratio=poisson_ratio, mesh_size=mesh_size,
                                 source=source, modes=modes)
+    if realisation == "unit":
+        return dataclasses.replace(ram, mass=np.array([toe_modes.total_mass]),
+                                   stiffness=np.zeros(0), toe_stiffness=toe_modes.toe_stiffness,
+                                   fmax=float(fmax), modes=toe_modes)
+    return modal_ram_chain(ram, toe_modes, realise)
+
+
+def modal_ram_chain(ram: RamRod, toe_modes: RamToeModes, realise: Callable | None = None
+                    ) -> RamRod:
+    """``ram`` realised as the chain of its toe modes (:func:`modal_ram`, "chain")."""
     mass, stiffness = _chain(toe_modes, realise)
     return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
-                               toe_stiffness=toe_modes.toe_stiffness, fmax=float(fmax))
+                               toe_stiffness=toe_modes.toe_stiffness, fmax=toe_modes.fmax,
+                               modes=None)
+
+
+def ram_from_toe_modes(toe_modes: RamToeModes, toe_diameter: float = math.nan) -> RamRod:
+    """A modal-unit RamRod of given toe modes (no shape: the modes are the ram)."""
+    return RamRod(np.array([toe_modes.total_mass]), np.zeros(0), math.nan, float(toe_diameter),
+                  toe_modes.toe_stiffness, fmax=toe_modes.fmax, modes=toe_modes)
+
+
+def toe_modes_table(toe_modes: RamToeModes) -> dict:
+    """The TOML table (``[ram]`` with ``kind = "modal"``) that reads back as ``toe_modes``
+    exactly (:func:`toe_modes_from_table`)."""
+    return {"kind": "modal", "fmax": toe_modes.fmax, "mass": toe_modes.total_mass,
+            "toe_stiffness": toe_modes.toe_stiffness,
+            "frequencies": (toe_modes.omega / (2.0 * np.pi)).tolist(),
+            "omega": toe_modes.omega.tolist(),
+            "participation": toe_modes.participation.tolist(),
+            "participation_gravity": toe_modes.participation_gravity.tolist()}
+
+
+def toe_modes_from_table(table) -> RamToeModes:
+    """Toe modes from a ``[ram]`` table with ``kind = "modal"`` (errors name the key):
+    ``omega`` [rad/s] (exactly one 0: the rigid-body mode; ``frequencies`` [Hz] beside it for
+    the reader), ``participation`` [kg^-1/2], ``participation_gravity`` [kg^1/2], ``mass``
+    [kg], ``toe_stiffness`` [N/m], ``fmax`` [Hz]."""
+    omega = table.array("omega")
+    table.array("frequencies")  # for the reader; omega is exact
+    n = omega.size
+    participation = table.array("participation")
+    gravity = table.array("participation_gravity")
+    for key, values in (("participation", participation), ("participation_gravity", gravity)):
+        if values.shape != (n,):
+            raise table.error(key, f"must have one entry per mode ({n}), got {values.size}")
+        if not np.all(np.isfinite(values)):
+            raise table.error(key, "must be finite")
+    if not np.all(np.isfinite(omega)) or np.any(omega < 0.0) or np.count_nonzero(omega == 0.0) != 1:
+        raise table.error("omega", "must be finite and >= 0 with exactly one 0 (the rigid-body "
+                                   "mode)")
+    rigid = int(np.flatnonzero(omega == 0.0)[0])
+    if participation[rigid] == 0.0:
+        raise table.error("participation", "the rigid-body mode must move the toe")
+    mass = table.number("mass", gt=0.0, unit="kg")
+    toe_stiffness = table.number("toe_stiffness", gt=0.0, unit="N/m")
+    fmax = table.number("fmax", gt=0.0, unit="Hz")
+    for a in (omega, participation, gravity):
+        a.flags.writeable = False
+    return RamToeModes(omega, participation, gravity, total_mass=mass,
+                       toe_stiffness=toe_stiffness, fmax=fmax)
 
 
 @dataclass(frozen=True, eq=False)
@@ -223,6 +291,18 @@ class ModalRamUnit:
     def toe_stiffness(self) -> float:
         """The ram's side of the contact spring, 1 / residual toe flexibility [N/m]."""
         return self.modes.toe_stiffness
+
+    def set_step(self, h: float) -> None:
+        """Use the step h [s] from now on; the state keeps its displacement q_n and its
+        half-step rate (q_n - q_n-1) / h (a master that changes its step)."""
+        if h == self.h:
+            return
+        n = self.modes.n_modes
+        if math.isfinite(self.h):
+            rate = (self.S[:n] - self.S[n:]) / self.h
+            self.S[n:] = self.S[:n] - h * rate
+        self.C[:4] = modal_transition(self.modes.omega, 0.0, h).T
+        self.h = float(h)
 
     def start(self, toe_displacement: float, velocity: float, h: float) -> None:
         """Undeformed rigid motion at ``velocity`` [m/s] with the toe at ``toe_displacement``

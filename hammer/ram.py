@@ -116,6 +116,10 @@ class RamRod:
         Material of ``sections`` [Pa], [kg/m^3] (nan when unknown).
     fmax : float
         Frequency content [Hz] of a modal ram (:mod:`hammer.modal_ram`); nan for a Smith rod.
+    modes : :class:`hammer.modal_ram.RamToeModes` or None
+        A modal ram run as the modal unit (:class:`hammer.modal_ram.ModalRamUnit`): its toe
+        modes; ``mass`` is then the one total mass (the ram's weight and impact energy) and
+        ``stiffness`` empty. None for a Smith rod and for a modal ram realised as a chain.
     """
 
     mass: np.ndarray
@@ -127,6 +131,7 @@ class RamRod:
     elastic_modulus: float = math.nan
     density: float = math.nan
     fmax: float = math.nan
+    modes: object = None
 
     def __post_init__(self):
         mass = np.ascontiguousarray(self.mass, dtype=np.float64).copy()
@@ -193,8 +198,13 @@ class RamRod:
         return not math.isnan(self.fmax)
 
     @property
+    def is_modal_unit(self) -> bool:
+        """True for a modal ram run as the modal unit (``modes`` given)."""
+        return self.modes is not None
+
+    @property
     def is_rigid(self) -> bool:
-        return self.mass.size == 1
+        return self.mass.size == 1 and self.modes is None
 
     @property
     def static_stiffness(self) -> float:
@@ -204,6 +214,15 @@ class RamRod:
             return math.inf
         toe = 0.0 if math.isnan(self.toe_stiffness) else 1.0 / self.toe_stiffness
         return float(1.0 / (np.sum(1.0 / self.stiffness) + toe))
+
+    @property
+    def toe_impedance(self) -> float:
+        """Bar impedance of the striking face's section, E A / c = A sqrt(E rho) [N s/m] (nan
+        when the ram has no shape: explicit segments, rigid, toe modes alone)."""
+        if self.sections is None:
+            return math.nan
+        outer, inner = self.sections[-1, 1], self.sections[-1, 2]
+        return circle_area(outer, inner) * math.sqrt(self.elastic_modulus * self.density)
 
     def stable_time_step(self) -> float:
         """Largest stable leapfrog step [s] (Gershgorin bound; inf when rigid)."""
@@ -406,8 +425,10 @@ def ram_from_table(table: Table) -> RamRod:
 
     Keys
     ----
-    kind : "rod" (default) or "rigid".
+    kind : "rod" (default), "rigid" or "modal".
     rigid: ``mass`` [kg], optional ``diameter`` [m] of the striking face.
+    modal: the toe modes of a modal ram (:func:`hammer.modal_ram.toe_modes_from_table`: what
+    a Ram FMU embeds).
     rod, one of
       * ``diameter`` [m] with ``mass`` [kg] or ``length`` [m]: a uniform solid cylinder;
       * ``profile`` = [[length, outer_diameter], ...] or [[length, outer, inner], ...] [m],
@@ -416,7 +437,14 @@ def ram_from_table(table: Table) -> RamRod:
     With the first two: ``elastic_modulus`` [Pa] (210e9), ``density`` [kg/m^3] (7850),
     ``segment_length`` [m] (0.5).
     """
-    kind = table.string("kind", "rod", choices=("rod", "rigid"))
+    kind = table.string("kind", "rod", choices=("rod", "rigid", "modal"))
+    if kind == "modal":
+        from .modal_ram import ram_from_toe_modes, toe_modes_from_table
+
+        diameter = _optional(table.number("diameter", None, gt=0, unit="m"))
+        modes = toe_modes_from_table(table)
+        table.finish()
+        return ram_from_toe_modes(modes, diameter)
     if kind == "rigid":
         mass = table.number("mass", gt=0, unit="kg")
         diameter = _optional(table.number("diameter", None, gt=0, unit="m"))

@@ -34,22 +34,29 @@ def test_demo_writes_everything(demo):
         assert (out / name).exists(), name
     summary = json.loads((out / "summary.json").read_text())
     assert summary["anvil_modes"] > 10
-    assert summary["ram_model"] == "modal" and summary["ram_masses"] > 50
+    assert summary["ram_model"] == "modal" and summary["ram_modes"] > 50
 
 
 def test_table1_rom_against_fea(demo):
-    """ROM vs FEA in the comparison band (3.3 kHz), with the bounds of the issue: arrival time
-    within 0.1 ms, RMS errors within 10 %, peaks within 3 % (pile) and 5 % (ram). Measured with
-    table1.toml's modal ram: arrival 0.0 ms, RMS 3.4 % ram and 2.8 % pile, peaks +2.2 % pile and
-    -0.1 % ram. (With Smith's 1D rod ram, whose missing lateral inertia is the difference: peaks
-    +4.7 % and +5.5 %, RMS 6.9 % and 3.6 %; test_modal_ram.py.)"""
+    """ROM vs FEA with every series low-passed at fmax = 5 kHz (the comparison band of
+    table1.toml: its 0.25 m pile segments cut off at 6.5 kHz), with the bounds of the issue:
+    arrival time within 0.1 ms, RMS errors within 10 %, peaks within 3 % (pile) and 5 % (ram),
+    and the raw ROM peaks (what impact.csv holds) against the FEA's 5 kHz peaks within 5 %
+    (pile) and 10 % (ram). Measured with table1.toml's modal ram unit and its ram-impedance
+    contact dashpot: arrival +0.04 ms, RMS 4.8 % ram and 3.0 % pile, peaks +1.0 % pile and
+    -1.0 % ram, raw peaks +1.2 % pile and +7.5 % ram. (Without the dashpot the raw ram peak
+    is +57 %: the contact rings at 5-6 kHz; with the former 0.5 m segments and 25 us step the
+    pile peak in the 5 kHz band was +5.8 %.)"""
     _, cmp = demo
+    assert cmp["comparison_bandwidth [Hz]"] == pytest.approx(5000.0)
     rom = cmp["rom"]
     assert abs(rom["pile_force_arrival_error [s]"]) <= 1e-4
     assert rom["ram_anvil_force_normalised_rms_error [-]"] <= 0.10
     assert rom["anvil_pile_force_normalised_rms_error [-]"] <= 0.10
     assert abs(rom["peak_anvil_pile_force_error [-]"]) <= 0.03
     assert abs(rom["peak_ram_anvil_force_error [-]"]) <= 0.05
+    assert abs(rom["peak_anvil_pile_force_unfiltered_vs_reference_band_error [-]"]) <= 0.05
+    assert abs(rom["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"]) <= 0.10
 
 
 def test_lumped_anvil_is_worse_and_misses_the_anvil_delay(demo):
@@ -97,12 +104,12 @@ def test_comparison_helpers():
 
 def test_table1_pile_head_force_band_levels(demo, tmp_path):
     """One-third-octave band levels of the pile-head force (the noise argument). The valid
-    band runs from 1 / T (40 Hz, T = 25 ms) to the 3.3 kHz comparison band (a tenth of the
-    ROM's 40 kHz sampling would allow 4 kHz). Measured, ROM - FEA: within 0.9 dB in every band
-    from 50 Hz to 1 kHz (largest -0.87 dB at 251 Hz, +0.75 dB at 1 kHz), then +1.4, +2.7,
-    +5.4 and +8.5 dB in the 1.26, 1.6, 2 and 2.5 kHz bands (+12.7 dB at 3.15 kHz): the 1 dB
-    target holds up to 1 kHz, not up to 4 kHz. The lumped anvil is -1.8 dB at 100 Hz, -10 to
-    -24 dB from 316 Hz to 2.5 kHz (it cannot carry the anvil's wave)."""
+    band runs from 1 / T (40 Hz, T = 25 ms) to the 5 kHz comparison band (also a tenth of the
+    ROM's 50 kHz sampling). Measured, ROM - FEA: within 0.9 dB in every band from 50 Hz to
+    1.26 kHz (largest -0.9 dB at 251 Hz), then +1.7, +3.9, +6.3, +7.5 and +8.4 dB in the 1.6,
+    2, 2.5, 3.15 and 4 kHz bands: the issue's 1 dB target holds up to 1.26 kHz, not up to
+    4 kHz (open). The lumped anvil is -1.8 dB at 100 Hz, -10 to -26 dB from 316 Hz to 4 kHz
+    (it cannot carry the anvil's wave)."""
     _, cmp = demo
     spectra = cmp["pile_head_force_spectra"]
     low, high = spectra["valid_band [Hz]"]
@@ -112,8 +119,8 @@ def test_table1_pile_head_force_band_levels(demo, tmp_path):
     valid = np.array(spectra["valid [-]"], bool)
     rom = np.array(spectra["deviation_from_fea [dB]"]["rom"])
     lumped = np.array(spectra["deviation_from_fea [dB]"]["lumped"])
-    up_to_1k = valid & (centre <= 1001.0)
-    assert up_to_1k.sum() == 14
+    up_to_1k = valid & (centre <= 1260.0)
+    assert up_to_1k.sum() == 15
     assert np.all(np.abs(rom[up_to_1k]) <= 1.0)
     above_100 = valid & (centre >= 99.0)
     assert np.all(np.abs(rom[above_100]) < np.abs(lumped[above_100]))

@@ -4,6 +4,7 @@ bad inputs (references: ../shared/reference/driveability-fatigue-pda-spectra.md)
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -163,8 +164,7 @@ def test_blow_count_converges_with_segment_length(tmp_path):
     counts = []
     for dx in (1.0, 0.5, 0.25):
         path = tmp_path / f"conv_{dx}.toml"
-        path.write_text(text.replace("segment_length = 0.5      # [m] as in the paper",
-                                     f"segment_length = {dx}"))
+        path.write_text(re.sub(r"(?m)^segment_length = \S+", f"segment_length = {dx}", text))
         cfg = load_system(path)
         engine = build_engine(cfg)
         counts.append(analyse_depth(engine, cfg, _table_srd(cfg), cfg.drive, 30.0)

@@ -485,16 +485,17 @@ def test_libcosim_runs_system_ssp_in_its_jacobi_exchange_order(system, libcosim_
 
 def test_libcosim_on_system_ssp_matches_the_fmpy_master(system, libcosim_blow):
     """The must-show of the Jacobi coupling: libcosim on system.ssp of the default Table 1
-    system (modal ram, ROM anvil), at the step written into the SSP (h/4 of the fmpy master's
-    h), gives the peak ram and pile forces within 1 % of the fmpy master (DESIGN.md order) on
-    the same time grid. Measured: -0.21 % (ram) and +0.04 % (pile); the whole time series stay
-    within 1.1 % and 0.4 % of the peaks (lift-off and re-impact of the anvil move by a fraction
-    of a step). Without input extrapolation the same run is 77 % / 35 % off.
+    system (modal ram unit, ROM anvil, ram-impedance contact dashpot), at the step written into
+    the SSP (h/4 of the fmpy master's h), gives the peak ram and pile forces within 1 % of the
+    fmpy master (DESIGN.md order) at its own step h, and within 1 % of it on the same step.
 
-    Against the fmpy master at its own step h (the engine's, 4x coarser) the pile peak is
-    3.3 % lower: that is the fmpy master's own time-discretisation error at h (it is 3.9 %
-    above its converged value, the DESIGN order at h/64), not the coupling's (libcosim at h/4
-    is within 0.4 % of that converged value); it is printed, not asserted.
+    Measured: ram -0.09 % and pile -0.4 % against the fmpy master at h, -0.26 % and -0.2 % on
+    the same step. The whole time series stay within 3.2 % of the peaks on the same step: the
+    dashpot's share of the contact force follows the neighbours' velocities, which the
+    extrapolation predicts to first order only across the instants where a contact closes (the
+    error halves with the step: test below). With table1.toml's 0.25 m pile segments the
+    fmpy master's own peaks move by < 0.5 % from h to h/4; with the former 0.5 m segments the
+    pile peak at h was 3.9 % above its converged value, and libcosim 3.3 % off it.
     """
     lc = libcosim_blow
     fmus = system["fmus"]
@@ -505,22 +506,24 @@ def test_libcosim_on_system_ssp_matches_the_fmpy_master(system, libcosim_blow):
     with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"]) as master:
         coarse = master.run_blows(1, int(round(system["cfg"].duration / h)), h)[0]
     for j, name in ((1, "F_ram"), (2, "F_pile")):
-        peak, reference = lc[:, j].max(), design[name].max()
-        band = np.abs(lc[:, j] - design[name][1:]).max() / reference
+        peak, same, own = lc[:, j].max(), design[name].max(), coarse[name].max()
+        band = np.abs(lc[:, j] - design[name][1:]).max() / same
         print(f"\n{name}: libcosim at h/{h / fmus['ssp_step']:.0f} {peak / 1e6:.2f} MN, fmpy "
-              f"master on the same step {reference / 1e6:.2f} MN ({peak / reference - 1:+.3%}; "
-              f"band {band:.2%}), fmpy master at h {coarse[name].max() / 1e6:.2f} MN "
-              f"({peak / coarse[name].max() - 1:+.3%})")
-        assert abs(peak / reference - 1.0) <= 0.01
-        assert band <= 0.02  # measured 1.1 % / 0.4 %: anvil re-impact timing
+              f"master on the same step {same / 1e6:.2f} MN ({peak / same - 1:+.3%}; "
+              f"band {band:.2%}), fmpy master at h {own / 1e6:.2f} MN ({peak / own - 1:+.3%})")
+        assert abs(peak / own - 1.0) <= 0.01
+        assert abs(peak / same - 1.0) <= 0.01
+        assert band <= 0.04  # measured 3.1 %: contact closings, first order (see above)
 
 
 def test_input_extrapolation_converges_and_leaves_the_design_order_alone(system):
     """The fmpy master in libcosim's Jacobi exchange with ``input_extrapolation`` against the
     DESIGN order on the same step: the largest force difference over the first 6 ms (impact,
-    lift-off and re-impact of the anvil) falls at least 8x (third order) per halving of the
-    step from h/4 (measured 1.1e-2, 5.9e-4, 4.6e-5: 19x and 13x); with the option off it is a
-    one-step lag, tens of % at h/4. In the DESIGN order the option changes no bit.
+    lift-off and re-impact of the anvil) falls at least 1.8x (first order) per halving of the
+    step from h/4 (measured 3.1e-2, 1.5e-2, 7.1e-3: 2.1x and 2.1x; the contact dashpot's force
+    follows the extrapolated velocities, first order where a contact closes; without a dashpot
+    the displacements alone make it third order: 1.1e-2, 5.9e-4, 4.6e-5); with the option off
+    it is a one-step lag, tens of % at h/4. In the DESIGN order the option changes no bit.
     """
     h = system["fmus"]["time_step"]
     errors = {}
@@ -541,8 +544,8 @@ def test_input_extrapolation_converges_and_leaves_the_design_order_alone(system)
             assert np.array_equal(same.data, design.data, equal_nan=True)
     print("\nJacobi with input extrapolation vs DESIGN order, max |dF| / peak: "
           + ", ".join(f"h/{d}: {e:.2e}" for d, e in errors.items()))
-    assert errors[4] <= 0.02
-    assert errors[4] >= 8 * errors[8] and errors[8] >= 8 * errors[16]
+    assert errors[4] <= 0.04
+    assert errors[4] >= 1.8 * errors[8] and errors[8] >= 1.8 * errors[16]
 
 
 # ---------------------------------------------------------------------------- outputs

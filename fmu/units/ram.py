@@ -4,10 +4,14 @@ Interface (DESIGN.md, the contract): input ``F_toe`` [N] (ram-anvil contact forc
 positive, pushes the toe up); outputs ``u_toe`` [m], ``v_toe`` [m/s] (toe mass, z down). The
 outputs are states: no feedthrough of ``F_toe``.
 
-The ram is the lumped chain of :mod:`hammer.ram` stepped by :func:`hammer.ram.ram_advance`
-(the kernel of the in-process engine) with ``F_toe`` held over each communication step. Any
-communication step ``h`` is accepted: the slave sub-steps within the chain's stable limit,
-``n_sub = pile.model.substeps(h, stable_time_step)``, exactly as the engine does.
+The ram is either the lumped chain of :mod:`hammer.ram` stepped by
+:func:`hammer.ram.ram_advance` (the kernel of the in-process engine) with ``F_toe`` held over
+each communication step, sub-stepped within the chain's stable limit (``n_sub =
+pile.model.substeps(h, stable_time_step)``, exactly as the engine does), or a modal ram (a
+hammer file whose ``[ram]`` has ``kind = "modal"``: the toe modes of
+:mod:`hammer.modal_ram`), stepped by the engine's modal ram unit
+(:class:`hammer.modal_ram.ModalRamUnit`: every mode exact over the step for the held force, no
+sub-steps). Any communication step ``h`` is accepted.
 
 Start: at ``fmi2SetupExperiment``'s start time t_s every mass moves at ``v_impact`` and the
 ram is undeformed, placed so that the toe reaches ``contact_displacement`` at
@@ -31,6 +35,7 @@ from pythonfmu import DefaultExperiment
 
 from anvilwave_inputs import InputError
 from hammer.database import available_hammers, load_hammer
+from hammer.modal_ram import ModalRamUnit, modal_ram_advance
 from hammer.ram import ram_advance, stable_time_step
 from pile.model import substeps
 
@@ -70,12 +75,43 @@ class RamState:
                     h, self._n_sub)
 
 
+class ModalRamState:
+    """A modal ram's unit (the engine's :class:`hammer.modal_ram.ModalRamUnit`) behind the
+    interface of :class:`RamState`."""
+
+    def __init__(self, toe_modes, gravity: float):
+        self.unit = ModalRamUnit(toe_modes, gravity)
+        self._start: tuple[float, float] | None = None
+        self.u = np.zeros(1)  # the toe state, as RamState's last entries
+        self.v = np.zeros(1)
+        # compile (or load) the kernel now, not inside the first doStep
+        ModalRamUnit(toe_modes, gravity).start(0.0, 1.0, 1e-6)
+        modal_ram_advance(self.unit.C, self.unit.S.copy(), 0.0, gravity, 1e-6,
+                          self.unit.toe.copy())
+
+    def start(self, displacement: float, velocity: float) -> None:
+        # the two-step state needs the step: it is set up at the first step
+        self._start = (displacement, velocity)
+        self.u[0] = displacement
+        self.v[0] = velocity
+
+    def step(self, toe_force: float, h: float) -> None:
+        unit = self.unit
+        if self._start is not None:
+            unit.start(self._start[0], self._start[1], h)
+            self._start = None
+        else:
+            unit.set_step(h)
+        self.u[0], self.v[0] = unit.step(toe_force)
+
+
 class RamSlave(UnitSlave):
     """The ram (``Ram.fmu``): a lumped rod of the hammer database or an embedded hammer file."""
 
     kind = "Ram"
     description = ("anvilwave ram: lumped-mass rod (leapfrog, sub-stepped within its stable "
-                   "limit), struck face force in, toe state out (SI units, z down)")
+                   "limit) or modal ram unit (toe modes, exact per mode), struck face force "
+                   "in, toe state out (SI units, z down)")
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.02, step_size=1e-5)
     parameter_fallbacks: ClassVar[dict] = {
         "hammer": DEFAULT_HAMMER,
@@ -120,6 +156,10 @@ class RamSlave(UnitSlave):
             raise InputError(name, "mass", f"must be positive (or 0: the hammer's), got "
                                            f"{wanted!r} kg")
         if wanted > 0.0 and wanted != hammer.ram.total_mass:
+            if hammer.ram.is_modal_unit:
+                raise InputError(name, "mass", f"a modal ram keeps its own mass "
+                                               f"({hammer.ram.total_mass:.6g} kg): give 0, got "
+                                               f"{wanted!r} kg")
             mass = mass * (wanted / hammer.ram.total_mass)
         velocity = par["v_impact"]
         if velocity == 0.0:
@@ -130,6 +170,8 @@ class RamSlave(UnitSlave):
             if not math.isfinite(par[key]):
                 raise InputError(name, key, f"must be finite, got {par[key]!r}")
         self.velocity = velocity
+        if hammer.ram.is_modal_unit:
+            return ModalRamState(hammer.ram.modes, gravity)
         return RamState(mass, hammer.ram.stiffness, gravity)
 
     def _hammer(self, name: str, gravity: float):
