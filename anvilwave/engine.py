@@ -459,7 +459,8 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 if direct is not None:
                     pot = 0.5 * fe_ram * fe_ram / direct[0]
                 if modal_ram is not None:
-                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], gravity, h)
+                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], modal_ram[2],
+                                                    gravity, h)
                 else:
                     ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v,
                                                    gravity, dt_ram)
@@ -492,7 +493,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
         if modal_ram is not None:
-            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, gravity, h, modal_ram[2])
+            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
         else:
             ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
         if modal is not None:

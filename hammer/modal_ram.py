@@ -266,11 +266,16 @@ def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax:
 class ModalRamUnit:
     """The modal ram as a unit: its toe modes advanced exactly with the toe force held.
 
-    Kernel data (float64): ``C`` (7, n), rows a, b, c, m_e, p_toe, p_grav, omega of the modes for
-    step (:func:`anvil_rom.rom.modal_transition`, undamped), ``S`` = [q (n) at t_n, q (n) at
-    t_n-1], ``toe`` = [u_toe, v_toe] [m, m/s] of the state (modal part; the residual
-    flexibility is the contact's series spring ``toe_stiffness``, as for the chain).
-    Velocities are half-step values (q_n - q_n-1) / h, as in the leapfrog units.
+    Kernel data (float64): ``C`` (9, n), rows a, b, c, m_e, p_toe, p_grav, omega of the modes
+    for the step (:func:`anvil_rom.rom.modal_transition`, undamped: b = -1), then c p_grav g and
+    c p_toe (the step's constant load and force coefficient, set with the step); the rigid-body
+    mode is mode 0, the only one gravity loads (p_grav of a free-free flexible mode is phi^T M e_z
+    = 0 by orthogonality to the rigid translation; the FE value, ~1e-12 of the rigid mode's, is
+    dropped). ``S`` (2 n) holds q at t_n and at t_n-1 in its two halves, which swap roles every
+    step (the kernel writes q_n+1 over q_n-1); ``toe`` = [u_toe, v_toe, half] [m, m/s, -]: the
+    toe state (modal part; the residual flexibility is the contact's series spring
+    ``toe_stiffness``, as for the chain) and which half of S is t_n (0: the first). Velocities
+    are half-step values (q_n - q_n-1) / h, as in the leapfrog units.
 
     toe_modes : :func:`modal_ram_modes`. gravity : [m/s^2].
     """
@@ -279,12 +284,14 @@ class ModalRamUnit:
         self.modes = toe_modes
         self.gravity = float(gravity)
         n = toe_modes.n_modes
-        self.C = np.zeros((7, n))  # one row per quantity: contiguous sweeps over the modes
-        self.C[4] = toe_modes.participation
-        self.C[5] = toe_modes.participation_gravity
-        self.C[6] = toe_modes.omega
+        rigid = int(np.flatnonzero(toe_modes.omega == 0.0)[0])
+        order = np.r_[rigid, np.delete(np.arange(n), rigid)]  # the rigid mode first
+        self.C = np.zeros((9, n))  # one row per quantity: contiguous sweeps over the modes
+        self.C[4] = toe_modes.participation[order]
+        self.C[5, 0] = toe_modes.participation_gravity[rigid]
+        self.C[6] = toe_modes.omega[order]
         self.S = np.zeros(2 * n)
-        self.toe = np.zeros(2)
+        self.toe = np.zeros(3)
         self.h = math.nan
 
     @property
@@ -292,76 +299,107 @@ class ModalRamUnit:
         """The ram's side of the contact spring, 1 / residual toe flexibility [N/m]."""
         return self.modes.toe_stiffness
 
+    def modal_coordinates(self) -> tuple[np.ndarray, np.ndarray]:
+        """(q at t_n, q at t_n-1), each (n,), rigid-body mode first."""
+        n = self.modes.n_modes
+        now = 0 if self.toe[2] == 0.0 else n
+        return self.S[now:now + n], self.S[n - now:2 * n - now]
+
     def set_step(self, h: float) -> None:
         """Use the step h [s] from now on; the state keeps its displacement q_n and its
         half-step rate (q_n - q_n-1) / h (a master that changes its step)."""
         if h == self.h:
             return
-        n = self.modes.n_modes
         if math.isfinite(self.h):
-            rate = (self.S[:n] - self.S[n:]) / self.h
-            self.S[n:] = self.S[:n] - h * rate
-        self.C[:4] = modal_transition(self.modes.omega, 0.0, h).T
+            q, previous = self.modal_coordinates()
+            previous[:] = q - h * (q - previous) / self.h
+        self._coefficients(h)
+
+    def _coefficients(self, h: float) -> None:
+        C = self.C
+        C[:4] = modal_transition(C[6], 0.0, h).T
+        C[7] = C[2] * C[5] * self.gravity
+        C[8] = C[2] * C[4]
         self.h = float(h)
 
     def start(self, toe_displacement: float, velocity: float, h: float) -> None:
         """Undeformed rigid motion at ``velocity`` [m/s] with the toe at ``toe_displacement``
         [m] at t_n (and h velocity earlier at t_n-1): the exact state of a falling ram."""
-        self.C[:4] = modal_transition(self.modes.omega, 0.0, h).T
-        self.h = float(h)
+        self._coefficients(h)
         n = self.modes.n_modes
-        rigid = int(np.flatnonzero(self.modes.omega == 0.0)[0])
-        p = self.modes.participation[rigid]
+        p = self.C[4, 0]
         self.S[:] = 0.0
-        self.S[rigid] = toe_displacement / p
-        self.S[n + rigid] = (toe_displacement - h * velocity) / p
-        self.toe[:] = toe_displacement, velocity
+        self.S[0] = toe_displacement / p
+        self.S[n] = (toe_displacement - h * velocity) / p
+        self.toe[:] = toe_displacement, velocity, 0.0
 
     def step(self, toe_force: float) -> tuple[float, float]:
         """Advance over h with the toe force [N] (compression, pushes up) held; returns the
         new (u_toe, v_toe) [m, m/s]."""
-        modal_ram_advance(self.C, self.S, toe_force, self.gravity, self.h, self.toe)
+        modal_ram_advance(self.C, self.S, toe_force, self.h, self.toe)
         return float(self.toe[0]), float(self.toe[1])
 
     def energies(self) -> tuple[float, float, float]:
         """(kinetic, strain, gravity potential) [J] of the state (:func:`modal_ram_energies`)."""
-        return modal_ram_energies(self.C, self.S, self.gravity, self.h)
+        return modal_ram_energies(self.C, self.S, self.toe, self.gravity, self.h)
 
 
 @njit(cache=True, inline='always')
-def modal_ram_advance(C, S, toe_force, gravity, h, toe):
+def modal_ram_advance(C, S, toe_force, h, toe):
     """Advance every toe mode over h [s] with ``toe_force`` [N] (compression positive, pushes
-    the toe up) held, in place; writes the new modal (u_toe, v_toe) [m, m/s] into ``toe``.
+    the toe up) held, in place; writes the new modal (u_toe, v_toe) into ``toe`` [m, m/s] and
+    flips its ``half`` (:class:`ModalRamUnit`).
 
-    eta_j,n+1 = a eta_j,n + b eta_j,n-1 + c (-p_toe,j F + p_grav,j g): exact per mode for a
-    held force, at any h (unconditionally stable; no sub-steps)."""
+    eta_j,n+1 = a eta_j,n - eta_j,n-1 + c (p_grav,j g - p_toe,j F): exact per undamped mode
+    for a held force, at any h (unconditionally stable; no sub-steps); gravity loads the rigid
+    mode 0 only. The toe's half-step velocity is (u_toe,n+1 - u_toe,n) / h with u_toe =
+    sum p_toe,j eta_j. Two sweeps: the modes (no dependence between them: vectorised), then the
+    sum in eight partial sums of a fixed order (the additions need not wait on each other; the
+    same bits in the engine and the Ram FMU, which run this kernel)."""
     n = C.shape[1]
-    u = 0.0
-    rate = 0.0
+    now = 0 if toe[2] == 0.0 else n
+    old = n - now
+    a = C[0]
+    force = C[8]
+    p = C[4]
+    q = S[now:now + n]
+    q_new = S[old:old + n]  # holds q_n-1 until overwritten
     for j in range(n):
-        p = C[4, j]
-        q = S[j]
-        q_new = C[0, j] * q + C[1, j] * S[n + j] + C[2, j] * (C[5, j] * gravity - p * toe_force)
-        S[n + j] = q
-        S[j] = q_new
-        u += p * q_new
-        rate += p * (q_new - q)
+        q_new[j] = a[j] * q[j] - q_new[j] - force[j] * toe_force
+    q_new[0] += C[7, 0]
+    s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
+    blocks = n - n % 8
+    for j in range(0, blocks, 8):
+        s0 += p[j] * q_new[j]
+        s1 += p[j + 1] * q_new[j + 1]
+        s2 += p[j + 2] * q_new[j + 2]
+        s3 += p[j + 3] * q_new[j + 3]
+        s4 += p[j + 4] * q_new[j + 4]
+        s5 += p[j + 5] * q_new[j + 5]
+        s6 += p[j + 6] * q_new[j + 6]
+        s7 += p[j + 7] * q_new[j + 7]
+    for j in range(blocks, n):
+        s0 += p[j] * q_new[j]
+    u = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
+    toe[1] = (u - toe[0]) / h
     toe[0] = u
-    toe[1] = rate / h
+    toe[2] = 1.0 - toe[2]
 
 
 @njit(cache=True)
-def modal_ram_energies(C, S, gravity, h):
+def modal_ram_energies(C, S, toe, gravity, h):
     """(kinetic, strain, gravity potential) [J] of the modal ram in the conserved (shadow) form
     of the two-step scheme, as the anvil's (:func:`anvil_rom.unit.modal_unit_energy`):
     sum m_e ((q_n - q_n-1) / h)^2 / 2, sum w^2 q_n q_n-1 / 2 and -g sum p_grav (q_n + q_n-1) / 2.
     The residual flexibility is the contact's series spring: its energy is the contact's."""
     n = C.shape[1]
+    now = 0 if toe[2] == 0.0 else n
+    old = n - now
     kinetic = 0.0
     strain = 0.0
     potential = 0.0
     for j in range(n):
-        q, qp = S[j], S[n + j]
+        q, qp = S[now + j], S[old + j]
         rate = (q - qp) / h
         kinetic += 0.5 * C[3, j] * rate * rate
         strain += 0.5 * C[6, j] ** 2 * q * qp

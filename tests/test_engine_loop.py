@@ -87,7 +87,7 @@ def reference_blow(engine, duration):
     for n in range(n_steps + 1):
         u_ram, v_ram = ram_u[-1], ram_v[-1]
         if modal_ram is not None:
-            u_ram, v_ram = modal_ram.toe
+            u_ram, v_ram = modal_ram.toe[0], modal_ram.toe[1]
         u_pile = head_displacement(arrays.probes, u) - face0
         v_pile = head_velocity(arrays.probes, v)
         if unit is not None:

@@ -85,9 +85,9 @@ class ModalRamState:
         self.u = np.zeros(1)  # the toe state, as RamState's last entries
         self.v = np.zeros(1)
         # compile (or load) the kernel now, not inside the first doStep
-        ModalRamUnit(toe_modes, gravity).start(0.0, 1.0, 1e-6)
-        modal_ram_advance(self.unit.C, self.unit.S.copy(), 0.0, gravity, 1e-6,
-                          self.unit.toe.copy())
+        warm = ModalRamUnit(toe_modes, gravity)
+        warm.start(0.0, 1.0, 1e-6)
+        modal_ram_advance(warm.C, warm.S, 0.0, 1e-6, warm.toe)
 
     def start(self, displacement: float, velocity: float) -> None:
         # the two-step state needs the step: it is set up at the first step
