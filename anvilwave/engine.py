@@ -686,6 +686,11 @@ class Engine:
         self._ram = (self.ram_mass * g, 1.0 / self.ram_mass, self.ram_stiffness, self.ram_mass)
         self._ram_nsub = substeps(self.time_step,
                                   ram_stable_time_step(self.ram_mass, self.ram_stiffness))
+        # the modal ram unit's step coefficients, once per engine (each blow restarts its state)
+        self._ram_unit = None
+        if self.ram_modes is not None:
+            self._ram_unit = ModalRamUnit(self.ram_modes, g)
+            self._ram_unit.start(0.0, 0.0, self.time_step)
         self._prepare_pile()
 
     def _prepare_pile(self) -> None:
@@ -780,8 +785,8 @@ class Engine:
         ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * velocity)
         ram_v = np.full(self.ram_mass.shape, velocity)
         modal_ram = None
-        if self.ram_modes is not None:
-            unit = ModalRamUnit(self.ram_modes, cfg.gravity)
+        if self._ram_unit is not None:
+            unit = self._ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
         modal = classic = direct = None

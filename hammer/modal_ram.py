@@ -325,7 +325,8 @@ class ModalRamUnit:
     def start(self, toe_displacement: float, velocity: float, h: float) -> None:
         """Undeformed rigid motion at ``velocity`` [m/s] with the toe at ``toe_displacement``
         [m] at t_n (and h velocity earlier at t_n-1): the exact state of a falling ram."""
-        self._coefficients(h)
+        if h != self.h:
+            self._coefficients(h)
         n = self.modes.n_modes
         p = self.C[4, 0]
         self.S[:] = 0.0

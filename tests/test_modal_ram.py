@@ -104,7 +104,8 @@ def test_slender_modal_ram_is_the_1d_rod(slender):
     rod, ram = slender
     assert ram.total_mass == pytest.approx(rod.total_mass, rel=1e-10)
     w, p = dense_chain_modes(ram.mass[::-1], ram.stiffness[::-1])
-    axial = (np.abs(p) ** 2 > 0.5 * (2.0 / ram.total_mass)) & (w > 0)  # flexible rod modes
+    # flexible rod modes (the rigid mode of the dense chain solve is 0 only to round-off)
+    axial = (np.abs(p) ** 2 > 0.5 * (2.0 / ram.total_mass)) & (w > 2 * np.pi * 10.0)
     f = w[axial][:3] / (2 * np.pi)
     for n, fn in enumerate(f, start=1):
         rod_f = n * C0 / (2 * 4.0)
