@@ -109,16 +109,21 @@ def check_modal_data(data: ModalData, source: str) -> None:
                                            "mass-normalised modes")
 
 
+def write_modal_data(data: ModalData, fh) -> None:
+    """Write modal data as the .npz modal-data file into the binary file object ``fh``."""
+    arrays = {"format": np.array(FORMAT), "version": np.array(VERSION)}
+    for fld in fields(ModalData):
+        arrays[fld.name] = np.asarray(getattr(data, fld.name))
+    np.savez(fh, **arrays)
+
+
 def save_modal_data(data: ModalData, path: str | Path) -> Path:
     """Write modal data to ``path`` (.npz), atomically (no half-written file on failure)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    arrays = {"format": np.array(FORMAT), "version": np.array(VERSION)}
-    for fld in fields(ModalData):
-        arrays[fld.name] = np.asarray(getattr(data, fld.name))
     tmp = path.with_name(path.name + ".part")
     with open(tmp, "wb") as fh:
-        np.savez(fh, **arrays)
+        write_modal_data(data, fh)
     tmp.replace(path)
     return path
 

@@ -164,22 +164,11 @@ def _write_atomic(path: Path, write) -> None:
 
 
 def _store(data, path: Path) -> None:
-    """Write modal data atomically: a modal-data file under a unique temporary name beside
-    ``path`` (:func:`anvil_rom.modalfile.save_modal_data`), renamed onto ``path``."""
-    from anvil_rom.modalfile import save_modal_data
+    """Write modal data atomically (:func:`_write_atomic` of
+    :func:`anvil_rom.modalfile.write_modal_data`)."""
+    from anvil_rom.modalfile import write_modal_data
 
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=path.name[:16] + "-", suffix=".part", dir=path.parent)
-        os.close(fd)
-        try:
-            save_modal_data(data, tmp)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-    except OSError:
-        pass
+    _write_atomic(path, lambda fh: write_modal_data(data, fh))
 
 
 def cache_info() -> dict:

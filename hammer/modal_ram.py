@@ -119,10 +119,16 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
     toe_modes = modal_ram_modes(ram, fmax, poisson_ratio=poisson_ratio, mesh_size=mesh_size,
                                 source=source, modes=modes)
     if realisation == "unit":
-        return dataclasses.replace(ram, mass=np.array([toe_modes.total_mass]),
-                                   stiffness=np.zeros(0), toe_stiffness=toe_modes.toe_stiffness,
-                                   fmax=float(fmax), modes=toe_modes)
+        return _as_unit(ram, toe_modes)
     return modal_ram_chain(ram, toe_modes, realise)
+
+
+def _as_unit(ram: RamRod, toe_modes: RamToeModes) -> RamRod:
+    """``ram`` (its shape kept) run as the modal unit of ``toe_modes``: one total mass (the
+    weight and the impact energy), no springs, the residual toe stiffness."""
+    return dataclasses.replace(ram, mass=np.array([toe_modes.total_mass]), stiffness=np.zeros(0),
+                               toe_stiffness=toe_modes.toe_stiffness, fmax=toe_modes.fmax,
+                               modes=toe_modes)
 
 
 def modal_ram_chain(ram: RamRod, toe_modes: RamToeModes, realise: Callable | None = None
@@ -136,8 +142,7 @@ def modal_ram_chain(ram: RamRod, toe_modes: RamToeModes, realise: Callable | Non
 
 def ram_from_toe_modes(toe_modes: RamToeModes, toe_diameter: float = math.nan) -> RamRod:
     """A modal-unit RamRod of given toe modes (no shape: the modes are the ram)."""
-    return RamRod(np.array([toe_modes.total_mass]), np.zeros(0), math.nan, float(toe_diameter),
-                  toe_modes.toe_stiffness, fmax=toe_modes.fmax, modes=toe_modes)
+    return _as_unit(RamRod.rigid(toe_modes.total_mass, float(toe_diameter)), toe_modes)
 
 
 def toe_modes_table(toe_modes: RamToeModes) -> dict:

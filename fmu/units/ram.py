@@ -35,7 +35,7 @@ from pythonfmu import DefaultExperiment
 
 from anvilwave_inputs import InputError
 from hammer.database import available_hammers, load_hammer
-from hammer.modal_ram import ModalRamUnit, modal_ram_advance
+from hammer.modal_ram import ModalRamUnit
 from hammer.ram import ram_advance, stable_time_step
 from pile.model import substeps
 
@@ -84,10 +84,10 @@ class ModalRamState:
         self._start: tuple[float, float] | None = None
         self.u = np.zeros(1)  # the toe state, as RamState's last entries
         self.v = np.zeros(1)
-        # compile (or load) the kernel now, not inside the first doStep
-        warm = ModalRamUnit(toe_modes, gravity)
-        warm.start(0.0, 1.0, 1e-6)
-        modal_ram_advance(warm.C, warm.S, 0.0, 1e-6, warm.toe)
+        # compile (or load) the kernel now, not inside the first doStep (start() at the first
+        # step sets the whole state again)
+        self.unit.start(0.0, 1.0, 1e-6)
+        self.unit.step(0.0)
 
     def start(self, displacement: float, velocity: float) -> None:
         # the two-step state needs the step: it is set up at the first step
