@@ -680,17 +680,18 @@ class Engine:
     modal: object = None
     ram_modes: object = None
     """:class:`hammer.modal_ram.RamToeModes` of a modal ram unit (None: the ram chain)."""
+    ram_unit: object = None
+    """The :class:`hammer.modal_ram.ModalRamUnit` of ``ram_modes``, its step coefficients set
+    (built here when None; engines for other soils share it: every blow restarts its state)."""
 
     def __post_init__(self):
         g = self.config.gravity
         self._ram = (self.ram_mass * g, 1.0 / self.ram_mass, self.ram_stiffness, self.ram_mass)
         self._ram_nsub = substeps(self.time_step,
                                   ram_stable_time_step(self.ram_mass, self.ram_stiffness))
-        # the modal ram unit's step coefficients, once per engine (each blow restarts its state)
-        self._ram_unit = None
-        if self.ram_modes is not None:
-            self._ram_unit = ModalRamUnit(self.ram_modes, g)
-            self._ram_unit.start(0.0, 0.0, self.time_step)
+        if self.ram_modes is not None and self.ram_unit is None:
+            self.ram_unit = ModalRamUnit(self.ram_modes, g)
+            self.ram_unit.start(0.0, 0.0, self.time_step)  # the step's coefficients
         self._prepare_pile()
 
     def _prepare_pile(self) -> None:
@@ -721,8 +722,9 @@ class Engine:
 
     def with_pile_soil(self, pile_soil) -> Engine:
         """This engine for another :class:`pile.model.PileSoil` with the same pile
-        discretisation (another soil, SRD or penetration): the anvil unit, the ram and the time
-        step are shared; only the pile's arrays, its sub-steps and its static state are new.
+        discretisation (another soil, SRD or penetration): the anvil unit, the ram (a modal
+        ram's unit too) and the time step are shared; only the pile's arrays, its sub-steps and
+        its static state are new.
 
         The coupled stability limit is not recomputed: the soil springs are orders of magnitude
         softer than the contact and pile springs that set it, and the pile sub-steps within its
@@ -737,7 +739,7 @@ class Engine:
         limits["pile"] = float(pile_stable_time_step(arrays.pile, arrays.soil))
         return Engine(replace(self.config, pile_soil=pile_soil), self.anvil, self.ram_mass,
                       self.ram_stiffness, arrays, self.time_step, limits, self.modal,
-                      self.ram_modes)
+                      self.ram_modes, self.ram_unit)
 
     # ------------------------------------------------------------------ blows
     def blow(self, state: PileState | None = None, impact_velocity: float | None = None,
@@ -785,8 +787,8 @@ class Engine:
         ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * velocity)
         ram_v = np.full(self.ram_mass.shape, velocity)
         modal_ram = None
-        if self._ram_unit is not None:
-            unit = self._ram_unit
+        if self.ram_unit is not None:
+            unit = self.ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
         modal = classic = direct = None

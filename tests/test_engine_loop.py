@@ -277,6 +277,7 @@ def test_with_pile_soil_reuses_the_engine(engines, table1, monkeypatch):
     monkeypatch.setattr(engine_module, "coupled_stable_time_step", refuse)
     other = engine.with_pile_soil(stiffer)
     assert other.time_step == engine.time_step and other.anvil is engine.anvil
+    assert other.ram_unit is engine.ram_unit is not None  # table1.toml's modal ram
     a = other.blow(duration=0.04, record=False)  # the toe moves after 2 L / c = 31 ms
     b = built.blow(duration=0.04, record=False)
     assert a.permanent_set == b.permanent_set
