@@ -135,15 +135,15 @@ class ModalAnvil:
 
 
 def residual_flexibility(elastic_flexibility: np.ndarray, omega: np.ndarray,
-                         participation_ram: np.ndarray, participation_pile: np.ndarray
-                         ) -> np.ndarray:
+                         *participations: np.ndarray) -> np.ndarray:
     """Flexibility of the truncated modes between the interfaces [m/N].
 
     R = G - sum over kept flexible modes of p p^T / omega^2, with G the inertia-relief
-    flexibility of the full FE model (all flexible modes).
+    flexibility of the full FE model (all flexible modes) between the ports whose modal
+    participations are given, in G's order (the anvil's: ram, pile).
     """
     flexible = omega > 0.0
-    P = np.vstack([participation_ram[flexible], participation_pile[flexible]])
+    P = np.vstack([np.asarray(p)[flexible] for p in participations])
     return np.asarray(elastic_flexibility) - (P / omega[flexible] ** 2) @ P.T
 
 

@@ -44,7 +44,7 @@ from anvil_rom.fe import assemble, face_load_vector
 from anvil_rom.geometry import Interfaces
 from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 from anvil_rom.modes import elastic_flexibility, free_free_modes
-from anvil_rom.rom import modal_transition
+from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
 from anvilwave.fea.bodies import ContactSet
 from anvilwave.fea.impact import build_impact_model
@@ -83,8 +83,7 @@ def _ports(model, loads, fmax):
     G = elastic_flexibility(model, B)
     G = 0.5 * (G + G.T)
     omega = 2.0 * np.pi * np.asarray(modes.frequencies)
-    flexible = omega > 0.0
-    return P, G - (P[:, flexible] / omega[flexible] ** 2) @ P[:, flexible].T, omega
+    return P, residual_flexibility(G, omega, *P), omega
 
 
 def _patch_loads(model, z, r_in, r_out, count=PATCHES):
