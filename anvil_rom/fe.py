@@ -224,3 +224,29 @@ def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
     b_pile, a_pile = face_load_vector(
         model, lambda r, zz: (np.abs(zz - zbot) < tol) & (r >= r_in - tol) & (r <= r_out + tol))
     return b_ram, b_pile, a_ram, a_pile
+
+
+def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Load/output vectors of the pile ring split into ``interfaces.pile_rings`` equal-width
+    rings across the wall (each facet of the bottom face to the ring holding its midpoint).
+
+    Returns B (n_free, K), unit-resultant uniform pressures, and the ring areas (K,) [m^2].
+    Their area-weighted sum is the whole ring's vector (:func:`interface_vectors`). A ring
+    with no facet (a mesh coarser than the rings) has area 0.
+    """
+    z = model.mesh.p[1]
+    scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
+    tol = 1e-7 * scale
+    zbot = z.max()
+    r_in, r_out = interfaces.pile_ring
+    edges = np.linspace(r_in, r_out, interfaces.pile_rings + 1)
+    columns, areas = [], []
+    for k in range(interfaces.pile_rings):
+        lo = edges[k] - (tol if k == 0 else 0.0)
+        hi = edges[k + 1] + (tol if k == interfaces.pile_rings - 1 else 0.0)
+        b, a = face_load_vector(
+            model, lambda r, zz, lo=lo, hi=hi: (np.abs(zz - zbot) < tol) & (r >= lo) & (r < hi))
+        columns.append(b)
+        areas.append(a)
+    return np.column_stack(columns), np.array(areas)

@@ -98,11 +98,14 @@ class Interfaces:
     ram_contact_radius : radius of the top face region r <= R that carries the ram [m].
     pile_contact_radius : mid-radius of the pile wall bearing on the bottom face [m].
     pile_contact_width : radial width of the pile wall bearing ring [m].
+    pile_rings : the pile port split into this many equal-width rings across the wall, each
+        its own uniform pressure and contact [-] (1: one port; see :mod:`anvil_rom.rings`).
     """
 
     ram_contact_radius: float
     pile_contact_radius: float
     pile_contact_width: float
+    pile_rings: int = 1
 
     @property
     def pile_ring(self) -> tuple[float, float]:

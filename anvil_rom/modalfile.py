@@ -25,6 +25,16 @@ n_dof                      ()        DOFs of the FE model the modes came from
 geometry_hash              ()        SHA-256 of the geometry / mesh and material
 source                     ()        who computed the modes ("anvilwave", "calculix", ...)
 =========================  ========  ==============================================================
+
+Optional keys, present together when the pile port is split into K > 1 rings across the wall
+(``pile_port_rings``, :mod:`anvil_rom.rings`):
+
+=========================  ========  ==============================================================
+participation_rings        (K, n)    b_ring,k^T phi_j, uniform pressure on each ring [kg^-1/2]
+ring_flexibility           (K+1,     inertia-relief flexibility between the ram face and the
+                           K+1)      rings, all flexible modes [m/N]
+ring_areas                 (K,)      ring areas, inner ring first [m^2]
+=========================  ========  ==============================================================
 """
 
 from __future__ import annotations
@@ -59,6 +69,9 @@ class ModalData:
     n_dof: int
     geometry_hash: str
     source: str
+    participation_rings: np.ndarray | None = None
+    ring_flexibility: np.ndarray | None = None
+    ring_areas: np.ndarray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -73,7 +86,10 @@ _SHAPES = {
     "participation_gravity": "n", "elastic_flexibility": (2, 2), "total_mass": (),
     "fmax": (), "damping_ratio": (), "material": (3,), "interfaces": (3,),
     "interface_areas": (2,), "n_dof": (), "geometry_hash": (), "source": (),
+    "participation_rings": "Kn", "ring_flexibility": "KK", "ring_areas": "K",
 }
+RING_KEYS = ("participation_rings", "ring_flexibility", "ring_areas")
+"""The optional keys of a pile port split into rings (all or none)."""
 
 
 def check_modal_data(data: ModalData, source: str) -> None:
@@ -107,13 +123,43 @@ def check_modal_data(data: ModalData, source: str) -> None:
     if abs(abs(data.participation_gravity[0]) - expected) > 1e-6 * expected:
         raise bad("participation_gravity", "rigid-body entry must equal sqrt(total_mass) for "
                                            "mass-normalised modes")
+    present = [getattr(data, key) is not None for key in RING_KEYS]
+    if any(present) and not all(present):
+        raise bad(RING_KEYS[present.index(False)], "must be given with the other ring keys "
+                                                   f"({', '.join(RING_KEYS)})")
+    if all(present):
+        _check_rings(data, n, bad)
+
+
+def _check_rings(data: ModalData, n: int, bad) -> None:
+    """The ring keys: shapes, finite and symmetric, and the rings make up the pile ring (areas
+    sum to its area and the area-weighted ring participations to the ring's)."""
+    areas = np.asarray(data.ring_areas)
+    K = areas.size
+    P = np.asarray(data.participation_rings)
+    G = np.asarray(data.ring_flexibility)
+    if areas.ndim != 1 or K < 2 or not np.all(np.isfinite(areas)) or np.any(areas <= 0.0):
+        raise bad("ring_areas", "must hold two or more positive ring areas [m^2]")
+    if abs(areas.sum() - data.interface_areas[1]) > 1e-9 * data.interface_areas[1]:
+        raise bad("ring_areas", "must sum to the pile ring's area (interface_areas[1])")
+    if P.shape != (K, n) or not np.all(np.isfinite(P)):
+        raise bad("participation_rings", f"must have shape ({K}, {n}) (rings, modes), finite")
+    combined = (areas / areas.sum()) @ P
+    scale = np.abs(data.participation_pile).max()
+    if np.abs(combined - data.participation_pile).max() > 1e-9 * scale:
+        raise bad("participation_rings", "area-weighted, must add up to participation_pile")
+    if (G.shape != (K + 1, K + 1) or not np.all(np.isfinite(G))
+            or np.abs(G - G.T).max() > 1e-9 * np.abs(G).max()):
+        raise bad("ring_flexibility", f"must be a finite symmetric {K + 1}x{K + 1} matrix [m/N]")
 
 
 def write_modal_data(data: ModalData, fh) -> None:
     """Write modal data as the .npz modal-data file into the binary file object ``fh``."""
     arrays = {"format": np.array(FORMAT), "version": np.array(VERSION)}
     for fld in fields(ModalData):
-        arrays[fld.name] = np.asarray(getattr(data, fld.name))
+        value = getattr(data, fld.name)
+        if value is not None:  # the optional ring keys
+            arrays[fld.name] = np.asarray(value)
     np.savez(fh, **arrays)
 
 
@@ -148,10 +194,12 @@ def load_modal_data(path: str | Path) -> ModalData:
     kwargs = {}
     for fld in fields(ModalData):
         if fld.name not in content:
+            if fld.name in RING_KEYS:
+                continue
             raise InputError(src, fld.name, "is missing")
         value = content[fld.name]
         shape = _SHAPES[fld.name]
-        if shape != "n" and value.shape != shape:
+        if not isinstance(shape, str) and value.shape != shape:
             raise InputError(src, fld.name, f"must have shape {shape}, got {value.shape}")
         if fld.name in ("geometry_hash", "source"):
             kwargs[fld.name] = str(value)

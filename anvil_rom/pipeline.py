@@ -11,7 +11,7 @@ import numpy as np
 
 from anvilwave_inputs import InputError
 
-from .fe import AxisymmetricModel, assemble, interface_vectors
+from .fe import AxisymmetricModel, assemble, interface_vectors, ring_vectors
 from .geometry import AnvilSpec
 from .mesh import build_mesh, to_skfem
 from .modalfile import ModalData
@@ -44,14 +44,30 @@ def check_fmax(model: AxisymmetricModel, fmax: float, source: str, key: str = "f
 def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: ModeSet,
                           b_ram: np.ndarray, b_pile: np.ndarray, areas: tuple[float, float],
                           source: str = "anvilwave") -> ModalData:
-    """Project modes on the interfaces and pack them with the static flexibility."""
+    """Project modes on the interfaces and pack them with the static flexibility; with
+    ``spec.interfaces.pile_rings`` > 1 also on the pile's rings (:func:`anvil_rom.fe.
+    ring_vectors`), with the flexibility between the ram face and the rings."""
+    itf = spec.interfaces
     B = np.column_stack([b_ram, b_pile])
+    rings = {}
+    if itf.pile_rings > 1:
+        B_rings, ring_areas = ring_vectors(model, itf)
+        if np.any(ring_areas == 0.0):
+            raise InputError(spec.source, "pile_port_rings",
+                             f"{itf.pile_rings} rings across the pile wall need at least as "
+                             "many element edges there: refine the mesh (mesh.size) or use "
+                             "fewer rings")
+        B = np.column_stack([B, B_rings])
     participation = B.T @ modes.shapes
     e = model.axial_free
     gravity = modes.shapes.T @ (model.mass @ e)
     flex = elastic_flexibility(model, B)
     flex = 0.5 * (flex + flex.T)
-    itf = spec.interfaces
+    if itf.pile_rings > 1:
+        ports = np.r_[0, 2:B.shape[1]]  # the ram face, then the rings
+        rings = {"participation_rings": participation[2:],
+                 "ring_flexibility": flex[np.ix_(ports, ports)], "ring_areas": ring_areas}
+        flex = flex[:2, :2]
     mat = spec.material
     return ModalData(
         frequencies=modes.frequencies, participation_ram=participation[0],
@@ -62,7 +78,7 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
         interfaces=np.array([itf.ram_contact_radius, itf.pile_contact_radius,
                              itf.pile_contact_width]),
         interface_areas=np.array(areas), n_dof=model.n_dof, geometry_hash=spec.geometry_hash(),
-        source=source,
+        source=source, **rings,
     )
 
 

@@ -56,6 +56,11 @@ class ModalAnvil:
     residual_flexibility : (2, 2) static correction [m/N] (zeros without it).
     total_mass : [kg].
     fmax : frequency content [Hz].
+    participation_rings : (K, n) the pile port split into K rings (:mod:`anvil_rom.rings`), or
+        None (one port).
+    residual_rings : (1 + K, 1 + K) static correction between the ram face and the rings
+        [m/N] (zeros without it), or None.
+    ring_areas : (K,) [m^2], or None.
     """
 
     omega: np.ndarray
@@ -66,6 +71,14 @@ class ModalAnvil:
     residual_flexibility: np.ndarray
     total_mass: float
     fmax: float
+    participation_rings: np.ndarray | None = None
+    residual_rings: np.ndarray | None = None
+    ring_areas: np.ndarray | None = None
+
+    @property
+    def n_rings(self) -> int:
+        """Rings of the pile port (1: one port)."""
+        return 1 if self.participation_rings is None else int(self.participation_rings.shape[0])
 
     @property
     def n_modes(self) -> int:
@@ -106,8 +119,18 @@ class ModalAnvil:
         residual = np.zeros((2, 2))
         if static_correction:
             residual = residual_flexibility(data.elastic_flexibility, omega, p_ram, p_pile)
+        rings = {}
+        if data.participation_rings is not None:
+            p_rings = np.asarray(data.participation_rings)[:, keep]
+            k = p_rings.shape[0]
+            ring_residual = np.zeros((k + 1, k + 1))
+            if static_correction:
+                ring_residual = residual_flexibility(data.ring_flexibility, omega, p_ram,
+                                                     *p_rings)
+            rings = {"participation_rings": p_rings, "residual_rings": ring_residual,
+                     "ring_areas": np.asarray(data.ring_areas, float)}
         return cls(omega, p_ram, p_pile, data.participation_gravity[keep], damping, residual,
-                   data.total_mass, fmax)
+                   data.total_mass, fmax, **rings)
 
     @classmethod
     def rigid(cls, mass: float) -> ModalAnvil:

@@ -23,6 +23,7 @@ from numba import njit
 
 from anvilwave_inputs import InputError
 
+from .rings import ring_matrix, ring_static_rest
 from .rom import ModalAnvil, anvil_contact_forces, modal_interface, modal_step
 
 GRAVITY = 9.81  # [m/s^2]
@@ -78,7 +79,23 @@ class AnvilUnit:
         self.C[:, 7] = self.anvil.omega
         self._h = None
         self.S = np.zeros(2 * n)
+        self.rings = None
+        if self.anvil.n_rings > 1:
+            self.rings = self._ring_arrays()
         self.set_step(1e-5)
+
+    def _ring_arrays(self) -> tuple:
+        """The ring kernels' data (:mod:`anvil_rom.rings`): RP, A, T, W, F, E, ring, scratch, R;
+        the pile contact's spring and dashpot shared by ring area."""
+        a, c = self.anvil, self.contact
+        shares = a.ring_areas / a.ring_areas.sum()
+        K = shares.size
+        A = ring_matrix(c.ram_stiffness, c.pile_stiffness * shares, a.residual_rings)
+        T = np.r_[c.ram_damping / c.ram_stiffness,
+                  np.full(K, c.pile_damping / c.pile_stiffness)]
+        scratch = np.zeros((K + 1, K + 5))
+        return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(K + 1),
+                np.zeros(K + 1), np.zeros((2, K)), scratch, a.residual_rings)
 
     @property
     def n_modes(self) -> int:
@@ -106,6 +123,8 @@ class AnvilUnit:
         face when its displacement equals the returned u_top.
         """
         force_pile = self.anvil.total_mass * self.gravity
+        if self.rings is not None:
+            return self._rest_on_rings(pile_head_displacement, force_pile)
         q = self.anvil.static_modal_coordinates(0.0, force_pile)
         p_ram, p_pile = self.anvil.participation_ram, self.anvil.participation_pile
         r = self.anvil.residual_flexibility
@@ -117,6 +136,30 @@ class AnvilUnit:
         self.S[n:] = q
         u_top = float(p_ram @ q - r[0, 1] * force_pile)
         return u_top, force_pile
+
+    def _rest_on_rings(self, pile_head_displacement: float, weight: float
+                       ) -> tuple[float, float]:
+        """:meth:`rest_on_pile` with the pile port split into rings (all in contact; their
+        forces from :func:`anvil_rom.rings.ring_static_rest`)."""
+        a = self.anvil
+        RP, F, ring, scratch = self.rings[0], self.rings[4], self.rings[6], self.rings[7]
+        k_rings = self.contact.pile_stiffness * self.rings[3]
+        forces, u0 = ring_static_rest(a.omega, a.participation_rings, k_rings,
+                                      a.residual_rings[1:, 1:], weight)
+        q = np.zeros(a.n_modes)
+        flexible = a.omega > 0.0
+        q[flexible] = -(forces @ a.participation_rings[:, flexible]) / a.omega[flexible] ** 2
+        q[0] = (u0 + pile_head_displacement) / RP[0, 0]
+        n = self.n_modes
+        self.S[:n] = q
+        self.S[n:] = q
+        F[0] = 0.0
+        F[1:] = forces
+        scratch[:, :2] = np.r_[0.0, forces > 0.0][:, None]  # the active sets to start from
+        ring[0] = RP.T @ q
+        ring[1] = 0.0
+        u_top = float(a.participation_ram @ q - a.residual_rings[0, 1:] @ forces)
+        return u_top, weight
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:

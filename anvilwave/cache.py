@@ -87,7 +87,8 @@ def modal_key(spec, fmax: float) -> str:
     description = {
         "geometry": spec.geometry_hash(),  # outline or mesh file, material, mesh size
         "interfaces": None if itf is None else [itf.ram_contact_radius, itf.pile_contact_radius,
-                                                itf.pile_contact_width],
+                                                itf.pile_contact_width]
+        + ([itf.pile_rings] if itf.pile_rings > 1 else []),  # one port: the keys of before
         "fmax": float(fmax),
         "damping_ratio": float(spec.damping_ratio),
         "code": code_version(),

@@ -37,6 +37,14 @@ import numpy as np
 from numba import njit
 
 from anvil_rom.contact import contact_force
+from anvil_rom.rings import (
+    ring_contact,
+    ring_elastic_forces,
+    ring_faces,
+    ring_interface,
+    ring_unit_advance,
+    ring_unit_energy_at,
+)
 from anvil_rom.rom import ModalAnvil
 from anvil_rom.unit import (
     AnvilUnit,
@@ -319,7 +327,7 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
 def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
              soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
              n_steps, record_every, energy_every, out, energies, works, stresses, summary,
-             sections=None, modal_ram=None):
+             sections=None, modal_ram=None, rings=None):
     """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
 
     The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvil_rom.unit`),
@@ -340,7 +348,9 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
     recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
     :class:`hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``, ``ram_v``
-    are then unused). Returns the numbers of rows recorded (columns, energies).
+    are then unused). ``rings`` (:mod:`anvil_rom.rings`: RP, A, T, W, F, E, ring, scratch, R)
+    splits the modal unit's pile port into rings. Returns the numbers of rows recorded
+    (columns, energies).
     """
     weight, inverse_mass, ram_stiffness, ram_mass = ram
     toe = ram_u.shape[0] - 1
@@ -389,7 +399,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         u_bottom = u_pile
         fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
         fe_pile = 0.0
-        if modal is not None:
+        if modal is not None and rings is None:
             f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
             fe_ram = f_ram
             fe_pile = f_pile
@@ -397,6 +407,16 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 fe_ram, fe_pile, power = modal_unit_dashpot_power(
                     modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
                 work_contact += h * power
+        if modal is not None and rings is not None:
+            f_ram, f_pile = ring_contact(rings, modal[3], u_ram, v_ram, u_pile, v_pile)
+            fe_ram = f_ram
+            fe_pile = f_pile
+            if damped:
+                fe_ram, fe_pile, power = ring_elastic_forces(rings, modal[3], u_ram, v_ram,
+                                                             u_pile, v_pile)
+                work_contact += h * power
+            else:
+                rings[5][:] = rings[4]
         if classic is not None:
             f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
                                                                    v_ram, u_pile, v_pile)
@@ -426,10 +446,12 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 for j in range(idx.size):
                     buf[j, row - 1] = pu[idx[j]] - pu[idx[j] + 1]
             if out is not None:
-                if modal is not None:
+                if modal is not None and rings is None:
                     P = modal[0]
                     u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
                     u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
+                if modal is not None and rings is not None:
+                    u_top, u_bottom = ring_faces(rings, modal[3][0])
                 out[0, row - 1] = t0 + n * h
                 out[1, row - 1] = f_ram
                 out[2, row - 1] = f_pile
@@ -446,10 +468,13 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 energy_countdown = energy_every
                 kin = 0.0
                 pot = 0.0
-                if modal is not None:
+                if modal is not None and rings is None:
                     kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
                                                     u_ram, v_ram, u_pile, v_pile, fe_ram,
                                                     fe_pile)
+                if modal is not None and rings is not None:
+                    kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
+                                                   v_ram, u_pile, v_pile)
                 if classic is not None:
                     kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
                                                                         u_ram, u_pile)
@@ -496,8 +521,10 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
             modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
         else:
             ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
-        if modal is not None:
+        if modal is not None and rings is None:
             modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
+        if modal is not None and rings is not None:
+            ring_unit_advance(modal[0], modal[1], modal[2], f_ram, rings, modal[3])
         if classic is not None:
             driving_system_step(classic[0], classic[1], u_ram, v_ram, u_pile, v_pile, h,
                                 classic[2])
@@ -791,12 +818,17 @@ class Engine:
             unit = self.ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
-        modal = classic = direct = None
+        modal = classic = direct = rings = None
         if anvil.kind in ("rom", "lumped"):
             S = anvil.S.copy()
             interface = np.empty(4)
             modal_unit_interface(anvil.P, anvil.C, S, interface)
             modal = (anvil.P, anvil.C, S, interface)
+            if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
+                RP, A, T, W, F, E, ring, scratch, R = anvil.unit.rings
+                rings = (RP, A, T, W, F.copy(), E.copy(), np.empty_like(ring), scratch.copy(),
+                         R)
+                ring_interface(anvil.C, S, RP, h, rings[6])
         elif anvil.kind == "classic":
             classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
         else:
@@ -826,7 +858,7 @@ class Engine:
                 self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
                 pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
                 h, n_steps, record_every, energy_every, out, energies, works, stresses,
-                summary, section_args, modal_ram]
+                summary, section_args, modal_ram, rings]
         _warm_up(args, anvil.kind, record, energy, section_args is not None)
         begin = time.perf_counter()
         rows, energy_rows = run_blow(*args)
@@ -890,7 +922,7 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
     run it for a few steps on copies of the states, so that the blow's timing excludes the
     compilation and the first touch of the code and of the parameter arrays."""
     key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
-           args[31] is not None)
+           args[31] is not None, args[32] is not None)
     if key in _WARM:
         return
     from .kernels import announce_compilation
@@ -917,6 +949,8 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
         trial[30] = (trial[30][0], trial[30][1].copy())
     if trial[31] is not None:  # the modal ram's (C, S, toe): the last two change
         trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
+    if trial[32] is not None:  # the rings: F, E, ring and scratch change
+        trial[32] = tuple(a.copy() if i in (4, 5, 6, 7) else a for i, a in enumerate(trial[32]))
     run_blow(*trial)
     _WARM.add(key)
 

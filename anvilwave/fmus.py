@@ -99,6 +99,16 @@ SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
 """Anvil parameters that ``system.ssp`` sets on top of the build's (module docstring)."""
 
 
+def check_one_pile_port(cfg: SystemConfig) -> None:
+    """The anvil FMUs have one pile port: refuse a system whose pile port is split into rings
+    (``[anvil] pile_port_rings`` > 1, in-process engine only)."""
+    if (cfg.anvil.model == "rom" and cfg.anvil.spec is not None
+            and cfg.anvil.spec.interfaces.pile_rings > 1):
+        raise InputError(cfg.source, "anvil.pile_port_rings",
+                         "the anvil FMUs have one pile port: a pile port split into rings runs "
+                         "in the in-process engine only (pile_port_rings = 1 for the FMUs)")
+
+
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
                       time_step: float | None = None, ssp: bool = True,
                       native_anvil: bool | None = True) -> dict[str, Any]:
@@ -127,6 +137,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         raise InputError(cfg.source, "anvil.model",
                          f"the FMI units model the anvil as 'rom' or 'lumped', not "
                          f"{cfg.anvil.model!r}")
+    check_one_pile_port(cfg)
     native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)

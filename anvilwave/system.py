@@ -26,6 +26,8 @@ A system file is TOML (every key is checked; units in brackets)::
     fmax = 5000.0               # [Hz] optional, ROM frequency content
     damping_ratio = 0.0         # [-] optional
     static_correction = true    # optional
+    pile_port_rings = 3         # optional (rom only): the pile port split into this many
+                                # rings across the pile wall (default 1; anvil_rom/rings.py)
     ram_contact_stiffness = 1e12    # [N/m] optional, default: the ram's toe half segment
     ram_contact_damping = "ram-impedance"   # [N s/m] optional (default 0), a number or the
                                 # ram's toe bar impedance A sqrt(E rho)
@@ -283,5 +285,12 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
         pile_contact_damping=table.number("pile_contact_damping", 0.0, ge=0.0, unit="N s/m"),
         classic=classic,
     )
+    rings = table.integer("pile_port_rings", 1, ge=1)
+    if rings > 1:
+        if model != "rom":
+            raise table.error("pile_port_rings", "splits the ROM's pile port: it needs model = "
+                                                 "'rom'")
+        settings = replace(settings, spec=replace(
+            spec, interfaces=replace(spec.interfaces, pile_rings=rings)))
     table.finish()
     return settings
