@@ -123,7 +123,7 @@ def check_modal_data(data: ModalData, source: str) -> None:
     if abs(abs(data.participation_gravity[0]) - expected) > 1e-6 * expected:
         raise bad("participation_gravity", "rigid-body entry must equal sqrt(total_mass) for "
                                            "mass-normalised modes")
-    present = [getattr(data, key) is not None for key in RING_KEYS]
+    present = [getattr(data, key, None) is not None for key in RING_KEYS]
     if any(present) and not all(present):
         raise bad(RING_KEYS[present.index(False)], "must be given with the other ring keys "
                                                    f"({', '.join(RING_KEYS)})")

@@ -120,7 +120,7 @@ class ModalAnvil:
         if static_correction:
             residual = residual_flexibility(data.elastic_flexibility, omega, p_ram, p_pile)
         rings = {}
-        if data.participation_rings is not None:
+        if getattr(data, "participation_rings", None) is not None:  # a one-port record may lack it
             p_rings = np.asarray(data.participation_rings)[:, keep]
             k = p_rings.shape[0]
             ring_residual = np.zeros((k + 1, k + 1))

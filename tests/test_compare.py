@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,6 +17,8 @@ from anvilwave.compare import (
     lowpass,
     plot_spectra,
 )
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 @pytest.fixture(scope="module")
@@ -136,3 +139,43 @@ def test_band_levels_of_identical_runs_agree():
     spectra = band_levels({"fea": run, "rom": run}, bandwidth=3300.0)
     assert spectra["valid_band [Hz]"] == [pytest.approx(40.0, rel=0.01), 3300.0]
     assert np.allclose(spectra["deviation_from_fea [dB]"]["rom"], 0.0)
+
+
+def test_table1_pile_port_in_rings_against_fea(demo):
+    """table1.toml with the pile port split into three rings across the wall (the mesh's three
+    edges there; ``[anvil] pile_port_rings = 3``) against the demo's FEA: the rings close one
+    after the other when the anvil comes back tilted, instead of the one port's slap.
+    Measured: band levels +0.2, +1.0, +3.3, +3.1, +2.6 dB at 1.6-4 kHz (one port: +1.7 to
+    +8.4 dB), within 1.0 dB from 50 Hz to 1.26 kHz; peaks in the 5 kHz band pile +2.1 %, ram
+    -3.0 %, RMS 2.5 % / 6.1 %, raw pile +2.2 %, raw ram +7.5 %: the bounds of
+    test_table1_rom_against_fea still hold. Bounds here: the one port's largest excess above
+    1.26 kHz must drop by more than half (8.4 dB -> at most 3.5 dB), the bands up to 1.26 kHz
+    within 1.1 dB (0.9 dB with one port; the 398 Hz band moves +0.1 dB)."""
+    import dataclasses
+
+    from anvilwave.compare import metrics, without_soil
+    from anvilwave.engine import build_engine
+    from anvilwave.report import read_csv
+    from anvilwave.system import load_system
+
+    out, cmp = demo
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
+    cfg = without_soil(load_system(EXAMPLES / "table1.toml"))
+    spec = cfg.anvil.spec
+    rings = dataclasses.replace(cfg, anvil=dataclasses.replace(cfg.anvil, spec=dataclasses.replace(
+        spec, interfaces=dataclasses.replace(spec.interfaces, pile_rings=3))))
+    blow = build_engine(rings).blow()
+    run = ModelRun("rom", blow.columns, blow.wall_time, {})
+    spectra = band_levels({"rom": run, "fea": fea}, cmp["comparison_bandwidth [Hz]"])
+    centre = np.array(spectra["band_centre_frequency [Hz]"])
+    valid = np.array(spectra["valid [-]"], bool)
+    deviation = np.array(spectra["deviation_from_fea [dB]"]["rom"], dtype=float)
+    assert np.all(np.abs(deviation[valid & (centre <= 1260.0)]) <= 1.1)
+    assert np.all(np.abs(deviation[valid & (centre > 1260.0) & (centre < 4100.0)]) <= 3.5)
+    m = metrics(run, fea, float(fea.columns["anvil_pile_force [N]"][0]), 5000.0)
+    assert abs(m["peak_anvil_pile_force_error [-]"]) <= 0.03
+    assert abs(m["peak_ram_anvil_force_error [-]"]) <= 0.05
+    assert m["anvil_pile_force_normalised_rms_error [-]"] <= 0.10
+    assert m["ram_anvil_force_normalised_rms_error [-]"] <= 0.10
+    assert abs(m["peak_anvil_pile_force_unfiltered_vs_reference_band_error [-]"]) <= 0.05
+    assert abs(m["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"]) <= 0.10
