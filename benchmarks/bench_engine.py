@@ -16,7 +16,8 @@ a blow relative to the summary-only blow (record=False: the maxima, EMX and set 
 the loop): recording the time series, the energy bookkeeping at its default interval and at
 every step. Finally a run of B consecutive blows against B times one blow's stepping (the per-
 blow overhead: state copies, result objects). The modal ram unit's wall time over the chain's is
-printed per anvil model (the issue's bound: at most 1).
+printed per anvil model (the issue's bound: at most 1), and the pile port in three rings
+(``[anvil] pile_port_rings = 3``) against the one port.
 """
 
 from __future__ import annotations
@@ -63,6 +64,18 @@ def time_blows(engine, repeat: int, **options) -> float:
     return statistics.median(engine.blow(**options).wall_time for _ in range(repeat))
 
 
+def alternated_ratio(first, second, repeat: int) -> float:
+    """Median wall time of ``first``'s blows over ``second``'s, their blows alternated so that
+    both see the same machine."""
+    for engine in (first, second):
+        engine.blow()
+    walls = ([], [])
+    for _ in range(repeat):
+        for engine, wall in zip((first, second), walls, strict=True):
+            wall.append(engine.blow().wall_time)
+    return statistics.median(walls[0]) / statistics.median(walls[1])
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--repeat", type=int, default=21)
@@ -105,15 +118,16 @@ def main() -> None:
           "bookkeeping)")
     for anvil in ("rom", "lumped", "classic"):
         pair = [build_engine(base.with_anvil_model(anvil), modal) for base in (cfg, chain)]
-        for engine in pair:
-            engine.blow()
-        walls = ([], [])
-        for _ in range(args.repeat):
-            for engine, wall in zip(pair, walls, strict=True):
-                wall.append(engine.blow().wall_time)
         note = " (both the chain: the control)" if anvil == "classic" else ""
-        print(f"  {anvil:7s} {statistics.median(walls[0]) / statistics.median(walls[1]):.3f}"
-              f"{note}")
+        print(f"  {anvil:7s} {alternated_ratio(*pair, args.repeat):.3f}{note}")
+
+    # the pile port in three rings (pile_port_rings = 3) against the one port: alternated
+    spec = cfg.anvil.spec
+    ringed = dataclasses.replace(cfg, anvil=dataclasses.replace(cfg.anvil, spec=dataclasses.replace(
+        spec, interfaces=dataclasses.replace(spec.interfaces, pile_rings=3))))
+    ratio = alternated_ratio(build_engine(ringed), build_engine(cfg, modal), args.repeat)
+    print(f"\npile port in three rings / one port: {ratio:.3f} (median wall time of alternated "
+          "blows, ROM anvil, recorded, energy bookkeeping)")
 
     # B consecutive blows of the default model against B x one blow's stepping (best of three
     # runs: on a shared machine a run of B blows is likelier to be interrupted than one blow)

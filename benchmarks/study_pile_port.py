@@ -15,7 +15,8 @@ and its contact are out of the comparison); only the anvil's ports and the pile 
   modal participations, the residual flexibility between all ports) and its own
   compression-only contact on the flat head of the 1D pile (stiffness: the pile's top half
   segment, shared by ring area). The K ring forces are one linear complementarity problem per
-  step (:func:`contact_lcp`). K = 1 is the ROM's port.
+  step (:func:`anvil_rom.rings.contact_lcp`). K = 1 is the ROM's port. The engine runs this
+  variant with the modal ram and its own ram force as ``[anvil] pile_port_rings``.
 * ``FEA ram pressure``: the ram face split into six annuli, each loaded by the FEA's nodal
   ram contact forces that fall on it: the FEA's own pressure distribution instead of a uniform
   one.
@@ -44,6 +45,7 @@ from anvil_rom.fe import assemble, face_load_vector
 from anvil_rom.geometry import Interfaces
 from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 from anvil_rom.modes import elastic_flexibility, free_free_modes
+from anvil_rom.rings import contact_lcp
 from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
 from anvilwave.fea.bodies import ContactSet
@@ -141,23 +143,6 @@ def tube_ports(material, r_in, r_out, length) -> Ports:
     return Ports(P, R, omega, areas, float(length))
 
 
-def contact_lcp(M, g):
-    """Compression-only forces F >= 0 with M F - g <= 0 where F = 0 and M F = g where F > 0
-    (M symmetric positive definite), by active sets from the positive gaps."""
-    active = g > 0.0
-    F = np.zeros_like(g)
-    for _ in range(4 * g.size + 4):
-        F[:] = 0.0
-        if active.any():
-            F[active] = np.linalg.solve(M[np.ix_(active, active)], g[active])
-        drop = active & (F < 0.0)
-        add = ~active & (g - M @ F > 0.0)
-        if not (drop.any() or add.any()):
-            return F
-        active = (active & ~drop) | add
-    raise RuntimeError("contact active set did not settle")
-
-
 def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
                 tube: Ports | None = None):
     """Pile-head force history [N] (sampled every 2 steps) of one variant: ``groups`` of pile
@@ -201,6 +186,8 @@ def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
     u = np.zeros(n)
     v = np.zeros(n)
     F = np.zeros(K)
+    active = np.zeros(K)  # the contact set, from step to step
+    work = np.zeros((K, K + 1))
     steps = int(round(duration / STEP))
     out = np.zeros(steps // 2 + 1)
     for s in range(steps + 1):
@@ -213,7 +200,7 @@ def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
             u_bottom = Pt[K] @ qt + Rt[K, :K] @ F
             tie = k_tie * (u_bottom - u[0])
             g -= Pt[:K] @ qt - Rt[:K, K] * tie
-        F = contact_lcp(M, g)
+        contact_lcp(M, g, F, active, work)
         if s % 2 == 0:
             out[s // 2] = F.sum()
         f = Pa[:n_ram].T @ fr - Pa[rings].T @ F
