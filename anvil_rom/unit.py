@@ -139,8 +139,8 @@ class AnvilUnit:
 
     def _rest_on_rings(self, pile_head_displacement: float, weight: float
                        ) -> tuple[float, float]:
-        """:meth:`rest_on_pile` with the pile port split into rings (all in contact; their
-        forces from :func:`anvil_rom.rings.ring_static_rest`)."""
+        """:meth:`rest_on_pile` with the pile port split into rings (the rings' forces, and
+        which of them carry the weight, from :func:`anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
         RP, F, ring, scratch = self.rings[0], self.rings[4], self.rings[6], self.rings[7]
         k_rings = self.contact.pile_stiffness * self.rings[3]
@@ -161,18 +161,26 @@ class AnvilUnit:
         u_top = float(a.participation_ram @ q - a.residual_rings[0, 1:] @ forces)
         return u_top, weight
 
+    def _one_port(self) -> None:
+        if self.rings is not None:
+            raise ValueError("a pile port in rings runs in the in-process engine "
+                             "(anvil_rom.rings kernels), not through these one-port methods")
+
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
         """Contact forces (F_ram, F_pile) [N] for the given neighbour states (feedthrough)."""
+        self._one_port()
         return modal_unit_forces(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
     def step(self, force_ram: float, force_pile: float, h: float) -> None:
         """Advance the modes over ``h`` [s] with the contact forces held."""
+        self._one_port()
         self.set_step(h)
         modal_unit_step(self.P, self.C, self.S, force_ram, force_pile)
 
     def outputs(self, force_ram: float, force_pile: float) -> tuple[float, float, float, float]:
         """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included."""
+        self._one_port()
         return modal_unit_outputs(self.P, self.C, self.S, force_ram, force_pile)
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
@@ -182,6 +190,7 @@ class AnvilUnit:
         Potential = modal strain + gravity potential of the anvil + the energy stored in the
         two contact springs and in the residual flexibility.
         """
+        self._one_port()
         return modal_unit_energy(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
 

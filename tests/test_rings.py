@@ -183,3 +183,13 @@ def test_pile_port_rings_refusals(table1, tmp_path):
     with pytest.raises(InputError, match="anvil.pile_port_rings: the anvil FMUs have one"):
         check_one_pile_port(with_rings(table1, 3))
     check_one_pile_port(with_rings(table1, 3).with_anvil_model("lumped"))  # no ROM port
+
+
+def test_one_port_methods_refuse_a_ring_unit(table1):
+    """AnvilUnit's one-port methods (the FMUs' path) would run a ring unit with one port's
+    kernels: they refuse it instead."""
+    unit = build_engine(with_rings(table1, 3)).anvil.unit
+    for call in (lambda: unit.forces(0.0, 0.0, 0.0, 0.0), lambda: unit.step(0.0, 0.0, 1e-5),
+                 lambda: unit.outputs(0.0, 0.0), lambda: unit.energy(0.0, 0.0, 0.0, 0.0)):
+        with pytest.raises(ValueError, match="pile port in rings"):
+            call()
