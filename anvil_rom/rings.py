@@ -310,3 +310,20 @@ def ring_faces(rings, ut):
             u -= R[k, l] * F[l]
         u_bottom += W[k - 1] * u
     return u_top, u_bottom
+
+
+@njit(cache=True)
+def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
+    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour
+    states, from its state alone (the anvil FMU's feedthrough): the interface sums, the
+    rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
+    n = C.shape[0]
+    inverse_step = 1.0 / P[8]
+    interface = np.zeros(2)
+    for j in range(n):
+        interface[0] += C[j, 4] * S[j]
+        interface[1] += C[j, 4] * (S[j] - S[n + j]) * inverse_step
+    ring_interface(C, S, rings[0], P[8], rings[6])
+    force_ram, force_pile = ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile)
+    u_top, u_bottom = ring_faces(rings, interface[0])
+    return force_ram, force_pile, u_top, u_bottom

@@ -23,7 +23,14 @@ from numba import njit
 
 from anvilwave_inputs import InputError
 
-from .rings import ring_matrix, ring_static_rest
+from .rings import (
+    ring_faces,
+    ring_interface,
+    ring_matrix,
+    ring_static_rest,
+    ring_unit_advance,
+    ring_unit_outputs,
+)
 from .rom import ModalAnvil, anvil_contact_forces, modal_interface, modal_step
 
 GRAVITY = 9.81  # [m/s^2]
@@ -163,25 +170,56 @@ class AnvilUnit:
 
     def _one_port(self) -> None:
         if self.rings is not None:
-            raise ValueError("a pile port in rings runs in the in-process engine "
-                             "(anvil_rom.rings kernels), not through these one-port methods")
+            raise ValueError("the energy of a pile port in rings is booked by the in-process "
+                             "engine (anvil_rom.rings.ring_unit_energy_at)")
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
-        """Contact forces (F_ram, F_pile) [N] for the given neighbour states (feedthrough)."""
-        self._one_port()
+        """Contact forces (F_ram, F_pile) [N] for the given neighbour states (feedthrough).
+        With rings F_pile is the sum of the ring forces, which are kept for :meth:`step`."""
+        if self.rings is not None:
+            f_ram, f_pile, _, _ = ring_unit_outputs(self.P, self.C, self.S, self.rings, u_ram,
+                                                    v_ram, u_pile, v_pile)
+            return f_ram, f_pile
         return modal_unit_forces(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
     def step(self, force_ram: float, force_pile: float, h: float) -> None:
-        """Advance the modes over ``h`` [s] with the contact forces held."""
-        self._one_port()
+        """Advance the modes over ``h`` [s] with the contact forces held. With rings the pile
+        force is split as the ring forces of the last :meth:`forces` (by area if they were
+        all zero)."""
         self.set_step(h)
+        if self.rings is not None:
+            self._ring_forces(force_ram, force_pile)
+            ring_unit_advance(self.P, self.C, self.S, force_ram, self.rings, np.zeros(4))
+            return
         modal_unit_step(self.P, self.C, self.S, force_ram, force_pile)
 
     def outputs(self, force_ram: float, force_pile: float) -> tuple[float, float, float, float]:
-        """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included."""
-        self._one_port()
+        """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included (with
+        rings: u_bottom and v_bottom the rings' area-weighted means, the ring forces split as
+        in :meth:`step`)."""
+        if self.rings is not None:
+            return self._ring_outputs(force_ram, force_pile)
         return modal_unit_outputs(self.P, self.C, self.S, force_ram, force_pile)
+
+    def _ring_forces(self, force_ram: float, force_pile: float) -> None:
+        """The ring forces for a held pile force: those of the last contact problem scaled
+        to ``force_pile``, or split by area when they were all zero; F_ram = ``force_ram``."""
+        F, shares = self.rings[4], self.rings[3]
+        total = F[1:].sum()
+        F[1:] = F[1:] * (force_pile / total) if total > 0.0 else force_pile * shares
+        F[0] = force_ram
+
+    def _ring_outputs(self, force_ram: float, force_pile: float):
+        self._ring_forces(force_ram, force_pile)
+        ring = self.rings[6]
+        ring_interface(self.C, self.S, self.rings[0], self.P[8], ring)
+        n = self.n_modes
+        q, rate = self.S[:n], (self.S[:n] - self.S[n:]) / self.P[8]
+        u_top, u_bottom = ring_faces(self.rings, float(self.anvil.participation_ram @ q))
+        shares = self.rings[3]
+        return (u_top, float(self.anvil.participation_ram @ rate), u_bottom,
+                float(shares @ ring[1]))
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:

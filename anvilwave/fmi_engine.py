@@ -107,9 +107,7 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     native_anvil : the anvil FMUs to build (``build_system_fmus``): None (default) native
         when a C compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
     """
-    from .fmus import build_system_fmus, check_one_pile_port
-
-    check_one_pile_port(cfg)
+    from .fmus import build_system_fmus
 
     if fmus is None:
         fmus = build_system_fmus(cfg, out_dir_for_fmus, anvil_model, time_step=time_step,

@@ -16,7 +16,7 @@ from anvil_rom.rings import contact_lcp, ring_static_rest
 from anvil_rom.rom import ModalAnvil
 from anvilwave.compare import without_soil
 from anvilwave.engine import anvil_modal_data, build_engine, contact_stiffnesses
-from anvilwave.fmus import check_one_pile_port
+from anvilwave.fmus import native_anvil_for_rings
 from anvilwave.report import total_energy
 from anvilwave.system import load_system
 from anvilwave_inputs import InputError
@@ -180,16 +180,34 @@ def test_pile_port_rings_refusals(table1, tmp_path):
     fine.write_text(system_text("pile_port_rings = 7"))
     with pytest.raises(InputError, match="pile_port_rings: 7 rings across the pile wall"):
         build_engine(load_system(fine))  # the xl8 mesh has three edges across the wall
-    with pytest.raises(InputError, match="anvil.pile_port_rings: the anvil FMUs have one"):
-        check_one_pile_port(with_rings(table1, 3))
-    check_one_pile_port(with_rings(table1, 3).with_anvil_model("lumped"))  # no ROM port
+    ringed = with_rings(table1, 3)
+    with pytest.raises(InputError, match="anvil.pile_port_rings: the native anvil FMU has one"):
+        native_anvil_for_rings(ringed, True, True)
+    with pytest.warns(UserWarning, match="pythonfmu anvils for the pile port in rings"):
+        assert native_anvil_for_rings(ringed, True, None) is False
+    assert native_anvil_for_rings(ringed.with_anvil_model("lumped"), True, True)  # no ROM port
+    assert native_anvil_for_rings(table1, True, True)  # one port
 
 
-def test_one_port_methods_refuse_a_ring_unit(table1):
-    """AnvilUnit's one-port methods (the FMUs' path) would run a ring unit with one port's
-    kernels: they refuse it instead."""
+def test_fmi_engine_with_rings_equals_direct(table1, tmp_path):
+    """The FMI engine on a system with three rings (the pythonfmu anvil: F_pile the rings'
+    sum, the same ring kernels) gives the direct engine's blow: forces to 1e-9 of their peaks
+    (measured ~1e-12, round-off of the FMU's separate calls)."""
+    from anvilwave.fmi_engine import run_fmi
+
+    ringed = with_rings(table1, 3)
+    direct = build_engine(ringed).blow()
+    with pytest.warns(UserWarning, match="pile port in rings"):
+        fmi = run_fmi(ringed, tmp_path / "fmus", native_anvil=None)[0]
+    for name in ("ram_anvil_force [N]", "anvil_pile_force [N]", "pile_head_velocity [m/s]"):
+        a = np.asarray(direct.columns[name])
+        b = np.interp(direct.columns["time [s]"], fmi.columns["time [s]"], fmi.columns[name])
+        np.testing.assert_allclose(b, a, atol=1e-9 * np.abs(a).max(), err_msg=name)
+
+
+def test_ring_unit_energy_method_refuses(table1):
+    """AnvilUnit.energy books one port's contacts: a ring unit refuses it (the engine books
+    the rings' energy)."""
     unit = build_engine(with_rings(table1, 3)).anvil.unit
-    for call in (lambda: unit.forces(0.0, 0.0, 0.0, 0.0), lambda: unit.step(0.0, 0.0, 1e-5),
-                 lambda: unit.outputs(0.0, 0.0), lambda: unit.energy(0.0, 0.0, 0.0, 0.0)):
-        with pytest.raises(ValueError, match="pile port in rings"):
-            call()
+    with pytest.raises(ValueError, match="energy of a pile port in rings"):
+        unit.energy(0.0, 0.0, 0.0, 0.0)

@@ -4,6 +4,10 @@ Interface (DESIGN.md, the contract): inputs ``u_ram`` [m], ``v_ram`` [m/s] (ram 
 ``u_pile`` [m], ``v_pile`` [m/s] (pile head); outputs ``F_ram``, ``F_pile`` [N] (contact forces,
 compression positive) and ``u_top``, ``u_bottom`` [m] (anvil interface displacements); z down.
 
+An anvil whose modal data split the pile port into rings (``pile_port_rings``,
+:mod:`anvil_rom.rings`) keeps this interface: ``F_pile`` is the sum of the ring forces and
+``u_bottom`` the rings' area-weighted mean displacement.
+
 The forces are a direct feedthrough of the inputs: they are evaluated from the inputs set at the
 current communication point (``AnvilUnit.forces``), so a master that sets the ram and pile
 states and then reads the forces gets the forces at that instant. ``fmi2DoStep`` holds these
@@ -33,6 +37,7 @@ from numba import njit
 from pythonfmu import DefaultExperiment
 
 from anvil_rom.modalfile import load_modal_data
+from anvil_rom.rings import ring_unit_outputs
 from anvil_rom.rom import ModalAnvil
 from anvil_rom.unit import (
     GRAVITY,
@@ -139,11 +144,16 @@ class AnvilSlaveBase(UnitSlave):
     def compute_outputs(self, inputs, outputs) -> None:
         unit = self.component
         x = self.extrapolation
-        if x is None:
+        if unit.rings is not None:  # the pile port in rings: F_pile their sum
+            outputs[:] = ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings,
+                                           *(inputs if x is None else x.extrapolated(inputs)))
+        elif x is None:
             outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, inputs[0], inputs[1], inputs[2],
                                        inputs[3])
+        else:
+            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *x.extrapolated(inputs))
+        if x is None:
             return
-        outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *x.extrapolated(inputs))
         x.evaluated = (outputs[0], outputs[1])
         outputs[0] += x.correction[0]
         outputs[1] += x.correction[1]
