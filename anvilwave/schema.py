@@ -36,6 +36,8 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.fmax": ("Hz", None, "frequency content of the ROM; default the anvil file's"),
     "anvil.damping_ratio": ("-", None, "modal damping ratio; default the anvil file's"),
     "anvil.static_correction": ("-", True, "residual flexibility of the truncated modes"),
+    "anvil.pile_port_rings": ("-", 1, "the pile port split into rings across the wall (rom; "
+                               "anvil_rom/rings.py)"),
     "anvil.mass": ("kg", None, "lumped anvil mass; default the FE mass"),
     "anvil.ram_contact_stiffness": ("N/m", None, "default the ram's toe half segment"),
     "anvil.pile_contact_stiffness": ("N/m", None, "default the pile's top half segment"),
