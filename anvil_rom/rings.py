@@ -28,8 +28,8 @@ Kernel data (float64, besides the one-port unit's P, C, S of :mod:`anvil_rom.uni
 ``W`` (K) ring area shares; ``F`` (1 + K) the contact forces at t_n (written); ``E`` (1 + K)
 their elastic parts; ``ring`` (2, K) the rings' modal (u, v) of the state; ``scratch``
 (1 + K, 5 + K) for the solvers (the active sets of the forces and of their elastic parts,
-overlaps, elimination); ``R`` (1 + K, 1 + K) the
-residual flexibility. The engine passes them as one tuple in this order.
+overlaps, elimination); ``R`` (1 + K, 1 + K) the residual flexibility. The engine passes them
+as one tuple in this order.
 """
 
 from __future__ import annotations
@@ -161,12 +161,13 @@ def ring_interface(C, S, RP, h, ring):
     """The rings' modal (u, v) [m, m/s] of the state into ``ring`` (2, K)."""
     n = C.shape[0]
     K = RP.shape[1]
+    inverse_step = 1.0 / h
     for k in range(K):
         u = 0.0
         v = 0.0
         for j in range(n):
             u += RP[j, k] * S[j]
-            v += RP[j, k] * (S[j] - S[n + j]) / h
+            v += RP[j, k] * ((S[j] - S[n + j]) * inverse_step)
         ring[0, k] = u
         ring[1, k] = v
 
