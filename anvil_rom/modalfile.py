@@ -140,7 +140,8 @@ def _check_rings(data: ModalData, n: int, bad) -> None:
     G = np.asarray(data.ring_flexibility)
     if areas.ndim != 1 or K < 2 or not np.all(np.isfinite(areas)) or np.any(areas <= 0.0):
         raise bad("ring_areas", "must hold two or more positive ring areas [m^2]")
-    if abs(areas.sum() - data.interface_areas[1]) > 1e-9 * data.interface_areas[1]:
+    ring_area = getattr(data, "interface_areas", None)  # a native resource has none
+    if ring_area is not None and abs(areas.sum() - ring_area[1]) > 1e-9 * ring_area[1]:
         raise bad("ring_areas", "must sum to the pile ring's area (interface_areas[1])")
     if P.shape != (K, n) or not np.all(np.isfinite(P)):
         raise bad("participation_rings", f"must have shape ({K}, {n}) (rings, modes), finite")

@@ -99,26 +99,6 @@ SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
 """Anvil parameters that ``system.ssp`` sets on top of the build's (module docstring)."""
 
 
-def native_anvil_for_rings(cfg: SystemConfig, native: bool, native_anvil: bool | None
-                           ) -> bool:
-    """Whether the native anvil can be built for the system: the native anvil has one pile
-    port, so a ROM whose pile port is split into rings (``[anvil] pile_port_rings`` > 1) gets
-    the pythonfmu anvil (the same interface: F_pile the rings' sum). Asked for explicitly
-    (``native_anvil=True``), the native anvil is refused with the reason; by default
-    (``None``) the pythonfmu anvil is built with a warning."""
-    ringed = (cfg.anvil.model == "rom" and cfg.anvil.spec is not None
-              and cfg.anvil.spec.interfaces.pile_rings > 1)
-    if not (native and ringed):
-        return native
-    if native_anvil is True:
-        raise InputError(cfg.source, "anvil.pile_port_rings",
-                         "the native anvil FMU has one pile port: build the pythonfmu anvils "
-                         "(--python-anvil) for a pile port in rings")
-    warnings.warn("the native anvil FMU has one pile port: using the pythonfmu anvils for the "
-                  "pile port in rings", stacklevel=3)
-    return False
-
-
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
                       time_step: float | None = None, ssp: bool = True,
                       native_anvil: bool | None = True) -> dict[str, Any]:
@@ -147,7 +127,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         raise InputError(cfg.source, "anvil.model",
                          f"the FMI units model the anvil as 'rom' or 'lumped', not "
                          f"{cfg.anvil.model!r}")
-    native = native_anvil_for_rings(cfg, _native_anvil_wanted(native_anvil), native_anvil)
+    native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)
     rest = parameters.pop("_rest")

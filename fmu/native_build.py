@@ -13,7 +13,8 @@ the two can be swapped) and the numerics of :mod:`anvil_rom.unit`, in C
   license text), the generated ``anvil_config.h`` (model identifier, GUID, variable table with
   the build's start values) and ``buildDescription.xml`` (FMI 3.0 format, as FMI 2.0.4 allows);
 - ``resources/modal_data.bin`` (ROM only): the modal data in the documented little-endian
-  binary format ``anvilwave-modal`` version 1 (``fmu/native/anvil_model.h``,
+  binary format ``anvilwave-modal`` version 1 (version 2 with a pile port in rings;
+  ``fmu/native/anvil_model.h``,
   :func:`modal_resource_bytes`), read by ``fmi2Instantiate`` from ``fmuResourceLocation``;
 - ``binaries/linux64/<modelIdentifier>.so`` compiled from ``sources/`` with the system C
   compiler (``compiler``, else ``$CC``, else ``cc`` / ``gcc`` on the PATH), without
@@ -75,6 +76,8 @@ MODAL_RESOURCE = "modal_data.bin"
 """Name of the embedded modal data in ``resources/`` (start value of ``modal_data_file``)."""
 MODAL_MAGIC = b"anvilwave-modal\x00"
 MODAL_VERSION = 1
+MODAL_VERSION_RINGS = 2
+"""Version 2: version 1 and the rings of a pile port split across the wall."""
 MODAL_HEADER_BYTES = 80
 PLATFORM = "linux64"
 CFLAGS = ("-shared", "-fPIC", "-O2", "-std=c99", "-ffp-contract=off", "-fvisibility=hidden",
@@ -199,7 +202,9 @@ class NativeModalData:
     frequencies [Hz], omega [rad/s] (= 2 pi frequencies), participation_ram,
     participation_pile [kg^-1/2], participation_gravity [kg^1/2]: (n,) arrays, mode 0 the
     rigid-body mode; elastic_flexibility: (2, 2) [m/N]; total_mass [kg]; fmax [Hz];
-    damping_ratio [-]. It has the attributes :func:`anvil_rom.modalfile.check_modal_data` and
+    damping_ratio [-]. With a pile port in K rings (version 2): participation_rings (K, n),
+    ring_flexibility (K + 1, K + 1) [m/N], ring_areas (K,) [m^2]; None for one port. It has
+    the attributes :func:`anvil_rom.modalfile.check_modal_data` and
     :meth:`anvil_rom.rom.ModalAnvil.from_modal_data` read.
     """
 
@@ -212,6 +217,9 @@ class NativeModalData:
     total_mass: float
     fmax: float
     damping_ratio: float
+    participation_rings: np.ndarray | None = None
+    ring_flexibility: np.ndarray | None = None
+    ring_areas: np.ndarray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -219,8 +227,9 @@ class NativeModalData:
 
 
 def modal_resource_bytes(data: NativeModalData) -> bytes:
-    """The ``anvilwave-modal`` version 1 file of ``data``: 80-byte header + 40 bytes per mode,
-    little-endian (layout in ``fmu/native/anvil_model.h``)."""
+    """The ``anvilwave-modal`` file of ``data``: 80-byte header + 40 bytes per mode,
+    little-endian, version 1; with rings version 2, the rings after the modes (layout in
+    ``fmu/native/anvil_model.h``)."""
     n = data.n_modes
     scalars = [data.total_mass, data.fmax, data.damping_ratio,
                *np.asarray(data.elastic_flexibility, dtype=float).reshape(4)]
@@ -229,9 +238,18 @@ def modal_resource_bytes(data: NativeModalData) -> bytes:
     for a in arrays:
         if np.shape(a) != (n,):
             raise ValueError(f"every per-mode array must have shape ({n},)")
-    return (MODAL_MAGIC + struct.pack("<II", MODAL_VERSION, n)
-            + np.asarray(scalars, dtype="<f8").tobytes()
+    rings = data.participation_rings
+    body = (np.asarray(scalars, dtype="<f8").tobytes()
             + np.concatenate([np.asarray(a, dtype="<f8") for a in arrays]).tobytes())
+    if rings is None:
+        return MODAL_MAGIC + struct.pack("<II", MODAL_VERSION, n) + body
+    K = len(rings)
+    trailer = np.concatenate([np.asarray(rings, dtype="<f8").reshape(K * n),
+                              np.asarray(data.ring_flexibility, dtype="<f8").reshape(
+                                  (K + 1) ** 2),
+                              np.asarray(data.ring_areas, dtype="<f8").reshape(K)])
+    return (MODAL_MAGIC + struct.pack("<II", MODAL_VERSION_RINGS, n) + body
+            + struct.pack("<II", K, 0) + trailer.tobytes())
 
 
 def read_modal_resource(source: str | Path | bytes) -> NativeModalData:
@@ -245,17 +263,31 @@ def read_modal_resource(source: str | Path | bytes) -> NativeModalData:
     if len(raw) < MODAL_HEADER_BYTES or raw[:16] != MODAL_MAGIC:
         raise InputError(name, "", "not an anvilwave-modal file")
     version, n = struct.unpack("<II", raw[16:24])
-    if version != MODAL_VERSION:
+    if version not in (MODAL_VERSION, MODAL_VERSION_RINGS):
         raise InputError(name, "version", f"format version {version} is not supported")
-    if len(raw) != MODAL_HEADER_BYTES + 40 * n:
-        raise InputError(name, "", f"{len(raw)} bytes, expected {MODAL_HEADER_BYTES + 40 * n} "
-                                   f"for {n} modes")
+    end = MODAL_HEADER_BYTES + 40 * n
+    rings = {}
+    if version == MODAL_VERSION_RINGS:
+        if len(raw) < end + 8:
+            raise InputError(name, "", f"{len(raw)} bytes: no ring count after {n} modes")
+        (K,) = struct.unpack("<I", raw[end:end + 4])
+        size = end + 8 + 8 * (K * n + (K + 1) ** 2 + K)
+        if K < 2 or len(raw) != size:
+            raise InputError(name, "", f"{len(raw)} bytes, expected {size} for {n} modes and "
+                                       f"{K} rings (at least 2)")
+        trailer = np.frombuffer(raw, dtype="<f8", offset=end + 8).astype(float)
+        rings = {"participation_rings": trailer[:K * n].reshape(K, n).copy(),
+                 "ring_flexibility": trailer[K * n:K * n + (K + 1) ** 2].reshape(K + 1,
+                                                                               K + 1).copy(),
+                 "ring_areas": trailer[K * n + (K + 1) ** 2:].copy()}
+    elif len(raw) != end:
+        raise InputError(name, "", f"{len(raw)} bytes, expected {end} for {n} modes")
     scalars = np.frombuffer(raw, dtype="<f8", count=7, offset=24).astype(float)
-    body = np.frombuffer(raw, dtype="<f8", offset=MODAL_HEADER_BYTES).astype(float)
+    body = np.frombuffer(raw, dtype="<f8", count=5 * n, offset=MODAL_HEADER_BYTES).astype(float)
     arrays = body.reshape(5, n)
     return NativeModalData(arrays[0].copy(), arrays[1].copy(), arrays[2].copy(), arrays[3].copy(),
                            arrays[4].copy(), scalars[3:].reshape(2, 2).copy(), float(scalars[0]),
-                           float(scalars[1]), float(scalars[2]))
+                           float(scalars[1]), float(scalars[2]), **rings)
 
 
 def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeModalData:
@@ -276,11 +308,19 @@ def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeMo
         G = np.asarray(modal.residual_flexibility, dtype=float) + (P / omega[flexible] ** 2) @ P.T
         G = 0.5 * (G + G.T)
         frequencies = omega / (2.0 * np.pi)
+        rings = {}
+        if modal.participation_rings is not None:  # the ring flexibility it implies, likewise
+            P_rings = np.vstack([p_ram, modal.participation_rings])[:, flexible]
+            G_rings = (np.asarray(modal.residual_rings, dtype=float)
+                       + (P_rings / omega[flexible] ** 2) @ P_rings.T)
+            rings = {"participation_rings": np.asarray(modal.participation_rings, dtype=float),
+                     "ring_flexibility": 0.5 * (G_rings + G_rings.T),
+                     "ring_areas": np.asarray(modal.ring_areas, dtype=float)}
         data = NativeModalData(frequencies, omega, p_ram, p_pile,
                                np.asarray(modal.participation_gravity, dtype=float), G,
                                float(modal.total_mass),
                                float(max(modal.fmax, frequencies[-1])),
-                               float(modal.damping_ratio))
+                               float(modal.damping_ratio), **rings)
     else:
         if isinstance(modal, Mapping):
             keys = ("frequencies", "participation_ram", "participation_pile",
@@ -308,11 +348,16 @@ def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeMo
         omega = (np.asarray(modal["omega"], dtype=float)
                  if isinstance(modal, Mapping) and "omega" in modal
                  else 2.0 * np.pi * frequencies)
+        rings = {}
+        if isinstance(modal, ModalData) and modal.participation_rings is not None:
+            rings = {key: np.asarray(getattr(modal, key), dtype=float)
+                     for key in ("participation_rings", "ring_flexibility", "ring_areas")}
         data = NativeModalData(frequencies, omega,
                                np.asarray(get("participation_ram"), dtype=float),
                                np.asarray(get("participation_pile"), dtype=float),
                                np.asarray(get("participation_gravity"), dtype=float),
-                               np.asarray(get("elastic_flexibility"), dtype=float), *scalars)
+                               np.asarray(get("elastic_flexibility"), dtype=float), *scalars,
+                               **rings)
     if data.frequencies.ndim != 1:
         raise InputError(source, "frequencies", "must be a 1D array")
     check_modal_data(data, source)

@@ -721,3 +721,56 @@ def test_c_host_without_python_runs_two_instances_20000_steps(built, c_host, tmp
     difference = relative_difference(outputs, expected)
     print(f"C host ({kind}) vs Python kernels: max relative difference {difference:.2e}")
     assert difference <= 1e-12
+
+
+@pytest.fixture(scope="module")
+def built_rings(built):
+    """The s2 anvil with its pile port in two rings (its mesh has two edges across the 0.05 m
+    wall; a version 2 resource), built once."""
+    import dataclasses
+
+    spec = load_anvil(EXAMPLES / "anvils" / "s2.toml")
+    spec = dataclasses.replace(spec, mesh_size=0.03, interfaces=dataclasses.replace(
+        spec.interfaces, pile_rings=2))
+    data = compute_anvil_modes(spec, fmax=20000.0).modal_data
+    return {"data": data, "Anvil": build_native_anvil_fmu(data, built["root"] / "rings",
+                                                          **CONTACTS)}
+
+
+@pytest.mark.parametrize("case", ["fmax 8 kHz, static correction",
+                                  "damped, dashpot, static correction"])
+def test_ring_outputs_equal_the_python_kernels(built_rings, case):
+    """The pile port in two rings (anvil_rom/rings.py) in C: the rest with the rings that
+    carry the weight, the complementarity pivoting, the ring forces held over the step. The
+    blow of the one-port test against the Python ring unit: round-off only (1e-12, as the
+    one port; measured below 1e-13)."""
+    parameters, options, dashpot = ROM_CASES[case]
+    data = built_rings["data"]
+    assert data.participation_rings.shape[0] == 2
+    assert read_modal_resource(modal_resource_bytes(native_modal_data(data))
+                               ).participation_rings.shape == (2, data.n_modes)
+    options = {"damping_ratio": data.damping_ratio, **options}
+    unit = reference_unit(ModalAnvil.from_modal_data(data, **options), dashpot)
+    assert unit.rings is not None
+    inputs, steps = blow_inputs(unit.outputs(0.0, 0.0)[0])
+    expected = np.empty((len(inputs), 4))
+    contact_sets = set()
+    for n, state in enumerate(inputs):  # run_reference, noting which rings carry load
+        force_ram, force_pile = unit.forces(*state)
+        contact_sets.add(tuple(unit.rings[4][1:] > 0.0))
+        u_top, _, u_bottom, _ = unit.outputs(force_ram, force_pile)
+        expected[n] = force_ram, force_pile, u_top, u_bottom
+        unit.step(force_ram, force_pile, float(steps[n]))
+    assert expected[:, 0].max() > 1e6
+    # the blow closes and opens the rings one at a time: the pivoting is exercised
+    assert {(True, False), (False, True), (True, True)} <= contact_sets
+    fmu = Driven(built_rings["Anvil"])
+    try:
+        fmu.initialize(**parameters)
+        actual = fmu.run(inputs, steps)
+    finally:
+        fmu.close()
+    difference = relative_difference(actual, expected)
+    print(f"\nnative Anvil with rings vs Python ({case}): max relative difference "
+          f"{difference:.2e}")
+    assert difference <= 1e-12

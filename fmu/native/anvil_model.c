@@ -134,6 +134,51 @@ static int check_modal_data(const AnvilModalData *d, char *error, size_t size)
     return 1;
 }
 
+/* The ring rules of anvil_rom/modalfile.py (_check_rings; the binary has no ring area to add
+ * up to): positive areas, finite participations that add up, area-weighted, to the pile
+ * ring's, a finite symmetric flexibility. */
+static int check_rings(const AnvilModalData *d, char *error, size_t size)
+{
+    size_t K = d->n_rings, n = d->n_modes, j, k, m = K + 1;
+    double area = 0.0, pmax = 0.0, gmax = 0.0;
+    if (K == 0) return 1;
+    for (k = 0; k < K; k++) {
+        if (!(isfinite(d->ring_areas[k]) && d->ring_areas[k] > 0.0)) {
+            set_error(error, size, "ring_areas: must hold two or more positive ring areas [m^2]");
+            return 0;
+        }
+        area += d->ring_areas[k];
+    }
+    if (!all_finite(d->participation_rings, K * n)) {
+        set_error(error, size, "participation_rings: must be finite");
+        return 0;
+    }
+    for (j = 0; j < n; j++)
+        if (fabs(d->participation_pile[j]) > pmax) pmax = fabs(d->participation_pile[j]);
+    for (j = 0; j < n; j++) {
+        double combined = 0.0;
+        for (k = 0; k < K; k++)
+            combined += d->ring_areas[k] / area * d->participation_rings[k * n + j];
+        if (fabs(combined - d->participation_pile[j]) > 1e-9 * pmax) {
+            set_error(error, size, "participation_rings: area-weighted, must add up to "
+                                   "participation_pile (mode %lu)", (unsigned long)j);
+            return 0;
+        }
+    }
+    for (j = 0; j < m * m; j++)
+        if (fabs(d->ring_flexibility[j]) > gmax) gmax = fabs(d->ring_flexibility[j]);
+    if (!all_finite(d->ring_flexibility, m * m)) goto asymmetric;
+    for (j = 0; j < m; j++)
+        for (k = 0; k < j; k++)
+            if (fabs(d->ring_flexibility[j * m + k] - d->ring_flexibility[k * m + j]) >
+                1e-9 * gmax) goto asymmetric;
+    return 1;
+asymmetric:
+    set_error(error, size, "ring_flexibility: must be a finite symmetric %lux%lu matrix [m/N]",
+              (unsigned long)m, (unsigned long)m);
+    return 0;
+}
+
 int anvil_modal_data_read(const char *path, AnvilModalData *data, char *error, size_t size)
 {
     unsigned char header[ANVIL_MODAL_HEADER_BYTES];
@@ -177,9 +222,10 @@ int anvil_modal_data_read(const char *path, AnvilModalData *data, char *error, s
         goto done;
     }
     version = read_u32(header + 16);
-    if (version != ANVIL_MODAL_VERSION) {
-        set_error(error, size, "format version %lu is not supported (this FMU reads version "
-                               "%u)", (unsigned long)version, ANVIL_MODAL_VERSION);
+    if (version != ANVIL_MODAL_VERSION && version != ANVIL_MODAL_VERSION_RINGS) {
+        set_error(error, size, "format version %lu is not supported (this FMU reads versions "
+                               "%u and %u)", (unsigned long)version, ANVIL_MODAL_VERSION,
+                  ANVIL_MODAL_VERSION_RINGS);
         goto done;
     }
     n = read_u32(header + 20);
@@ -188,7 +234,47 @@ int anvil_modal_data_read(const char *path, AnvilModalData *data, char *error, s
         goto done;
     }
     expected = ANVIL_MODAL_HEADER_BYTES + (unsigned long long)ANVIL_MODAL_BYTES_PER_MODE * n;
-    if ((unsigned long long)length != expected) {
+    if (version == ANVIL_MODAL_VERSION_RINGS) {
+        unsigned char trailer[8];
+        unsigned long long rings_bytes;
+        if ((unsigned long long)length < expected + 8 || fseek(file, (long)expected, SEEK_SET)
+            != 0 || fread(trailer, 1, 8, file) != 8) {
+            set_error(error, size, "malformed modal-data file: no ring count after its %lu "
+                                   "modes", (unsigned long)n);
+            goto done;
+        }
+        d.n_rings = read_u32(trailer);
+        if (d.n_rings < 2 || d.n_rings > 64) {
+            set_error(error, size, "ring_areas: a version 2 file holds 2 to 64 rings, got %lu",
+                      (unsigned long)d.n_rings);
+            goto done;
+        }
+        rings_bytes = 8ull * (d.n_rings * (unsigned long long)n + (d.n_rings + 1) *
+                              (d.n_rings + 1) + d.n_rings);
+        if ((unsigned long long)length != expected + 8 + rings_bytes) {
+            set_error(error, size, "malformed modal-data file: %ld bytes, expected %llu for %lu "
+                                   "modes and %lu rings", length, expected + 8 + rings_bytes,
+                      (unsigned long)n, (unsigned long)d.n_rings);
+            goto done;
+        }
+        d.ring_block = (double *)malloc((size_t)rings_bytes);
+        body = (unsigned char *)malloc((size_t)rings_bytes);
+        if (d.ring_block == NULL || body == NULL ||
+            fread(body, 1, (size_t)rings_bytes, file) != (size_t)rings_bytes) {
+            set_error(error, size, "malformed modal-data file: cannot read its rings");
+            goto done;
+        }
+        for (i = 0; i < (size_t)(rings_bytes / 8); i++) d.ring_block[i] = read_f64(body + 8 * i);
+        free(body);
+        body = NULL;
+        d.participation_rings = d.ring_block;
+        d.ring_flexibility = d.ring_block + d.n_rings * (size_t)n;
+        d.ring_areas = d.ring_flexibility + (d.n_rings + 1) * (d.n_rings + 1);
+        if (fseek(file, ANVIL_MODAL_HEADER_BYTES, SEEK_SET) != 0) {
+            set_error(error, size, "cannot read the modal-data file");
+            goto done;
+        }
+    } else if ((unsigned long long)length != expected) {
         set_error(error, size, "malformed modal-data file: %ld bytes, expected %llu for %lu "
                                "modes", length, expected, (unsigned long)n);
         goto done;
@@ -216,7 +302,7 @@ int anvil_modal_data_read(const char *path, AnvilModalData *data, char *error, s
     d.participation_ram = d.block + 2 * (size_t)n;
     d.participation_pile = d.block + 3 * (size_t)n;
     d.participation_gravity = d.block + 4 * (size_t)n;
-    ok = check_modal_data(&d, error, size);
+    ok = check_modal_data(&d, error, size) && check_rings(&d, error, size);
 done:
     fclose(file);
     free(body);
@@ -224,6 +310,7 @@ done:
         *data = d;
     } else {
         free(d.block);
+        free(d.ring_block);
     }
     return ok;
 }
@@ -232,6 +319,7 @@ void anvil_modal_data_free(AnvilModalData *data)
 {
     if (data == NULL) return;
     free(data->block);
+    free(data->ring_block);
     memset(data, 0, sizeof *data);
 }
 
@@ -272,6 +360,286 @@ int anvil_check_parameters(const AnvilContact *contact, double gravity,
     return 1;
 }
 
+
+/* ------------------------------------------------------------------ the pile port in rings */
+/* anvil_rom/rings.py _solve_active: F_a = A_aa^-1 g_a (elimination without pivoting), F = 0
+ * elsewhere; work m x (m + 1). */
+static void solve_active(size_t m, const double *A, const double *g, double *F,
+                         const double *active, double *work)
+{
+    size_t i, j, idx = 0, jdx, size, r, c, q;
+    size_t w = m + 1;
+    for (i = 0; i < m; i++) {
+        F[i] = 0.0;
+        if (active[i] != 0.0) {
+            jdx = 0;
+            for (j = 0; j < m; j++)
+                if (active[j] != 0.0) work[idx * w + jdx++] = A[i * m + j];
+            work[idx * w + m] = g[i];
+            idx++;
+        }
+    }
+    size = idx;
+    for (q = 0; q < size; q++) {
+        double pivot = work[q * w + q];
+        for (r = q + 1; r < size; r++) {
+            double factor = work[r * w + q] / pivot;
+            for (c = q; c < size; c++) work[r * w + c] -= factor * work[q * w + c];
+            work[r * w + m] -= factor * work[q * w + m];
+        }
+    }
+    for (q = size; q-- > 0;) {
+        double total = work[q * w + m];
+        for (c = q + 1; c < size; c++) total -= work[q * w + c] * work[c * w + m];
+        work[q * w + m] = total / work[q * w + q];
+    }
+    idx = 0;
+    for (i = 0; i < m; i++)
+        if (active[i] != 0.0) F[i] = work[idx++ * w + m];
+}
+
+/* anvil_rom/rings.py contact_lcp: Murty's least-index pivoting from the given set */
+static void contact_lcp(size_t m, const double *A, const double *g, double *F, double *active,
+                        double *work)
+{
+    size_t pivots, i, j;
+    for (pivots = 0; pivots < 50 * m; pivots++) {
+        long flip = -1;
+        solve_active(m, A, g, F, active, work);
+        for (i = 0; i < m; i++) {
+            if (active[i] != 0.0) {
+                if (F[i] < 0.0) {
+                    flip = (long)i;
+                    break;
+                }
+            } else {
+                double w = -g[i];
+                for (j = 0; j < m; j++) w += A[i * m + j] * F[j];
+                if (w < 0.0) {
+                    flip = (long)i;
+                    break;
+                }
+            }
+        }
+        if (flip < 0) return;
+        active[flip] = 1.0 - active[flip];
+    }
+    /* not reached for a positive definite A (Murty 1974); the last set's forces stand */
+}
+
+/* anvil_rom/rings.py ring_interface: the rings' modal (u, v) */
+static void ring_interface(AnvilUnit *unit)
+{
+    size_t n = unit->n, k, j;
+    double inverse_step = 1.0 / unit->h;
+    for (k = 0; k < unit->K; k++) {
+        double u = 0.0, v = 0.0;
+        const double *pk = unit->rp + k * n;
+        for (j = 0; j < n; j++) {
+            u += pk[j] * unit->q[j];
+            v += pk[j] * ((unit->q[j] - unit->q_prev[j]) * inverse_step);
+        }
+        unit->ring_u[k] = u;
+        unit->ring_v[k] = v;
+    }
+}
+
+/* Python: AnvilUnit._ring_forces, the ring forces for a held pile force */
+static void ring_forces(AnvilUnit *unit, double force_ram, double force_pile)
+{
+    size_t k;
+    double total = 0.0;
+    for (k = 1; k <= unit->K; k++) total += unit->F[k];
+    if (total > 0.0) {
+        double ratio = force_pile / total;
+        for (k = 1; k <= unit->K; k++) unit->F[k] = unit->F[k] * ratio;
+    } else {
+        for (k = 1; k <= unit->K; k++) unit->F[k] = force_pile * unit->W[k - 1];
+    }
+    unit->F[0] = force_ram;
+}
+
+/* Gaussian elimination with partial pivoting of the n x n system M x = b (in place: M, b) */
+static void solve_dense(size_t n, double *M, double *b)
+{
+    size_t c, r, q, best;
+    for (c = 0; c < n; c++) {
+        best = c;
+        for (r = c + 1; r < n; r++)
+            if (fabs(M[r * n + c]) > fabs(M[best * n + c])) best = r;
+        if (best != c) {
+            double t;
+            for (q = 0; q < n; q++) {
+                t = M[c * n + q]; M[c * n + q] = M[best * n + q]; M[best * n + q] = t;
+            }
+            t = b[c]; b[c] = b[best]; b[best] = t;
+        }
+        for (r = c + 1; r < n; r++) {
+            double factor = M[r * n + c] / M[c * n + c];
+            for (q = c; q < n; q++) M[r * n + q] -= factor * M[c * n + q];
+            b[r] -= factor * b[c];
+        }
+    }
+    for (c = n; c-- > 0;) {
+        double total = b[c];
+        for (q = c + 1; q < n; q++) total -= M[c * n + q] * b[q];
+        b[c] = total / M[c * n + c];
+    }
+}
+
+/* anvil_rom/rings.py ring_static_rest and AnvilUnit._rest_on_rings */
+static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double weight)
+{
+    size_t K = unit->K, n = unit->n, m = K + 1, j, k, l, iteration;
+    double *G = (double *)calloc(K * K + (K + 1) * (K + 1) + 4 * K + 2, sizeof(double));
+    double *M, *x, *forces, *overlap;
+    int *active;
+    double u0 = 0.0;
+    if (G == NULL) return;
+    M = G + K * K;
+    x = M + (K + 1) * (K + 1);
+    forces = x + K + 1;
+    overlap = forces + K;
+    active = (int *)calloc(K, sizeof(int));
+    if (active == NULL) {
+        free(G);
+        return;
+    }
+    for (k = 0; k < K; k++) {
+        active[k] = 1;
+        for (l = 0; l < K; l++) {
+            double sum = 0.0;
+            for (j = 0; j < n; j++) {
+                double w = unit->omega[j];
+                if (!(w > 0.0)) continue;
+                sum += (unit->rp[k * n + j] / (w * w)) * unit->rp[l * n + j];
+            }
+            G[k * K + l] = sum + unit->R[(k + 1) * m + l + 1];
+        }
+    }
+    for (iteration = 0; iteration < 4 * K; iteration++) {
+        size_t a = 0, idx[64], r, c;
+        long worst = -1;
+        for (k = 0; k < K; k++)
+            if (active[k]) idx[a++] = k;
+        for (r = 0; r <= a; r++)
+            for (c = 0; c <= a; c++) M[r * (a + 1) + c] = 0.0;
+        for (r = 0; r < a; r++) {
+            for (c = 0; c < a; c++) M[r * (a + 1) + c] = G[idx[r] * K + idx[c]];
+            M[r * (a + 1) + r] += 1.0 / (unit->k_pile * unit->W[idx[r]]);
+            M[r * (a + 1) + a] = -1.0;
+            M[a * (a + 1) + r] = 1.0;
+            x[r] = 0.0;
+        }
+        x[a] = weight;
+        solve_dense(a + 1, M, x);
+        for (k = 0; k < K; k++) forces[k] = 0.0;
+        for (r = 0; r < a; r++) forces[idx[r]] = x[r];
+        u0 = x[a];
+        for (k = 0; k < K; k++) {
+            double sum = 0.0;
+            for (l = 0; l < K; l++) sum += G[k * K + l] * forces[l];
+            overlap[k] = u0 - sum;
+        }
+        for (k = 0; k < K; k++)
+            if (worst < 0 || forces[k] < forces[worst]) worst = (long)k;
+        if (forces[worst] < 0.0) {
+            active[worst] = 0;
+            continue;
+        }
+        worst = -1;
+        for (k = 0; k < K; k++)
+            if (!active[k] && overlap[k] > 0.0 && (worst < 0 || overlap[k] > overlap[worst]))
+                worst = (long)k;
+        if (worst < 0) break;
+        active[worst] = 1;
+    }
+    for (j = 0; j < n; j++) {
+        double w = unit->omega[j];
+        unit->q[j] = 0.0;
+        if (w > 0.0) {
+            double load = 0.0;
+            for (k = 0; k < K; k++) load += forces[k] * unit->rp[k * n + j];
+            unit->q[j] = -load / (w * w);
+        }
+    }
+    unit->q[0] = (u0 + pile_head_displacement) / unit->rp[0];
+    for (j = 0; j < n; j++) unit->q_prev[j] = unit->q[j];
+    unit->F[0] = 0.0;
+    unit->active[0] = 0.0;
+    for (k = 0; k < K; k++) {
+        unit->F[k + 1] = forces[k];
+        unit->active[k + 1] = forces[k] > 0.0 ? 1.0 : 0.0;
+    }
+    free(active);
+    free(G);
+}
+
+/* anvil_rom/rings.py ring_unit_outputs: the contact problem of the rings */
+static void ring_contact(AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
+                         double v_pile, double *force_ram, double *force_pile)
+{
+    size_t n = unit->n, K = unit->K, m = K + 1, j, k;
+    double ut = 0.0, vt = 0.0, inverse_step = 1.0 / unit->h, total = 0.0;
+    for (j = 0; j < n; j++) {
+        ut += unit->p_ram[j] * unit->q[j];
+        vt += unit->p_ram[j] * ((unit->q[j] - unit->q_prev[j]) * inverse_step);
+    }
+    ring_interface(unit);
+    unit->g[0] = u_ram - ut;
+    unit->g[0] += unit->T[0] * (v_ram - vt);
+    for (k = 0; k < K; k++) {
+        unit->g[1 + k] = unit->ring_u[k] - u_pile;
+        unit->g[1 + k] += unit->T[1 + k] * (unit->ring_v[k] - v_pile);
+    }
+    contact_lcp(m, unit->A, unit->g, unit->F, unit->active, unit->work);
+    for (k = 1; k < m; k++) total += unit->F[k];
+    *force_ram = unit->F[0];
+    *force_pile = total;
+}
+
+/* Python: AnvilUnit._ring_outputs (ring_faces) */
+static void ring_outputs(AnvilUnit *unit, double force_ram, double force_pile, double *u_top,
+                         double *v_top, double *u_bottom, double *v_bottom)
+{
+    size_t n = unit->n, K = unit->K, m = K + 1, j, k, l;
+    double ut = 0.0, vt = 0.0, ub = 0.0, vb = 0.0;
+    ring_forces(unit, force_ram, force_pile);
+    ring_interface(unit);
+    for (j = 0; j < n; j++) {
+        ut += unit->p_ram[j] * unit->q[j];
+        vt += unit->p_ram[j] * ((unit->q[j] - unit->q_prev[j]) / unit->h);
+    }
+    ut += unit->R[0] * unit->F[0];
+    for (k = 1; k < m; k++) ut -= unit->R[k] * unit->F[k];
+    for (k = 1; k < m; k++) {
+        double u = unit->ring_u[k - 1] + unit->R[k * m] * unit->F[0];
+        for (l = 1; l < m; l++) u -= unit->R[k * m + l] * unit->F[l];
+        ub += unit->W[k - 1] * u;
+        vb += unit->W[k - 1] * unit->ring_v[k - 1];
+    }
+    if (u_top != NULL) *u_top = ut;
+    if (v_top != NULL) *v_top = vt;
+    if (u_bottom != NULL) *u_bottom = ub;
+    if (v_bottom != NULL) *v_bottom = vb;
+}
+
+/* anvil_rom/rings.py ring_unit_advance, the ring forces held */
+static void ring_step(AnvilUnit *unit, double force_ram, double force_pile)
+{
+    size_t n = unit->n, K = unit->K, j, k;
+    double g = unit->gravity;
+    ring_forces(unit, force_ram, force_pile);
+    for (j = 0; j < n; j++) {
+        double f = unit->p_ram[j] * force_ram + unit->p_grav[j] * g, q_new;
+        for (k = 0; k < K; k++) f -= unit->rp[k * n + j] * unit->F[1 + k];
+        q_new = unit->coef_a[j] * unit->q[j] + unit->coef_b[j] * unit->q_prev[j] +
+                unit->coef_c[j] * f;
+        unit->q_prev[j] = unit->q[j];
+        unit->q[j] = q_new;
+    }
+}
+
 /* ------------------------------------------------------------------ the unit */
 static int allocate_unit(AnvilUnit *unit, size_t n, const AnvilContact *contact, double gravity,
                          char *error, size_t size)
@@ -298,6 +666,73 @@ static int allocate_unit(AnvilUnit *unit, size_t n, const AnvilContact *contact,
     unit->c_pile = contact->pile_damping;
     unit->gravity = gravity;
     unit->h = 0.0; /* no step yet */
+    return 1;
+}
+
+/* ModalAnvil.from_modal_data's rings (kept participations, residual_flexibility between the
+ * ram face and the rings) and AnvilUnit._ring_arrays (A = ring_matrix, T, area shares). */
+static int unit_rings(AnvilUnit *unit, const AnvilModalData *data, double fmax,
+                      int static_correction, char *error, size_t size)
+{
+    size_t K = data->n_rings, n = data->n_modes, m = K + 1, j, k, a, b;
+    double total = 0.0;
+    double *p;
+    unit->ring_block = (double *)calloc(K * unit->n + 2 * m * m + 4 * m + 3 * K + m * (m + 1),
+                                        sizeof(double));
+    if (unit->ring_block == NULL) {
+        set_error(error, size, "out of memory for %lu rings", (unsigned long)K);
+        return 0;
+    }
+    p = unit->ring_block;
+    unit->K = K;
+    unit->rp = p; p += K * unit->n;
+    unit->A = p; p += m * m;
+    unit->R = p; p += m * m;
+    unit->T = p; p += m;
+    unit->F = p; p += m;
+    unit->active = p; p += m;
+    unit->g = p; p += m;
+    unit->W = p; p += K;
+    unit->ring_u = p; p += K;
+    unit->ring_v = p; p += K;
+    unit->work = p;
+    for (k = 0; k < K; k++) {
+        size_t kept = 0;
+        for (j = 0; j < n; j++) {
+            if (!(data->frequencies[j] <= fmax)) continue;
+            unit->rp[k * unit->n + kept] = data->participation_rings[k * n + j];
+            kept++;
+        }
+    }
+    if (static_correction) {
+        /* R = G - (P / omega^2) P^T over the kept flexible modes, ports (ram, rings) */
+        for (a = 0; a < m; a++) {
+            for (b = 0; b < m; b++) {
+                double sum = 0.0;
+                for (j = 0; j < unit->n; j++) {
+                    double w = unit->omega[j], w2, pa, pb;
+                    if (!(w > 0.0)) continue;
+                    w2 = w * w;
+                    pa = a == 0 ? unit->p_ram[j] : unit->rp[(a - 1) * unit->n + j];
+                    pb = b == 0 ? unit->p_ram[j] : unit->rp[(b - 1) * unit->n + j];
+                    sum += (pa / w2) * pb;
+                }
+                unit->R[a * m + b] = data->ring_flexibility[a * m + b] - sum;
+            }
+        }
+    }
+    for (k = 0; k < K; k++) total += data->ring_areas[k];
+    for (k = 0; k < K; k++) unit->W[k] = data->ring_areas[k] / total;
+    for (a = 0; a < m; a++) {
+        for (b = 0; b < m; b++) {
+            double sign = (a == 0) == (b == 0) ? 1.0 : -1.0;
+            unit->A[a * m + b] = sign * unit->R[a * m + b];
+        }
+    }
+    unit->A[0] += 1.0 / unit->k_ram;
+    for (k = 0; k < K; k++) unit->A[(k + 1) * m + k + 1] += 1.0 / (unit->k_pile * unit->W[k]);
+    unit->T[0] = unit->c_ram / unit->k_ram;
+    for (k = 0; k < K; k++) unit->T[k + 1] = unit->c_pile / unit->k_pile;
     return 1;
 }
 
@@ -362,6 +797,10 @@ int anvil_unit_modal(AnvilUnit *unit, const AnvilModalData *data, double fmax,
         unit->r01 = data->elastic_flexibility[1] - s01;
         unit->r11 = data->elastic_flexibility[3] - s11;
     }
+    if (data->n_rings > 0 && !unit_rings(unit, data, fmax, static_correction, error, size)) {
+        anvil_unit_free(unit);
+        return 0;
+    }
     anvil_unit_set_step(unit, ANVIL_INITIAL_STEP);
     return 1;
 }
@@ -391,6 +830,7 @@ void anvil_unit_free(AnvilUnit *unit)
 {
     if (unit == NULL) return;
     free(unit->block);
+    free(unit->ring_block);
     memset(unit, 0, sizeof *unit);
 }
 
@@ -400,6 +840,10 @@ void anvil_unit_rest_on_pile(AnvilUnit *unit, double pile_head_displacement)
     size_t n = unit->n, j;
     double force_pile = unit->total_mass * unit->gravity;
     double u_bottom_target, u_bottom_flex, dot = 0.0;
+    if (unit->K > 0) {
+        rest_on_rings(unit, pile_head_displacement, force_pile);
+        return;
+    }
     for (j = 0; j < n; j++) {
         double w = unit->omega[j];
         unit->q[j] = 0.0;
@@ -472,7 +916,7 @@ static double contact_force(double penetration, double rate, double stiffness, d
     return force > 0.0 ? force : 0.0;
 }
 
-void anvil_unit_forces(const AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
+void anvil_unit_forces(AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
                        double v_pile, double *force_ram, double *force_pile)
 {
     /* modal_unit_forces -> anvil_contact_forces */
@@ -480,6 +924,10 @@ void anvil_unit_forces(const AnvilUnit *unit, double u_ram, double v_ram, double
     double r00 = unit->r00, r01 = unit->r01, r11 = unit->r11;
     double k_ram = unit->k_ram, c_ram = unit->c_ram, k_pile = unit->k_pile;
     double c_pile = unit->c_pile;
+    if (unit->K > 0) {
+        ring_contact(unit, u_ram, v_ram, u_pile, v_pile, force_ram, force_pile);
+        return;
+    }
     interface(unit, &ut, &vt, &ub, &vb);
     if (r00 == 0.0 && r01 == 0.0 && r11 == 0.0) {
         *force_ram = contact_force(u_ram - ut, v_ram - vt, k_ram, c_ram);
@@ -515,11 +963,15 @@ void anvil_unit_forces(const AnvilUnit *unit, double u_ram, double v_ram, double
     *force_pile = 0.0;
 }
 
-void anvil_unit_outputs(const AnvilUnit *unit, double force_ram, double force_pile,
+void anvil_unit_outputs(AnvilUnit *unit, double force_ram, double force_pile,
                         double *u_top, double *v_top, double *u_bottom, double *v_bottom)
 {
     /* modal_unit_outputs */
     double ut, vt, ub, vb;
+    if (unit->K > 0) {
+        ring_outputs(unit, force_ram, force_pile, u_top, v_top, u_bottom, v_bottom);
+        return;
+    }
     interface(unit, &ut, &vt, &ub, &vb);
     ut += unit->r00 * force_ram - unit->r01 * force_pile;
     ub += unit->r01 * force_ram - unit->r11 * force_pile;
@@ -534,6 +986,10 @@ void anvil_unit_step(AnvilUnit *unit, double force_ram, double force_pile)
     /* modal_unit_step -> modal_step */
     size_t j;
     double g = unit->gravity;
+    if (unit->K > 0) {
+        ring_step(unit, force_ram, force_pile);
+        return;
+    }
     for (j = 0; j < unit->n; j++) {
         double f = unit->p_ram[j] * force_ram - unit->p_pile[j] * force_pile +
                    unit->p_grav[j] * g;

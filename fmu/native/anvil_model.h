@@ -42,6 +42,22 @@
  * The file is exactly 80 + 40 n bytes. The reader checks the header, the size and the same
  * rules as anvil_rom/modalfile.py (check_modal_data); a file that breaks one is refused with
  * the reason, never read in part.
+ *
+ * Version 2 (a pile port split into K >= 2 rings across the wall, anvil_rom/rings.py) is
+ * version 1's layout followed by
+ *
+ *   80 + 40 n     4      uint32 K, number of rings (>= 2)
+ *   84 + 40 n     4      uint32 0 (reserved)
+ *   88 + 40 n     8 K n  float64 participation_rings, ring by ring (inner ring first) [kg^-1/2]
+ *   ...           8 (K+1)^2  float64 ring_flexibility between the ram face and the rings,
+ *                        row-major, all flexible modes [m/N]
+ *   ...           8 K    float64 ring_areas [m^2]
+ *
+ * With rings the unit's pile contact is K compression-only contacts (the pile contact spring
+ * and dashpot shared by ring area) and, with the ram contact, one linear complementarity
+ * problem per evaluation (anvil_rom/rings.py contact_lcp: Murty's least-index pivoting from
+ * the last evaluation's contact set); F_pile is the rings' sum and u_bottom their
+ * area-weighted mean, as the Python unit (AnvilUnit with rings).
  */
 #ifndef ANVIL_MODEL_H
 #define ANVIL_MODEL_H
@@ -50,6 +66,7 @@
 
 #define ANVIL_MODAL_MAGIC "anvilwave-modal" /* 15 characters + NUL = 16 bytes */
 #define ANVIL_MODAL_VERSION 1u
+#define ANVIL_MODAL_VERSION_RINGS 2u
 #define ANVIL_MODAL_HEADER_BYTES 80u
 #define ANVIL_MODAL_BYTES_PER_MODE 40u
 
@@ -66,6 +83,11 @@ typedef struct {
     double *participation_pile;    /* [kg^-1/2] */
     double *participation_gravity; /* [kg^1/2] */
     double *block;
+    size_t n_rings;                /* K rings of the pile port (0: one port, version 1) */
+    double *participation_rings;   /* K x n, ring by ring [kg^-1/2] */
+    double *ring_flexibility;      /* (K+1) x (K+1), row-major [m/N] */
+    double *ring_areas;            /* K [m^2] */
+    double *ring_block;            /* one allocation for the three */
 } AnvilModalData;
 
 /* Read and check a modal-data resource. Returns 1 on success; 0 with the reason in error
@@ -105,6 +127,18 @@ typedef struct {
     double h;             /* step the coefficients are for [s] */
     double damping_ratio; /* [-] */
     double total_mass;    /* [kg] */
+    /* the pile port in rings (K = 0: one port); the arrays in ring_block */
+    size_t K;
+    double *rp;           /* K x n kept ring participations, ring by ring */
+    double *A, *R;        /* (K+1) x (K+1): diag(1/k) + D R D, and the residual R */
+    double *T;            /* K+1 dashpot ratios c / k (ram, rings) */
+    double *W;            /* K ring area shares */
+    double *F;            /* K+1 contact forces of the last evaluation (ram, rings) */
+    double *ring_u, *ring_v; /* K rings' modal displacement and velocity */
+    double *active;       /* K+1 contact set of the last evaluation (1: in contact) */
+    double *g;            /* K+1 overlaps (scratch) */
+    double *work;         /* (K+1) x (K+2) elimination (scratch) */
+    double *ring_block;
 } AnvilUnit;
 
 /* The ROM from modal data (ModalAnvil.from_modal_data + AnvilUnit): modes up to fmax [Hz]
@@ -128,13 +162,15 @@ void anvil_unit_rest_on_pile(AnvilUnit *unit, double pile_head_displacement);
  * half-step velocity is kept across a change of step (AnvilUnit.set_step). */
 void anvil_unit_set_step(AnvilUnit *unit, double h);
 
-/* Contact forces (F_ram, F_pile) [N] for the neighbour states (feedthrough). */
-void anvil_unit_forces(const AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
+/* Contact forces (F_ram, F_pile) [N] for the neighbour states (feedthrough); with rings
+ * F_pile is their sum and the ring forces are kept for anvil_unit_outputs / anvil_unit_step. */
+void anvil_unit_forces(AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
                        double v_pile, double *force_ram, double *force_pile);
 
 /* (u_top, v_top, u_bottom, v_bottom) [m, m/s] under the interface forces [N], static
- * correction included (any pointer may be NULL). */
-void anvil_unit_outputs(const AnvilUnit *unit, double force_ram, double force_pile,
+ * correction included (any pointer may be NULL). With rings the pile force is split as the
+ * ring forces of the last anvil_unit_forces (by area if they were all zero). */
+void anvil_unit_outputs(AnvilUnit *unit, double force_ram, double force_pile,
                         double *u_top, double *v_top, double *u_bottom, double *v_bottom);
 
 /* Advance the modes over the current step h with the forces [N] held. */
