@@ -178,6 +178,17 @@ def blow_inputs(u_top0: float, n: int = 1000):
     return np.column_stack([u_ram, v_ram, u_pile, v_pile]), steps
 
 
+def run_native(path: Path, parameters: dict, inputs: np.ndarray, steps) -> np.ndarray:
+    """The outputs of one instance of the FMU at ``path`` (initialized with ``parameters``)
+    driven through the blow (:meth:`Driven.run`)."""
+    fmu = Driven(path)
+    try:
+        fmu.initialize(**parameters)
+        return fmu.run(inputs, steps)
+    finally:
+        fmu.close()
+
+
 def relative_difference(actual: np.ndarray, expected: np.ndarray) -> float:
     """Largest difference relative to the largest value of its column."""
     scale = np.abs(expected).max(axis=0)
@@ -205,13 +216,8 @@ def test_rom_outputs_equal_the_python_kernels(built, case):
     inputs, steps = blow_inputs(unit.outputs(0.0, 0.0)[0])
     expected = run_reference(unit, inputs, steps)
     assert expected[:, 0].max() > 1e6 and expected[-1, 0] == 0.0  # impact, then lift-off
-    fmu = Driven(built["Anvil"])
-    try:
-        fmu.initialize(**parameters)
-        actual = fmu.run(inputs, steps)
-    finally:
-        fmu.close()
-    difference = relative_difference(actual, expected)
+    difference = relative_difference(run_native(built["Anvil"], parameters, inputs, steps),
+                                     expected)
     print(f"\nnative Anvil vs Python kernels ({case}): max relative difference {difference:.2e}")
     # Same formulas in the same order; what is left is round-off: numpy's BLAS dot (the rest
     # state) and its SIMD exp (damped modes) may differ from a plain sum / libm in the last
@@ -764,13 +770,8 @@ def test_ring_outputs_equal_the_python_kernels(built_rings, case):
     assert expected[:, 0].max() > 1e6
     # the blow closes and opens the rings one at a time: the pivoting is exercised
     assert {(True, False), (False, True), (True, True)} <= contact_sets
-    fmu = Driven(built_rings["Anvil"])
-    try:
-        fmu.initialize(**parameters)
-        actual = fmu.run(inputs, steps)
-    finally:
-        fmu.close()
-    difference = relative_difference(actual, expected)
+    difference = relative_difference(
+        run_native(built_rings["Anvil"], parameters, inputs, steps), expected)
     print(f"\nnative Anvil with rings vs Python ({case}): max relative difference "
           f"{difference:.2e}")
     assert difference <= 1e-12
