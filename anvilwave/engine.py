@@ -415,8 +415,6 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 fe_ram, fe_pile, power = ring_elastic_forces(rings, modal[3], u_ram, v_ram,
                                                              u_pile, v_pile)
                 work_contact += h * power
-            else:
-                rings[5][:] = rings[4]
         if classic is not None:
             f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
                                                                    v_ram, u_pile, v_pile)
@@ -473,6 +471,8 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                                                     u_ram, v_ram, u_pile, v_pile, fe_ram,
                                                     fe_pile)
                 if modal is not None and rings is not None:
+                    if not damped:  # the elastic forces are the forces
+                        rings[5][:] = rings[4]
                     kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
                                                    v_ram, u_pile, v_pile)
                 if classic is not None:
