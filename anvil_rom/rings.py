@@ -37,6 +37,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .rom import modal_interface
+
 MAX_PIVOTS_PER_CONTACT = 50
 """Murty's pivoting is finite for a positive definite A; this bounds it all the same."""
 
@@ -319,12 +321,8 @@ def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     states, from its state alone (the anvil FMU's feedthrough): the interface sums, the
     rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
     n = C.shape[0]
-    inverse_step = 1.0 / P[8]
-    interface = np.zeros(2)
-    for j in range(n):
-        interface[0] += C[j, 4] * S[j]
-        interface[1] += C[j, 4] * (S[j] - S[n + j]) * inverse_step
+    ut, vt, _, _ = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     ring_interface(C, S, rings[0], P[8], rings[6])
-    force_ram, force_pile = ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile)
-    u_top, u_bottom = ring_faces(rings, interface[0])
+    force_ram, force_pile = ring_contact(rings, (ut, vt), u_ram, v_ram, u_pile, v_pile)
+    u_top, u_bottom = ring_faces(rings, ut)
     return force_ram, force_pile, u_top, u_bottom

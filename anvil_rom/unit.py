@@ -215,11 +215,10 @@ class AnvilUnit:
         ring = self.rings[6]
         ring_interface(self.C, self.S, self.rings[0], self.P[8], ring)
         n = self.n_modes
-        q, rate = self.S[:n], (self.S[:n] - self.S[n:]) / self.P[8]
-        u_top, u_bottom = ring_faces(self.rings, float(self.anvil.participation_ram @ q))
-        shares = self.rings[3]
-        return (u_top, float(self.anvil.participation_ram @ rate), u_bottom,
-                float(shares @ ring[1]))
+        ut, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
+                                       self.P[8])
+        u_top, u_bottom = ring_faces(self.rings, ut)
+        return u_top, vt, u_bottom, float(self.rings[3] @ ring[1])
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:

@@ -362,6 +362,8 @@ int anvil_check_parameters(const AnvilContact *contact, double gravity,
 
 
 /* ------------------------------------------------------------------ the pile port in rings */
+static void interface(const AnvilUnit *unit, double *ut, double *vt, double *ub, double *vb);
+
 /* anvil_rom/rings.py _solve_active: F_a = A_aa^-1 g_a (elimination without pivoting), F = 0
  * elsewhere; work m x (m + 1). */
 static void solve_active(size_t m, const double *A, const double *g, double *F,
@@ -579,12 +581,9 @@ static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double
 static void ring_contact(AnvilUnit *unit, double u_ram, double v_ram, double u_pile,
                          double v_pile, double *force_ram, double *force_pile)
 {
-    size_t n = unit->n, K = unit->K, m = K + 1, j, k;
-    double ut = 0.0, vt = 0.0, inverse_step = 1.0 / unit->h, total = 0.0;
-    for (j = 0; j < n; j++) {
-        ut += unit->p_ram[j] * unit->q[j];
-        vt += unit->p_ram[j] * ((unit->q[j] - unit->q_prev[j]) * inverse_step);
-    }
+    size_t K = unit->K, m = K + 1, k;
+    double ut, vt, ub, vb, total = 0.0;
+    interface(unit, &ut, &vt, &ub, &vb); /* modal_interface */
     ring_interface(unit);
     unit->g[0] = u_ram - ut;
     unit->g[0] += unit->T[0] * (v_ram - vt);
@@ -602,14 +601,11 @@ static void ring_contact(AnvilUnit *unit, double u_ram, double v_ram, double u_p
 static void ring_outputs(AnvilUnit *unit, double force_ram, double force_pile, double *u_top,
                          double *v_top, double *u_bottom, double *v_bottom)
 {
-    size_t n = unit->n, K = unit->K, m = K + 1, j, k, l;
-    double ut = 0.0, vt = 0.0, ub = 0.0, vb = 0.0;
+    size_t K = unit->K, m = K + 1, k, l;
+    double ut, vt, mean_u, mean_v, ub = 0.0, vb = 0.0;
     ring_forces(unit, force_ram, force_pile);
     ring_interface(unit);
-    for (j = 0; j < n; j++) {
-        ut += unit->p_ram[j] * unit->q[j];
-        vt += unit->p_ram[j] * ((unit->q[j] - unit->q_prev[j]) / unit->h);
-    }
+    interface(unit, &ut, &vt, &mean_u, &mean_v); /* modal_interface (the ring's mean unused) */
     ut += unit->R[0] * unit->F[0];
     for (k = 1; k < m; k++) ut -= unit->R[k] * unit->F[k];
     for (k = 1; k < m; k++) {
