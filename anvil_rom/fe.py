@@ -229,24 +229,31 @@ def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
 def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
                  ) -> tuple[np.ndarray, np.ndarray]:
     """Load/output vectors of the pile ring split into ``interfaces.pile_rings`` equal-width
-    rings across the wall (each facet of the bottom face to the ring holding its midpoint).
+    rings across the wall (:func:`annulus_vectors` on the bottom face).
 
     Returns B (n_free, K), unit-resultant uniform pressures, and the ring areas (K,) [m^2].
     Their area-weighted sum is the whole ring's vector (:func:`interface_vectors`). A ring
     with no facet (a mesh coarser than the rings) has area 0.
     """
-    z = model.mesh.p[1]
+    r_in, r_out = interfaces.pile_ring
+    return annulus_vectors(model, model.mesh.p[1].max(), r_in, r_out, interfaces.pile_rings)
+
+
+def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m]
+    of the boundary face at height z [m] (each facet to the annulus holding its midpoint):
+    B (n_free, count) and the annuli's areas (count,) [m^2] (0 for an annulus without facet).
+    """
     scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
     tol = 1e-7 * scale
-    zbot = z.max()
-    r_in, r_out = interfaces.pile_ring
-    edges = np.linspace(r_in, r_out, interfaces.pile_rings + 1)
+    edges = np.linspace(r_lo, r_hi, count + 1)
     columns, areas = [], []
-    for k in range(interfaces.pile_rings):
+    for k in range(count):
         lo = edges[k] - (tol if k == 0 else 0.0)
-        hi = edges[k + 1] + (tol if k == interfaces.pile_rings - 1 else 0.0)
+        hi = edges[k + 1] + (tol if k == count - 1 else 0.0)
         b, a = face_load_vector(
-            model, lambda r, zz, lo=lo, hi=hi: (np.abs(zz - zbot) < tol) & (r >= lo) & (r < hi))
+            model, lambda r, zz, lo=lo, hi=hi: (np.abs(zz - z) < tol) & (r >= lo) & (r < hi))
         columns.append(b)
         areas.append(a)
     return np.column_stack(columns), np.array(areas)

@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvil_rom.fe import assemble, face_load_vector
+from anvil_rom.fe import annulus_vectors, assemble, face_load_vector
 from anvil_rom.geometry import Interfaces
 from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 from anvil_rom.modes import elastic_flexibility, free_free_modes
@@ -99,14 +99,8 @@ def _ports(model, loads, fmax):
 
 
 def _patch_loads(model, z, r_in, r_out, count=PATCHES):
-    edges = np.linspace(r_in, r_out, count + 1)
-    loads, areas = [], []
-    for k in range(count):
-        b, a = face_load_vector(model, lambda r, zz, k=k: (np.abs(zz - z) < TOL)
-                                & (r > edges[k] - TOL) & (r < edges[k + 1] + TOL))
-        loads.append(b)
-        areas.append(a)
-    return loads, np.array(areas)
+    B, areas = annulus_vectors(model, z, r_in, r_out, count)
+    return list(B.T), areas
 
 
 def anvil_ports(cfg, r_in, r_out, ram_radius) -> Ports:
