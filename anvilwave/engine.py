@@ -239,13 +239,9 @@ def _below_spectrum(sigma, ram_diagonal, ram_off, block, to_toe, to_head, toe_he
     symmetric elimination (ram chain, the toe's couplings into the block of modes and the head,
     the block, the head and the pile chain) meets only negative pivots. ``work`` is scratch of
     the block's shape plus one column."""
-    d = ram_diagonal[0] - sigma
+    d = _chain_pivot(ram_diagonal, ram_off, sigma, ram_diagonal[0] - sigma)
     if d >= 0.0:
         return False
-    for i in range(1, ram_diagonal.size):
-        d = (ram_diagonal[i] - sigma) - ram_off[i - 1] ** 2 / d
-        if d >= 0.0:
-            return False
     # eliminate the toe: the block of modes, its column to the head and the head's pivot
     n = block.shape[0]
     for i in range(n):
@@ -263,14 +259,22 @@ def _below_spectrum(sigma, ram_diagonal, ram_off, block, to_toe, to_head, toe_he
             for j in range(k + 1, n + 1):
                 work[i, j] -= factor * work[k, j]
         head -= work[k, n] * work[k, n] / pivot
-    d = head
+    return _chain_pivot(pile_diagonal, pile_off, sigma, head) < 0.0
+
+
+@njit(cache=True, inline='always')
+def _chain_pivot(diagonal, off, sigma, first):
+    """The last pivot of the symmetric elimination of a chain (tridiagonal: ``diagonal``,
+    ``off``) shifted by sigma, from its first pivot ``first``, or the first pivot >= 0 met
+    (then A - sigma I is not negative definite)."""
+    d = first
     if d >= 0.0:
-        return False
-    for i in range(1, pile_diagonal.size):
-        d = (pile_diagonal[i] - sigma) - pile_off[i - 1] ** 2 / d
+        return d
+    for i in range(1, diagonal.size):
+        d = (diagonal[i] - sigma) - off[i - 1] ** 2 / d
         if d >= 0.0:
-            return False
-    return True
+            return d
+    return d
 
 
 @njit(cache=True)
