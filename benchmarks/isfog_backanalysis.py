@@ -345,6 +345,23 @@ def _rows(path: Path) -> list[dict]:
         return list(csv.DictReader(handle))
 
 
+def _pile_records(data: Path, kind: str, only: list[str] | None
+                  ) -> tuple[Path, list[tuple[dict, list[dict]]]]:
+    """The half-metre series file of the ``kind`` ("calibration" or "prediction") piles and,
+    per pile of its summary file (only those in ``only`` when given), (summary row, its
+    series rows); an unknown name in ``only`` stops the run naming it."""
+    series = data / f"{kind}_piles_0p5m.csv"
+    by_pile: dict[str, list[dict]] = {}
+    for row in _rows(series):
+        by_pile.setdefault(row["location_id"], []).append(row)
+    summaries = [s for s in _rows(data / f"{kind}_piles.csv")
+                 if not only or s["location_id"] in only]
+    missing = sorted(set(only or ()) - {s["location_id"] for s in summaries})
+    if missing:
+        raise SystemExit(f"unknown {kind} piles: {', '.join(missing)}")
+    return series, [(s, by_pile[s["location_id"]]) for s in summaries]
+
+
 def _number(text: str) -> float:
     return float(text) if text.strip() else math.nan
 
@@ -356,19 +373,14 @@ def _whole_metre(z: float) -> bool:
 def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRecord]:
     """The calibration piles: blow counts at the whole metres between their first and last
     blow-count depth (calibration_piles.csv), with the normalised hammer energy there."""
-    series = data / "calibration_piles_0p5m.csv"
-    by_pile: dict[str, list[dict]] = {}
-    for row in _rows(series):
-        by_pile.setdefault(row["location_id"], []).append(row)
+    series, records = _pile_records(data, "calibration", only)
     piles = []
-    for summary in _rows(data / "calibration_piles.csv"):
+    for summary, rows in records:
         pid = summary["location_id"]
-        if only and pid not in only:
-            continue
         first = float(summary["first blowcount depth [m]"])
         last = float(summary["last blowcount depth [m]"])
         z, energy, measured = [], [], []
-        for row in by_pile[pid]:
+        for row in rows:
             depth = float(row["z [m]"])
             count = _number(row["blowcount [blows/m]"])
             e = _number(row["normalised hammer energy [-]"])
@@ -382,10 +394,6 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
             float(summary["final penetration [m]"]), np.array(z), np.array(energy),
             np.array(measured), str(series), {"rows_where": {"location_id": pid},
                                               **HALF_METRE_OPTIONS}))
-    if only:
-        missing = sorted(set(only) - {p.location_id for p in piles})
-        if missing:
-            raise SystemExit(f"unknown calibration piles: {', '.join(missing)}")
     return piles
 
 
@@ -393,17 +401,12 @@ def prediction_piles(data: Path, only: list[str] | None = None,
                      cpt: str = "fullres") -> list[PileRecord]:
     """The prediction piles at every whole metre where their record gives a hammer energy
     (from the first to the last such depth: where they were driven)."""
-    series = data / "prediction_piles_0p5m.csv"
-    by_pile: dict[str, list[dict]] = {}
-    for row in _rows(series):
-        by_pile.setdefault(row["location_id"], []).append(row)
+    series, records = _pile_records(data, "prediction", only)
     piles = []
-    for summary in _rows(data / "prediction_piles.csv"):
+    for summary, pile_rows in records:
         pid = summary["location_id"]
-        if only and pid not in only:
-            continue
         rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]))
-                for r in by_pile[pid]]
+                for r in pile_rows]
         driven = [z for z, e in rows if math.isfinite(e) and e > 0.0]
         first, last = math.ceil(min(driven) - 1e-6), math.floor(max(driven) + 1e-6)
         z_all = np.array([z for z, e in rows if math.isfinite(e)])
@@ -420,10 +423,6 @@ def prediction_piles(data: Path, only: list[str] | None = None,
         piles.append(PileRecord(pid, group, float(summary["bottom wall thickness [mm]"]) / 1e3,
                                 float(summary["final penetration [m]"]), depths, energy, None,
                                 source, options, is_full))
-    if only:
-        missing = sorted(set(only) - {p.location_id for p in piles})
-        if missing:
-            raise SystemExit(f"unknown prediction piles: {', '.join(missing)}")
     return piles
 
 
