@@ -149,7 +149,7 @@ class AnvilUnit:
         """:meth:`rest_on_pile` with the pile port split into rings (the rings' forces, and
         which of them carry the weight, from :func:`anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
-        RP, F, ring, scratch = self.rings[0], self.rings[4], self.rings[6], self.rings[7]
+        RP, F, scratch = self.rings[0], self.rings[4], self.rings[7]
         k_rings = self.contact.pile_stiffness * self.rings[3]
         forces, u0 = ring_static_rest(a.omega, a.participation_rings, k_rings,
                                       a.residual_rings[1:, 1:], weight)
@@ -163,15 +163,8 @@ class AnvilUnit:
         F[0] = 0.0
         F[1:] = forces
         scratch[:, :2] = np.r_[0.0, forces > 0.0][:, None]  # the active sets to start from
-        ring[0] = RP.T @ q
-        ring[1] = 0.0
         u_top = float(a.participation_ram @ q - a.residual_rings[0, 1:] @ forces)
         return u_top, weight
-
-    def _one_port(self) -> None:
-        if self.rings is not None:
-            raise ValueError("the energy of a pile port in rings is booked by the in-process "
-                             "engine (anvil_rom.rings.ring_unit_energy_at)")
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
@@ -227,7 +220,9 @@ class AnvilUnit:
         Potential = modal strain + gravity potential of the anvil + the energy stored in the
         two contact springs and in the residual flexibility.
         """
-        self._one_port()
+        if self.rings is not None:
+            raise ValueError("the energy of a pile port in rings is booked by the in-process "
+                             "engine (anvil_rom.rings.ring_unit_energy_at)")
         return modal_unit_energy(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
 
