@@ -36,6 +36,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numba import njit
 
+from anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvil_rom.contact import contact_force
 from anvil_rom.rings import (
     ring_contact,
@@ -130,6 +131,9 @@ ENERGY_STEPS = 20
 (:meth:`Engine.blow`): a row of it (a pass over every unit's states) costs about what a step
 costs, and the balance needs no finer sampling: each row is exact, and the works between the
 rows are summed at every step (Table 1: a row every 0.5 ms, 51 rows)."""
+
+NO_MODAL_RAM = (np.zeros((9, 0)), np.zeros(0), np.zeros(3))
+"""run_blow's ``modal_ram`` when the ram is a chain (a unit without modes)."""
 
 # the blow summary the loop fills (BlowResult fields of the same names)
 (S_MAX_COMPRESSION, S_MAX_TENSION, S_EMX_GAUGE, S_EMX_HEAD, S_MAX_HEAD_FORCE, S_MAX_TOE,
@@ -331,7 +335,7 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
 def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
              soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
              n_steps, record_every, energy_every, out, energies, works, stresses, summary,
-             sections=None, modal_ram=None, rings=None):
+             sections=None, modal_ram=NO_MODAL_RAM, rings=None):
     """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
 
     The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvil_rom.unit`),
@@ -352,12 +356,15 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
     recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
     :class:`hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``, ``ram_v``
-    are then unused). ``rings`` (:mod:`anvil_rom.rings`: RP, A, T, W, F, E, ring, scratch, R)
-    splits the modal unit's pile port into rings. Returns the numbers of rows recorded
-    (columns, energies).
+    are then unused) unless C has no columns (:data:`NO_MODAL_RAM`: the chain runs). Both rams
+    run in the one compiled loop, chosen at run time, so that a ram model does not change how
+    the compiler lays out the rest of the step. ``rings`` (:mod:`anvil_rom.rings`: RP, A, T, W,
+    F, E, ring, scratch, R) splits the modal unit's pile port into rings. Returns the numbers
+    of rows recorded (columns, energies).
     """
     weight, inverse_mass, ram_stiffness, ram_mass = ram
     toe = ram_u.shape[0] - 1
+    ram_is_modal = modal_ram[0].shape[1] > 0
     last = pu.shape[0] - 1
     extrapolation = probes[HEAD_EXTRAPOLATION]
     dt_ram = h / ram_nsub
@@ -387,7 +394,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     energy_countdown = 0
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
-        if modal_ram is not None:
+        if ram_is_modal:
             u_ram = modal_ram[2][0]
             v_ram = modal_ram[2][1]
         else:
@@ -487,7 +494,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                                                                           classic[1])
                 if direct is not None:
                     pot = 0.5 * fe_ram * fe_ram / direct[0]
-                if modal_ram is not None:
+                if ram_is_modal:
                     ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], modal_ram[2],
                                                     gravity, h)
                 else:
@@ -521,7 +528,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         if n == n_steps:
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
-        if modal_ram is not None:
+        if ram_is_modal:
             modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
         else:
             ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
@@ -717,7 +724,8 @@ class Engine:
 
     def __post_init__(self):
         g = self.config.gravity
-        self._ram = (self.ram_mass * g, 1.0 / self.ram_mass, self.ram_stiffness, self.ram_mass)
+        self._ram = tuple(aligned_copy(a) for a in (self.ram_mass * g, 1.0 / self.ram_mass,
+                                                    self.ram_stiffness, self.ram_mass))
         self._ram_nsub = substeps(self.time_step,
                                   ram_stable_time_step(self.ram_mass, self.ram_stiffness))
         if self.ram_modes is not None and self.ram_unit is None:
@@ -731,9 +739,9 @@ class Engine:
         self._pile_nsub = substeps(self.time_step, pile_stable_time_step(a.pile, a.soil))
         factor = self.config.pile_soil.stress_factors()
         springs = factor.size
-        self._stresses = (factor, np.zeros(springs), np.zeros(springs))
+        self._stresses = (aligned_copy(factor), aligned_zeros(springs), aligned_zeros(springs))
         n = a.pile.shape[1]
-        self._works = (np.zeros(n), np.zeros(n))
+        self._works = (aligned_zeros(n), aligned_zeros(n))
         self._static = None
 
     # ------------------------------------------------------------------ state
@@ -806,8 +814,8 @@ class Engine:
             energy_every = max(1, int(round(float(energy_interval) / h)))
         energy = record if energy is None else bool(energy)
         start = self.static_state() if state is None else state.copy()
-        pu, pv, poff, pen = (start.u.copy(), start.v.copy(), start.soil_offset.copy(),
-                             start.energy.copy())
+        pu, pv, poff, pen = (aligned_copy(start.u), aligned_copy(start.v),
+                             aligned_copy(start.soil_offset), start.energy.copy())
         probes = self.pile_arrays.probes
         face0 = float(head_displacement(probes, pu))
         anvil = self.anvil
@@ -815,9 +823,11 @@ class Engine:
         # staggered velocities the first two displacement levels are then the exact ones, and
         # a chain meeting a chain at the Courant number 1 is exact
         t0 = -0.5 * h
-        ram_u = np.full(self.ram_mass.shape, anvil.u_top0 + t0 * velocity)
-        ram_v = np.full(self.ram_mass.shape, velocity)
-        modal_ram = None
+        ram_u = aligned_zeros(self.ram_mass.shape)
+        ram_u[:] = anvil.u_top0 + t0 * velocity
+        ram_v = aligned_zeros(self.ram_mass.shape)
+        ram_v[:] = velocity
+        modal_ram = NO_MODAL_RAM
         if self.ram_unit is not None:
             unit = self.ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
@@ -926,7 +936,7 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
     run it for a few steps on copies of the states, so that the blow's timing excludes the
     compilation and the first touch of the code and of the parameter arrays."""
     key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
-           args[31] is not None, args[32] is not None)
+           args[32] is not None)
     if key in _WARM:
         return
     from .kernels import announce_compilation
@@ -951,8 +961,8 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
     trial[22] = min(trial[22], WARM_UP_STEPS)  # n_steps
     if trial[30] is not None:  # the sections' buffer is written
         trial[30] = (trial[30][0], trial[30][1].copy())
-    if trial[31] is not None:  # the modal ram's (C, S, toe): the last two change
-        trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
+    # the modal ram's (C, S, toe): the last two change
+    trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
     if trial[32] is not None:  # the rings: F, E, ring and scratch change
         trial[32] = tuple(a.copy() if i in (4, 5, 6, 7) else a for i, a in enumerate(trial[32]))
     run_blow(*trial)

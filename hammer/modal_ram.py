@@ -39,6 +39,7 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from anvil_rom.arrays import aligned_zeros
 from anvil_rom.chain import chain_from_modes
 from anvil_rom.geometry import AnvilSpec, Interfaces, Material, validate_outline
 from anvil_rom.rom import modal_transition, residual_flexibility
@@ -271,12 +272,15 @@ def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax:
 class ModalRamUnit:
     """The modal ram as a unit: its toe modes advanced exactly with the toe force held.
 
-    Kernel data (float64): ``C`` (9, n), rows a, b, c, m_e, p_toe, p_grav, omega of the modes
-    for the step (:func:`anvil_rom.rom.modal_transition`, undamped: b = -1), then c p_grav g and
-    c p_toe (the step's constant load and force coefficient, set with the step); the rigid-body
+    Kernel data (float64, 64-byte aligned, the n modes padded with inert ones to a multiple
+    of 8 columns, so that every row and both halves of S start on a cache line): ``C`` (9,
+    n_padded), rows a, b, c, m_e, p_toe, p_grav, omega of the modes for the step
+    (:func:`anvil_rom.rom.modal_transition`, undamped: b = -1), then c p_grav g and c p_toe
+    (the step's constant load and force coefficient, set with the step); the rigid-body
     mode is mode 0, the only one gravity loads (p_grav of a free-free flexible mode is phi^T M e_z
     = 0 by orthogonality to the rigid translation; the FE value, ~1e-12 of the rigid mode's, is
-    dropped). ``S`` (2 n) holds q at t_n and at t_n-1 in its two halves, which swap roles every
+    dropped); the padding columns are all zero (they stay at rest and carry nothing). ``S``
+    (2 n_padded) holds q at t_n and at t_n-1 in its two halves, which swap roles every
     step (the kernel writes q_n+1 over q_n-1); ``toe`` = [u_toe, v_toe, half] [m, m/s, -]: the
     toe state (modal part; the residual flexibility is the contact's series spring
     ``toe_stiffness``, as for the chain) and which half of S is t_n (0: the first). Velocities
@@ -291,11 +295,13 @@ class ModalRamUnit:
         n = toe_modes.n_modes
         rigid = int(np.flatnonzero(toe_modes.omega == 0.0)[0])
         order = np.r_[rigid, np.delete(np.arange(n), rigid)]  # the rigid mode first
-        self.C = np.zeros((9, n))  # one row per quantity: contiguous sweeps over the modes
-        self.C[4] = toe_modes.participation[order]
+        width = -(-n // 8) * 8
+        # one row per quantity: contiguous sweeps over the modes
+        self.C = aligned_zeros((9, width))
+        self.C[4, :n] = toe_modes.participation[order]
         self.C[5, 0] = toe_modes.participation_gravity[rigid]
-        self.C[6] = toe_modes.omega[order]
-        self.S = np.zeros(2 * n)
+        self.C[6, :n] = toe_modes.omega[order]
+        self.S = aligned_zeros(2 * width)
         self.toe = np.zeros(3)
         self.h = math.nan
 
@@ -307,8 +313,9 @@ class ModalRamUnit:
     def modal_coordinates(self) -> tuple[np.ndarray, np.ndarray]:
         """(q at t_n, q at t_n-1), each (n,), rigid-body mode first."""
         n = self.modes.n_modes
-        now = 0 if self.toe[2] == 0.0 else n
-        return self.S[now:now + n], self.S[n - now:2 * n - now]
+        width = self.C.shape[1]
+        now = 0 if self.toe[2] == 0.0 else width
+        return self.S[now:now + n], self.S[width - now:width - now + n]
 
     def set_step(self, h: float) -> None:
         """Use the step h [s] from now on; the state keeps its displacement q_n and its
@@ -322,7 +329,8 @@ class ModalRamUnit:
 
     def _coefficients(self, h: float) -> None:
         C = self.C
-        C[:4] = modal_transition(C[6], 0.0, h).T
+        n = self.modes.n_modes
+        C[:4, :n] = modal_transition(C[6, :n], 0.0, h).T
         C[7] = C[2] * C[5] * self.gravity
         C[8] = C[2] * C[4]
         self.h = float(h)
@@ -332,11 +340,10 @@ class ModalRamUnit:
         [m] at t_n (and h velocity earlier at t_n-1): the exact state of a falling ram."""
         if h != self.h:
             self._coefficients(h)
-        n = self.modes.n_modes
         p = self.C[4, 0]
         self.S[:] = 0.0
         self.S[0] = toe_displacement / p
-        self.S[n] = (toe_displacement - h * velocity) / p
+        self.S[self.C.shape[1]] = (toe_displacement - h * velocity) / p
         self.toe[:] = toe_displacement, velocity, 0.0
 
     def step(self, toe_force: float) -> tuple[float, float]:
@@ -350,7 +357,7 @@ class ModalRamUnit:
         return modal_ram_energies(self.C, self.S, self.toe, self.gravity, self.h)
 
 
-@njit(cache=True, inline='always')
+@njit(cache=True, fastmath={"reassoc"})
 def modal_ram_advance(C, S, toe_force, h, toe):
     """Advance every toe mode over h [s] with ``toe_force`` [N] (compression positive, pushes
     the toe up) held, in place; writes the new modal (u_toe, v_toe) into ``toe`` [m, m/s] and
@@ -359,9 +366,11 @@ def modal_ram_advance(C, S, toe_force, h, toe):
     eta_j,n+1 = a eta_j,n - eta_j,n-1 + c (p_grav,j g - p_toe,j F): exact per undamped mode
     for a held force, at any h (unconditionally stable; no sub-steps); gravity loads the rigid
     mode 0 only. The toe's half-step velocity is (u_toe,n+1 - u_toe,n) / h with u_toe =
-    sum p_toe,j eta_j. Two sweeps: the modes (no dependence between them: vectorised), then the
-    sum in eight partial sums of a fixed order (the additions need not wait on each other; the
-    same bits in the engine and the Ram FMU, which run this kernel)."""
+    sum p_toe,j eta_j. One sweep: the modes do not depend on each other, and the toe sum may be
+    reassociated (``fastmath`` reassoc only: no other IEEE rule is relaxed), so the sweep is
+    vectorised with the sum in vector lanes. The order of that sum is the compiler's: the
+    engine and the Ram FMU, which both run this kernel, agree to rounding (1e-15 relative),
+    not necessarily bit for bit. Not inlined: the compiler lays this loop out once."""
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n
     old = n - now
@@ -370,23 +379,12 @@ def modal_ram_advance(C, S, toe_force, h, toe):
     p = C[4]
     q = S[now:now + n]
     q_new = S[old:old + n]  # holds q_n-1 until overwritten
+    q_new[0] -= C[7, 0]  # gravity on the rigid mode (the sweep subtracts q_n-1)
+    u = 0.0
     for j in range(n):
-        q_new[j] = a[j] * q[j] - q_new[j] - force[j] * toe_force
-    q_new[0] += C[7, 0]
-    s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
-    blocks = n - n % 8
-    for j in range(0, blocks, 8):
-        s0 += p[j] * q_new[j]
-        s1 += p[j + 1] * q_new[j + 1]
-        s2 += p[j + 2] * q_new[j + 2]
-        s3 += p[j + 3] * q_new[j + 3]
-        s4 += p[j + 4] * q_new[j + 4]
-        s5 += p[j + 5] * q_new[j + 5]
-        s6 += p[j + 6] * q_new[j + 6]
-        s7 += p[j + 7] * q_new[j + 7]
-    for j in range(blocks, n):
-        s0 += p[j] * q_new[j]
-    u = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7))
+        x = a[j] * q[j] - q_new[j] - force[j] * toe_force
+        q_new[j] = x
+        u += p[j] * x
     toe[1] = (u - toe[0]) / h
     toe[0] = u
     toe[2] = 1.0 - toe[2]

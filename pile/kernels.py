@@ -43,6 +43,8 @@ import math
 import numpy as np
 from numba import njit
 
+from anvil_rom.arrays import aligned_copy, aligned_zeros
+
 PILE_MASS, PILE_STIFFNESS, PILE_DASHPOT = 0, 1, 2
 PILE_ROWS = 3
 
@@ -130,23 +132,23 @@ yield displacements capacity / k and tension / k [m] (0 where k = 0)."""
 
 
 def sweep_arrays(pile: np.ndarray, soil: np.ndarray, gravity: float):
-    """(pile_sweep, soil_sweep, first_soil) of :func:`pile_advance` for a pile and soil.
+    """(pile_sweep, soil_sweep, first_soil) of :func:`pile_advance` for a pile and soil (each
+    array contiguous and aligned, :mod:`anvil_rom.arrays`).
 
     pile, soil : the kernel parameter arrays (module docstring); gravity [m/s^2].
     first_soil : index of the first mass with a shaft soil spring (N - 1 when none above the
     toe mass).
     """
     mass = pile[PILE_MASS]
-    pile_sweep = (np.ascontiguousarray(mass * gravity), np.ascontiguousarray(1.0 / mass),
-                  np.ascontiguousarray(pile[PILE_STIFFNESS]),
-                  np.ascontiguousarray(pile[PILE_DASHPOT]))
+    pile_sweep = (aligned_copy(mass * gravity), aligned_copy(1.0 / mass),
+                  aligned_copy(pile[PILE_STIFFNESS]), aligned_copy(pile[PILE_DASHPOT]))
     k = soil[SOIL_STIFFNESS]
     stiff = k > 0.0
-    yield_down = np.zeros_like(k)
-    yield_up = np.zeros_like(k)
+    yield_down = aligned_zeros(k.shape)
+    yield_up = aligned_zeros(k.shape)
     yield_down[stiff] = soil[SOIL_CAPACITY, stiff] / k[stiff]
     yield_up[stiff] = soil[SOIL_TENSION, stiff] / k[stiff]
-    soil_sweep = tuple(np.ascontiguousarray(soil[row]) for row in range(SOIL_ROWS))
+    soil_sweep = tuple(aligned_copy(soil[row]) for row in range(SOIL_ROWS))
     soil_sweep += (yield_down, yield_up)
     n = mass.size
     shaft = np.flatnonzero(stiff[:n - 1])

@@ -368,3 +368,34 @@ def test_modal_ram_unit_changes_its_step_in_free_flight():
     assert v == pytest.approx(rate1 + g * (t - t1), rel=1e-10)
     q, _ = unit.modal_coordinates()
     assert np.all(np.abs(q[1:]) < 1e-12 * abs(q[0]))
+
+
+def test_unit_arrays_aligned_and_padded():
+    """The unit's kernel arrays start on a cache line (64 bytes), rows and both halves of S
+    included, with the modes padded to a multiple of 8 by inert columns: 14 modes -> 16, the
+    padding stays exactly at rest through steps under a varying force, and the toe
+    displacement the vectorised (reassociated) sum gives equals the exactly rounded sum of
+    p_j q_j over the 14 modes to 1e-14 of its size (reassociation moves only the last bits)."""
+    from anvil_rom.arrays import ALIGNMENT, aligned_zeros
+
+    modes = rod_toe_modes(2.0, 0.1, 13)  # the rigid mode and 13 elastic ones
+    n = modes.n_modes
+    unit = ModalRamUnit(modes, gravity=9.81)
+    unit.start(0.0, 5.0, 1e-6)
+    width = unit.C.shape[1]
+    assert width == 16
+    for row in unit.C:
+        assert row.ctypes.data % ALIGNMENT == 0
+    assert unit.S.ctypes.data % ALIGNMENT == 0 and (unit.S.ctypes.data + 8 * width) % 64 == 0
+    rng = np.random.default_rng(3)
+    for force in rng.uniform(0.0, 1e7, 200):
+        u, _ = unit.step(force)
+        q, previous = unit.modal_coordinates()
+        assert q.size == previous.size == n == 14
+        exact = math.fsum(unit.C[4, :n] * q)
+        assert abs(u - exact) <= 1e-14 * math.fsum(np.abs(unit.C[4, :n] * q))
+    assert not unit.S[n:width].any() and not unit.S[width + n:].any()
+    for shape, dtype in (((7,), np.float64), ((3, 5), np.float64), ((9,), np.int64)):
+        a = aligned_zeros(shape, dtype)
+        assert a.shape == shape and a.dtype == dtype and a.flags.c_contiguous
+        assert a.ctypes.data % ALIGNMENT == 0 and not a.any()
