@@ -934,6 +934,10 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         anvil_unit_step(&inst->unit, inst->real[ANVIL_F_RAM], inst->real[ANVIL_F_PILE]);
     }
     inst->outputs_valid = 0;
+    if (inst->unit.lcp_failed)
+        return fail(inst, "step at t = %.9g s: the rings' contact problem found no solution in "
+                    "%lu pivots (pile_port_rings)", currentCommunicationPoint,
+                    (unsigned long)(50 * (inst->unit.K + 1)));
     inst->time = currentCommunicationPoint + h;
     return fmi2OK;
 }

@@ -400,8 +400,9 @@ static void solve_active(size_t m, const double *A, const double *g, double *F,
         if (active[i] != 0.0) F[i] = work[idx++ * w + m];
 }
 
-/* anvil_rom/rings.py contact_lcp: Murty's least-index pivoting from the given set */
-static void contact_lcp(size_t m, const double *A, const double *g, double *F, double *active,
+/* anvil_rom/rings.py contact_lcp: Murty's least-index pivoting from the given set; 1 when
+ * solved, 0 when the pivots ran out (the last set's forces stand; Python raises) */
+static int contact_lcp(size_t m, const double *A, const double *g, double *F, double *active,
                         double *work)
 {
     size_t pivots, i, j;
@@ -423,10 +424,10 @@ static void contact_lcp(size_t m, const double *A, const double *g, double *F, d
                 }
             }
         }
-        if (flip < 0) return;
+        if (flip < 0) return 1;
         active[flip] = 1.0 - active[flip];
     }
-    /* not reached for a positive definite A (Murty 1974); the last set's forces stand */
+    return 0; /* not reached for a positive definite A (Murty 1974) */
 }
 
 /* anvil_rom/rings.py ring_interface: the rings' modal (u, v) */
@@ -493,22 +494,15 @@ static void solve_dense(size_t n, double *M, double *b)
 static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double weight)
 {
     size_t K = unit->K, n = unit->n, m = K + 1, j, k, l, iteration;
-    double *G = (double *)calloc(K * K + (K + 1) * (K + 1) + 4 * K + 2, sizeof(double));
-    double *M, *x, *forces, *overlap;
-    int *active;
+    double *G = unit->rest; /* scratch allocated with the unit (unit_rings) */
+    double *M = G + K * K;
+    double *x = M + m * m;
+    double *forces = x + m;
+    double *overlap = forces + K;
+    double *active = overlap + K;
     double u0 = 0.0;
-    if (G == NULL) return;
-    M = G + K * K;
-    x = M + (K + 1) * (K + 1);
-    forces = x + K + 1;
-    overlap = forces + K;
-    active = (int *)calloc(K, sizeof(int));
-    if (active == NULL) {
-        free(G);
-        return;
-    }
     for (k = 0; k < K; k++) {
-        active[k] = 1;
+        active[k] = 1.0;
         for (l = 0; l < K; l++) {
             double sum = 0.0;
             for (j = 0; j < n; j++) {
@@ -523,7 +517,7 @@ static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double
         size_t a = 0, idx[64], r, c;
         long worst = -1;
         for (k = 0; k < K; k++)
-            if (active[k]) idx[a++] = k;
+            if (active[k] != 0.0) idx[a++] = k;
         for (r = 0; r <= a; r++)
             for (c = 0; c <= a; c++) M[r * (a + 1) + c] = 0.0;
         for (r = 0; r < a; r++) {
@@ -546,15 +540,16 @@ static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double
         for (k = 0; k < K; k++)
             if (worst < 0 || forces[k] < forces[worst]) worst = (long)k;
         if (forces[worst] < 0.0) {
-            active[worst] = 0;
+            active[worst] = 0.0;
             continue;
         }
         worst = -1;
         for (k = 0; k < K; k++)
-            if (!active[k] && overlap[k] > 0.0 && (worst < 0 || overlap[k] > overlap[worst]))
+            if (active[k] == 0.0 && overlap[k] > 0.0
+                && (worst < 0 || overlap[k] > overlap[worst]))
                 worst = (long)k;
         if (worst < 0) break;
-        active[worst] = 1;
+        active[worst] = 1.0;
     }
     for (j = 0; j < n; j++) {
         double w = unit->omega[j];
@@ -573,8 +568,6 @@ static void rest_on_rings(AnvilUnit *unit, double pile_head_displacement, double
         unit->F[k + 1] = forces[k];
         unit->active[k + 1] = forces[k] > 0.0 ? 1.0 : 0.0;
     }
-    free(active);
-    free(G);
 }
 
 /* anvil_rom/rings.py ring_unit_outputs: the contact problem of the rings */
@@ -591,7 +584,8 @@ static void ring_contact(AnvilUnit *unit, double u_ram, double v_ram, double u_p
         unit->g[1 + k] = unit->ring_u[k] - u_pile;
         unit->g[1 + k] += unit->T[1 + k] * (unit->ring_v[k] - v_pile);
     }
-    contact_lcp(m, unit->A, unit->g, unit->F, unit->active, unit->work);
+    if (!contact_lcp(m, unit->A, unit->g, unit->F, unit->active, unit->work))
+        unit->lcp_failed = 1;
     for (k = 1; k < m; k++) total += unit->F[k];
     *force_ram = unit->F[0];
     *force_pile = total;
@@ -673,8 +667,10 @@ static int unit_rings(AnvilUnit *unit, const AnvilModalData *data, double fmax,
     size_t K = data->n_rings, n = data->n_modes, m = K + 1, j, k, a, b;
     double total = 0.0;
     double *p;
-    unit->ring_block = (double *)calloc(K * unit->n + 2 * m * m + 4 * m + 3 * K + m * (m + 1),
-                                        sizeof(double));
+    /* the rest's scratch (rest_on_rings): G (K x K), the bordered matrix (m x m), its
+     * solution (m), the forces, the overlaps and the active set (K each) */
+    unit->ring_block = (double *)calloc(K * unit->n + 2 * m * m + 4 * m + 3 * K + m * (m + 1)
+                                        + K * K + m * m + m + 3 * K, sizeof(double));
     if (unit->ring_block == NULL) {
         set_error(error, size, "out of memory for %lu rings", (unsigned long)K);
         return 0;
@@ -691,7 +687,8 @@ static int unit_rings(AnvilUnit *unit, const AnvilModalData *data, double fmax,
     unit->W = p; p += K;
     unit->ring_u = p; p += K;
     unit->ring_v = p; p += K;
-    unit->work = p;
+    unit->work = p; p += m * (m + 1);
+    unit->rest = p;
     for (k = 0; k < K; k++) {
         size_t kept = 0;
         for (j = 0; j < n; j++) {

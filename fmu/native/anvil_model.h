@@ -138,7 +138,10 @@ typedef struct {
     double *active;       /* K+1 contact set of the last evaluation (1: in contact) */
     double *g;            /* K+1 overlaps (scratch) */
     double *work;         /* (K+1) x (K+2) elimination (scratch) */
+    double *rest;         /* the rest on the rings (scratch, allocated with the unit) */
     double *ring_block;
+    int lcp_failed;       /* 1 once a contact problem ended without a solution (the host
+                           * reports it; not reached for a positive definite A) */
 } AnvilUnit;
 
 /* The ROM from modal data (ModalAnvil.from_modal_data + AnvilUnit): modes up to fmax [Hz]
