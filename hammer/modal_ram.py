@@ -368,9 +368,10 @@ def modal_ram_advance(C, S, toe_force, h, toe):
     mode 0 only. The toe's half-step velocity is (u_toe,n+1 - u_toe,n) / h with u_toe =
     sum p_toe,j eta_j. One sweep: the modes do not depend on each other, and the toe sum may be
     reassociated (``fastmath`` reassoc only: no other IEEE rule is relaxed), so the sweep is
-    vectorised with the sum in vector lanes. The order of that sum is the compiler's: the
-    engine and the Ram FMU, which both run this kernel, agree to rounding (1e-15 relative),
-    not necessarily bit for bit. Not inlined: the compiler lays this loop out once."""
+    vectorised with the sum in vector lanes. The order of that sum is the compiler's (within
+    1e-14 of the terms' magnitudes of the exactly rounded sum, tested): the engine and the Ram
+    FMU, which both run this kernel, agree to rounding, not necessarily bit for bit. Not
+    inlined: an inlined copy would take its caller's IEEE rules and lose the vectorisation."""
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n
     old = n - now
