@@ -203,12 +203,6 @@ def maxwell_ladder(target, tau: np.ndarray, f_lo: float, f_hi: float
     return k, float(np.max(np.abs(branches @ k - z) / norm[:, 0]))
 
 
-def sqrt_iw_ladder(tau: np.ndarray, f_lo: float = 20.0, f_hi: float = 4e4
-                   ) -> tuple[np.ndarray, float]:
-    """:func:`maxwell_ladder` of sqrt(i w) from f_lo to f_hi [Hz]."""
-    return maxwell_ladder(lambda w: np.sqrt(1j * w), tau, f_lo, f_hi)
-
-
 @dataclasses.dataclass
 class HeadRotation:
     """The pile head's wall section rotating about its mid-surface: ring k's pile displacement
