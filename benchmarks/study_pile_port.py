@@ -187,6 +187,13 @@ def shell_edge_moment_impedance(omega, E: float, nu: float, rho: float, radius: 
     return 2.0 * np.pi * radius * D * k1 * k2 / (k1 + k2)
 
 
+def maxwell_branches(w, tau: np.ndarray) -> np.ndarray:
+    """Impedance per unit spring of Maxwell branches (a spring in series with a dashpot of
+    time constant tau_i) at circular frequencies w: i w tau_i / (1 + i w tau_i), (w, tau)."""
+    wt = 1j * np.outer(w, tau)
+    return wt / (1.0 + wt)
+
+
 def maxwell_ladder(target, tau: np.ndarray, f_lo: float, f_hi: float
                    ) -> tuple[np.ndarray, float]:
     """Maxwell branches (spring k_i in series with a dashpot k_i tau_i) whose summed impedance
@@ -196,7 +203,7 @@ def maxwell_ladder(target, tau: np.ndarray, f_lo: float, f_hi: float
 
     w = 2.0 * np.pi * np.logspace(np.log10(f_lo), np.log10(f_hi), 200)
     z = target(w)
-    branches = 1j * np.outer(w, tau) / (1.0 + 1j * np.outer(w, tau))
+    branches = maxwell_branches(w, tau)
     norm = np.abs(z)[:, None]
     k, _ = nnls(np.vstack([branches.real / norm, branches.imag / norm]),
                 np.r_[z.real / norm[:, 0], z.imag / norm[:, 0]])
@@ -390,7 +397,7 @@ def main() -> None:
     static = float(edge(0.0).real)
     ladder, _ = maxwell_ladder(lambda w: edge(w) - static, tau, *LADDER_BAND)
     w = 2.0 * np.pi * np.logspace(np.log10(LADDER_BAND[0]), np.log10(LADDER_BAND[1]), 200)
-    fitted = static + (1j * np.outer(w, tau) / (1.0 + 1j * np.outer(w, tau))) @ ladder
+    fitted = static + maxwell_branches(w, tau) @ ladder
     error = float(np.max(np.abs(fitted / edge(w) - 1.0)))
     rotation = HeadRotation(offsets, static, ladder, tau)
     print(f"pile head: static edge stiffness {rotation.static:.3g} N m/rad, the shell edge's "
