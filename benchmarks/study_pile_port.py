@@ -189,6 +189,19 @@ def ram_face_ports(cfg) -> Ports:
     return Ports(P, R, omega, areas)
 
 
+def held_tube_flexibility(model, loads: np.ndarray, length: float) -> np.ndarray:
+    """Static flexibility [m/N] between ``loads`` (n_dof, k) of an axisymmetric tube model
+    whose bottom (z = ``length``) is held axially: loads^T K^-1 loads on the rest."""
+    free = {int(d): i for i, d in enumerate(np.asarray(model.free_dofs))}
+    bottom = [free[int(d)] for d in model.node_dofs[
+        np.abs(model.node_coordinates[:, 1] - length) < 1e-9, 1] if int(d) in free]
+    keep = np.setdiff1d(np.arange(model.n_dof), bottom)
+    u = np.zeros_like(loads)
+    u[keep] = sla.splu(model.stiffness.tocsc()[keep][:, keep].tocsc()).solve(
+        np.ascontiguousarray(loads[keep]))
+    return loads.T @ u
+
+
 def wall_local_flexibility(material, r_in, r_out, length=4.0, per_patch=4) -> np.ndarray:
     """The pile wall's local flexibility under its PATCHES top patches [m/N]: what the 1D head
     with its rotation (uniform and linear displacement across the wall) leaves out.
@@ -210,14 +223,7 @@ def wall_local_flexibility(material, r_in, r_out, length=4.0, per_patch=4) -> np
         outline, None, point_sizes=np.array([wall / top] * 2 + [4 * wall / PATCHES] * 2),
         edge_divisions={0: top, 2: PATCHES})), material)
     loads, _ = annulus_vectors(model, 0.0, r_in, r_out, PATCHES)
-    free = {int(d): i for i, d in enumerate(np.asarray(model.free_dofs))}
-    bottom = [free[int(d)] for d in model.node_dofs[
-        np.abs(model.node_coordinates[:, 1] - length) < 1e-9, 1] if int(d) in free]
-    keep = np.setdiff1d(np.arange(model.n_dof), bottom)
-    u = np.zeros_like(loads)
-    u[keep] = sla.splu(model.stiffness.tocsc()[keep][:, keep].tocsc()).solve(
-        np.ascontiguousarray(loads[keep]))
-    C = loads.T @ u
+    C = held_tube_flexibility(model, loads, length)
     edges = np.linspace(r_in, r_out, PATCHES + 1)
     V = np.column_stack([np.ones(PATCHES), 0.5 * (edges[:-1] + edges[1:])])
     Q = np.eye(PATCHES) - V @ np.linalg.solve(V.T @ V, V.T)
