@@ -46,7 +46,8 @@ as in the engine; with one ram port and one pile ring this is the engine's blow
 wall's local flexibility under the rings (:func:`wall_local_flexibility`, a static FE tube,
 the part the 1D head and its rotation leave out); the ram face and the anvil's ram face in six
 annuli, each a compression-only contact; and the same without the contact dashpot. These run
-at 0.125 and 0.0625 m segments (the step scaled), without gravity.
+at 0.125 and 0.0625 m segments (the step scaled), with gravity (the anvil starts at rest on
+the rings).
 
 The pile is a 1D rod (0.125 m segments), the step 5 us, unless stated. Printed per variant:
 the band level deviations from the FEA [dB] from 1 to 4 kHz, the largest up to 1.26 kHz and up
@@ -70,7 +71,7 @@ from anvil_rom.fe import annulus_vectors, assemble, face_load_vector
 from anvil_rom.geometry import Interfaces, Material
 from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
 from anvil_rom.modes import elastic_flexibility, free_free_modes
-from anvil_rom.rings import contact_lcp
+from anvil_rom.rings import contact_lcp, ring_static_rest
 from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
 from anvilwave.fea.bodies import ContactSet
@@ -403,7 +404,7 @@ def _group_rows(ports: Ports, first: int, groups, areas: np.ndarray) -> np.ndarr
 def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocity: float,
                     damping: float, duration: float, pile, rotation: HeadRotation | None = None,
                     local: np.ndarray | None = None, segment: float = SEGMENT,
-                    step: float = STEP):
+                    step: float = STEP, gravity: float = 0.0):
     """(pile-head force, ram force) histories [N], sampled every 10 us, of the ram, the
     anvil and the 1D pile in one loop: the ram's own modes (``ram``, :func:`ram_face_ports`) strike
     at ``impact_velocity`` [m/s]. ``ram_groups`` are groups of the ram face's annuli, each one
@@ -414,8 +415,12 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     patches make the rings, on the flat head of the 1D pile (their springs the top half
     segment's shares), turning with ``rotation`` and, with ``local`` (PATCHES x PATCHES,
     :func:`wall_local_flexibility`), with the wall's local flexibility between them. Every
-    contact is one complementarity problem per step. No gravity (the comparison adds the
-    preload, as for :func:`run_variant`)."""
+    contact is one complementarity problem per step. With ``gravity`` [m/s^2] the anvil starts
+    at rest on the rings under its weight (:func:`anvil_rom.rings.ring_static_rest`, with the
+    head's static edge spring and the local flexibility), the pile compressed by that weight
+    and held at its bottom by a constant force, the ram falling and its face touching the
+    anvil's first annulus, as in the engine and the FEA; without, the anvil and the pile start
+    unloaded."""
     E, rho, area, _, length = pile
     J, K = len(ram_groups), len(groups)
     # the anvil's ram annuli and the ram's face annuli are the same annuli (ram.areas)
@@ -447,13 +452,38 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     fold = damping * face_area / face_area.sum() * np.diag(Rr)
     ca = modal_transition(anvil.omega, 0.0, step)
     cr = modal_transition(ram.omega, 0.0, step)
-    qa, qa_prev = np.zeros(anvil.omega.size), np.zeros(anvil.omega.size)
-    qr, qr_prev = np.zeros(ram.omega.size), np.zeros(ram.omega.size)
+    qa, qr = np.zeros(anvil.omega.size), np.zeros(ram.omega.size)
+    rigid_a = int(np.flatnonzero(anvil.omega == 0.0)[0])
     rigid = int(np.flatnonzero(ram.omega == 0.0)[0])
-    qr_prev[rigid] = -step * impact_velocity / ram.P[0, rigid]  # the face at impact_velocity
+    # gravity on the rigid modes: phi^T M g e_z = g / p for a participation p = 1 / sqrt(m)
+    weight_a = np.zeros(anvil.omega.size)
+    weight_a[rigid_a] = gravity / Pa[0, rigid_a]
+    weight_r = np.zeros(ram.omega.size)
+    weight_r[rigid] = gravity / Pr[0, rigid]
     u, v = np.zeros(n), np.zeros(n)
     F = np.zeros(J + K)
-    active = np.zeros(J + K)
+    support = 0.0
+    if gravity > 0.0:  # the anvil at rest on the rings, the pile compressed by its weight
+        support = gravity / Pa[0, rigid_a] ** 2  # the anvil's weight [N]
+        springs = 2.0 * k_seg * ring_area / area
+        rest = A[J:, J:] - np.diag(1.0 / springs)  # the rings' residual, local, rotation
+        if rotation is not None:  # the ladder relaxed: the static edge spring alone
+            rest += np.outer(rotation.offsets, rotation.offsets) * (
+                1.0 / rotation.static - 1.0 / total)
+        F[J:], u0 = ring_static_rest(anvil.omega, Pa[J:], springs, rest, support)
+        flexible = anvil.omega > 0.0
+        qa[flexible] = -(F[J:] @ Pa[J:, flexible]) / anvil.omega[flexible] ** 2
+        qa[rigid_a] = u0 / Pa[J, rigid_a]
+        u -= np.arange(n) * support / k_seg
+        if rotation is not None:
+            phi[:] = rotation.offsets @ F[J:] / rotation.static
+    # the ram's face touches the anvil's highest annulus (at rest: modal part and residual)
+    face = np.min(Pa[:J] @ qa - Ra[:J, J:] @ F[J:])
+    qr[rigid] = face / Pr[0, rigid]
+    qa_prev = qa.copy()
+    qr_prev = qr.copy()
+    qr_prev[rigid] -= step * impact_velocity / Pr[0, rigid]  # the face at impact_velocity
+    active = (F > 0.0).astype(float)
     work = np.zeros((J + K, J + K + 1))
     g = np.zeros(J + K)
     steps = int(round(duration / step))
@@ -471,15 +501,17 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
             phi = theta + (phi - theta) * decay
         if s % every == 0:
             out[s // every] = F[J:].sum(), F[:J].sum()
-        qn = ca[:, 0] * qa + ca[:, 1] * qa_prev + ca[:, 2] * (Pa[:J].T @ F[:J] - Pa[J:].T @ F[J:])
+        qn = ca[:, 0] * qa + ca[:, 1] * qa_prev + ca[:, 2] * (
+            Pa[:J].T @ F[:J] - Pa[J:].T @ F[J:] + weight_a)
         qa_prev, qa = qa, qn
-        qn = cr[:, 0] * qr + cr[:, 1] * qr_prev - cr[:, 2] * (Pr.T @ F[:J])
+        qn = cr[:, 0] * qr + cr[:, 1] * qr_prev + cr[:, 2] * (weight_r - Pr.T @ F[:J])
         qr_prev, qr = qr, qn
         force = np.zeros(n)
         stretch = k_seg * np.diff(u)
         force[:-1] += stretch
         force[1:] -= stretch
         force[0] += F[J:].sum()
+        force[-1] -= support
         v += step * force / mass
         u += step * v
     return out, every * step
@@ -635,9 +667,9 @@ def main() -> None:
             start = time.perf_counter()
             out, dt = run_closed_loop(anvil, ram, groups, ram_groups, cfg.impact_velocity, c,
                                       cfg.duration, pile, rot, loc, segment,
-                                      STEP * segment / SEGMENT)
+                                      STEP * segment / SEGMENT, cfg.gravity)
             t = np.arange(out.shape[0]) * dt
-            columns = {"time [s]": t, "anvil_pile_force [N]": out[:, 0] + preload,
+            columns = {"time [s]": t, "anvil_pile_force [N]": out[:, 0],
                        "ram_anvil_force [N]": out[:, 1]}
             run = ModelRun(name, columns, time.perf_counter() - start, {})
             rows[f"{name}, {segment:g} m"] = _row(run, fea, fea_columns, t_fea) | {
