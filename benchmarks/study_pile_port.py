@@ -9,11 +9,11 @@ high from 1.6 to 4 kHz. This study isolates the interfaces: the reference FEA is
 ram-anvil contact force recorded node by node, and that force drives every variant (the ram
 and its contact are out of the comparison); only the anvil's ports and the pile head change:
 
-* ``rings K``: the anvil ROM (Table 1's anvil, fmax 5 kHz, static correction) loaded by the
-  FEA's resultant ram force as a uniform pressure on the ram face (the ROM's ram port), with
-  the pile ring split into K equal-width rings, each a uniform pressure of its own (its own
-  modal participations, the residual flexibility between all ports) and its own
-  compression-only contact on the flat head of the 1D pile (stiffness: the pile's top half
+* ``rings K``: the anvil ROM (Table 1's anvil, fmax 5 kHz or ``--fmax``, static correction)
+  loaded by the FEA's resultant ram force as a uniform pressure on the ram face (the ROM's
+  ram port), with the pile ring split into K equal-width rings, each a uniform pressure of
+  its own (its own modal participations, the residual flexibility between all ports) and its
+  own compression-only contact on the flat head of the 1D pile (stiffness: the pile's top half
   segment, shared by ring area). The K ring forces are one linear complementarity problem per
   step (:func:`anvil_rom.rings.contact_lcp`). K = 1 is the ROM's port. The engine runs this
   variant with the modal ram and its own ram force as ``[anvil] pile_port_rings``.
@@ -39,7 +39,7 @@ and its contact are out of the comparison); only the anvil's ports and the pile 
 
 A prescribed ram force cannot take up the anvil's vibration: the real ram's face absorbs part
 of it. The ``closed:`` variants therefore put the ram in the loop (:func:`run_closed_loop`): the
-system's ram as its own modes to 5 kHz (:func:`ram_face_ports`), striking at the impact
+system's ram as its own modes to the same fmax (:func:`ram_face_ports`), striking at the impact
 velocity, its residual flexibility the contact spring and the ram-impedance dashpot beside it,
 as in the engine; with one ram port and one pile ring this is the engine's blow
 (tests/test_study_pile_port.py). Then, one at a time: six rings on the head that turns; the
@@ -125,9 +125,9 @@ def _patch_loads(model, z, r_in, r_out, count=PATCHES):
     return list(B.T), areas
 
 
-def anvil_ports(cfg, r_in, r_out, ram_radius) -> Ports:
-    """Table 1's anvil with ports: the whole ram face, its PATCHES equal-width annuli, then the
-    PATCHES patches of the pile ring."""
+def anvil_ports(cfg, r_in, r_out, ram_radius, fmax=FMAX_ANVIL) -> Ports:
+    """Table 1's anvil with ports (its modes to ``fmax`` [Hz]): the whole ram face, its PATCHES
+    equal-width annuli, then the PATCHES patches of the pile ring."""
     spec = cfg.anvil.spec
     outline = np.asarray(spec.outline, float).copy()
     outline[:, 1] -= outline[:, 1].min()
@@ -151,7 +151,7 @@ def anvil_ports(cfg, r_in, r_out, ram_radius) -> Ports:
     b_ram, _ = face_load_vector(model, lambda r, z: (np.abs(z) < TOL) & (r <= ram_radius + TOL))
     ram_loads, _ = _patch_loads(model, 0.0, 0.0, ram_radius)
     loads, areas = _patch_loads(model, height, r_in, r_out)
-    P, R, omega = _ports(model, [b_ram] + ram_loads + loads, FMAX_ANVIL)
+    P, R, omega = _ports(model, [b_ram] + ram_loads + loads, fmax)
     return Ports(P, R, omega, areas)
 
 
@@ -169,10 +169,10 @@ def tube_ports(material, r_in, r_out, length) -> Ports:
     return Ports(P, R, omega, areas, float(length))
 
 
-def ram_face_ports(cfg) -> Ports:
-    """The system's ram (its sections, the modal ram's mesh size at FMAX_ANVIL) with its toe
-    face as ports: the whole face, then its PATCHES equal-width annuli (the anvil's ram
-    annuli, :func:`anvil_ports`)."""
+def ram_face_ports(cfg, fmax=FMAX_ANVIL) -> Ports:
+    """The system's ram (its sections, its modes to ``fmax`` [Hz] on the modal ram's mesh for
+    that fmax) with its toe face as ports: the whole face, then its PATCHES equal-width
+    annuli (the anvil's ram annuli, :func:`anvil_ports`)."""
     ram = cfg.hammer.ram
     material = Material(ram.elastic_modulus, cfg.anvil.spec.material.poisson_ratio, ram.density)
     outline = ram_outline(ram.sections)
@@ -181,12 +181,12 @@ def ram_face_ports(cfg) -> Ports:
     divisions = {i: 3 * PATCHES for i, (a, b) in enumerate(
         zip(outline, np.roll(outline, -1, axis=0), strict=True))
         if abs(a[1] - toe) < 1e-9 and abs(b[1] - toe) < 1e-9}
-    size = default_mesh_size(ram.sections, material, FMAX_ANVIL)
+    size = default_mesh_size(ram.sections, material, fmax)
     model = assemble(to_skfem(mesh_outline(outline, None, point_sizes=np.full(len(outline), size),
                                            edge_divisions=divisions)), material)
     b_toe, _ = face_load_vector(model, lambda r, z: np.abs(z - toe) < TOL)
     loads, areas = _patch_loads(model, toe, 0.0, radius)
-    P, R, omega = _ports(model, [b_toe] + loads, FMAX_ANVIL)
+    P, R, omega = _ports(model, [b_toe] + loads, fmax)
     return Ports(P, R, omega, areas)
 
 
@@ -569,6 +569,8 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--system", type=Path, default=ROOT / "examples" / "table1.toml")
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_pile_port")
+    parser.add_argument("--fmax", type=float, default=FMAX_ANVIL,
+                        help="modes of the anvil and the ram up to this frequency [Hz]")
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     cfg = without_soil(load_system(args.system))
@@ -596,8 +598,8 @@ def main() -> None:
     pile = (material.youngs_modulus, material.density, np.pi * (r_out**2 - r_in**2),
             r_out - r_in, cfg.pile_soil.pile.length)
     start = time.perf_counter()
-    anvil = anvil_ports(cfg, r_in, r_out, ram_radius)
-    print(f"anvil ports: {anvil.omega.size} modes to {FMAX_ANVIL:g} Hz "
+    anvil = anvil_ports(cfg, r_in, r_out, ram_radius, args.fmax)
+    print(f"anvil ports: {anvil.omega.size} modes to {args.fmax:g} Hz "
           f"({time.perf_counter() - start:.1f} s)", flush=True)
     rings = {1: [[0, 1, 2, 3, 4, 5]], 2: [[0, 1, 2], [3, 4, 5]], 3: [[0, 1], [2, 3], [4, 5]],
              6: [[k] for k in range(PATCHES)]}
@@ -648,9 +650,9 @@ def main() -> None:
         print(f"{name} done ({run.wall_time:.1f} s)", flush=True)
     # the ram in the loop: its own modes, its face in annuli or uniform
     start = time.perf_counter()
-    ram = ram_face_ports(cfg)
+    ram = ram_face_ports(cfg, args.fmax)
     local = wall_local_flexibility(material, r_in, r_out)
-    print(f"ram ports: {ram.omega.size} modes to {FMAX_ANVIL:g} Hz; the wall's local "
+    print(f"ram ports: {ram.omega.size} modes to {args.fmax:g} Hz; the wall's local "
           f"flexibility ({time.perf_counter() - start:.1f} s)", flush=True)
     fea_both = dict(fea_columns, **{"ram_anvil_force [N]": resultant})
     damping = cfg.anvil.ram_contact_damping
