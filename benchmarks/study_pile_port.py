@@ -303,6 +303,28 @@ class HeadRotation:
     tau: np.ndarray      # ladder tau_i [s]
 
 
+def relax_ladder(rotation: HeadRotation, phi, forces, total: float, decay) -> np.ndarray:
+    """The ladder's dashpot states after a step with theta held: theta = (e . F + sum k_i
+    phi_i) / (static + sum k_i) from the ring ``forces``, each phi_i relaxing towards it with
+    ``decay`` = exp(-h / tau_i)."""
+    theta = (rotation.offsets @ forces + rotation.springs @ phi) / total
+    return theta + (phi - theta) * decay
+
+
+def pile_step(u, v, head: float, k_seg: float, mass: float, step: float,
+              support: float = 0.0) -> None:
+    """One explicit step of the 1D pile (lumped segments, in place): ``head`` [N] pushes the top
+    mass down, ``support`` [N] holds the bottom one up."""
+    force = np.zeros(u.size)
+    stretch = k_seg * np.diff(u)
+    force[:-1] += stretch
+    force[1:] -= stretch
+    force[0] += head
+    force[-1] -= support
+    v += step * force / mass
+    u += step * v
+
+
 def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
                 tube: Ports | None = None, rotation: HeadRotation | None = None):
     """Pile-head force history [N] (sampled every 2 steps) of one variant: ``groups`` of pile
@@ -315,8 +337,7 @@ def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
     # ports -> the ram ports used, then the rings (uniform pressure over each group of patches)
     Ta = np.zeros((n_ram + K, anvil.P.shape[0]))
     Ta[np.arange(n_ram), ram_ports] = 1.0
-    for i, g in enumerate(groups):
-        Ta[n_ram + i, [first + k for k in g]] = anvil.areas[g] / anvil.areas[g].sum()
+    Ta[n_ram:] = _group_rows(anvil, first, groups, anvil.areas)
     Pa, Ra = Ta @ anvil.P, Ta @ anvil.R @ Ta.T
     ring_area = np.array([anvil.areas[g].sum() for g in groups])
     if tube is not None:
@@ -369,8 +390,7 @@ def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
             g -= Pt[:K] @ qt - Rt[:K, K] * tie
         contact_lcp(M, g, F, active, work)
         if rotation is not None:  # the ladder's dashpots move with theta held over the step
-            theta = (rotation.offsets @ F + rotation.springs @ phi) / total
-            phi = theta + (phi - theta) * decay
+            phi = relax_ladder(rotation, phi, F, total, decay)
         if s % 2 == 0:
             out[s // 2] = F.sum()
         f = Pa[:n_ram].T @ fr - Pa[rings].T @ F
@@ -382,13 +402,7 @@ def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
             qn = ct[:, 0] * qt + ct[:, 1] * qt_prev + ct[:, 2] * f
             qt_prev, qt = qt, qn
             head = tie
-        force = np.zeros(n)
-        stretch = k_seg * np.diff(u)
-        force[:-1] += stretch
-        force[1:] -= stretch
-        force[0] += head
-        v += STEP * force / mass
-        u += STEP * v
+        pile_step(u, v, head, k_seg, mass, STEP)
     return out
 
 
@@ -424,9 +438,9 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     E, rho, area, _, length = pile
     J, K = len(ram_groups), len(groups)
     # the anvil's ram annuli and the ram's face annuli are the same annuli (ram.areas)
+    first = anvil.P.shape[0] - anvil.areas.size  # the first pile patch's port
     Ta = np.vstack([_group_rows(anvil, 1, ram_groups, ram.areas),
-                    _group_rows(anvil, anvil.P.shape[0] - anvil.areas.size, groups,
-                                anvil.areas)])
+                    _group_rows(anvil, first, groups, anvil.areas)])
     Tr = _group_rows(ram, 1, ram_groups, ram.areas)
     Pa, Ra = Ta @ anvil.P, Ta @ anvil.R @ Ta.T
     Pr, Rr = Tr @ ram.P, Tr @ ram.R @ Tr.T
@@ -438,12 +452,10 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     sign = np.r_[np.ones(J), -np.ones(K)]  # the rings push the anvil up, the ram down
     A = sign[:, None] * Ra * sign[None, :]
     A[:J, :J] += Rr
-    A[J:, J:] += np.diag(area / (2.0 * k_seg * ring_area))
-    if local is not None:
-        Tl = np.zeros((K, PATCHES))
-        for i, g in enumerate(groups):
-            Tl[i, g] = anvil.areas[g] / anvil.areas[g].sum()
-        A[J:, J:] += Tl @ local @ Tl.T
+    springs = 2.0 * k_seg * ring_area / area  # the top half segment, shared by ring area
+    A[J:, J:] += np.diag(1.0 / springs)
+    if local is not None:  # the patches' flexibility seen by the rings (their area weights)
+        A[J:, J:] += Ta[J:, first:] @ local @ Ta[J:, first:].T
     if rotation is not None:
         total = rotation.static + rotation.springs.sum()
         A[J:, J:] += np.outer(rotation.offsets, rotation.offsets) / total
@@ -465,7 +477,6 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     support = 0.0
     if gravity > 0.0:  # the anvil at rest on the rings, the pile compressed by its weight
         support = gravity / Pa[0, rigid_a] ** 2  # the anvil's weight [N]
-        springs = 2.0 * k_seg * ring_area / area
         rest = A[J:, J:] - np.diag(1.0 / springs)  # the rings' residual, local, rotation
         if rotation is not None:  # the ladder relaxed: the static edge spring alone
             rest += np.outer(rotation.offsets, rotation.offsets) * (
@@ -497,8 +508,7 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
             g[J:] -= rotation.offsets * (rotation.springs @ phi) / total
         contact_lcp(A, g, F, active, work)
         if rotation is not None:  # the ladder's dashpots move with theta held over the step
-            theta = (rotation.offsets @ F[J:] + rotation.springs @ phi) / total
-            phi = theta + (phi - theta) * decay
+            phi = relax_ladder(rotation, phi, F[J:], total, decay)
         if s % every == 0:
             out[s // every] = F[J:].sum(), F[:J].sum()
         qn = ca[:, 0] * qa + ca[:, 1] * qa_prev + ca[:, 2] * (
@@ -506,14 +516,7 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
         qa_prev, qa = qa, qn
         qn = cr[:, 0] * qr + cr[:, 1] * qr_prev + cr[:, 2] * (weight_r - Pr.T @ F[:J])
         qr_prev, qr = qr, qn
-        force = np.zeros(n)
-        stretch = k_seg * np.diff(u)
-        force[:-1] += stretch
-        force[1:] -= stretch
-        force[0] += F[J:].sum()
-        force[-1] -= support
-        v += step * force / mass
-        u += step * v
+        pile_step(u, v, F[J:].sum(), k_seg, mass, step, support)
     return out, every * step
 
 
