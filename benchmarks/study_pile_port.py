@@ -66,6 +66,7 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse.linalg as sla
+from numba import njit
 
 from anvil_rom.fe import annulus_vectors, assemble, face_load_vector
 from anvil_rom.geometry import Interfaces, Material
@@ -74,9 +75,9 @@ from anvil_rom.modes import elastic_flexibility, free_free_modes
 from anvil_rom.rings import contact_lcp, ring_static_rest
 from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
-from anvilwave.fea.bodies import ContactSet
+from anvilwave.fea.bodies import ContactSet, graded_vertices, tensor_body
 from anvilwave.fea.impact import build_impact_model
-from anvilwave.fea.solver import integrate
+from anvilwave.fea.solver import integrate, max_eigenvalue
 from anvilwave.report import write_csv
 from anvilwave.system import load_system
 from hammer.modal_ram import default_mesh_size, ram_outline
@@ -325,6 +326,67 @@ def pile_step(u, v, head: float, k_seg: float, mass: float, step: float,
     u += step * v
 
 
+@njit(cache=True)
+def _hat_responses(indptr, indices, data, inverse_mass, loads, steps, substeps, dt):
+    """Central differences of M u'' = -K u + loads f(t) for every load column at once (K in
+    CSR, M lumped), f a hat of unit peak at t = h = substeps dt, zero at 0 and 2 h: the loads'
+    own (force-weighted mean) displacements at t = h, 2 h, ... (steps, loads, loads)."""
+    n, m = loads.shape
+    u = np.zeros((n, m))
+    v = np.zeros((n, m))
+    out = np.zeros((steps, m, m))
+    for s in range(steps):  # from s h to (s + 1) h
+        for q in range(substeps):
+            t = (s * substeps + q + 0.5) / substeps  # the substep's middle [h]
+            f = max(0.0, 1.0 - abs(t - 1.0))
+            for i in range(n):
+                for j in range(m):
+                    acc = f * loads[i, j]
+                    for p in range(indptr[i], indptr[i + 1]):
+                        acc -= data[p] * u[indices[p], j]
+                    v[i, j] += dt * inverse_mass[i] * acc
+            for i in range(n):
+                for j in range(m):
+                    u[i, j] += dt * v[i, j]
+        for k in range(m):
+            for j in range(m):
+                acc = 0.0
+                for i in range(n):
+                    acc += loads[i, k] * u[i, j]
+                out[s, k, j] = acc
+    return out
+
+
+def fe_pile_kernel(material, r_in, r_out, length, step, steps, rings=3, axial=0.1):
+    """The FEA's own pile as a ring kernel G (steps, rings, rings) [m/N]: the mean axial
+    displacement of ring i of the pile top at t_n + k ``step`` under a force on ring j (a
+    uniform pressure of unit resultant) that rises linearly from 0 at t_n - ``step`` to 1 at
+    t_n and falls back to 0 at t_n + ``step``, k = 0 ... ``steps`` - 1. The force through the
+    steps' values F_n, linearly interpolated, gives the ring displacements
+    u_n = sum_k G[k] F_(n-k): G[0] acts at once (the pile's instantaneous compliance).
+
+    The pile is the reference FEA's: a tube of ``length`` [m] with one quadratic 9-node
+    element across each of the ``rings`` equal-width rings (the FEA's elements through the wall
+    with its default three), ``axial`` [m] elements, HRZ lumped mass, free at both ends, run
+    with central differences at the largest substep that divides ``step`` within 0.9 of the
+    stable one. G is the free pile's until its toe reflection returns (2 L / c0)."""
+    body = tensor_body("pile", np.linspace(r_in, r_out, rings + 1),
+                       graded_vertices(0.0, length, axial), material)
+    K = body.model.stiffness.tocsr()
+    loads, _ = annulus_vectors(body.model, 0.0, r_in, r_out, rings)
+    critical = 2.0 / np.sqrt(max_eigenvalue(K, body.lumped_mass))
+    substeps = int(np.ceil(step / (0.9 * critical)))
+    return _hat_responses(K.indptr, K.indices, K.data, 1.0 / body.lumped_mass,
+                          np.ascontiguousarray(loads), steps, substeps, step / substeps)
+
+
+def fea_ring_contact(material, r_in, r_out, ring_areas, wall_elements=3) -> np.ndarray:
+    """The reference FEA's anvil-pile penalty springs summed over each ring [N/m]: E / h per
+    unit area, h the element size through the wall (:data:`anvilwave.fea.impact.
+    DEFAULT_CONTACT_STIFFNESS_FACTOR` = 1)."""
+    return material.youngs_modulus / ((r_out - r_in) / wall_elements) * np.asarray(ring_areas)
+
+
 def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
                 tube: Ports | None = None, rotation: HeadRotation | None = None):
     """Pile-head force history [N] (sampled every 2 steps) of one variant: ``groups`` of pile
@@ -418,7 +480,8 @@ def _group_rows(ports: Ports, first: int, groups, areas: np.ndarray) -> np.ndarr
 def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocity: float,
                     damping: float, duration: float, pile, rotation: HeadRotation | None = None,
                     local: np.ndarray | None = None, segment: float = SEGMENT,
-                    step: float = STEP, gravity: float = 0.0):
+                    step: float = STEP, gravity: float = 0.0, kernel: np.ndarray | None = None,
+                    contact: np.ndarray | None = None):
     """(pile-head force, ram force) histories [N], sampled every 10 us, of the ram, the
     anvil and the 1D pile in one loop: the ram's own modes (``ram``, :func:`ram_face_ports`) strike
     at ``impact_velocity`` [m/s]. ``ram_groups`` are groups of the ram face's annuli, each one
@@ -434,7 +497,13 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     head's static edge spring and the local flexibility), the pile compressed by that weight
     and held at its bottom by a constant force, the ram falling and its face touching the
     anvil's first annulus, as in the engine and the FEA; without, the anvil and the pile start
-    unloaded."""
+    unloaded.
+
+    With a ``kernel`` (steps, K, K) [m/N] (:func:`fe_pile_kernel`, at this ``step``) the pile is
+    that kernel instead of the 1D rod: the rings' displacements are sum_k kernel[k] F_(n-k)
+    from their rest, kernel[0] in the complementarity problem, and the ring contacts are the
+    springs ``contact`` (K,) [N/m] (:func:`fea_ring_contact`); under gravity the rings rest on a
+    flat head (the pile's static flexibility under the anvil's weight, 3 MN, is left out)."""
     E, rho, area, _, length = pile
     J, K = len(ram_groups), len(groups)
     # the anvil's ram annuli and the ram's face annuli are the same annuli (ram.areas)
@@ -452,7 +521,11 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     sign = np.r_[np.ones(J), -np.ones(K)]  # the rings push the anvil up, the ram down
     A = sign[:, None] * Ra * sign[None, :]
     A[:J, :J] += Rr
-    springs = 2.0 * k_seg * ring_area / area  # the top half segment, shared by ring area
+    if kernel is None:
+        springs = 2.0 * k_seg * ring_area / area  # the top half segment, shared by ring area
+    else:
+        springs = np.asarray(contact, float)
+        n = 0  # no 1D pile
     A[J:, J:] += np.diag(1.0 / springs)
     if local is not None:  # the patches' flexibility seen by the rings (their area weights)
         A[J:, J:] += Ta[J:, first:] @ local @ Ta[J:, first:].T
@@ -488,6 +561,10 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
         u -= np.arange(n) * support / k_seg
         if rotation is not None:
             phi[:] = rotation.offsets @ F[J:] / rotation.static
+    if kernel is not None:  # the pile's head is flat at 0 under the rest forces
+        A[J:, J:] += kernel[0]  # acts at once
+        rest_force = F[J:].copy()
+        history = np.zeros((int(round(duration / step)) + 1, K))
     # the ram's face touches the anvil's highest annulus (at rest: modal part and residual)
     face = np.min(Pa[:J] @ qa - Ra[:J, J:] @ F[J:])
     qr[rigid] = face / Pr[0, rigid]
@@ -503,10 +580,17 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     for s in range(steps + 1):
         g[:J] = Pr @ qr - Pa[:J] @ qa + fold * (Pr @ (qr - qr_prev) - Pa[:J] @ (qa - qa_prev)
                                                 ) / step
-        g[J:] = Pa[J:] @ qa - u[0]
+        if kernel is None:
+            g[J:] = Pa[J:] @ qa - u[0]
+        else:  # kernel[0] F_n is in A
+            m = min(s, kernel.shape[0] - 1)
+            g[J:] = Pa[J:] @ qa + kernel[0] @ rest_force - np.einsum(
+                "kij,kj->i", kernel[1:m + 1], history[s - 1::-1][:m])
         if rotation is not None:
             g[J:] -= rotation.offsets * (rotation.springs @ phi) / total
         contact_lcp(A, g, F, active, work)
+        if kernel is not None:
+            history[s] = F[J:] - rest_force
         if rotation is not None:  # the ladder's dashpots move with theta held over the step
             phi = relax_ladder(rotation, phi, F[J:], total, decay)
         if s % every == 0:
@@ -516,24 +600,36 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
         qa_prev, qa = qa, qn
         qn = cr[:, 0] * qr + cr[:, 1] * qr_prev + cr[:, 2] * (weight_r - Pr.T @ F[:J])
         qr_prev, qr = qr, qn
-        pile_step(u, v, F[J:].sum(), k_seg, mass, step, support)
+        if kernel is None:
+            pile_step(u, v, F[J:].sum(), k_seg, mass, step, support)
     return out, every * step
 
 
-def instrumented_fea(cfg):
-    """The reference FEA of ``cfg`` with the ram-anvil contact force of every face node:
-    (time [s], node radii [m], node forces (t, nodes) [N], anvil-pile force [N])."""
+def instrumented_fea(cfg, duration: float | None = None) -> dict:
+    """The reference FEA of ``cfg`` (for ``duration`` [s], default the system's) with the
+    contact force of every node pair: "time [s]", the ram face's "ram_radii [m]" and
+    "ram_forces [N]" (t, nodes), the pile top's "pile_radii [m]" and "pile_forces [N]", and
+    the pile top's area-weighted mean "pile_head_velocity [m/s]"."""
     config = fea_config(cfg)
+    if duration is not None:
+        config = dataclasses.replace(config, duration=duration)
     model = build_impact_model(config)
     system = model.system
     ram, pile = system.contacts
-    pairs = [ContactSet(f"ram_anvil_{i}", *(getattr(ram, f)[i:i + 1] for f in (
-        "upper_dofs", "lower_dofs", "stiffness", "damping", "gap", "radii")))
-        for i in range(ram.radii.size)]
-    system.contacts = pairs + [pile]
+
+    def pairs(contact):
+        return [ContactSet(f"{contact.name}_{i}", *(getattr(contact, f)[i:i + 1] for f in (
+            "upper_dofs", "lower_dofs", "stiffness", "damping", "gap", "radii")))
+            for i in range(contact.radii.size)]
+
+    system.contacts = pairs(ram) + pairs(pile)
     tr = integrate(system, config.duration, config.output_interval,
                    safety=config.time_step_safety)
-    return tr.time, ram.radii, tr.contact_force[:, :-1], tr.contact_force[:, -1]
+    forces = tr.contact_force
+    return {"time [s]": tr.time, "ram_radii [m]": ram.radii,
+            "ram_forces [N]": forces[:, :ram.radii.size], "pile_radii [m]": pile.radii,
+            "pile_forces [N]": forces[:, ram.radii.size:],
+            "pile_head_velocity [m/s]": tr.probes["pile_head_velocity"]}
 
 
 def annulus_weights(radii, edges):
@@ -578,7 +674,10 @@ def main() -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     cfg = without_soil(load_system(args.system))
     start = time.perf_counter()
-    t_fea, node_radii, node_forces, pile_force = instrumented_fea(cfg)
+    record = instrumented_fea(cfg)
+    t_fea, node_radii, node_forces = (record[k] for k in ("time [s]", "ram_radii [m]",
+                                                          "ram_forces [N]"))
+    pile_force = record["pile_forces [N]"].sum(axis=1)
     print(f"FEA ({time.perf_counter() - start:.1f} s)", flush=True)
     ram_radius = 0.5 * cfg.hammer.ram.toe_diameter
     annuli = node_forces @ annulus_weights(node_radii, np.linspace(0.0, ram_radius,
@@ -682,6 +781,37 @@ def main() -> None:
                     band_limited(columns, "ram_anvil_force [N]", t_fea, BAND).max()
                     / band_limited(fea_both, "ram_anvil_force [N]", t_fea, BAND).max() - 1.0)}
             print(f"{name}, {segment:g} m done ({run.wall_time:.1f} s)", flush=True)
+    # the FEA's own pile (its mesh, its penalty contacts) as a ring kernel under the ROM
+    config = fea_config(cfg)
+    wall_elements = config.pile_wall_elements
+    start = time.perf_counter()
+    kernel = fe_pile_kernel(config.material, r_in, r_out, config.modelled_pile_length, STEP,
+                            int(round(cfg.duration / STEP)) + 1, wall_elements,
+                            config.pile_axial_size or config.mesh_size)
+    groups = rings[wall_elements]
+    contact = fea_ring_contact(config.material, r_in, r_out,
+                               [anvil.areas[g].sum() for g in groups], wall_elements)
+    print(f"the FEA's pile as a {wall_elements}-ring kernel ({time.perf_counter() - start:.1f} s)",
+          flush=True)
+    fe_pile = {f"closed: the FEA's pile ({wall_elements} rings), one ram port": (face, damping),
+               f"closed: the FEA's pile ({wall_elements} rings), ram face in 6 annuli": (
+                   face_annuli, damping),
+               f"closed: the FEA's pile ({wall_elements} rings), 6 annuli, no dashpot": (
+                   face_annuli, 0.0)}
+    for name, (ram_groups, c) in fe_pile.items():
+        start = time.perf_counter()
+        out, dt = run_closed_loop(anvil, ram, groups, ram_groups, cfg.impact_velocity, c,
+                                  cfg.duration, pile, gravity=cfg.gravity, kernel=kernel,
+                                  contact=contact)
+        t = np.arange(out.shape[0]) * dt
+        columns = {"time [s]": t, "anvil_pile_force [N]": out[:, 0],
+                   "ram_anvil_force [N]": out[:, 1]}
+        run = ModelRun(name, columns, time.perf_counter() - start, {})
+        rows[name] = _row(run, fea, fea_columns, t_fea) | {
+            "peak_ram_force_error_5kHz [-]": float(
+                band_limited(columns, "ram_anvil_force [N]", t_fea, BAND).max()
+                / band_limited(fea_both, "ram_anvil_force [N]", t_fea, BAND).max() - 1.0)}
+        print(f"{name} done ({run.wall_time:.1f} s)", flush=True)
     (args.out / "study.json").write_text(json.dumps(rows, indent=2) + "\n")
     first = next(iter(rows.values()))
     shown = [i for i, c in enumerate(first["band_centre_frequency [Hz]"]) if 950 < c < 4500]
