@@ -49,11 +49,11 @@ annuli, each a compression-only contact; and the same without the contact dashpo
 at 0.125 and 0.0625 m segments (the step scaled), with gravity (the anvil starts at rest on
 the rings).
 
-Last, ``closed: the FEA's pile``: the 1D pile is replaced by the reference FEA's own pile, its
-tube as a ring kernel (:func:`fe_pile_kernel`: its mesh, one element per ring, three rings
-across the wall) with the FEA's penalty contacts (:func:`fea_ring_contact`), under one ram
-port, the ram face in six annuli, and the same without the contact dashpot. Every interface
-is then the FEA's, and what remains is the anvil's and the ram's Mode Displacement Method.
+Last, ``closed: the FEA's pile``: the 1D pile is replaced by the reference FEA's own pile, its tube
+as a ring kernel (:func:`pile.head_kernel.ring_kernel`: its mesh, one element per ring, three rings
+across the wall) with the FEA's penalty contacts (:func:`fea_ring_contact`), under one ram port, the
+ram face in six annuli, and the same without the contact dashpot. Every interface is then the FEA's,
+and what remains is the anvil's and the ram's Mode Displacement Method.
 
 The pile is a 1D rod (0.125 m segments), the step 5 us, unless stated. Printed per variant:
 the band level deviations from the FEA [dB] from 1 to 4 kHz, the largest up to 1.26 kHz and up
@@ -72,7 +72,6 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse.linalg as sla
-from numba import njit
 
 from anvil_rom.fe import annulus_vectors, assemble, face_load_vector
 from anvil_rom.geometry import Interfaces, Material
@@ -81,12 +80,13 @@ from anvil_rom.modes import elastic_flexibility, free_free_modes
 from anvil_rom.rings import contact_lcp, ring_static_rest
 from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
-from anvilwave.fea.bodies import ContactSet, graded_vertices, tensor_body
+from anvilwave.fea.bodies import ContactSet
 from anvilwave.fea.impact import build_impact_model
-from anvilwave.fea.solver import integrate, max_eigenvalue
+from anvilwave.fea.solver import integrate
 from anvilwave.report import write_csv
 from anvilwave.system import load_system
 from hammer.modal_ram import default_mesh_size, ram_outline
+from pile.head_kernel import ring_kernel
 
 ROOT = Path(__file__).resolve().parents[1]
 PATCHES = 6
@@ -332,60 +332,6 @@ def pile_step(u, v, head: float, k_seg: float, mass: float, step: float,
     u += step * v
 
 
-@njit(cache=True)
-def _hat_responses(indptr, indices, data, inverse_mass, loads, steps, substeps, dt):
-    """Central differences of M u'' = -K u + loads f(t) for every load column at once (K in
-    CSR, M lumped), f a hat of unit peak at t = h = substeps dt, zero at 0 and 2 h: the loads'
-    own (force-weighted mean) displacements at t = h, 2 h, ... (steps, loads, loads)."""
-    n, m = loads.shape
-    u = np.zeros((n, m))
-    v = np.zeros((n, m))
-    out = np.zeros((steps, m, m))
-    for s in range(steps):  # from s h to (s + 1) h
-        for q in range(substeps):
-            t = (s * substeps + q + 0.5) / substeps  # the substep's middle [h]
-            f = max(0.0, 1.0 - abs(t - 1.0))
-            for i in range(n):
-                for j in range(m):
-                    acc = f * loads[i, j]
-                    for p in range(indptr[i], indptr[i + 1]):
-                        acc -= data[p] * u[indices[p], j]
-                    v[i, j] += dt * inverse_mass[i] * acc
-            for i in range(n):
-                for j in range(m):
-                    u[i, j] += dt * v[i, j]
-        for k in range(m):
-            for j in range(m):
-                acc = 0.0
-                for i in range(n):
-                    acc += loads[i, k] * u[i, j]
-                out[s, k, j] = acc
-    return out
-
-
-def fe_pile_kernel(material, r_in, r_out, length, step, steps, rings=3, axial=0.1):
-    """The FEA's own pile as a ring kernel G (steps, rings, rings) [m/N]: the mean axial
-    displacement of ring i of the pile top at t_n + k ``step`` under a force on ring j (a
-    uniform pressure of unit resultant) that rises linearly from 0 at t_n - ``step`` to 1 at
-    t_n and falls back to 0 at t_n + ``step``, k = 0 ... ``steps`` - 1. The force through the
-    steps' values F_n, linearly interpolated, gives the ring displacements
-    u_n = sum_k G[k] F_(n-k): G[0] acts at once (the pile's instantaneous compliance).
-
-    The pile is the reference FEA's: a tube of ``length`` [m] with one quadratic 9-node
-    element across each of the ``rings`` equal-width rings (the FEA's elements through the wall
-    with its default three), ``axial`` [m] elements, HRZ lumped mass, free at both ends, run
-    with central differences at the largest substep that divides ``step`` within 0.9 of the
-    stable one. G is the free pile's until its toe reflection returns (2 L / c0)."""
-    body = tensor_body("pile", np.linspace(r_in, r_out, rings + 1),
-                       graded_vertices(0.0, length, axial), material)
-    K = body.model.stiffness.tocsr()
-    loads, _ = annulus_vectors(body.model, 0.0, r_in, r_out, rings)
-    critical = 2.0 / np.sqrt(max_eigenvalue(K, body.lumped_mass))
-    substeps = int(np.ceil(step / (0.9 * critical)))
-    return _hat_responses(K.indptr, K.indices, K.data, 1.0 / body.lumped_mass,
-                          np.ascontiguousarray(loads), steps, substeps, step / substeps)
-
-
 def fea_ring_contact(material, r_in, r_out, ring_areas, wall_elements=3) -> np.ndarray:
     """The reference FEA's anvil-pile penalty springs summed over each ring [N/m]: E / h per
     unit area, h the element size through the wall (:data:`anvilwave.fea.impact.
@@ -505,9 +451,9 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     anvil's first annulus, as in the engine and the FEA; without, the anvil and the pile start
     unloaded.
 
-    With a ``kernel`` (steps, K, K) [m/N] (:func:`fe_pile_kernel`, at this ``step``) the pile is
-    that kernel instead of the 1D rod: the rings' displacements are sum_k kernel[k] F_(n-k)
-    from their rest, kernel[0] in the complementarity problem, and the ring contacts are the
+    With a ``kernel`` (steps, K, K) [m/N] (:func:`pile.head_kernel.ring_kernel`, at this ``step``)
+    the pile is that kernel instead of the 1D rod: the rings' displacements are sum_k kernel[k]
+    F_(n-k) from their rest, kernel[0] in the complementarity problem, and the ring contacts are the
     springs ``contact`` (K,) [N/m] (:func:`fea_ring_contact`); under gravity the rings rest on a
     flat head (the pile's static flexibility under the anvil's weight, 3 MN, is left out)."""
     E, rho, area, _, length = pile
@@ -791,9 +737,9 @@ def main() -> None:
     config = fea_config(cfg)
     wall_elements = config.pile_wall_elements
     start = time.perf_counter()
-    kernel = fe_pile_kernel(config.material, r_in, r_out, config.modelled_pile_length, STEP,
-                            int(round(cfg.duration / STEP)) + 1, wall_elements,
-                            config.pile_axial_size or config.mesh_size)
+    kernel = ring_kernel(config.material, r_in, r_out, config.modelled_pile_length, STEP,
+                         int(round(cfg.duration / STEP)) + 1, wall_elements,
+                         config.pile_axial_size or config.mesh_size)
     groups = rings[wall_elements]
     contact = fea_ring_contact(config.material, r_in, r_out,
                                [anvil.areas[g].sum() for g in groups], wall_elements)

@@ -210,17 +210,18 @@ def _table1(study):
     return cfg, r_out - section.wall_thickness, r_out
 
 
-def test_fe_pile_kernel_reproduces_the_fea_pile(study):
-    """The ring kernel of the FEA's pile (:func:`fe_pile_kernel`), driven by the contact forces
-    the reference FEA itself records on the pile top's nodes in the Table 1 blow (8 ms, a
-    boundary node's force split half and half between its two rings), gives the FEA's
-    area-weighted mean pile-head displacement within 0.5 % of its peak, RMS (measured 0.02 %),
-    and its velocity within 2 % (measured 0.4 %: the kernel takes the forces as linear between
-    the FEA's 10 us samples, whose content reaches beyond 20 kHz). A 30 m tube stands for the
-    80 m pile: its toe reflection returns after 11.6 ms."""
+def test_ring_kernel_reproduces_the_fea_pile(study):
+    """The ring kernel of the FEA's pile (:func:`pile.head_kernel.ring_kernel`), driven by the
+    contact forces the reference FEA itself records on the pile top's nodes in the Table 1 blow (8
+    ms, a boundary node's force split half and half between its two rings), gives the FEA's
+    area-weighted mean pile-head displacement within 0.5 % of its peak, RMS (measured 0.02 %), and
+    its velocity within 2 % (measured 0.4 %: the kernel takes the forces as linear between the FEA's
+    10 us samples, whose content reaches beyond 20 kHz). A 30 m tube stands for the 80 m pile: its
+    toe reflection returns after 11.6 ms."""
     from scipy.integrate import cumulative_trapezoid
 
     from anvilwave.compare import fea_config
+    from pile.head_kernel import ring_kernel
 
     cfg, r_in, r_out = _table1(study)
     record = study.instrumented_fea(cfg, duration=0.008)
@@ -228,8 +229,8 @@ def test_fe_pile_kernel_reproduces_the_fea_pile(study):
     h = config.output_interval
     edges = np.linspace(r_in, r_out, config.pile_wall_elements + 1)
     rings = record["pile_forces [N]"] @ study.annulus_weights(record["pile_radii [m]"], edges)
-    kernel = study.fe_pile_kernel(config.material, r_in, r_out, 30.0, h, rings.shape[0],
-                                  config.pile_wall_elements, config.mesh_size)
+    kernel = ring_kernel(config.material, r_in, r_out, 30.0, h, rings.shape[0],
+                         config.pile_wall_elements, config.mesh_size)
     change = rings - rings[0]  # the FEA starts at rest under gravity
     u = np.array([np.einsum("kij,kj->i", kernel[:s + 1], change[s::-1])
                   for s in range(rings.shape[0])])
