@@ -107,17 +107,53 @@ def contact_lcp(A, g, F, active, work):
 
 
 @njit(cache=True, inline='always')
-def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, ut, vt, ring, T, elastic):
+def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, ut, vt, ring, T, elastic, shift):
     """The overlaps g (1 + K) of the ram face and the rings, with the dashpots folded in
-    (``elastic``: without them)."""
+    (``elastic``: without them); ``shift`` (K) [m] moves the rings' pile side down (the tube
+    head's correction, :func:`head_push`; zeros for the 1D head)."""
     K = ring.shape[1]
     g[0] = u_ram - ut
     if not elastic:
         g[0] += T[0] * (v_ram - vt)
     for k in range(K):
-        g[1 + k] = ring[0, k] - u_pile
+        g[1 + k] = ring[0, k] - u_pile - shift[k]
         if not elastic:
             g[1 + k] += T[1 + k] * (ring[1, k] - v_pile)
+
+
+@njit(cache=True, inline='always')
+def head_push(rings):
+    """After a step with the ring forces ``rings`` F held: their change since the rest
+    (``rings`` rest) into the tube head's history and its next shift, sum over m >= 1 of
+    D[m] (F_(n+1-m) - F_rest) - D[0] F_rest, with D the dynamic head correction
+    (:func:`pile.head_kernel.head_correction` without its contact springs, which are in A);
+    the shift before is kept as the previous one (for the energy), and the work of the held
+    forces on the shift's change is added to ``rings`` count[1] [J] (the energy the rings hand
+    to the tube head beyond the 1D head and beyond D[0], whose part is the contacts'
+    complementary energy). A kernel of one step (the 1D head: D = 0) leaves the shift at
+    zero."""
+    F, D, history, shift, rest, count = (rings[4], rings[9], rings[10], rings[11], rings[12],
+                                         rings[13])
+    L = D.shape[0]
+    K = D.shape[1]
+    n = int(count[0])
+    if n < L:
+        for k in range(K):
+            history[n, k] = F[1 + k] - rest[k]
+        n += 1
+        count[0] = n
+    work = 0.0
+    for k in range(K):
+        shift[1, k] = shift[0, k]
+        total = 0.0
+        for l in range(K):
+            total -= D[0, k, l] * rest[l]
+        for m in range(1, min(n, L - 1) + 1):
+            for l in range(K):
+                total += D[m, k, l] * history[n - m, l]
+        shift[0, k] = total
+        work += F[1 + k] * (shift[0, k] - shift[1, k])
+    count[1] += work
 
 
 @njit(cache=True, inline='always')
@@ -129,7 +165,8 @@ def ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile):
     active = scratch[:, 0]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, False)
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, False,
+                  rings[11][0])
     contact_lcp(A, g, F, active, work)
     total = 0.0
     for k in range(1, m):
@@ -148,7 +185,8 @@ def ring_elastic_forces(rings, interface, u_ram, v_ram, u_pile, v_pile):
     active = scratch[:, 1]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, True)
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, True,
+                  rings[11][0])
     contact_lcp(A, g, E, active, work)
     power = (F[0] - E[0]) * (v_ram - interface[1])
     total = 0.0
@@ -212,6 +250,7 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
     interface[1] = vt
     interface[2] = ub
     interface[3] = vb
+    head_push(rings)
 
 
 @njit(cache=True)
@@ -242,7 +281,7 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
             previous[0, k] += RP[j, k] * qp
     g = np.empty(m)
     ring_overlaps(g, u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0, ut_prev, 0.0, previous,
-                  rings[2], True)
+                  rings[2], True, rings[11][1])
     F0 = np.zeros(m)
     active = scratch[:, 0].copy()
     contact_lcp(A, g, F0, active, np.empty((m, m + 1)))

@@ -72,6 +72,10 @@ class AnvilUnit:
     anvil: ModalAnvil
     contact: ContactParameters
     gravity: float = GRAVITY
+    head: tuple | None = None
+    """A tube head under the rings (:func:`pile.head_kernel.head_correction`): (D, springs),
+    D (L, K, K) [m/N] what the tube adds to the 1D head at each lag (at lag 0 without the
+    contact springs), springs (K,) [N/m] the rings' contacts on the tube; None: the 1D head."""
 
     def __post_init__(self):
         r = self.anvil.residual_flexibility
@@ -92,17 +96,37 @@ class AnvilUnit:
         self.set_step(1e-5)
 
     def _ring_arrays(self) -> tuple:
-        """The ring kernels' data (:mod:`anvil_rom.rings`): RP, A, T, W, F, E, ring, scratch, R;
-        the pile contact's spring and dashpot shared by ring area."""
+        """The ring kernels' data (:mod:`anvil_rom.rings`): RP, A, T, W, F, E, ring, scratch, R,
+        then the head's D, history, shift, rest and count; the pile contact's spring and
+        dashpot shared by ring area (on a tube head: its springs, its D[0] in A)."""
         a, c = self.anvil, self.contact
         shares = a.ring_areas / a.ring_areas.sum()
         K = shares.size
-        A = ring_matrix(c.ram_stiffness, c.pile_stiffness * shares, a.residual_rings)
-        T = np.r_[c.ram_damping / c.ram_stiffness,
-                  np.full(K, c.pile_damping / c.pile_stiffness)]
+        springs = c.pile_stiffness * shares
+        D = np.zeros((1, K, K))
+        if self.head is not None:
+            D, springs = (np.ascontiguousarray(x, dtype=float) for x in self.head)
+            if D.ndim != 3 or D.shape[1:] != (K, K) or springs.shape != (K,):
+                raise ValueError(f"the tube head needs ({K}, {K}) lags and {K} springs for "
+                                 f"{K} rings, got {D.shape} and {springs.shape}")
+        self.ring_springs = springs
+        A = ring_matrix(c.ram_stiffness, springs, a.residual_rings)
+        A[1:, 1:] += 0.5 * (D[0] + D[0].T)
+        T = np.r_[c.ram_damping / c.ram_stiffness, c.pile_damping * shares / springs]
         scratch = np.zeros((K + 1, K + 5))
         return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(K + 1),
-                np.zeros(K + 1), np.zeros((2, K)), scratch, a.residual_rings)
+                np.zeros(K + 1), np.zeros((2, K)), scratch, a.residual_rings, D,
+                np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2))
+
+    def restart_head(self, rings: tuple | None = None) -> None:
+        """Start the tube head's history afresh from the present ring forces (a blow's start):
+        its changes are measured from them."""
+        rings = self.rings if rings is None else rings
+        F, D, shift, rest, count = rings[4], rings[9], rings[11], rings[12], rings[13]
+        rest[:] = F[1:]
+        count[:] = 0.0
+        shift[0] = -(D[0] @ rest)
+        shift[1] = shift[0]
 
     @property
     def n_modes(self) -> int:
@@ -150,8 +174,7 @@ class AnvilUnit:
         which of them carry the weight, from :func:`anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
         RP, F, scratch = self.rings[0], self.rings[4], self.rings[7]
-        k_rings = self.contact.pile_stiffness * self.rings[3]
-        forces, u0 = ring_static_rest(a.omega, a.participation_rings, k_rings,
+        forces, u0 = ring_static_rest(a.omega, a.participation_rings, self.ring_springs,
                                       a.residual_rings[1:, 1:], weight)
         q = np.zeros(a.n_modes)
         flexible = a.omega > 0.0
@@ -163,6 +186,7 @@ class AnvilUnit:
         F[0] = 0.0
         F[1:] = forces
         scratch[:, :2] = np.r_[0.0, forces > 0.0][:, None]  # the active sets to start from
+        self.restart_head()
         u_top = float(a.participation_ram @ q - a.residual_rings[0, 1:] @ forces)
         return u_top, weight
 

@@ -147,6 +147,34 @@ def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
     return mass, stiffness
 
 
+KERNEL_SUFFIX = ".head.npz"
+
+
+def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step: float,
+                       steps: int, rings: int) -> np.ndarray:
+    """:func:`pile.head_kernel.ring_kernel` of a tube (its arguments), from the cache or
+    computed and stored (it takes tens of seconds for a long tube)."""
+    from pile import head_kernel
+    from pile.head_kernel import ring_kernel
+
+    description = [material.youngs_modulus, material.poisson_ratio, material.density, r_in,
+                   r_out, length, step, int(steps), int(rings), code_version(),
+                   hashlib.sha256(Path(head_kernel.__file__).read_bytes()).hexdigest()]
+    key = hashlib.sha256(json.dumps(description).encode()).hexdigest()
+    path = cache_dir() / (key + KERNEL_SUFFIX)
+    if path.is_file():
+        try:
+            with np.load(path, allow_pickle=False) as npz:
+                kernel = npz["kernel"]
+            if kernel.shape == (int(steps), int(rings), int(rings)):
+                return kernel
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            pass  # unreadable: computed again and replaced below
+    kernel = ring_kernel(material, r_in, r_out, length, step, steps, rings)
+    _write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
+    return kernel
+
+
 def _write_atomic(path: Path, write) -> None:
     """``write(file object)`` into a temporary file beside ``path``, then rename it onto
     ``path``; a cache that cannot be written is skipped (the value is only not reused)."""
@@ -175,7 +203,8 @@ def _store(data, path: Path) -> None:
 def cache_info() -> dict:
     """``{"directory": str, "entries": int, "bytes": int, "files": [...]}`` of the cache; each
     file ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
-    data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain) or ``"unreadable"``."""
+    data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain), ``"head_kernel_steps",
+    "rings"`` (a tube head's ring kernel) or ``"unreadable"``."""
     directory = cache_dir()
     files = sorted(directory.glob("*" + SUFFIX)) if directory.is_dir() else []
     rows = []
@@ -186,6 +215,10 @@ def cache_info() -> dict:
                 with np.load(path, allow_pickle=False) as npz:
                     row.update({"chain_masses": int(npz["mass"].size),
                                 "total_mass [kg]": float(npz["mass"].sum())})
+            elif path.name.endswith(KERNEL_SUFFIX):
+                with np.load(path, allow_pickle=False) as npz:
+                    row.update({"head_kernel_steps": int(npz["kernel"].shape[0]),
+                                "rings": int(npz["kernel"].shape[1])})
             else:
                 from anvil_rom.modalfile import load_modal_data
 

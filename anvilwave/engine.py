@@ -486,6 +486,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                         rings[5][:] = rings[4]
                     kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
                                                    v_ram, u_pile, v_pile)
+                    pot += rings[13][1]  # handed to the tube head (0 on the 1D head)
                 if classic is not None:
                     kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
                                                                         u_ram, u_pile)
@@ -839,9 +840,11 @@ class Engine:
             modal_unit_interface(anvil.P, anvil.C, S, interface)
             modal = (anvil.P, anvil.C, S, interface)
             if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
-                RP, A, T, W, F, E, ring, scratch, R = anvil.unit.rings
+                RP, A, T, W, F, E, ring, scratch, R, D, history, shift, rest, count = (
+                    anvil.unit.rings)
                 rings = (RP, A, T, W, F.copy(), E.copy(), np.empty_like(ring), scratch.copy(),
-                         R)
+                         R, D, np.zeros_like(history), shift.copy(), rest.copy(), count.copy())
+                anvil.unit.restart_head(rings)  # the tube head's history starts with the blow
                 ring_interface(anvil.C, S, RP, h, rings[6])
         elif anvil.kind == "classic":
             classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
@@ -963,8 +966,9 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
         trial[30] = (trial[30][0], trial[30][1].copy())
     # the modal ram's (C, S, toe): the last two change
     trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
-    if trial[32] is not None:  # the rings: F, E, ring and scratch change
-        trial[32] = tuple(a.copy() if i in (4, 5, 6, 7) else a for i, a in enumerate(trial[32]))
+    if trial[32] is not None:  # the rings: F, E, ring, scratch and the head's state change
+        trial[32] = tuple(a.copy() if i in (4, 5, 6, 7, 10, 11, 12, 13) else a
+                          for i, a in enumerate(trial[32]))
     run_blow(*trial)
     _WARM.add(key)
 
@@ -1152,6 +1156,39 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
                              f"{h:g} s is above the stable limit of the anvil contact coupling "
                              f"({limits['anvil coupling']:.3g} s): use a smaller step or omit "
                              "time_step for the automatic choice")
+    if cfg.anvil.model == "rom" and cfg.anvil.pile_head == "tube":
+        anvil = _tube_head(cfg, anvil, arrays, float(h))
     anvil = _set_step(anvil, float(h))
     return Engine(cfg, anvil, ram_mass, ram_stiffness, arrays, float(h), limits, modal,
                   ram_modes)
+
+
+def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> AnvilKernels:
+    """The anvil's rings put on a tube head (``[anvil] pile_head = "tube"``): the pile's top
+    section as an FE tube (:mod:`pile.head_kernel`, cached), its correction to the 1D head for
+    the step ``h`` [s] over one blow, the rings' contact springs the tube's; the anvil rests
+    on it afresh."""
+    from anvil_rom.geometry import STEEL, Material
+    from pile.head_kernel import head_correction, rod_head_response, tube_contact_stiffness
+    from pile.model import substeps
+
+    from .cache import cached_ring_kernel
+
+    unit = anvil.unit
+    pile = cfg.pile_soil.pile
+    top = pile.sections[0]
+    r_out = 0.5 * top.outer_diameter
+    r_in = r_out - top.wall_thickness
+    steps = int(round(cfg.duration / h)) + 1
+    # long enough that its toe echo comes after the blow (the 1D response's rule)
+    length = float(np.ceil(0.6 * top.wave_speed * cfg.duration + 1.0))
+    material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
+    tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
+    n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))
+    rod = rod_head_response(pile, h, steps, n_sub, float(arrays.probes[HEAD_EXTRAPOLATION]))
+    unit.head = (head_correction(tube, rod),
+                 tube_contact_stiffness(top.youngs_modulus, top.wall_thickness,
+                                        unit.anvil.ring_areas))
+    unit.rings = unit._ring_arrays()
+    u_top0, _ = unit.rest_on_pile(0.0)
+    return replace(anvil, S=unit.S.copy(), u_top0=u_top0)

@@ -127,6 +127,11 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         raise InputError(cfg.source, "anvil.model",
                          f"the FMI units model the anvil as 'rom' or 'lumped', not "
                          f"{cfg.anvil.model!r}")
+    if cfg.anvil.model == "rom" and cfg.anvil.pile_head != "rod":
+        raise InputError(cfg.source, "anvil.pile_head",
+                         f"{cfg.anvil.pile_head!r} runs in the in-process engine only (the anvil "
+                         "FMUs put the rings on the 1D head): use the direct engine "
+                         "(--engine direct, compare --rom-engine direct)")
     native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)

@@ -38,6 +38,8 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.static_correction": ("-", True, "residual flexibility of the truncated modes"),
     "anvil.pile_port_rings": ("-", 1, "the pile port split into rings across the wall (rom; "
                                "anvil_rom/rings.py)"),
+    "anvil.pile_head": ("-", "rod", "'rod' (the 1D pile's flat head) or 'tube' (the rings on an "
+                                    "FE tube head, pile/head_kernel.py; pile_port_rings >= 2)"),
     "anvil.mass": ("kg", None, "lumped anvil mass; default the FE mass"),
     "anvil.ram_contact_stiffness": ("N/m", None, "default the ram's toe half segment"),
     "anvil.pile_contact_stiffness": ("N/m", None, "default the pile's top half segment"),

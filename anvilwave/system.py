@@ -72,6 +72,7 @@ class AnvilSettings:
     ram_contact_damping: float = 0.0
     pile_contact_damping: float = 0.0
     classic: DrivingSystem | None = None
+    pile_head: str = "rod"
 
 
 @dataclass(frozen=True)
@@ -292,5 +293,10 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
                                                  "'rom'")
         settings = replace(settings, spec=replace(
             spec, interfaces=replace(spec.interfaces, pile_rings=rings)))
+    head = table.string("pile_head", "rod", choices=("rod", "tube"))
+    if head == "tube" and rings < 2:
+        raise table.error("pile_head", "'tube' puts the rings on an FE tube head: it needs "
+                                       "pile_port_rings >= 2")
+    settings = replace(settings, pile_head=head)
     table.finish()
     return settings

@@ -17,8 +17,9 @@ the loop): recording the time series, the energy bookkeeping at its default inte
 every step. Finally a run of B consecutive blows against B times one blow's stepping (the per-
 blow overhead: state copies, result objects). The modal ram unit's wall time over the chain's is
 printed per anvil model (the issue's bound: at most 1; both run in the one compiled loop, so the
-ratio is the two ram kernels' difference), with the two ram kernels alone, and the pile port in
-three rings (``[anvil] pile_port_rings = 3``) against the one port.
+ratio is the two ram kernels' difference), with the two ram kernels alone, the pile port in
+three rings (``[anvil] pile_port_rings = 3``) against the one port, and the three rings on the
+tube head (``pile_head = "tube"``) against them on the 1D head.
 """
 
 from __future__ import annotations
@@ -184,9 +185,14 @@ def main() -> None:
     spec = cfg.anvil.spec
     ringed = dataclasses.replace(cfg, anvil=dataclasses.replace(cfg.anvil, spec=dataclasses.replace(
         spec, interfaces=dataclasses.replace(spec.interfaces, pile_rings=3))))
-    ratio = alternated_ratio(build_engine(ringed), build_engine(cfg, modal), args.repeat)
+    ringed_engine = build_engine(ringed)
+    ratio = alternated_ratio(ringed_engine, build_engine(cfg, modal), args.repeat)
     print(f"\npile port in three rings / one port: {ratio:.3f} (median wall time of alternated "
           "blows, ROM anvil, recorded, energy bookkeeping)")
+    tube = dataclasses.replace(ringed, anvil=dataclasses.replace(ringed.anvil, pile_head="tube"))
+    ratio = alternated_ratio(build_engine(tube), ringed_engine, args.repeat)
+    print(f"three rings on the tube head / on the 1D head: {ratio:.3f} (pile_head = \"tube\": "
+          "the head's convolution over the blow)")
 
     # B consecutive blows of the default model against B x one blow's stepping (best of three
     # runs: on a shared machine a run of B blows is likelier to be interrupted than one blow)

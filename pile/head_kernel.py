@@ -21,6 +21,8 @@ ends, so G is the pile's until its toe reflection returns, 2 L / c0 after the lo
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
@@ -29,6 +31,9 @@ from numba import njit
 
 from anvil_rom.fe import AxisymmetricModel, annulus_vectors, assemble
 from anvil_rom.geometry import Material
+
+from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, SOIL_ROWS, head_displacement, pile_step
+from .pile import pile_parameters, probe_parameters
 
 SAFETY = 0.9
 """Fraction of the stable central-difference step the substeps use [-]."""
@@ -97,3 +102,50 @@ def ring_kernel(material: Material, r_in: float, r_out: float, length: float, st
     substeps = int(np.ceil(step / (SAFETY * stable_step(K, mass))))
     return hat_responses(K.indptr, K.indices, K.data, 1.0 / mass, np.ascontiguousarray(loads),
                          int(steps), substeps, step / substeps)
+
+
+def tube_contact_stiffness(youngs_modulus: float, wall_thickness: float,
+                           ring_areas: np.ndarray) -> np.ndarray:
+    """The rings' contact springs on the tube head [N/m]: E / h per unit area with h the
+    element size across the wall (the wall over the number of rings), summed over each ring;
+    the reference FEA's penalty (one element layer of compliance)."""
+    ring_areas = np.asarray(ring_areas, float)
+    return youngs_modulus / (wall_thickness / ring_areas.size) * ring_areas
+
+
+def rod_head_response(pile, step: float, steps: int, substeps: int,
+                      extrapolation: float) -> np.ndarray:
+    """The 1D pile's head output (:func:`pile.kernels.head_displacement` with the head
+    ``extrapolation`` ratio of the pile's probes: 0 for the top mass, the system's default) at
+    the steps t_k = k ``step`` [s], k = 0 .. ``steps`` - 1, under a unit force [N] held over
+    the first step: the pile's top section, continued so that no reflection returns within the
+    steps (its segments and damping as the pile's, no soil, no gravity, ``substeps`` sub-steps
+    a step as the pile's), so the semi-infinite 1D head as the kernels discretise it [m/N]."""
+    top = pile.sections[0]
+    pieces = max(1, int(np.ceil(top.length / pile.segment_length - 1e-9)))
+    dx = top.length / pieces
+    needed = 0.6 * top.wave_speed * step * steps + 4.0 * dx  # the toe echo comes after
+    long = replace(pile, sections=(replace(top, length=dx * np.ceil(needed / dx)),))
+    params = pile_parameters(long)
+    probes = probe_parameters(long)
+    probes[HEAD_EXTRAPOLATION] = extrapolation
+    n = params.shape[1]
+    soil = np.zeros((SOIL_ROWS, n + 1))
+    u, v, offset, energy = np.zeros(n), np.zeros(n), np.zeros(n + 1), np.zeros(ENERGY_SIZE)
+    out = np.zeros(steps)
+    for k in range(1, steps):
+        pile_step(params, soil, u, v, offset, energy, 1.0 if k == 1 else 0.0, 0.0, step,
+                  substeps)
+        out[k] = head_displacement(probes, u)
+    return out
+
+
+def head_correction(tube: np.ndarray, rod: np.ndarray) -> np.ndarray:
+    """What the tube head adds to the 1D head under K rings, D (steps, K, K) [m/N]:
+    D[k] = G[k] - g[k] 1 1^T, with G the tube's ring kernel (:func:`ring_kernel`) and g the
+    1D head's response (:func:`rod_head_response`) at the same step. The 1D pile's head face
+    plus sum_k D[k] (F_(n-k) - F_rest) moves the rings as the tube head would, with the 1D
+    pile's own reflections (its soil, its toe); the rings' contact springs are the tube's
+    (:func:`tube_contact_stiffness`) instead of the 1D head's."""
+    steps = min(tube.shape[0], rod.size)
+    return tube[:steps] - rod[:steps, None, None] * np.ones((1,) + tube.shape[1:])
