@@ -118,6 +118,15 @@ class AnvilUnit:
                 np.zeros(K + 1), np.zeros((2, K)), scratch, a.residual_rings, D,
                 np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2))
 
+    def set_head(self, head: tuple) -> tuple[float, float]:
+        """Put the rings on a tube head (``head`` as the field) and rest on it afresh: returns
+        :meth:`rest_on_pile`'s (u_top, weight)."""
+        if self.rings is None:
+            raise ValueError("a tube head needs the pile port in rings")
+        self.head = head
+        self.rings = self._ring_arrays()
+        return self.rest_on_pile(0.0)
+
     def restart_head(self, rings: tuple | None = None) -> None:
         """Start the tube head's history afresh from the present ring forces (a blow's start):
         its changes are measured from them."""

@@ -1186,9 +1186,6 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
     n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))
     rod = rod_head_response(pile, h, steps, n_sub, float(arrays.probes[HEAD_EXTRAPOLATION]))
-    unit.head = (head_correction(tube, rod),
-                 tube_contact_stiffness(top.youngs_modulus, top.wall_thickness,
-                                        unit.anvil.ring_areas))
-    unit.rings = unit._ring_arrays()
-    u_top0, _ = unit.rest_on_pile(0.0)
+    u_top0, _ = unit.set_head((head_correction(tube, rod), tube_contact_stiffness(
+        top.youngs_modulus, top.wall_thickness, unit.anvil.ring_areas)))
     return replace(anvil, S=unit.S.copy(), u_top0=u_top0)
