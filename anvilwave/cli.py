@@ -711,6 +711,9 @@ def _cache(args: argparse.Namespace) -> int:
         elif "chain_masses" in row:
             print(f"  {name}  modal ram chain of {row['chain_masses']} masses, "
                   f"{row['total_mass [kg]'] / 1e3:.1f} t, {size}")
+        elif "head_kernel_steps" in row:
+            print(f"  {name}  tube head kernel, {row['rings']} rings, "
+                  f"{row['head_kernel_steps']} steps, {size}")
         else:
             print(f"  {name}  {row['modes']:4d} modes to {row['fmax [Hz]']:g} Hz, "
                   f"{row['n_dof']} DOF, {row['total_mass [kg]'] / 1e3:.1f} t, {size}")

@@ -134,6 +134,19 @@ def test_the_modal_ram_chain_is_cached(cache_dir, monkeypatch):
     np.testing.assert_array_equal(again[1], stiffness)
 
 
+def test_the_tube_head_kernel_is_cached_and_listed(cache_dir, monkeypatch, capsys):
+    """A tube head's ring kernel (:func:`pile.head_kernel.ring_kernel`) is computed once, read
+    back unchanged, and listed by ``anvilwave cache info``."""
+    args = (STEEL, 0.95, 1.0, 2.0, 2e-5, 50, 2)
+    kernel = cache.cached_ring_kernel(*args)
+    assert kernel.shape == (50, 2, 2)
+    monkeypatch.setattr("pile.head_kernel.ring_kernel",
+                        lambda *a: (_ for _ in ()).throw(AssertionError("computed again")))
+    np.testing.assert_array_equal(cache.cached_ring_kernel(*args), kernel)
+    assert main(["cache", "info"]) == 0
+    assert "tube head kernel, 2 rings, 50 steps" in capsys.readouterr().out
+
+
 def test_cli_cache_info_and_clear(cache_dir, disc_modes, monkeypatch, capsys):
     monkeypatch.setattr(pipeline, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
