@@ -576,6 +576,10 @@ def _drive(args: argparse.Namespace) -> int:
                                    f"{settings.bound} SRD")
             for depth in settings.time_series_depths:
                 blow = dv.time_series(engine, run_cfg, srd, settings, float(depth))
+                if blow is None:  # the SRD there does not carry the weight: no blow
+                    print(f"{model:7s} no blow at {float(depth):g} m (the pile runs under its "
+                          "own weight there): no time series")
+                    continue
                 write_csv(blow.columns, out.part(f"{prefix}blow_{float(depth):g}m.csv"))
             results[model] = result
             s = result["summary"]

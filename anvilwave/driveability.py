@@ -637,5 +637,6 @@ def bearing_graph(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
 
 
 def time_series(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float):
-    """The last blow at a tip depth with its time series (``.columns`` as impact.csv)."""
+    """The last blow at a tip depth with its time series (``.columns`` as impact.csv); None
+    where the pile runs under its own weight (no blow)."""
     return analyse_depth(engine, cfg, srd, settings, depth, record=True).blow

@@ -261,3 +261,20 @@ def test_stroke_and_efficiency_schedules_give_the_impact_velocity(tmp_path):
     bad.write_text(text.replace("[10.0, 0.9]", "[10.0, 1.9]"))
     with pytest.raises(InputError, match="driveability.efficiency"):
         load_system(bad)
+
+
+def test_time_series_at_a_depth_without_blows(tmp_path, capsys):
+    """``anvilwave drive`` asked for the time series at a tip depth where the pile runs under
+    its own weight (0.5 m: Table 1's SRD there, 5 MN at the toe, is below the 27 MN of pile and
+    hammer) says so and writes the rest, instead of stopping with a traceback."""
+    from anvilwave.cli import main
+
+    text = (EXAMPLES / "table1.toml").read_text().replace('file = "anvils/xl8.toml"',
+                                                          f'file = "{EXAMPLES}/anvils/xl8.toml"')
+    text += "\n[driveability]\ndepths = [0.5]\ntime_series_depths = [0.5]\n"
+    path = tmp_path / "shallow.toml"
+    path.write_text(text)
+    assert main(["drive", str(path), "--out", str(tmp_path / "out")]) == 0
+    assert "no blow at 0.5 m" in capsys.readouterr().out
+    assert (tmp_path / "out" / "driveability.csv").is_file()
+    assert not list((tmp_path / "out").glob("blow_*.csv"))
