@@ -808,6 +808,12 @@ class Engine:
             raise ValueError(f"impact_velocity must be positive [m/s], got {velocity!r}")
         interval = cfg.output_interval if record_interval is None else record_interval
         n_steps = int(round(duration / h))
+        rings = getattr(self.anvil.unit, "rings", None)
+        head = None if rings is None else rings[9]  # the tube head's correction
+        if head is not None and head.shape[0] > 1 and n_steps >= head.shape[0]:
+            raise ValueError(f"duration {duration:g} s is longer than the tube head's kernel "
+                             f"({(head.shape[0] - 1) * h:g} s, [anvil] pile_head = 'tube'): "
+                             "set [simulation] duration to the longest blow")
         record_every = 1 if interval is None else max(1, int(round(interval / h)))
         if energy_interval is None:
             energy_every = record_every * -(-ENERGY_STEPS // record_every)
@@ -1166,8 +1172,9 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
 def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> AnvilKernels:
     """The anvil's rings put on a tube head (``[anvil] pile_head = "tube"``): the pile's top
     section as an FE tube (:mod:`pile.head_kernel`, cached), its correction to the 1D head for
-    the step ``h`` [s] over one blow, the rings' contact springs the tube's; the anvil rests
-    on it afresh."""
+    the step ``h`` [s] over the longest blow the file sets (``[simulation]`` or
+    ``[driveability] duration``), the rings' contact springs the tube's; the anvil rests on it
+    afresh."""
     from anvil_rom.geometry import STEEL, Material
     from pile.head_kernel import head_correction, rod_head_response, tube_contact_stiffness
     from pile.model import substeps
@@ -1179,9 +1186,10 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     top = pile.sections[0]
     r_out = 0.5 * top.outer_diameter
     r_in = r_out - top.wall_thickness
-    steps = int(round(cfg.duration / h)) + 1
+    duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
+    steps = int(round(duration / h)) + 1
     # long enough that its toe echo comes after the blow (the 1D response's rule)
-    length = float(np.ceil(0.6 * top.wave_speed * cfg.duration + 1.0))
+    length = float(np.ceil(0.6 * top.wave_speed * duration + 1.0))
     material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
     tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
     n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))

@@ -162,3 +162,5 @@ def test_tube_head_refusals(table1, tmp_path):
 
     with pytest.raises(InputError, match="pile_head.*in-process engine only"):
         build_system_fmus(on_rings(table1, "tube"), tmp_path / "fmus")
+    with pytest.raises(ValueError, match="longer than the tube head's kernel"):
+        build_engine(on_rings(table1, "tube")).blow(duration=2 * table1.duration)
