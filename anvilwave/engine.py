@@ -1186,6 +1186,12 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     top = pile.sections[0]
     r_out = 0.5 * top.outer_diameter
     r_in = r_out - top.wall_thickness
+    ring = cfg.anvil.spec.interfaces.pile_ring
+    if max(abs(ring[0] - r_in), abs(ring[1] - r_out)) > 1e-3:
+        raise InputError(cfg.source, "anvil.pile_head",
+                         f"the tube head is the pile's top section (walls {r_in:g} to {r_out:g} "
+                         f"m), but the anvil's pile ring spans {ring[0]:g} to {ring[1]:g} m: "
+                         "they must be the same ring (to 1 mm)")
     duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
     steps = int(round(duration / h)) + 1
     # long enough that its toe echo comes after the blow (the 1D response's rule)

@@ -164,3 +164,9 @@ def test_tube_head_refusals(table1, tmp_path):
         build_system_fmus(on_rings(table1, "tube"), tmp_path / "fmus")
     with pytest.raises(ValueError, match="longer than the tube head's kernel"):
         build_engine(on_rings(table1, "tube")).blow(duration=2 * table1.duration)
+    pile = table1.pile_soil.pile
+    thinner = dataclasses.replace(table1, pile_soil=dataclasses.replace(
+        table1.pile_soil, pile=dataclasses.replace(pile, sections=(dataclasses.replace(
+            pile.sections[0], wall_thickness=0.1),) + pile.sections[1:])))
+    with pytest.raises(InputError, match="pile_head.*must be the same ring"):
+        build_engine(on_rings(thinner, "tube"))
