@@ -49,12 +49,13 @@ annuli, each a compression-only contact; and the same without the contact dashpo
 at 0.125 and 0.0625 m segments (the step scaled), with gravity (the anvil starts at rest on
 the rings).
 
-Last, ``closed: the FEA's pile``: the 1D pile is replaced by the reference FEA's own pile, its tube
-as a ring kernel (:func:`pile.head_kernel.ring_kernel`: its mesh, one element per ring, three rings
-across the wall) with the FEA's penalty contacts (:func:`fea_ring_contact`), under one ram port, the
-ram face in six annuli, in two halves of its radius, as a disc and its outer sixth (the rim),
-and in six annuli without the contact dashpot. Every interface is then the FEA's,
-and what remains is the anvil's and the ram's Mode Displacement Method.
+Last, ``closed: the FEA's pile``: the 1D pile is replaced by the reference FEA's own pile, its
+tube as a ring kernel (:func:`pile.head_kernel.ring_kernel`: its mesh, one element per ring,
+three rings across the wall) with the FEA's penalty contacts
+(:func:`pile.head_kernel.tube_contact_stiffness`), under one ram port, the ram face in six
+annuli, in two halves of its radius, as a disc and its outer sixth (the rim), and in six annuli
+without the contact dashpot. Every interface is then the FEA's, and what remains is the anvil's
+and the ram's Mode Displacement Method.
 
 The pile is a 1D rod (0.125 m segments), the step 5 us, unless stated. Printed per variant:
 the band level deviations from the FEA [dB] from 1 to 4 kHz, the largest up to 1.26 kHz and up
@@ -87,7 +88,7 @@ from anvilwave.fea.solver import integrate
 from anvilwave.report import write_csv
 from anvilwave.system import load_system
 from hammer.modal_ram import default_mesh_size, ram_outline
-from pile.head_kernel import ring_kernel
+from pile.head_kernel import ring_kernel, tube_contact_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]
 PATCHES = 6
@@ -333,13 +334,6 @@ def pile_step(u, v, head: float, k_seg: float, mass: float, step: float,
     u += step * v
 
 
-def fea_ring_contact(material, r_in, r_out, ring_areas, wall_elements=3) -> np.ndarray:
-    """The reference FEA's anvil-pile penalty springs summed over each ring [N/m]: E / h per
-    unit area, h the element size through the wall (:data:`anvilwave.fea.impact.
-    DEFAULT_CONTACT_STIFFNESS_FACTOR` = 1)."""
-    return material.youngs_modulus / ((r_out - r_in) / wall_elements) * np.asarray(ring_areas)
-
-
 def run_variant(anvil: Ports, groups, ram_ports, ram_force, duration, pile,
                 tube: Ports | None = None, rotation: HeadRotation | None = None):
     """Pile-head force history [N] (sampled every 2 steps) of one variant: ``groups`` of pile
@@ -452,11 +446,12 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     anvil's first annulus, as in the engine and the FEA; without, the anvil and the pile start
     unloaded.
 
-    With a ``kernel`` (steps, K, K) [m/N] (:func:`pile.head_kernel.ring_kernel`, at this ``step``)
-    the pile is that kernel instead of the 1D rod: the rings' displacements are sum_k kernel[k]
-    F_(n-k) from their rest, kernel[0] in the complementarity problem, and the ring contacts are the
-    springs ``contact`` (K,) [N/m] (:func:`fea_ring_contact`); under gravity the rings rest on a
-    flat head (the pile's static flexibility under the anvil's weight, 3 MN, is left out)."""
+    With a ``kernel`` (steps, K, K) [m/N] (:func:`pile.head_kernel.ring_kernel`, at this
+    ``step``) the pile is that kernel instead of the 1D rod: the rings' displacements are sum_k
+    kernel[k] F_(n-k) from their rest, kernel[0] in the complementarity problem, and the ring
+    contacts are the springs ``contact`` (K,) [N/m]
+    (:func:`pile.head_kernel.tube_contact_stiffness`); under gravity the rings rest on a flat
+    head (the pile's static flexibility under the anvil's weight, 3 MN, is left out)."""
     E, rho, area, _, length = pile
     J, K = len(ram_groups), len(groups)
     # the anvil's ram annuli and the ram's face annuli are the same annuli (ram.areas)
@@ -742,8 +737,8 @@ def main() -> None:
                          int(round(cfg.duration / STEP)) + 1, wall_elements,
                          config.pile_axial_size or config.mesh_size)
     groups = rings[wall_elements]
-    contact = fea_ring_contact(config.material, r_in, r_out,
-                               [anvil.areas[g].sum() for g in groups], wall_elements)
+    contact = tube_contact_stiffness(config.material.youngs_modulus, r_out - r_in,
+                                     [anvil.areas[g].sum() for g in groups])
     print(f"the FEA's pile as a {wall_elements}-ring kernel ({time.perf_counter() - start:.1f} s)",
           flush=True)
     fe_pile = {f"closed: the FEA's pile ({wall_elements} rings), one ram port": (face, damping),
