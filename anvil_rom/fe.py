@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as sla
 import skfem
 from skfem import BilinearForm, LinearForm
 
@@ -257,3 +258,20 @@ def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float
         columns.append(b)
         areas.append(a)
     return np.column_stack(columns), np.array(areas)
+
+
+def max_eigenvalue(stiffness: sp.spmatrix, mass: np.ndarray, tol: float = 1e-4) -> float:
+    """Largest eigenvalue omega_max^2 of M^-1 K [rad^2/s^2], M diagonal.
+
+    Lanczos (ARPACK, which="LA") on the symmetric M^-1/2 K M^-1/2; if it does not converge,
+    the Gershgorin bound max_i sum_j |A_ij| (never below the true value) is used instead.
+    """
+    s = 1.0 / np.sqrt(mass)
+    A = (sp.diags(s) @ stiffness @ sp.diags(s)).tocsr()
+    v0 = np.random.default_rng(0).standard_normal(A.shape[0])
+    try:
+        lam = sla.eigsh(A, k=1, which="LA", tol=tol, v0=v0, ncv=min(40, A.shape[0] - 1),
+                        maxiter=20 * A.shape[0], return_eigenvectors=False)
+        return float(lam[0]) * (1.0 + 10.0 * tol)
+    except sla.ArpackNoConvergence:
+        return float(np.abs(A).sum(axis=1).max())

@@ -1176,7 +1176,12 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     ``[driveability] duration``), the rings' contact springs the tube's; the anvil rests on it
     afresh."""
     from anvil_rom.geometry import STEEL, Material
-    from pile.head_kernel import head_correction, rod_head_response, tube_contact_stiffness
+    from pile.head_kernel import (
+        echo_free_length,
+        head_correction,
+        rod_head_response,
+        tube_contact_stiffness,
+    )
     from pile.model import substeps
 
     from .cache import cached_ring_kernel
@@ -1194,8 +1199,7 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
                          "they must be the same ring (to 1 mm)")
     duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
     steps = int(round(duration / h)) + 1
-    # long enough that its toe echo comes after the blow (the 1D response's rule)
-    length = float(np.ceil(0.6 * top.wave_speed * duration + 1.0))
+    length = echo_free_length(top.wave_speed, duration)
     material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
     tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
     n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))

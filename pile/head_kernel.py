@@ -24,12 +24,10 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as sla
 import skfem
 from numba import njit
 
-from anvil_rom.fe import AxisymmetricModel, annulus_vectors, assemble
+from anvil_rom.fe import AxisymmetricModel, annulus_vectors, assemble, max_eigenvalue
 from anvil_rom.geometry import Material
 
 from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, SOIL_ROWS, head_displacement, pile_step
@@ -48,22 +46,6 @@ def tube_model(material: Material, r_in: float, r_out: float, length: float, rin
     mesh = skfem.MeshQuad.init_tensor(np.linspace(r_in, r_out, rings + 1),
                                       np.linspace(0.0, length, axial + 1))
     return assemble(mesh, material)
-
-
-def stable_step(stiffness: sp.csr_matrix, mass: np.ndarray) -> float:
-    """The central-difference stability limit 2 / omega_max [s] of K and the lumped M
-    (Lanczos on M^-1/2 K M^-1/2; if it does not converge, the Gershgorin bound, never below
-    omega_max^2)."""
-    scale = sp.diags(1.0 / np.sqrt(mass))
-    A = (scale @ stiffness @ scale).tocsr()
-    start = np.random.default_rng(0).standard_normal(A.shape[0])
-    try:
-        largest = sla.eigsh(A, k=1, which="LA", tol=1e-4, v0=start,
-                            ncv=min(40, A.shape[0] - 1), return_eigenvectors=False)[0]
-        largest *= 1.0 + 1e-3
-    except sla.ArpackNoConvergence:
-        largest = float(np.abs(A).sum(axis=1).max())
-    return 2.0 / np.sqrt(largest)
 
 
 @njit(cache=True)
@@ -104,9 +86,17 @@ def ring_kernel(material: Material, r_in: float, r_out: float, length: float, st
     mass = model.lumped_mass()
     K = model.stiffness.tocsr()
     loads, _ = annulus_vectors(model, 0.0, r_in, r_out, rings)
-    substeps = int(np.ceil(step / (SAFETY * stable_step(K, mass))))
+    substeps = int(np.ceil(step / (SAFETY * 2.0 / np.sqrt(max_eigenvalue(K, mass)))))
     return hat_responses(K.indptr, K.indices, K.data, 1.0 / mass, np.ascontiguousarray(loads),
                          int(steps), substeps, step / substeps)
+
+
+def echo_free_length(wave_speed: float, duration: float) -> float:
+    """A pile length [m] whose toe echo comes back after ``duration`` [s]: ceil(0.6 c T + 1 m)
+    with c [m/s] the bar speed, so that even the tube's plate waves (c / sqrt(1 - nu^2), 5 %
+    faster) take longer than T for the 2 L there and back; what :func:`rod_head_response` and
+    the engine's tube take for a semi-infinite pile over a blow."""
+    return float(np.ceil(0.6 * wave_speed * duration + 1.0))
 
 
 def tube_contact_stiffness(youngs_modulus: float, wall_thickness: float,
@@ -129,7 +119,7 @@ def rod_head_response(pile, step: float, steps: int, substeps: int,
     top = pile.sections[0]
     pieces = max(1, int(np.ceil(top.length / pile.segment_length - 1e-9)))
     dx = top.length / pieces
-    needed = 0.6 * top.wave_speed * step * steps + 4.0 * dx  # the toe echo comes after
+    needed = echo_free_length(top.wave_speed, step * steps)
     long = replace(pile, sections=(replace(top, length=dx * np.ceil(needed / dx)),))
     params = pile_parameters(long)
     probes = probe_parameters(long)

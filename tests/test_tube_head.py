@@ -18,7 +18,7 @@ from anvilwave.engine import build_engine
 from anvilwave.report import total_energy
 from anvilwave.system import load_system
 from anvilwave_inputs import InputError
-from pile.head_kernel import rod_head_response, tube_contact_stiffness
+from pile.head_kernel import echo_free_length, rod_head_response, tube_contact_stiffness
 from pile.kernels import HEAD_EXTRAPOLATION, stable_time_step
 from pile.model import substeps
 
@@ -90,8 +90,8 @@ def test_engine_is_the_study_loop_on_the_feas_pile(table1, blows):
         contact = tube_contact_stiffness(config.material.youngs_modulus, r_out - r_in,
                                          [anvil.areas[g].sum() for g in rings])
         # the engine's kernel (the same tube, step and length) from the cache it filled
-        length = float(np.ceil(0.6 * np.sqrt(STEEL.youngs_modulus / STEEL.density)
-                               * table1.duration + 1.0))
+        length = echo_free_length(np.sqrt(STEEL.youngs_modulus / STEEL.density),
+                                  table1.duration)
         kernel = cached_ring_kernel(Material(STEEL.youngs_modulus, STEEL.poisson_ratio,
                                              STEEL.density), r_in, r_out, length, 2e-5,
                                     int(round(table1.duration / 2e-5)) + 1, 3)

@@ -28,11 +28,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as sla
 from numba import njit
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from anvil_rom.contact import contact_force
+from anvil_rom.fe import max_eigenvalue
 
 from .bodies import ContactSet, contact_matrix
 
@@ -101,23 +101,6 @@ class Transient:
     n_steps: int
     wall_time: float
     omega_max: float
-
-
-def max_eigenvalue(stiffness: sp.spmatrix, mass: np.ndarray, tol: float = 1e-4) -> float:
-    """Largest eigenvalue omega_max^2 of M^-1 K [rad^2/s^2], M diagonal.
-
-    Lanczos (ARPACK, which="LA") on the symmetric M^-1/2 K M^-1/2; if it does not converge,
-    the Gershgorin bound max_i sum_j |A_ij| (never below the true value) is used instead.
-    """
-    s = 1.0 / np.sqrt(mass)
-    A = (sp.diags(s) @ stiffness @ sp.diags(s)).tocsr()
-    v0 = np.random.default_rng(0).standard_normal(A.shape[0])
-    try:
-        lam = sla.eigsh(A, k=1, which="LA", tol=tol, v0=v0, ncv=min(40, A.shape[0] - 1),
-                        maxiter=20 * A.shape[0], return_eigenvectors=False)
-        return float(lam[0]) * (1.0 + 10.0 * tol)
-    except sla.ArpackNoConvergence:
-        return float(np.abs(A).sum(axis=1).max())
 
 
 def stable_time_step(system: ExplicitSystem) -> tuple[float, float]:
