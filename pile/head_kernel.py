@@ -30,7 +30,14 @@ from numba import njit
 from anvil_rom.fe import AxisymmetricModel, annulus_vectors, assemble, max_eigenvalue
 from anvil_rom.geometry import Material
 
-from .kernels import ENERGY_SIZE, HEAD_EXTRAPOLATION, SOIL_ROWS, head_displacement, pile_step
+from .kernels import (
+    ENERGY_SIZE,
+    HEAD_EXTRAPOLATION,
+    SOIL_ROWS,
+    head_displacement,
+    pile_advance,
+    sweep_arrays,
+)
 from .pile import pile_parameters, probe_parameters
 
 SAFETY = 0.9
@@ -125,12 +132,11 @@ def rod_head_response(pile, step: float, steps: int, substeps: int,
     probes = probe_parameters(long)
     probes[HEAD_EXTRAPOLATION] = extrapolation
     n = params.shape[1]
-    soil = np.zeros((SOIL_ROWS, n + 1))
+    sweeps = sweep_arrays(params, np.zeros((SOIL_ROWS, n + 1)), 0.0)  # prepared once
     u, v, offset, energy = np.zeros(n), np.zeros(n), np.zeros(n + 1), np.zeros(ENERGY_SIZE)
     out = np.zeros(steps)
     for k in range(1, steps):
-        pile_step(params, soil, u, v, offset, energy, 1.0 if k == 1 else 0.0, 0.0, step,
-                  substeps)
+        pile_advance(*sweeps, u, v, offset, energy, 1.0 if k == 1 else 0.0, step, substeps)
         out[k] = head_displacement(probes, u)
     return out
 
