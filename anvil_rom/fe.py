@@ -240,6 +240,15 @@ def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
     return annulus_vectors(model, model.mesh.p[1].max(), r_in, r_out, interfaces.pile_rings)
 
 
+def ram_annulus_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """Load/output vectors of the ram face split into ``interfaces.ram_annuli`` equal-width
+    annuli from the axis to the ram contact radius (:func:`annulus_vectors` on the top face):
+    B (n_free, J) and the annuli's areas (J,) [m^2]."""
+    return annulus_vectors(model, model.mesh.p[1].min(), 0.0, interfaces.ram_contact_radius,
+                           interfaces.ram_annuli)
+
+
 def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int
                     ) -> tuple[np.ndarray, np.ndarray]:
     """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m]

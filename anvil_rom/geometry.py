@@ -100,12 +100,21 @@ class Interfaces:
     pile_contact_width : radial width of the pile wall bearing ring [m].
     pile_rings : the pile port split into this many equal-width rings across the wall, each
         its own uniform pressure and contact [-] (1: one port; see :mod:`anvil_rom.rings`).
+    ram_annuli : the ram port split into this many equal-width annuli from the axis to
+        ``ram_contact_radius``, each its own uniform pressure and contact [-] (1: one port;
+        with pile rings only, :mod:`anvil_rom.rings`).
     """
 
     ram_contact_radius: float
     pile_contact_radius: float
     pile_contact_width: float
     pile_rings: int = 1
+    ram_annuli: int = 1
+
+    @property
+    def ram_annulus_edges(self) -> np.ndarray:
+        """The ram annuli's edges [m], from the axis to the ram contact radius."""
+        return np.linspace(0.0, self.ram_contact_radius, self.ram_annuli + 1)
 
     @property
     def pile_ring(self) -> tuple[float, float]:

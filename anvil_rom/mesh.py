@@ -23,25 +23,32 @@ _QUAD = ("quad", "quad8", "quad9")
 def split_outline_at_interfaces(outline: np.ndarray, interfaces: Interfaces | None) -> np.ndarray:
     """Insert polygon vertices where the interface regions end on the top and bottom faces.
 
-    The ram face ends at ``ram_contact_radius`` on the top (minimum z) face and the pile ring
-    spans ``pile_ring`` on the bottom (maximum z) face; putting vertices there makes element
-    edges coincide with the interface limits, so the interface load vectors are exact.
+    The ram face ends at ``ram_contact_radius`` on the top (minimum z) face (and, split into
+    annuli, at their edges) and the pile ring spans ``pile_ring`` on the bottom (maximum z)
+    face; putting vertices there makes element edges coincide with the interface limits, so
+    the interface load vectors are exact.
     """
     if interfaces is None:
         return outline
     ztop, zbot = outline[:, 1].min(), outline[:, 1].max()
+    outline = split_outline_at_radii(outline, ztop, interfaces.ram_annulus_edges[1:])
+    return split_outline_at_radii(outline, zbot, interfaces.pile_ring)
+
+
+def split_outline_at_radii(outline: np.ndarray, z: float, radii) -> np.ndarray:
+    """``outline`` with a vertex inserted at each of ``radii`` [m] on its horizontal edges at
+    height ``z`` [m] (where an edge spans that radius)."""
     tol = 1e-9 * max(np.ptp(outline, axis=0).max(), 1.0)
-    cuts = [(ztop, interfaces.ram_contact_radius), *((zbot, r) for r in interfaces.pile_ring)]
     points = [tuple(p) for p in outline]
-    for zface, rcut in cuts:
+    for rcut in radii:
         out = []
         n = len(points)
         for i in range(n):
             a, b = points[i], points[(i + 1) % n]
             out.append(a)
-            horizontal = abs(a[1] - zface) < tol and abs(b[1] - zface) < tol
+            horizontal = abs(a[1] - z) < tol and abs(b[1] - z) < tol
             if horizontal and min(a[0], b[0]) + tol < rcut < max(a[0], b[0]) - tol:
-                out.append((rcut, zface))
+                out.append((rcut, z))
         points = out
     return np.array(points, dtype=float)
 

@@ -35,6 +35,15 @@ ring_flexibility           (K+1,     inertia-relief flexibility between the ram 
                            K+1)      rings, all flexible modes [m/N]
 ring_areas                 (K,)      ring areas, inner ring first [m^2]
 =========================  ========  ==============================================================
+
+Optional keys, present together (and with the ring keys) when the ram port is split into J > 1
+annuli (``ram_port_annuli``); ``ring_flexibility`` is then (J+K, J+K), the annuli first:
+
+=========================  ========  ==============================================================
+participation_ram_annuli   (J, n)    b_annulus,j^T phi_j, uniform pressure on each ram annulus
+                                     [kg^-1/2]
+ram_annulus_areas          (J,)      ram annulus areas, the innermost (a disc) first [m^2]
+=========================  ========  ==============================================================
 """
 
 from __future__ import annotations
@@ -72,6 +81,8 @@ class ModalData:
     participation_rings: np.ndarray | None = None
     ring_flexibility: np.ndarray | None = None
     ring_areas: np.ndarray | None = None
+    participation_ram_annuli: np.ndarray | None = None
+    ram_annulus_areas: np.ndarray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -87,9 +98,12 @@ _SHAPES = {
     "fmax": (), "damping_ratio": (), "material": (3,), "interfaces": (3,),
     "interface_areas": (2,), "n_dof": (), "geometry_hash": (), "source": (),
     "participation_rings": "Kn", "ring_flexibility": "KK", "ring_areas": "K",
+    "participation_ram_annuli": "Jn", "ram_annulus_areas": "J",
 }
 RING_KEYS = ("participation_rings", "ring_flexibility", "ring_areas")
 """The optional keys of a pile port split into rings (all or none)."""
+ANNULUS_KEYS = ("participation_ram_annuli", "ram_annulus_areas")
+"""The optional keys of a ram port split into annuli (both or none, with the ring keys)."""
 
 
 def check_modal_data(data: ModalData, source: str) -> None:
@@ -127,6 +141,12 @@ def check_modal_data(data: ModalData, source: str) -> None:
     if any(present) and not all(present):
         raise bad(RING_KEYS[present.index(False)], "must be given with the other ring keys "
                                                    f"({', '.join(RING_KEYS)})")
+    annuli = [getattr(data, key, None) is not None for key in ANNULUS_KEYS]
+    if any(annuli) and not (all(annuli) and all(present)):
+        missing = [k for k, p in zip(ANNULUS_KEYS + RING_KEYS, annuli + present, strict=True)
+                   if not p][0]
+        raise bad(missing, "must be given with the other ram annulus and ring keys "
+                           f"({', '.join(ANNULUS_KEYS + RING_KEYS)})")
     if all(present):
         _check_rings(data, n, bad)
 
@@ -149,9 +169,33 @@ def _check_rings(data: ModalData, n: int, bad) -> None:
     scale = np.abs(data.participation_pile).max()
     if np.abs(combined - data.participation_pile).max() > 1e-9 * scale:
         raise bad("participation_rings", "area-weighted, must add up to participation_pile")
-    if (G.shape != (K + 1, K + 1) or not np.all(np.isfinite(G))
+    J = 1
+    if getattr(data, "ram_annulus_areas", None) is not None:
+        J = _check_annuli(data, n, bad)
+    if (G.shape != (J + K, J + K) or not np.all(np.isfinite(G))
             or np.abs(G - G.T).max() > 1e-9 * np.abs(G).max()):
-        raise bad("ring_flexibility", f"must be a finite symmetric {K + 1}x{K + 1} matrix [m/N]")
+        raise bad("ring_flexibility", f"must be a finite symmetric {J + K}x{J + K} matrix [m/N]")
+
+
+def _check_annuli(data: ModalData, n: int, bad) -> int:
+    """The ram annulus keys, as the ring keys (their areas sum to the ram face's and their
+    area-weighted participations to the face's); returns their number J."""
+    areas = np.asarray(data.ram_annulus_areas)
+    J = areas.size
+    P = np.asarray(data.participation_ram_annuli)
+    if areas.ndim != 1 or J < 2 or not np.all(np.isfinite(areas)) or np.any(areas <= 0.0):
+        raise bad("ram_annulus_areas", "must hold two or more positive annulus areas [m^2]")
+    face = getattr(data, "interface_areas", None)
+    if face is not None and abs(areas.sum() - face[0]) > 1e-9 * face[0]:
+        raise bad("ram_annulus_areas", "must sum to the ram face's area (interface_areas[0])")
+    if P.shape != (J, n) or not np.all(np.isfinite(P)):
+        raise bad("participation_ram_annuli", f"must have shape ({J}, {n}) (annuli, modes), "
+                                              "finite")
+    combined = (areas / areas.sum()) @ P
+    if np.abs(combined - data.participation_ram).max() > 1e-9 * np.abs(
+            data.participation_ram).max():
+        raise bad("participation_ram_annuli", "area-weighted, must add up to participation_ram")
+    return J
 
 
 def write_modal_data(data: ModalData, fh) -> None:
@@ -195,7 +239,7 @@ def load_modal_data(path: str | Path) -> ModalData:
     kwargs = {}
     for fld in fields(ModalData):
         if fld.name not in content:
-            if fld.name in RING_KEYS:
+            if fld.name in RING_KEYS + ANNULUS_KEYS:
                 continue
             raise InputError(src, fld.name, "is missing")
         value = content[fld.name]

@@ -11,7 +11,13 @@ import numpy as np
 
 from anvilwave_inputs import InputError
 
-from .fe import AxisymmetricModel, assemble, interface_vectors, ring_vectors
+from .fe import (
+    AxisymmetricModel,
+    assemble,
+    interface_vectors,
+    ram_annulus_vectors,
+    ring_vectors,
+)
 from .geometry import AnvilSpec
 from .mesh import build_mesh, to_skfem
 from .modalfile import ModalData
@@ -46,10 +52,16 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
                           source: str = "anvilwave") -> ModalData:
     """Project modes on the interfaces and pack them with the static flexibility; with
     ``spec.interfaces.pile_rings`` > 1 also on the pile's rings (:func:`anvil_rom.fe.
-    ring_vectors`), with the flexibility between the ram face and the rings."""
+    ring_vectors`), with the flexibility between the ram face and the rings; with
+    ``ram_annuli`` > 1 also on the ram face's annuli (:func:`anvil_rom.fe.ram_annulus_vectors`),
+    the flexibility then between the annuli and the rings."""
     itf = spec.interfaces
     B = np.column_stack([b_ram, b_pile])
     rings = {}
+    if itf.ram_annuli > 1 and itf.pile_rings < 2:
+        raise InputError(spec.source, "ram_port_annuli",
+                         "the ram port splits into annuli with the pile port in rings only "
+                         "(pile_port_rings >= 2)")
     if itf.pile_rings > 1:
         B_rings, ring_areas = ring_vectors(model, itf)
         if np.any(ring_areas == 0.0):
@@ -58,15 +70,28 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
                              "many element edges there: refine the mesh (mesh.size) or use "
                              "fewer rings")
         B = np.column_stack([B, B_rings])
+    if itf.ram_annuli > 1:
+        B_annuli, annulus_areas = ram_annulus_vectors(model, itf)
+        if np.any(annulus_areas == 0.0):
+            raise InputError(spec.source, "ram_port_annuli",
+                             f"{itf.ram_annuli} annuli across the ram face need at least as "
+                             "many element edges there: refine the mesh (mesh.size) or use "
+                             "fewer annuli")
+        B = np.column_stack([B, B_annuli])
     participation = B.T @ modes.shapes
     e = model.axial_free
     gravity = modes.shapes.T @ (model.mass @ e)
     flex = elastic_flexibility(model, B)
     flex = 0.5 * (flex + flex.T)
     if itf.pile_rings > 1:
-        ports = np.r_[0, 2:B.shape[1]]  # the ram face, then the rings
-        rings = {"participation_rings": participation[2:],
+        K = itf.pile_rings
+        ram_ports = [0] if itf.ram_annuli == 1 else list(range(2 + K, B.shape[1]))
+        ports = np.r_[ram_ports, 2:2 + K]  # the ram face (or its annuli), then the rings
+        rings = {"participation_rings": participation[2:2 + K],
                  "ring_flexibility": flex[np.ix_(ports, ports)], "ring_areas": ring_areas}
+        if itf.ram_annuli > 1:
+            rings.update(participation_ram_annuli=participation[2 + K:],
+                         ram_annulus_areas=annulus_areas)
         flex = flex[:2, :2]
     mat = spec.material
     return ModalData(

@@ -34,13 +34,61 @@ as one tuple in this order.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numba import njit
 
-from .rom import modal_interface
+from .rom import modal_interface, modal_transition
 
 MAX_PIVOTS_PER_CONTACT = 50
 """Murty's pivoting is finite for a positive definite A; this bounds it all the same."""
+
+
+STATE = (4, 5, 6, 7, 10, 11, 12, 13, 15, 20, 21)
+"""Which of the ring unit's arrays change as it runs (F, E, ring, scratch, the tube head's
+history, shift, rest and count, the ram face's face, state and offsets); the rest is data."""
+
+
+def copy_ring_state(rings: tuple) -> tuple:
+    """``rings`` with its changing arrays (:data:`STATE`) copied and its data shared."""
+    return tuple(a.copy() if i in STATE else a for i, a in enumerate(rings))
+
+
+@dataclass(frozen=True, eq=False)
+class RamFace:
+    """The ram's toe in J equal-width annuli, as the anvil's ram port in annuli sees it: the
+    ram's flexible modes (the rigid one moves every annulus alike and is left out).
+
+    omega : (n,) circular frequencies [rad/s] (all > 0). participation : (J, n) b_a^T phi_j
+    on each annulus [kg^-1/2]. toe : (n,) on the whole toe (the ram unit's), their
+    area-weighted mean. residual : (J, J) the truncated modes' flexibility between the
+    annuli [m/N]. areas : (J,) [m^2].
+    """
+
+    omega: np.ndarray
+    participation: np.ndarray
+    toe: np.ndarray
+    residual: np.ndarray
+    areas: np.ndarray
+
+    @classmethod
+    def of(cls, omega, participation, toe, residual, areas) -> RamFace:
+        """From a ram's modes with its rigid-body mode (omega = 0), which is dropped."""
+        omega = np.asarray(omega, float)
+        flexible = omega > 0.0
+        return cls(omega[flexible], np.asarray(participation, float)[:, flexible],
+                   np.asarray(toe, float)[flexible], np.asarray(residual, float),
+                   np.asarray(areas, float))
+
+    @property
+    def n_annuli(self) -> int:
+        return int(self.areas.size)
+
+    def coefficients(self, h: float) -> np.ndarray:
+        """(n, 5) [a, b, c, m_e, omega^2] of the modes for the step ``h`` [s]
+        (:func:`anvil_rom.rom.modal_transition`, undamped: the ram unit's)."""
+        return np.column_stack([modal_transition(self.omega, 0.0, h), self.omega ** 2])
 
 
 @njit(cache=True, inline='always')
@@ -107,18 +155,22 @@ def contact_lcp(A, g, F, active, work):
 
 
 @njit(cache=True, inline='always')
-def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, ut, vt, ring, T, elastic, shift):
-    """The overlaps g (1 + K) of the ram face and the rings, with the dashpots folded in
-    (``elastic``: without them); ``shift`` (K) [m] moves the rings' pile side down (the tube
-    head's correction, :func:`head_push`; zeros for the 1D head)."""
+def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, elastic, shift, offset, rate):
+    """The overlaps g (J + K) of the ram face's J annuli (``face`` (2, J) the anvil's modal
+    (u, v) there; the ram's toe u_ram, v_ram plus its annuli's ``offset`` and ``rate`` (J),
+    :func:`ram_face_advance`; zeros for one port) and of the K rings, with the dashpots
+    folded in (``elastic``: without them); ``shift`` (K) [m] moves the rings' pile side down
+    (the tube head's correction, :func:`head_push`; zeros for the 1D head)."""
+    J = face.shape[1]
     K = ring.shape[1]
-    g[0] = u_ram - ut
-    if not elastic:
-        g[0] += T[0] * (v_ram - vt)
-    for k in range(K):
-        g[1 + k] = ring[0, k] - u_pile - shift[k]
+    for a in range(J):
+        g[a] = u_ram + offset[a] - face[0, a]
         if not elastic:
-            g[1 + k] += T[1 + k] * (ring[1, k] - v_pile)
+            g[a] += T[a] * (v_ram + rate[a] - face[1, a])
+    for k in range(K):
+        g[J + k] = ring[0, k] - u_pile - shift[k]
+        if not elastic:
+            g[J + k] += T[J + k] * (ring[1, k] - v_pile)
 
 
 @njit(cache=True, inline='always')
@@ -134,12 +186,13 @@ def head_push(rings):
     zero."""
     F, D, history, shift, rest, count = (rings[4], rings[9], rings[10], rings[11], rings[12],
                                          rings[13])
+    J = rings[15].shape[1]
     L = D.shape[0]
     K = D.shape[1]
     n = int(count[0])
     if n < L:
         for k in range(K):
-            history[n, k] = F[1 + k] - rest[k]
+            history[n, k] = F[J + k] - rest[k]
         n += 1
         count[0] = n
     work = 0.0
@@ -152,26 +205,32 @@ def head_push(rings):
             for l in range(K):
                 total += D[m, k, l] * history[n - m, l]
         shift[0, k] = total
-        work += F[1 + k] * (shift[0, k] - shift[1, k])
+        work += F[J + k] * (shift[0, k] - shift[1, k])
     count[1] += work
 
 
 @njit(cache=True, inline='always')
 def ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile):
-    """Contact forces (F_ram, sum of the ring forces) [N] of the neighbour states; the ring
-    forces are left in ``rings`` F (rings = (RP, A, T, W, F, E, ring, scratch))."""
-    A, T, F, ring, scratch = rings[1], rings[2], rings[4], rings[6], rings[7]
+    """Contact forces (F_ram, F_pile) [N] of the neighbour states: the sums over the ram
+    face's annuli and over the rings, whose forces are left in ``rings`` F (``interface`` is
+    not read: the faces are in ``rings``)."""
+    A, T, F, ring, scratch, face, offsets = (rings[1], rings[2], rings[4], rings[6], rings[7],
+                                             rings[15], rings[21])
     m = F.shape[0]
+    J = face.shape[1]
     active = scratch[:, 0]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, False,
-                  rings[11][0])
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, False, rings[11][0],
+                  offsets[0], offsets[2])
     contact_lcp(A, g, F, active, work)
+    ram = 0.0
+    for a in range(J):
+        ram += F[a]
     total = 0.0
-    for k in range(1, m):
+    for k in range(J, m):
         total += F[k]
-    return F[0], total
+    return ram, total
 
 
 @njit(cache=True, inline='always')
@@ -180,27 +239,36 @@ def ring_elastic_forces(rings, interface, u_ram, v_ram, u_pile, v_pile):
     complementary energy the contacts store) and the power [W] the dashpots dissipate at the
     forces ``rings`` F (:func:`anvil_rom.unit.modal_unit_dashpot_power` for rings). Returns
     (elastic F_ram, elastic sum of the ring forces, power)."""
-    A, T, F, E, ring, scratch = rings[1], rings[2], rings[4], rings[5], rings[6], rings[7]
+    A, T, F, E, ring, scratch, face, offsets = (rings[1], rings[2], rings[4], rings[5],
+                                                rings[6], rings[7], rings[15], rings[21])
     m = F.shape[0]
+    J = face.shape[1]
     active = scratch[:, 1]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, interface[0], interface[1], ring, T, True,
-                  rings[11][0])
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, True, rings[11][0],
+                  offsets[0], offsets[2])
     contact_lcp(A, g, E, active, work)
-    power = (F[0] - E[0]) * (v_ram - interface[1])
+    power = 0.0
+    ram = 0.0
+    for a in range(J):
+        power += (F[a] - E[a]) * (v_ram + offsets[2, a] - face[1, a])
+        ram += E[a]
     total = 0.0
-    for k in range(1, m):
-        power += (F[k] - E[k]) * (ring[1, k - 1] - v_pile)
+    for k in range(J, m):
+        power += (F[k] - E[k]) * (ring[1, k - J] - v_pile)
         total += E[k]
-    return E[0], total, power
+    return ram, total, power
 
 
 @njit(cache=True)
-def ring_interface(C, S, RP, h, ring):
-    """The rings' modal (u, v) [m, m/s] of the state into ``ring`` (2, K)."""
+def ring_interface(C, S, rings, h):
+    """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state into
+    ``rings`` ring (2, K) and face (2, J)."""
+    RP, ring, RQ, face = rings[0], rings[6], rings[14], rings[15]
     n = C.shape[0]
     K = RP.shape[1]
+    J = RQ.shape[1]
     inverse_step = 1.0 / h
     for k in range(K):
         u = 0.0
@@ -210,17 +278,78 @@ def ring_interface(C, S, RP, h, ring):
             v += RP[j, k] * ((S[j] - S[n + j]) * inverse_step)
         ring[0, k] = u
         ring[1, k] = v
+    for a in range(J):
+        u = 0.0
+        v = 0.0
+        for j in range(n):
+            u += RQ[j, a] * S[j]
+            v += RQ[j, a] * ((S[j] - S[n + j]) * inverse_step)
+        face[0, a] = u
+        face[1, a] = v
+
+
+@njit(cache=True, inline='always')
+def ram_face_advance(rings, h):
+    """The ram face's annuli over h with their forces (``rings`` F[:J]) held: the ram's
+    flexible modes driven by the annuli's forces (T) and, as the ram unit drives them, by
+    their sum on the whole toe (U), both from rest at the blow's start; the annuli's offsets
+    from the toe, sum_j P_aj T_j - p_j U_j (the ram unit's toe is sum p_j U_j + the rigid
+    mode, which moves every annulus alike), into ``rings`` offsets (now, before, rate). With
+    one port (no modes) the offsets stay zero."""
+    F, Cr, Pr, pr, state, offsets = rings[4], rings[17], rings[18], rings[19], rings[20], rings[21]
+    nr = Cr.shape[0]
+    J = Pr.shape[1]
+    total = 0.0
+    for a in range(J):
+        total += F[a]
+        offsets[1, a] = offsets[0, a]
+        offsets[0, a] = 0.0
+    for j in range(nr):
+        drive = 0.0
+        for a in range(J):
+            drive -= Pr[j, a] * F[a]
+        t = Cr[j, 0] * state[0, j] + Cr[j, 1] * state[1, j] + Cr[j, 2] * drive
+        u = Cr[j, 0] * state[2, j] + Cr[j, 1] * state[3, j] - Cr[j, 2] * pr[j] * total
+        state[1, j] = state[0, j]
+        state[0, j] = t
+        state[3, j] = state[2, j]
+        state[2, j] = u
+        for a in range(J):
+            offsets[0, a] += Pr[j, a] * t - pr[j] * u
+    inverse_step = 1.0 / h
+    for a in range(J):
+        offsets[2, a] = (offsets[0, a] - offsets[1, a]) * inverse_step
+
+
+@njit(cache=True, inline='always')
+def ram_face_energy(rings, h):
+    """(kinetic, strain) [J] the ram's face in annuli adds to the ram unit's, in the shadow
+    form of :func:`hammer.modal_ram.modal_ram_energies`: E(T) - E(U) (:func:`ram_face_advance`:
+    the ram's true flexible state is T, the unit's U)."""
+    Cr, state = rings[17], rings[20]
+    kinetic = 0.0
+    strain = 0.0
+    inverse_step = 1.0 / h
+    for j in range(Cr.shape[0]):
+        rt = (state[0, j] - state[1, j]) * inverse_step
+        ru = (state[2, j] - state[3, j]) * inverse_step
+        kinetic += 0.5 * Cr[j, 3] * (rt * rt - ru * ru)
+        strain += 0.5 * Cr[j, 4] * (state[0, j] * state[1, j] - state[2, j] * state[3, j])
+    return kinetic, strain
 
 
 @njit(cache=True, inline='always')
 def ring_unit_advance(P, C, S, force_ram, rings, interface):
     """Advance the modes over h with the ram force and the ring forces (``rings`` F) held
-    (:func:`anvil_rom.unit.modal_unit_advance` with the pile load split over the rings), then
-    the interface sums of the new state: ``interface`` (u_top, v_top, u_bottom, v_bottom; the
-    bottom as the whole ring's mean) and ``rings`` ring."""
-    RP, F, ring = rings[0], rings[4], rings[6]
+    (:func:`anvil_rom.unit.modal_unit_advance` with the pile load split over the rings and,
+    with J > 1 annuli, the ram load over the annuli; with one port ``force_ram``), then the
+    interface sums of the new state: ``interface`` (u_top, v_top, u_bottom, v_bottom; the
+    bottom as the whole ring's mean), ``rings`` ring and face; then the ram face's annuli
+    (:func:`ram_face_advance`) and the tube head (:func:`head_push`)."""
+    RP, F, ring, RQ, face = rings[0], rings[4], rings[6], rings[14], rings[15]
     n = C.shape[0]
     K = RP.shape[1]
+    J = RQ.shape[1]
     gravity = P[7]
     inverse_step = 1.0 / P[8]
     ut = 0.0
@@ -230,10 +359,18 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
     for k in range(K):
         ring[0, k] = 0.0
         ring[1, k] = 0.0
+    for a in range(J):
+        face[0, a] = 0.0
+        face[1, a] = 0.0
     for j in range(n):
-        f = C[j, 4] * force_ram + C[j, 6] * gravity
+        f = C[j, 6] * gravity
+        if J == 1:
+            f += C[j, 4] * force_ram
+        else:
+            for a in range(J):
+                f += RQ[j, a] * F[a]
         for k in range(K):
-            f -= RP[j, k] * F[1 + k]
+            f -= RP[j, k] * F[J + k]
         q = S[j]
         q_new = C[j, 0] * q + C[j, 1] * S[n + j] + C[j, 2] * f
         qd = (q_new - q) * inverse_step
@@ -246,10 +383,14 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
         for k in range(K):
             ring[0, k] += RP[j, k] * q_new
             ring[1, k] += RP[j, k] * qd
+        for a in range(J):
+            face[0, a] += RQ[j, a] * q_new
+            face[1, a] += RQ[j, a] * qd
     interface[0] = ut
     interface[1] = vt
     interface[2] = ub
     interface[3] = vb
+    ram_face_advance(rings, P[8])
     head_push(rings)
 
 
@@ -260,28 +401,30 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     strain energies and gravity potential, and the complementary energy of the contacts and
     the residual flexibility, F_n^T A F_n-1 / 2 with F_n the elastic forces (``rings`` E, from
     :func:`ring_elastic_forces`) and F_n-1 those one step earlier (neighbours moved back by
-    h v, modes at q_n-1)."""
-    RP, A, E, scratch = rings[0], rings[1], rings[5], rings[7]
+    h v, modes at q_n-1); with the ram face in annuli also what they add to the ram unit's
+    energy (:func:`ram_face_energy`)."""
+    RP, A, E, scratch, RQ, offsets = rings[0], rings[1], rings[5], rings[7], rings[14], rings[21]
     n = C.shape[0]
     K = RP.shape[1]
-    m = K + 1
+    J = RQ.shape[1]
+    m = J + K
     h = P[8]
     inverse_step = 1.0 / h
-    kinetic = 0.0
-    potential = 0.0
-    ut_prev = 0.0
+    kinetic, potential = ram_face_energy(rings, h)
     previous = np.zeros((2, K))
+    face = np.zeros((2, J))
     for j in range(n):
         q, qp = S[j], S[n + j]
         rate = (q - qp) * inverse_step
         kinetic += 0.5 * C[j, 3] * rate * rate
         potential += 0.5 * C[j, 7] ** 2 * q * qp - P[7] * C[j, 6] * 0.5 * (q + qp)
-        ut_prev += C[j, 4] * qp
+        for a in range(J):
+            face[0, a] += RQ[j, a] * qp
         for k in range(K):
             previous[0, k] += RP[j, k] * qp
     g = np.empty(m)
-    ring_overlaps(g, u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0, ut_prev, 0.0, previous,
-                  rings[2], True, rings[11][1])
+    ring_overlaps(g, u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0, face, previous,
+                  rings[2], True, rings[11][1], offsets[1], offsets[2])
     F0 = np.zeros(m)
     active = scratch[:, 0].copy()
     contact_lcp(A, g, F0, active, np.empty((m, m + 1)))
@@ -291,13 +434,22 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     return kinetic, potential
 
 
-def ring_matrix(contact_ram: float, contact_rings: np.ndarray, residual: np.ndarray
+def ring_matrix(contact_ram, contact_rings: np.ndarray, residual: np.ndarray
                 ) -> np.ndarray:
-    """A = diag(1 / k) + D R D (module docstring) of the ram contact stiffness [N/m], the ring
-    contact stiffnesses (K) [N/m] and the residual flexibility R (1 + K, 1 + K) [m/N] between
-    the ram face and the rings."""
-    signs = np.r_[1.0, -np.ones(len(contact_rings))]
-    return np.diag(1.0 / np.r_[contact_ram, contact_rings]) + signs[:, None] * residual * signs
+    """A = C + D R D (module docstring) of the ram contact [N/m] (or, for a ram face in J
+    annuli, the ram's residual flexibility between them (J, J) [m/N]: the contacts' ram
+    side), the ring contact stiffnesses (K) [N/m] and the residual flexibility R (J + K,
+    J + K) [m/N] between the ram face's annuli and the rings; C is block-diagonal, the ram
+    block, then diag(1 / k) of the rings."""
+    ram = np.atleast_2d(contact_ram)
+    if ram.shape == (1, 1):
+        ram = 1.0 / ram
+    J = ram.shape[0]
+    signs = np.r_[np.ones(J), -np.ones(len(contact_rings))]
+    A = signs[:, None] * residual * signs
+    A[:J, :J] += ram
+    A[J:, J:] += np.diag(1.0 / np.asarray(contact_rings, float))
+    return A
 
 
 def ring_static_rest(omega, participation_rings, ring_stiffness, residual_rings, weight
@@ -338,19 +490,28 @@ def ring_static_rest(omega, participation_rings, ring_stiffness, residual_rings,
 @njit(cache=True, inline='always')
 def ring_faces(rings, ut):
     """(u_top, u_bottom) [m] with the static correction at the forces ``rings`` F: the ram
-    face and the rings' area-weighted mean (the whole ring's displacement). ``ut`` is the ram
-    face's modal part; ``rings`` R (its 9th entry) the residual flexibility."""
-    W, F, ring, R = rings[3], rings[4], rings[6], rings[8]
+    face's and the rings' area-weighted means (the whole face's and the whole ring's
+    displacements). ``ut`` is not read (the faces' modal parts are in ``rings``); ``rings`` R
+    (its 9th entry) is the residual flexibility."""
+    W, F, ring, R, face, Wr = rings[3], rings[4], rings[6], rings[8], rings[15], rings[16]
     m = F.shape[0]
-    u_top = ut + R[0, 0] * F[0]
-    for k in range(1, m):
-        u_top -= R[0, k] * F[k]
+    J = face.shape[1]
+    u_top = 0.0
+    for a in range(J):
+        u = face[0, a]
+        for b in range(J):
+            u += R[a, b] * F[b]
+        for k in range(J, m):
+            u -= R[a, k] * F[k]
+        u_top += Wr[a] * u
     u_bottom = 0.0
-    for k in range(1, m):
-        u = ring[0, k - 1] + R[k, 0] * F[0]
-        for l in range(1, m):
+    for k in range(J, m):
+        u = ring[0, k - J]
+        for b in range(J):
+            u += R[k, b] * F[b]
+        for l in range(J, m):
             u -= R[k, l] * F[l]
-        u_bottom += W[k - 1] * u
+        u_bottom += W[k - J] * u
     return u_top, u_bottom
 
 
@@ -361,7 +522,7 @@ def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
     n = C.shape[0]
     ut, vt, _, _ = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
-    ring_interface(C, S, rings[0], P[8], rings[6])
+    ring_interface(C, S, rings, P[8])
     force_ram, force_pile = ring_contact(rings, (ut, vt), u_ram, v_ram, u_pile, v_pile)
     u_top, u_bottom = ring_faces(rings, ut)
     return force_ram, force_pile, u_top, u_bottom

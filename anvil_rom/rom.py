@@ -58,9 +58,11 @@ class ModalAnvil:
     fmax : frequency content [Hz].
     participation_rings : (K, n) the pile port split into K rings (:mod:`anvil_rom.rings`), or
         None (one port).
-    residual_rings : (1 + K, 1 + K) static correction between the ram face and the rings
-        [m/N] (zeros without it), or None.
+    residual_rings : (J + K, J + K) static correction between the ram face (J = 1) or its J
+        annuli and the rings [m/N] (zeros without it), or None.
     ring_areas : (K,) [m^2], or None.
+    participation_ram_annuli : (J, n) the ram port split into J > 1 annuli, or None.
+    ram_annulus_areas : (J,) [m^2], or None.
     """
 
     omega: np.ndarray
@@ -74,6 +76,14 @@ class ModalAnvil:
     participation_rings: np.ndarray | None = None
     residual_rings: np.ndarray | None = None
     ring_areas: np.ndarray | None = None
+    participation_ram_annuli: np.ndarray | None = None
+    ram_annulus_areas: np.ndarray | None = None
+
+    @property
+    def n_annuli(self) -> int:
+        """Annuli of the ram port (1: one port)."""
+        return (1 if self.participation_ram_annuli is None
+                else int(self.participation_ram_annuli.shape[0]))
 
     @property
     def n_rings(self) -> int:
@@ -122,13 +132,18 @@ class ModalAnvil:
         rings = {}
         if getattr(data, "participation_rings", None) is not None:  # a one-port record may lack it
             p_rings = np.asarray(data.participation_rings)[:, keep]
-            k = p_rings.shape[0]
-            ring_residual = np.zeros((k + 1, k + 1))
+            p_faces = p_ram[None, :]
+            if getattr(data, "participation_ram_annuli", None) is not None:
+                p_faces = np.asarray(data.participation_ram_annuli)[:, keep]
+                rings = {"participation_ram_annuli": p_faces,
+                         "ram_annulus_areas": np.asarray(data.ram_annulus_areas, float)}
+            m = p_faces.shape[0] + p_rings.shape[0]
+            ring_residual = np.zeros((m, m))
             if static_correction:
-                ring_residual = residual_flexibility(data.ring_flexibility, omega, p_ram,
+                ring_residual = residual_flexibility(data.ring_flexibility, omega, *p_faces,
                                                      *p_rings)
-            rings = {"participation_rings": p_rings, "residual_rings": ring_residual,
-                     "ring_areas": np.asarray(data.ring_areas, float)}
+            rings.update(participation_rings=p_rings, residual_rings=ring_residual,
+                         ring_areas=np.asarray(data.ring_areas, float))
         return cls(omega, p_ram, p_pile, data.participation_gravity[keep], damping, residual,
                    data.total_mass, fmax, **rings)
 

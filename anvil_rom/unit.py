@@ -24,6 +24,7 @@ from numba import njit
 from anvilwave_inputs import InputError
 
 from .rings import (
+    RamFace,
     ring_faces,
     ring_interface,
     ring_matrix,
@@ -76,6 +77,9 @@ class AnvilUnit:
     """A tube head under the rings (:func:`pile.head_kernel.head_correction`): (D, springs),
     D (L, K, K) [m/N] what the tube adds to the 1D head at each lag (at lag 0 without the
     contact springs), springs (K,) [N/m] the rings' contacts on the tube; None: the 1D head."""
+    ram_face: RamFace | None = None
+    """The ram's face in annuli (:class:`anvil_rom.rings.RamFace`) when the anvil's ram port is
+    in annuli; None: one port."""
 
     def __post_init__(self):
         r = self.anvil.residual_flexibility
@@ -97,11 +101,15 @@ class AnvilUnit:
 
     def _ring_arrays(self) -> tuple:
         """The ring kernels' data (:mod:`anvil_rom.rings`): RP, A, T, W, F, E, ring, scratch, R,
-        then the head's D, history, shift, rest and count; the pile contact's spring and
-        dashpot shared by ring area (on a tube head: its springs, its D[0] in A)."""
+        the head's D, history, shift, rest and count, then the ram face's RQ, face, Wr, Cr, Pr,
+        pr, state and offsets; the pile contact's spring and dashpot shared by ring area (on a
+        tube head: its springs, its D[0] in A); the ram contact one port, or with the ram face
+        in annuli (:attr:`ram_face`) the ram's residual flexibility between them and its
+        dashpot shared by annulus area."""
         a, c = self.anvil, self.contact
         shares = a.ring_areas / a.ring_areas.sum()
         K = shares.size
+        J = a.n_annuli
         springs = c.pile_stiffness * shares
         D = np.zeros((1, K, K))
         if self.head is not None:
@@ -110,13 +118,34 @@ class AnvilUnit:
                 raise ValueError(f"the tube head needs ({K}, {K}) lags and {K} springs for "
                                  f"{K} rings, got {D.shape} and {springs.shape}")
         self.ring_springs = springs
-        A = ring_matrix(c.ram_stiffness, springs, a.residual_rings)
-        A[1:, 1:] += 0.5 * (D[0] + D[0].T)
-        T = np.r_[c.ram_damping / c.ram_stiffness, c.pile_damping * shares / springs]
-        scratch = np.zeros((K + 1, K + 5))
-        return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(K + 1),
-                np.zeros(K + 1), np.zeros((2, K)), scratch, a.residual_rings, D,
-                np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2))
+        face = self.ram_face
+        if J > 1 and face is None:
+            raise ValueError(f"the anvil's ram port is in {J} annuli: it needs the ram face "
+                             "(set_ram_face)")
+        if face is not None and face.n_annuli != J:
+            raise ValueError(f"the ram face has {face.n_annuli} annuli, the anvil's ram port "
+                             f"{J}")
+        if J == 1:
+            A = ring_matrix(c.ram_stiffness, springs, a.residual_rings)
+            T_ram = np.array([c.ram_damping / c.ram_stiffness])
+            RQ = a.participation_ram[:, None]
+            Wr = np.ones(1)
+            Cr, Pr, pr = np.zeros((0, 5)), np.zeros((0, 1)), np.zeros(0)
+        else:
+            A = ring_matrix(face.residual, springs, a.residual_rings)
+            Wr = a.ram_annulus_areas / a.ram_annulus_areas.sum()
+            T_ram = c.ram_damping * Wr * np.diag(face.residual)  # c_a / k_a, k_a = 1 / R_aa
+            RQ = a.participation_ram_annuli.T
+            Cr, Pr, pr = face.coefficients(self._h or 1e-5), face.participation.T, face.toe
+        A[J:, J:] += 0.5 * (D[0] + D[0].T)
+        T = np.r_[T_ram, c.pile_damping * shares / springs]
+        m = J + K
+        scratch = np.zeros((m, m + 4))
+        return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(m),
+                np.zeros(m), np.zeros((2, K)), scratch, a.residual_rings, D,
+                np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2),
+                np.ascontiguousarray(RQ), np.zeros((2, J)), Wr, Cr,
+                np.ascontiguousarray(Pr), pr, np.zeros((4, pr.size)), np.zeros((3, J)))
 
     def set_head(self, head: tuple) -> tuple[float, float]:
         """Put the rings on a tube head (``head`` as the field) and rest on it afresh: returns
@@ -127,15 +156,28 @@ class AnvilUnit:
         self.rings = self._ring_arrays()
         return self.rest_on_pile(0.0)
 
+    def set_ram_face(self, face: RamFace) -> tuple[float, float]:
+        """Put the ram face in annuli (``face``, the ram's, as the anvil's ram port) and rest
+        afresh: returns :meth:`rest_on_pile`'s (u_top, weight)."""
+        if self.rings is None:
+            raise ValueError("a ram face in annuli needs the pile port in rings")
+        self.ram_face = face
+        self.rings = self._ring_arrays()
+        return self.rest_on_pile(0.0)
+
     def restart_head(self, rings: tuple | None = None) -> None:
         """Start the tube head's history afresh from the present ring forces (a blow's start):
-        its changes are measured from them."""
+        its changes are measured from them; the ram face's annuli start at rest (the ram's
+        flexible modes are at rest at impact)."""
         rings = self.rings if rings is None else rings
         F, D, shift, rest, count = rings[4], rings[9], rings[11], rings[12], rings[13]
-        rest[:] = F[1:]
+        J = rings[15].shape[1]
+        rest[:] = F[J:]
         count[:] = 0.0
         shift[0] = -(D[0] @ rest)
         shift[1] = shift[0]
+        rings[20][:] = 0.0
+        rings[21][:] = 0.0
 
     @property
     def n_modes(self) -> int:
@@ -155,6 +197,8 @@ class AnvilUnit:
             self.C[:, :4] = self.anvil.transition(h)
             self.P[8] = h
             self._h = h
+            if self.ram_face is not None and self.rings is not None:
+                self.rings[17][:] = self.ram_face.coefficients(h)
 
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
         """Static equilibrium on the pile under gravity (ram not yet touching).
@@ -182,9 +226,10 @@ class AnvilUnit:
         """:meth:`rest_on_pile` with the pile port split into rings (the rings' forces, and
         which of them carry the weight, from :func:`anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
-        RP, F, scratch = self.rings[0], self.rings[4], self.rings[7]
+        RP, F, scratch, RQ = self.rings[0], self.rings[4], self.rings[7], self.rings[14]
+        J = RQ.shape[1]
         forces, u0 = ring_static_rest(a.omega, a.participation_rings, self.ring_springs,
-                                      a.residual_rings[1:, 1:], weight)
+                                      a.residual_rings[J:, J:], weight)
         q = np.zeros(a.n_modes)
         flexible = a.omega > 0.0
         q[flexible] = -(forces @ a.participation_rings[:, flexible]) / a.omega[flexible] ** 2
@@ -192,11 +237,12 @@ class AnvilUnit:
         n = self.n_modes
         self.S[:n] = q
         self.S[n:] = q
-        F[0] = 0.0
-        F[1:] = forces
-        scratch[:, :2] = np.r_[0.0, forces > 0.0][:, None]  # the active sets to start from
+        F[:J] = 0.0
+        F[J:] = forces
+        scratch[:, :2] = np.r_[np.zeros(J), forces > 0.0][:, None]  # the active sets to start
         self.restart_head()
-        u_top = float(a.participation_ram @ q - a.residual_rings[0, 1:] @ forces)
+        # the ram touches the face's highest annulus first (one port: the face's mean)
+        u_top = float(np.min(q @ RQ - a.residual_rings[:J, J:] @ forces))
         return u_top, weight
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
@@ -232,6 +278,8 @@ class AnvilUnit:
         """The ring forces for a held pile force: those of the last contact problem scaled
         to ``force_pile``, or split by area when they were all zero; F_ram = ``force_ram``."""
         F, shares = self.rings[4], self.rings[3]
+        if self.rings[15].shape[1] > 1:
+            raise ValueError("a ram face in annuli runs in the in-process engine only")
         total = F[1:].sum()
         F[1:] = F[1:] * (force_pile / total) if total > 0.0 else force_pile * shares
         F[0] = force_ram
@@ -239,7 +287,7 @@ class AnvilUnit:
     def _ring_outputs(self, force_ram: float, force_pile: float):
         self._ring_forces(force_ram, force_pile)
         ring = self.rings[6]
-        ring_interface(self.C, self.S, self.rings[0], self.P[8], ring)
+        ring_interface(self.C, self.S, self.rings, self.P[8])
         n = self.n_modes
         ut, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
                                        self.P[8])

@@ -88,7 +88,8 @@ def modal_key(spec, fmax: float) -> str:
         "geometry": spec.geometry_hash(),  # outline or mesh file, material, mesh size
         "interfaces": None if itf is None else [itf.ram_contact_radius, itf.pile_contact_radius,
                                                 itf.pile_contact_width]
-        + ([itf.pile_rings] if itf.pile_rings > 1 else []),  # one port: the keys of before
+        + ([itf.pile_rings] if itf.pile_rings > 1 else [])  # one port: the keys of before
+        + ([itf.ram_annuli] if itf.ram_annuli > 1 else []),
         "fmax": float(fmax),
         "damping_ratio": float(spec.damping_ratio),
         "code": code_version(),

@@ -39,6 +39,8 @@ from numba import njit
 from anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvil_rom.contact import contact_force
 from anvil_rom.rings import (
+    RamFace,
+    copy_ring_state,
     ring_contact,
     ring_elastic_forces,
     ring_faces,
@@ -846,12 +848,10 @@ class Engine:
             modal_unit_interface(anvil.P, anvil.C, S, interface)
             modal = (anvil.P, anvil.C, S, interface)
             if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
-                RP, A, T, W, F, E, ring, scratch, R, D, history, shift, rest, count = (
-                    anvil.unit.rings)
-                rings = (RP, A, T, W, F.copy(), E.copy(), np.empty_like(ring), scratch.copy(),
-                         R, D, np.zeros_like(history), shift.copy(), rest.copy(), count.copy())
-                anvil.unit.restart_head(rings)  # the tube head's history starts with the blow
-                ring_interface(anvil.C, S, RP, h, rings[6])
+                rings = copy_ring_state(anvil.unit.rings)
+                # the tube head's history and the ram face's modes start with the blow
+                anvil.unit.restart_head(rings)
+                ring_interface(anvil.C, S, rings, h)
         elif anvil.kind == "classic":
             classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
         else:
@@ -972,9 +972,8 @@ def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False
         trial[30] = (trial[30][0], trial[30][1].copy())
     # the modal ram's (C, S, toe): the last two change
     trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
-    if trial[32] is not None:  # the rings: F, E, ring, scratch and the head's state change
-        trial[32] = tuple(a.copy() if i in (4, 5, 6, 7, 10, 11, 12, 13) else a
-                          for i, a in enumerate(trial[32]))
+    if trial[32] is not None:  # the rings' state changes
+        trial[32] = copy_ring_state(trial[32])
     run_blow(*trial)
     _WARM.add(key)
 
@@ -1019,7 +1018,8 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass,
             raise InputError(cfg.source, f"anvil.{exc.key}", exc.rule) from None
     else:
         rom = ModalAnvil.rigid(mass)
-    unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity)
+    face = _ram_face(cfg, rom, ram_modes) if rom.n_annuli > 1 else None
+    unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity, ram_face=face)
     u_top0, _ = unit.rest_on_pile(0.0)
     if ram_modes is not None:
         limit = modal_ram_coupled_stable_time_step(
@@ -1031,6 +1031,25 @@ def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass,
                                          unit.contact.pile_stiffness, pile_arrays,
                                          rom.participation_ram, rom.participation_pile)
     return AnvilKernels(settings.model, unit.P, unit.C, unit.S, u_top0, float(limit), 1, unit)
+
+
+def _ram_face(cfg: SystemConfig, rom: ModalAnvil, ram_modes) -> RamFace:
+    """The modal ram's toe in annuli for the anvil's ram port in annuli (``[anvil]
+    ram_port_annuli``): the same annuli, the ram's toe the anvil's ram face (to 1 mm)."""
+    J = rom.n_annuli
+    if ram_modes is None or ram_modes.n_annuli != J:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         f"the anvil's ram port in {J} annuli needs the modal ram unit with its "
+                         "toe in as many annuli ([hammer] ram_model = 'modal', the ROM or "
+                         "lumped anvil)")
+    toe = 0.5 * cfg.hammer.ram.toe_diameter
+    face = cfg.anvil.spec.interfaces.ram_contact_radius
+    if not abs(toe - face) <= 1e-3:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         f"the annuli are the ram toe's (radius {toe:g} m) and the anvil's ram "
+                         f"face's (radius {face:g} m): they must be the same face (to 1 mm)")
+    return RamFace.of(ram_modes.omega, ram_modes.annulus_participation, ram_modes.participation,
+                      ram_modes.annulus_residual, ram_modes.annulus_areas)
 
 
 def _set_step(anvil: AnvilKernels, h: float) -> AnvilKernels:

@@ -38,6 +38,8 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.static_correction": ("-", True, "residual flexibility of the truncated modes"),
     "anvil.pile_port_rings": ("-", 1, "the pile port split into rings across the wall (rom; "
                                "anvil_rom/rings.py)"),
+    "anvil.ram_port_annuli": ("-", 1, "the ram port split into equal-width annuli (rom, modal "
+                               "ram, pile_port_rings >= 2; anvil_rom/rings.py)"),
     "anvil.pile_head": ("-", "rod", "'rod' (the 1D pile's flat head) or 'tube' (the rings on an "
                                     "FE tube head, pile/head_kernel.py; pile_port_rings >= 2)"),
     "anvil.mass": ("kg", None, "lumped anvil mass; default the FE mass"),

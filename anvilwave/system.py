@@ -28,6 +28,8 @@ A system file is TOML (every key is checked; units in brackets)::
     static_correction = true    # optional
     pile_port_rings = 3         # optional (rom only): the pile port split into this many
                                 # rings across the pile wall (default 1; anvil_rom/rings.py)
+    ram_port_annuli = 6         # optional (with pile_port_rings >= 2 and the modal ram): the
+                                # ram port split into this many equal-width annuli (default 1)
     ram_contact_stiffness = 1e12    # [N/m] optional, default: the ram's toe half segment
     ram_contact_damping = "ram-impedance"   # [N s/m] optional (default 0), a number or the
                                 # ram's toe bar impedance A sqrt(E rho)
@@ -179,6 +181,11 @@ def load_system(path: str | Path) -> SystemConfig:
     config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
                           velocity, anvil, pile_soil, drive, srd, install)
     check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
+    if anvil.spec is not None and getattr(anvil.spec.interfaces, "ram_annuli", 1) > 1 and (
+            ram_options["ram_model"] != "modal"):
+        raise InputError(source, "anvil.ram_port_annuli", "the ram face in annuli is the modal "
+                                                          "ram's: it needs [hammer] ram_model = "
+                                                          "'modal'")
     if ram_options["ram_model"] == "modal":
         config = replace(config, hammer=_modal_hammer(hammer, anvil,
                                                       ram_options["ram_mesh_size"], source))
@@ -193,8 +200,9 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
     else:
         fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
     try:
+        annuli = getattr(getattr(anvil.spec, "interfaces", None), "ram_annuli", 1)
         ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
-                        modes=cached_modal_data)
+                        modes=cached_modal_data, annuli=annuli)
     except InputError as exc:
         if exc.key == "fmax":  # the mesh does not resolve fmax
             key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"
@@ -293,6 +301,17 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
                                                  "'rom'")
         settings = replace(settings, spec=replace(
             spec, interfaces=replace(spec.interfaces, pile_rings=rings)))
+    annuli = table.integer("ram_port_annuli", 1, ge=1)
+    if annuli > 1:
+        if rings < 2:
+            raise table.error("ram_port_annuli", "splits the ram port with the pile port in "
+                                                 "rings: it needs pile_port_rings >= 2")
+        if settings.ram_contact_stiffness is not None:
+            raise table.error("ram_port_annuli", "the annuli's contacts are the modal ram's "
+                                                 "residual flexibility: omit "
+                                                 "ram_contact_stiffness")
+        settings = replace(settings, spec=replace(settings.spec, interfaces=replace(
+            settings.spec.interfaces, ram_annuli=annuli)))
     head = table.string("pile_head", "rod", choices=("rod", "tube"))
     if head == "tube" and rings < 2:
         raise table.error("pile_head", "'tube' puts the rings on an FE tube head: it needs "

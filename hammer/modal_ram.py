@@ -42,6 +42,7 @@ from numba import njit
 from anvil_rom.arrays import aligned_zeros
 from anvil_rom.chain import chain_from_modes
 from anvil_rom.geometry import AnvilSpec, Interfaces, Material, validate_outline
+from anvil_rom.mesh import split_outline_at_radii
 from anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave_inputs import InputError
 
@@ -103,7 +104,7 @@ REALISATIONS = ("unit", "chain")
 def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
               mesh_size: float | None = None, source: str = "hammer",
               modes: Callable | None = None, realise: Callable | None = None,
-              realisation: str = "unit") -> RamRod:
+              realisation: str = "unit", annuli: int = 1) -> RamRod:
     """The modal ROM of ``ram`` (given by its sections) up to ``fmax`` [Hz], as a RamRod.
 
     poisson_ratio [-]; mesh_size [m] (default :func:`default_mesh_size`). Errors name
@@ -113,12 +114,13 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
     the toe modes, :attr:`RamRod.modes`, for :class:`ModalRamUnit`) or "chain" (the masses and
     springs of the equivalent chain, from ``realise(omega, participation) -> (mass,
     stiffness)``, default :func:`anvil_rom.chain.chain_from_modes`). The system layer passes
-    its modal-data cache for both.
+    its modal-data cache for both. annuli : the toe also in that many annuli
+    (:func:`modal_ram_modes`).
     """
     if realisation not in REALISATIONS:
         raise ValueError(f"realisation must be one of {REALISATIONS}, got {realisation!r}")
     toe_modes = modal_ram_modes(ram, fmax, poisson_ratio=poisson_ratio, mesh_size=mesh_size,
-                                source=source, modes=modes)
+                                source=source, modes=modes, annuli=annuli)
     if realisation == "unit":
         return _as_unit(ram, toe_modes)
     return modal_ram_chain(ram, toe_modes, realise)
@@ -196,6 +198,12 @@ class RamToeModes:
     participation_gravity : (n,) phi_j^T M e_z [kg^1/2] (only the rigid mode's is non-zero).
     total_mass : [kg]. toe_stiffness : 1 / residual toe flexibility of the truncated modes
     [N/m]. fmax : frequency content [Hz].
+    annulus_participation : (J, n) the toe split into J > 1 equal-width annuli from the axis,
+        uniform pressure on each [kg^-1/2], or None (one port); area-weighted they add up to
+        ``participation``.
+    annulus_residual : (J, J) residual flexibility of the truncated modes between the annuli
+        [m/N] (area-weighted on both sides: 1 / ``toe_stiffness``), or None.
+    annulus_areas : (J,) [m^2], the inner disc first, or None.
     """
 
     omega: np.ndarray
@@ -204,6 +212,14 @@ class RamToeModes:
     total_mass: float
     toe_stiffness: float
     fmax: float
+    annulus_participation: np.ndarray | None = None
+    annulus_residual: np.ndarray | None = None
+    annulus_areas: np.ndarray | None = None
+
+    @property
+    def n_annuli(self) -> int:
+        """Annuli of the toe port (1: one port)."""
+        return 1 if self.annulus_areas is None else int(self.annulus_areas.size)
 
     @property
     def n_modes(self) -> int:
@@ -212,9 +228,11 @@ class RamToeModes:
 
 def modal_ram_modes(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
                     mesh_size: float | None = None, source: str = "hammer",
-                    modes: Callable | None = None) -> RamToeModes:
+                    modes: Callable | None = None, annuli: int = 1) -> RamToeModes:
     """The toe modes of ``ram`` up to ``fmax`` [Hz] (parameters as :func:`modal_ram`), no chain:
-    any number of modes (no double-precision range limit)."""
+    any number of modes (no double-precision range limit). ``annuli`` > 1 also projects them
+    on that many equal-width annuli of the toe (the mesh has vertices at their edges), for a
+    ram face in annuli (:class:`anvil_rom.rings.RamFace`)."""
     if ram.sections is None or not math.isfinite(ram.elastic_modulus):
         raise InputError(source, "ram", "a modal ram needs the ram's shape (diameter and mass "
                                         "or length, or a profile), not a rigid mass or "
@@ -226,7 +244,8 @@ def modal_ram_modes(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_
     material = Material(ram.elastic_modulus, poisson_ratio, ram.density)
     size = default_mesh_size(ram.sections, material, fmax) if mesh_size is None else mesh_size
     return _toe_modes(np.ascontiguousarray(ram.sections, float).tobytes(),
-                      ram.sections.shape[0], material, float(fmax), float(size), source, modes)
+                      ram.sections.shape[0], material, float(fmax), float(size), source, modes,
+                      int(annuli))
 
 
 @lru_cache(maxsize=16)
@@ -242,14 +261,22 @@ def _chain(toe_modes: RamToeModes, realise: Callable | None
 
 @lru_cache(maxsize=16)
 def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax: float,
-               mesh_size: float, source: str, modes: Callable | None) -> RamToeModes:
-    """The toe modes and the toe stiffness; cached per ram and fmax."""
+               mesh_size: float, source: str, modes: Callable | None, annuli: int = 1
+               ) -> RamToeModes:
+    """The toe modes and the toe stiffness (and with ``annuli`` > 1 the toe's annuli); cached
+    per ram and fmax."""
     sections = np.frombuffer(sections_bytes).reshape(n_sections, 3)
     outline = ram_outline(sections)
     validate_outline(outline, source, "ram")
     outer, inner = 0.5 * sections[-1, 1], 0.5 * sections[-1, 2]
     toe = Interfaces(ram_contact_radius=0.5 * sections[0, 1],
-                     pile_contact_radius=0.5 * (outer + inner), pile_contact_width=outer - inner)
+                     pile_contact_radius=0.5 * (outer + inner), pile_contact_width=outer - inner,
+                     pile_rings=annuli)
+    if annuli > 1:  # vertices at the annuli's edges: each facet in one annulus
+        if inner > 0.0:
+            raise InputError(source, "ram", "a ram face in annuli needs a solid toe")
+        outline = split_outline_at_radii(outline, outline[:, 1].max(),
+                                         np.linspace(0.0, outer, annuli + 1)[1:-1])
     spec = AnvilSpec("ram", material, outline=outline, interfaces=toe, mesh_size=mesh_size,
                      fmax=fmax, source=source)
     if modes is None:
@@ -262,10 +289,17 @@ def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax:
     p_toe = np.asarray(data.participation_pile)
     r = residual_flexibility(data.elastic_flexibility, omega, data.participation_ram, p_toe)
     arrays = [omega, p_toe, np.asarray(data.participation_gravity, float)]
-    for a in arrays:
+    face = {}
+    if annuli > 1:
+        P = np.asarray(data.participation_rings)
+        residual = residual_flexibility(data.ring_flexibility, omega, data.participation_ram,
+                                        *P)[1:, 1:]
+        face = {"annulus_participation": P, "annulus_residual": 0.5 * (residual + residual.T),
+                "annulus_areas": np.asarray(data.ring_areas, float)}
+    for a in [*arrays, *face.values()]:
         a.flags.writeable = False
     return RamToeModes(*arrays, total_mass=float(data.total_mass),
-                       toe_stiffness=float(1.0 / r[1, 1]), fmax=float(fmax))
+                       toe_stiffness=float(1.0 / r[1, 1]), fmax=float(fmax), **face)
 
 
 # ------------------------------------------------------------------------- the modal unit
