@@ -132,6 +132,11 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                          f"{cfg.anvil.pile_head!r} runs in the in-process engine only (the anvil "
                          "FMUs put the rings on the 1D head): use the direct engine "
                          "(--engine direct, compare --rom-engine direct)")
+    if cfg.anvil.model == "rom" and cfg.anvil.spec.interfaces.ram_annuli > 1:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         "the ram face in annuli runs in the in-process engine only (Ram.fmu "
+                         "and the anvil FMUs have one toe port): use the direct engine "
+                         "(--engine direct, compare --rom-engine direct)")
     native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)
