@@ -18,8 +18,9 @@ every step. Finally a run of B consecutive blows against B times one blow's step
 blow overhead: state copies, result objects). The modal ram unit's wall time over the chain's is
 printed per anvil model (the issue's bound: at most 1; both run in the one compiled loop, so the
 ratio is the two ram kernels' difference), with the two ram kernels alone, the pile port in
-three rings (``[anvil] pile_port_rings = 3``) against the one port, and the three rings on the
-tube head (``pile_head = "tube"``) against them on the 1D head.
+three rings (``[anvil] pile_port_rings = 3``) against the one port, the three rings on the
+tube head (``pile_head = "tube"``) against them on the 1D head, and on that head the ram port
+in six annuli (``ram_port_annuli = 6``, examples/table1_interfaces.toml) against one.
 """
 
 from __future__ import annotations
@@ -190,9 +191,18 @@ def main() -> None:
     print(f"\npile port in three rings / one port: {ratio:.3f} (median wall time of alternated "
           "blows, ROM anvil, recorded, energy bookkeeping)")
     tube = dataclasses.replace(ringed, anvil=dataclasses.replace(ringed.anvil, pile_head="tube"))
-    ratio = alternated_ratio(build_engine(tube), ringed_engine, args.repeat)
+    tube_engine = build_engine(tube)
+    ratio = alternated_ratio(tube_engine, ringed_engine, args.repeat)
     print(f"three rings on the tube head / on the 1D head: {ratio:.3f} (pile_head = \"tube\": "
           "the head's convolution over the blow)")
+    # the same with the ram port in six annuli (examples/table1_interfaces.toml)
+    faces = load_system(ROOT / "examples" / "table1_interfaces.toml")
+    faces_engine = build_engine(faces)
+    ratio = alternated_ratio(faces_engine, tube_engine, args.repeat)
+    blow = faces_engine.blow()
+    print(f"six ram annuli / one ram port, three rings on the tube head: {ratio:.3f} "
+          f"(ram_port_annuli = 6: the ram's modes twice, a 9-contact problem); the blow "
+          f"{faces.duration / blow.wall_time:.1f}x real time")
 
     # B consecutive blows of the default model against B x one blow's stepping (best of three
     # runs: on a shared machine a run of B blows is likelier to be interrupted than one blow)
