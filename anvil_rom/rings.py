@@ -10,26 +10,44 @@ uniform pressure of its own (its own modal participations p_k) and its own compr
 contact on the pile head, with the pile's contact spring shared by ring area, so the rings
 close one after the other as the tilted face comes down.
 
-With the static correction, the contact forces F = (F_ram, F_1 .. F_K) at an instant solve one
-linear complementarity problem (Cottle, Pang & Stone 1992)::
+The ram port can be split the same way (``Interfaces.ram_annuli``, J equal-width annuli from
+the axis to the ram radius): under the ram's edge the contact pressure peaks, which one uniform
+port cannot carry. Each annulus is its own contact between the same annulus of the ram's toe
+and of the anvil's top face. The ram unit (:class:`hammer.modal_ram.ModalRamUnit`, and its FMU)
+keeps its one toe driven by the sum of the annulus forces; the ring unit carries the ram's
+flexible modes twice, T driven by the annulus forces (the ram's true state) and U by their sum
+as the ram unit drives them, both from rest at impact (:class:`RamFace`,
+:func:`ram_face_advance`), and annulus a sits at the unit's toe plus
+sum_j (P_aj T_j - p_j U_j): exact for the linear ram, whose rigid mode moves every annulus
+alike. The contacts' ram side is the ram's residual flexibility between the annuli.
+
+With the static correction, the contact forces F = (F_1 .. F_J, F_J+1 .. F_J+K) of the ram
+annuli (J = 1: the one ram port) and the rings at an instant solve one linear complementarity
+problem (Cottle, Pang & Stone 1992)::
 
     w = A F - g >= 0,   F >= 0,   F . w = 0,
-    A = diag(1 / k) + D R D,   D = diag(1, -1, .., -1)
+    A = C + D R D,   D = diag(1, .., 1, -1, .., -1)
 
-with g the overlaps of the modal faces (the dashpots folded in as an equivalent overlap
-d + c d' / k, as for the one port, :func:`anvil_rom.rom.anvil_contact_forces`) and R the
-residual flexibility between the ram face and the rings. A is symmetric positive definite, so
-the solution is unique, and Murty's least-index principal pivoting (Murty 1974) reaches it in
-finitely many pivots; it starts from the previous step's active set, which is nearly always the
-answer. With K = 1 this is the one-port problem.
+with C block-diagonal (the ram's side: 1 / k_ram for one port, the ram's residual flexibility
+between its annuli for J > 1; then diag(1 / k) of the rings), g the overlaps of the modal faces
+(the dashpots folded in as an equivalent overlap d + c d' / k, as for the one port,
+:func:`anvil_rom.rom.anvil_contact_forces`) and R the anvil's residual flexibility between the
+ram annuli and the rings. A is symmetric positive definite, so the solution is unique, and
+Murty's least-index principal pivoting (Murty 1974) reaches it in finitely many pivots; it
+starts from the previous step's active set, which is nearly always the answer. With J = K = 1
+this is the one-port problem.
 
-Kernel data (float64, besides the one-port unit's P, C, S of :mod:`anvil_rom.unit`):
-``RP`` (n, K) ring participations; ``A`` (1 + K, 1 + K); ``T`` (1 + K) dashpot ratios c / k;
-``W`` (K) ring area shares; ``F`` (1 + K) the contact forces at t_n (written); ``E`` (1 + K)
-their elastic parts; ``ring`` (2, K) the rings' modal (u, v) of the state; ``scratch``
-(1 + K, 5 + K) for the solvers (the active sets of the forces and of their elastic parts,
-overlaps, elimination); ``R`` (1 + K, 1 + K) the residual flexibility. The engine passes them
-as one tuple in this order.
+Kernel data (float64, besides the one-port unit's P, C, S of :mod:`anvil_rom.unit`), m = J + K:
+``RP`` (n, K) ring participations; ``A`` (m, m); ``T`` (m) dashpot ratios c / k; ``W`` (K)
+ring area shares; ``F`` (m) the contact forces at t_n (written); ``E`` (m) their elastic parts;
+``ring`` (2, K) the rings' modal (u, v) of the state; ``scratch`` (m, m + 4) for the solvers
+(the active sets of the forces and of their elastic parts, overlaps, elimination); ``R`` (m, m)
+the residual flexibility; the tube head's ``D``, ``history``, ``shift``, ``rest``, ``count``
+(:func:`head_push`); the ram face's ``RQ`` (n, J) the anvil's annulus participations, ``face``
+(2, J) their modal (u, v), ``Wr`` (J) their area shares, ``Cr`` (n_r, 5), ``Pr`` (n_r, J),
+``pr`` (n_r) the ram's flexible modes (:class:`RamFace`), ``state`` (4, n_r) T and U now and a
+step before, ``offsets`` (3, J) now, a step before and their rate. The engine passes them as
+one tuple in this order (:data:`STATE` are the arrays that change).
 """
 
 from __future__ import annotations
