@@ -7,8 +7,6 @@ energy), then the refusals."""
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +22,8 @@ from anvilwave.report import total_energy
 from anvilwave.system import load_system
 from anvilwave_inputs import InputError
 from hammer.modal_ram import ModalRamUnit, modal_ram_modes
+
+from .study_loop import loop_on_feas_pile
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -120,38 +120,8 @@ def test_engine_is_the_study_loop_with_six_ram_annuli(table1, blow):
     other code, the anvil and the ram meshed afresh with six patches on their faces, the ram's
     whole modal state instead of the unit plus the annuli's offsets, the FEA's tube kernel as
     the whole pile instead of the 1D pile plus its correction) with the same six ram annuli:
-    pile force within 0.5 % of its peak RMS."""
-    spec = importlib.util.spec_from_file_location("study_pile_port",
-                                                  ROOT / "benchmarks" / "study_pile_port.py")
-    study = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = study
-    try:
-        spec.loader.exec_module(study)
-        from anvil_rom.geometry import STEEL, Material
-        from anvilwave.cache import cached_ring_kernel
-        from pile.head_kernel import echo_free_length, tube_contact_stiffness
-
-        config = fea_config(table1)
-        r_in, r_out = config.pile_ring
-        anvil = study.anvil_ports(table1, r_in, r_out, 0.5 * table1.hammer.ram.toe_diameter)
-        ram = study.ram_face_ports(table1)
-        area = np.pi * (r_out**2 - r_in**2)
-        pile = (STEEL.youngs_modulus, STEEL.density, area, r_out - r_in, 80.0)
-        rings = [[0, 1], [2, 3], [4, 5]]
-        contact = tube_contact_stiffness(config.material.youngs_modulus, r_out - r_in,
-                                         [anvil.areas[g].sum() for g in rings])
-        length = echo_free_length(np.sqrt(STEEL.youngs_modulus / STEEL.density),
-                                  table1.duration)
-        kernel = cached_ring_kernel(Material(STEEL.youngs_modulus, STEEL.poisson_ratio,
-                                             STEEL.density), r_in, r_out, length, 2e-5,
-                                    int(round(table1.duration / 2e-5)) + 1, 3)
-        out, dt = study.run_closed_loop(anvil, ram, rings, [[k] for k in range(study.PATCHES)],
-                                        table1.impact_velocity,
-                                        table1.anvil.ram_contact_damping, table1.duration,
-                                        pile, gravity=table1.gravity, kernel=kernel,
-                                        contact=contact, step=2e-5)
-    finally:
-        del sys.modules[spec.name]
+    pile force within 0.5 % of its peak RMS (measured 0.33 %; the ram force 0.43 %)."""
+    out, dt = loop_on_feas_pile(table1, [[k] for k in range(6)])
     t = np.arange(out.shape[0]) * dt
     engine = np.interp(t, blow.columns["time [s]"], blow.columns["anvil_pile_force [N]"])
     assert np.sqrt(np.mean((engine - out[:, 0]) ** 2)) <= 0.005 * out[:, 0].max()

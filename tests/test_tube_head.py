@@ -6,8 +6,6 @@ the refusals."""
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,9 +16,11 @@ from anvilwave.engine import build_engine
 from anvilwave.report import total_energy
 from anvilwave.system import load_system
 from anvilwave_inputs import InputError
-from pile.head_kernel import echo_free_length, rod_head_response, tube_contact_stiffness
+from pile.head_kernel import rod_head_response
 from pile.kernels import HEAD_EXTRAPOLATION, stable_time_step
 from pile.model import substeps
+
+from .study_loop import loop_on_feas_pile
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -71,37 +71,7 @@ def test_engine_is_the_study_loop_on_the_feas_pile(table1, blows):
     FEA's own pile (benchmarks/study_pile_port.py: other code, the anvil and the ram meshed
     afresh with six patches on their faces, the tube's kernel as the whole pile instead of the
     1D pile plus its correction): pile force within 0.5 % of the peak RMS (measured 0.1 %)."""
-    spec = importlib.util.spec_from_file_location("study_pile_port",
-                                                  ROOT / "benchmarks" / "study_pile_port.py")
-    study = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = study
-    try:
-        spec.loader.exec_module(study)
-        from anvil_rom.geometry import STEEL, Material
-        from anvilwave.cache import cached_ring_kernel
-
-        config = fea_config(table1)
-        r_in, r_out = config.pile_ring
-        anvil = study.anvil_ports(table1, r_in, r_out, 0.5 * table1.hammer.ram.toe_diameter)
-        ram = study.ram_face_ports(table1)
-        area = np.pi * (r_out**2 - r_in**2)
-        pile = (STEEL.youngs_modulus, STEEL.density, area, r_out - r_in, 80.0)
-        rings = [[0, 1], [2, 3], [4, 5]]
-        contact = tube_contact_stiffness(config.material.youngs_modulus, r_out - r_in,
-                                         [anvil.areas[g].sum() for g in rings])
-        # the engine's kernel (the same tube, step and length) from the cache it filled
-        length = echo_free_length(np.sqrt(STEEL.youngs_modulus / STEEL.density),
-                                  table1.duration)
-        kernel = cached_ring_kernel(Material(STEEL.youngs_modulus, STEEL.poisson_ratio,
-                                             STEEL.density), r_in, r_out, length, 2e-5,
-                                    int(round(table1.duration / 2e-5)) + 1, 3)
-        out, dt = study.run_closed_loop(anvil, ram, rings, [list(range(study.PATCHES))],
-                                        table1.impact_velocity,
-                                        table1.anvil.ram_contact_damping, table1.duration,
-                                        pile, gravity=table1.gravity, kernel=kernel,
-                                        contact=contact, step=2e-5)
-    finally:
-        del sys.modules[spec.name]
+    out, dt = loop_on_feas_pile(table1, None)
     t = np.arange(out.shape[0]) * dt
     columns = blows["tube"].columns
     engine = np.interp(t, columns["time [s]"], columns["anvil_pile_force [N]"])
