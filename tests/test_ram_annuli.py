@@ -166,22 +166,24 @@ def test_peaks_against_the_fea(against_fea):
 
 def test_energy_balance(blow):
     """The blow's total energy, what the annuli add to the ram unit's energy and what the rings
-    hand to the tube head included, stays within 0.5 % of the impact energy (measured -0.22 %
+    hand to the tube head included, stays within 0.5 % of the impact energy (measured -0.21 %
     to +0.25 %, the tube head's with one ram port -0.19 % to +0.25 %)."""
     total = total_energy(blow.energies)
     drift = (total - total[0]) / blow.input_energy
     assert np.abs(drift).max() <= 5e-3
 
 
-def test_no_worse_at_fmax_10_khz(against_fea, tmp_path):
-    """The anvil's and the ram's modes to 10 kHz (172 and 502), a 5 us step: every valid band
-    to 4 kHz still within 1 dB of the FEA (measured 0.61 dB; 0.71 at 5 kHz), the band peaks
-    within the issue's bounds (pile +0.2 %, ram -0.8 %) and the energy within 0.5 % (measured
-    -0.10 %)."""
+@pytest.mark.parametrize("step", [5e-6, 1e-5])
+def test_no_worse_at_fmax_10_khz(against_fea, tmp_path, step):
+    """The anvil's and the ram's modes to 10 kHz (172 and 502), a 5 or 10 us step: every valid
+    band to 4 kHz still within 1 dB of the FEA (measured 0.61 and 0.66 dB; 0.71 at 5 kHz), the
+    band peaks within the issue's bounds (pile +0.2 %, ram -0.8 % at 5 us) and the energy
+    within 0.5 % (measured -0.10 %; at 10 us it drifted +2.0 % while the tube head booked its
+    work with the held force's rectangle, :func:`anvil_rom.rings.head_push`)."""
     path = _system(tmp_path, "fmax = 5000.0 ", "fmax = 10000.0", "fmax10.toml")
-    path.write_text(path.read_text().replace("time_step = 2.0e-5 ", "time_step = 5.0e-6 "))
+    path.write_text(path.read_text().replace("time_step = 2.0e-5 ", f"time_step = {step!r} "))
     cfg = without_soil(load_system(path))
-    assert cfg.time_step == 5e-6 and cfg.anvil.fmax == 10000.0
+    assert cfg.time_step == step and cfg.anvil.fmax == 10000.0
     blow = build_engine(cfg).blow(energy_interval=2e-5)
     runs = {"fea": against_fea["fea"], "rom": ModelRun("rom", blow.columns, 0.0, {})}
     spectra = band_levels(runs, 5000.0)
