@@ -202,7 +202,7 @@ def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> tuple[dict, dic
 
 
 INTERFACES = "table1_interfaces.toml"
-"""Table 1 with the anvil's interfaces resolved (the demo's last step)."""
+"""Table 1 with the anvil's interfaces resolved (the demo's fourth step)."""
 
 
 def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> dict:
