@@ -57,7 +57,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .rom import modal_interface, modal_transition
+from .rom import modal_transition
 
 MAX_PIVOTS_PER_CONTACT = 50
 """Murty's pivoting is finite for a positive definite A; this bounds it all the same."""
@@ -232,10 +232,10 @@ def head_push(rings):
 
 
 @njit(cache=True, inline='always')
-def ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile):
+def ring_contact(rings, u_ram, v_ram, u_pile, v_pile):
     """Contact forces (F_ram, F_pile) [N] of the neighbour states: the sums over the ram
-    face's annuli and over the rings, whose forces are left in ``rings`` F (``interface`` is
-    not read: the faces are in ``rings``)."""
+    face's annuli and over the rings, whose forces are left in ``rings`` F (the faces' modal
+    states are ``rings`` ring and face)."""
     A, T, F, ring, scratch, face, offsets = (rings[1], rings[2], rings[4], rings[6], rings[7],
                                              rings[15], rings[21])
     m = F.shape[0]
@@ -256,7 +256,7 @@ def ring_contact(rings, interface, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True, inline='always')
-def ring_elastic_forces(rings, interface, u_ram, v_ram, u_pile, v_pile):
+def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
     """The contact forces without the dashpots into ``rings`` E (their elastic parts, whose
     complementary energy the contacts store) and the power [W] the dashpots dissipate at the
     forces ``rings`` F (:func:`anvil_rom.unit.modal_unit_dashpot_power` for rings). Returns
@@ -510,11 +510,11 @@ def ring_static_rest(omega, participation_rings, ring_stiffness, residual_rings,
 
 
 @njit(cache=True, inline='always')
-def ring_faces(rings, ut):
+def ring_faces(rings):
     """(u_top, u_bottom) [m] with the static correction at the forces ``rings`` F: the ram
     face's and the rings' area-weighted means (the whole face's and the whole ring's
-    displacements). ``ut`` is not read (the faces' modal parts are in ``rings``); ``rings`` R
-    (its 9th entry) is the residual flexibility."""
+    displacements), from their modal parts (``rings`` face and ring) and the residual
+    flexibility ``rings`` R (its 9th entry)."""
     W, F, ring, R, face, Wr = rings[3], rings[4], rings[6], rings[8], rings[15], rings[16]
     m = F.shape[0]
     J = face.shape[1]
@@ -540,11 +540,9 @@ def ring_faces(rings, ut):
 @njit(cache=True)
 def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour
-    states, from its state alone (the anvil FMU's feedthrough): the interface sums, the
+    states, from its state alone (the anvil FMU's feedthrough): the faces' modal sums, the
     rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
-    n = C.shape[0]
-    ut, vt, _, _ = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     ring_interface(C, S, rings, P[8])
-    force_ram, force_pile = ring_contact(rings, (ut, vt), u_ram, v_ram, u_pile, v_pile)
-    u_top, u_bottom = ring_faces(rings, ut)
+    force_ram, force_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
+    u_top, u_bottom = ring_faces(rings)
     return force_ram, force_pile, u_top, u_bottom

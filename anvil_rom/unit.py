@@ -289,9 +289,9 @@ class AnvilUnit:
         ring = self.rings[6]
         ring_interface(self.C, self.S, self.rings, self.P[8])
         n = self.n_modes
-        ut, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
-                                       self.P[8])
-        u_top, u_bottom = ring_faces(self.rings, ut)
+        _, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
+                                      self.P[8])
+        u_top, u_bottom = ring_faces(self.rings)
         return u_top, vt, u_bottom, float(self.rings[3] @ ring[1])
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float

@@ -421,12 +421,12 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                     modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
                 work_contact += h * power
         if modal is not None and rings is not None:
-            f_ram, f_pile = ring_contact(rings, modal[3], u_ram, v_ram, u_pile, v_pile)
+            f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
             fe_ram = f_ram
             fe_pile = f_pile
             if damped:
-                fe_ram, fe_pile, power = ring_elastic_forces(rings, modal[3], u_ram, v_ram,
-                                                             u_pile, v_pile)
+                fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile,
+                                                             v_pile)
                 work_contact += h * power
         if classic is not None:
             f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
@@ -462,7 +462,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                     u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
                     u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
                 if modal is not None and rings is not None:
-                    u_top, u_bottom = ring_faces(rings, modal[3][0])
+                    u_top, u_bottom = ring_faces(rings)
                 out[0, row - 1] = t0 + n * h
                 out[1, row - 1] = f_ram
                 out[2, row - 1] = f_pile
