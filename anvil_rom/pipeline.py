@@ -63,20 +63,13 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
                          "the ram port splits into annuli with the pile port in rings only "
                          "(pile_port_rings >= 2)")
     if itf.pile_rings > 1:
-        B_rings, ring_areas = ring_vectors(model, itf)
-        if np.any(ring_areas == 0.0):
-            raise InputError(spec.source, "pile_port_rings",
-                             f"{itf.pile_rings} rings across the pile wall need at least as "
-                             "many element edges there: refine the mesh (mesh.size) or use "
-                             "fewer rings")
+        B_rings, ring_areas = _split_port(ring_vectors(model, itf), spec, "pile_port_rings",
+                                          itf.pile_rings, "rings", "the pile wall")
         B = np.column_stack([B, B_rings])
     if itf.ram_annuli > 1:
-        B_annuli, annulus_areas = ram_annulus_vectors(model, itf)
-        if np.any(annulus_areas == 0.0):
-            raise InputError(spec.source, "ram_port_annuli",
-                             f"{itf.ram_annuli} annuli across the ram face need at least as "
-                             "many element edges there: refine the mesh (mesh.size) or use "
-                             "fewer annuli")
+        B_annuli, annulus_areas = _split_port(ram_annulus_vectors(model, itf), spec,
+                                              "ram_port_annuli", itf.ram_annuli, "annuli",
+                                              "the ram face")
         B = np.column_stack([B, B_annuli])
     participation = B.T @ modes.shapes
     e = model.axial_free
@@ -105,6 +98,18 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
         interface_areas=np.array(areas), n_dof=model.n_dof, geometry_hash=spec.geometry_hash(),
         source=source, **rings,
     )
+
+
+def _split_port(vectors: tuple[np.ndarray, np.ndarray], spec: AnvilSpec, key: str,
+                count: int, parts: str, where: str) -> tuple[np.ndarray, np.ndarray]:
+    """A port's (load vectors, areas) split into ``count`` ``parts`` across ``where``
+    (:func:`anvil_rom.fe.annulus_vectors`), refused under ``key`` when a part has no facet (a
+    mesh coarser than the parts)."""
+    if np.any(vectors[1] == 0.0):
+        raise InputError(spec.source, key, f"{count} {parts} across {where} need at least as "
+                                           "many element edges there: refine the mesh "
+                                           f"(mesh.size) or use fewer {parts}")
+    return vectors
 
 
 def compute_anvil_modes(spec: AnvilSpec, fmax: float | None = None) -> AnvilModes:

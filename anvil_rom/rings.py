@@ -287,27 +287,23 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
 def ring_interface(C, S, rings, h):
     """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state into
     ``rings`` ring (2, K) and face (2, J)."""
-    RP, ring, RQ, face = rings[0], rings[6], rings[14], rings[15]
-    n = C.shape[0]
-    K = RP.shape[1]
-    J = RQ.shape[1]
+    _port_sums(C.shape[0], S, rings[0], h, rings[6])
+    _port_sums(C.shape[0], S, rings[14], h, rings[15])
+
+
+@njit(cache=True, inline='always')
+def _port_sums(n, S, participations, h, out):
+    """The modal (u, v) [m, m/s] of the state S (2 n) at ports of ``participations`` (n, ports)
+    into ``out`` (2, ports)."""
     inverse_step = 1.0 / h
-    for k in range(K):
+    for k in range(participations.shape[1]):
         u = 0.0
         v = 0.0
         for j in range(n):
-            u += RP[j, k] * S[j]
-            v += RP[j, k] * ((S[j] - S[n + j]) * inverse_step)
-        ring[0, k] = u
-        ring[1, k] = v
-    for a in range(J):
-        u = 0.0
-        v = 0.0
-        for j in range(n):
-            u += RQ[j, a] * S[j]
-            v += RQ[j, a] * ((S[j] - S[n + j]) * inverse_step)
-        face[0, a] = u
-        face[1, a] = v
+            u += participations[j, k] * S[j]
+            v += participations[j, k] * ((S[j] - S[n + j]) * inverse_step)
+        out[0, k] = u
+        out[1, k] = v
 
 
 @njit(cache=True, inline='always')
