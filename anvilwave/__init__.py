@@ -12,15 +12,16 @@ the command line writes:
 - :func:`build_fmus` - the four FMI 2.0 units and ``system.ssp`` of a system;
 - :class:`InputError` - every bad input, one line naming the file, the key and the rule.
 
-Layers (DESIGN.md, enforced by import-linter): the physics packages ``anvil_rom``, ``hammer``,
-``pile`` <- ``fmu`` (FMI units, FMU build, SSP, fmpy master) <- ``anvilwave`` (system files,
+Layers (DESIGN.md, enforced by import-linter): the physics packages ``anvilwave.anvil_rom``,
+``hammer``,
+``pile`` <- ``anvilwave.fmu`` (FMI units, FMU build, SSP, fmpy master) <- ``anvilwave`` (system
+files,
 engine, analyses, reports, plots, command line).
 """
 
-from anvilwave_inputs import InputError
-
-from .api import Blow, build_fmus, compute_anvil_modes, load_system, simulate
-from .system import SystemConfig
+from anvilwave.api import Blow, build_fmus, compute_anvil_modes, load_system, simulate
+from anvilwave.config.system import SystemConfig
+from anvilwave.inputs import InputError
 
 __all__ = ["Blow", "InputError", "SystemConfig", "build_fmus", "compute_anvil_modes",
            "load_system", "simulate"]

@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from .system import SystemConfig
-from .system import load_system as _load_system
+from anvilwave.config.system import SystemConfig
+from anvilwave.config.system import load_system as _load_system
 
 ENGINES = ("direct", "fmi")
 """``"direct"``: the in-process engine; ``"fmi"``: the four FMUs through the fmpy master."""
@@ -50,7 +50,7 @@ class Blow:
 
 
 def load_system(path: str | Path) -> SystemConfig:
-    """Read and validate a system file (TOML; keys documented in :mod:`anvilwave.schema`).
+    """Read and validate a system file (TOML; keys documented in :mod:`anvilwave.config.schema`).
 
     Raises :class:`anvilwave.InputError` (one line: file, key, rule) on bad input.
     """
@@ -71,7 +71,7 @@ def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
         to skip the eigenvalue problem.
     progress : show a progress bar over the blows.
     """
-    from .report import gauge_steel_area, summarise
+    from anvilwave.output.tables import gauge_steel_area, summarise
 
     cfg = system if isinstance(system, SystemConfig) else _load_system(system)
     if anvil is not None:
@@ -79,16 +79,16 @@ def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
     if engine not in ENGINES:
         raise ValueError(f"engine must be one of {ENGINES}, got {engine!r}")
     if engine == "fmi":
-        from .fmi_engine import run_fmi
+        from anvilwave.engine.fmi import run_fmi
 
         with tempfile.TemporaryDirectory(prefix="anvilwave-fmus-") as tmp:
             results = run_fmi(cfg, tmp, anvil_model=modal_data, progress=None)
     else:
-        from .engine import build_engine
+        from anvilwave.engine.direct import build_engine
 
         modal = modal_data
         if modal is not None and not hasattr(modal, "frequencies"):
-            from anvil_rom.modalfile import load_modal_data
+            from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
             modal = load_modal_data(Path(modal))
         results = build_engine(cfg, modal).run(progress=progress)
@@ -108,8 +108,8 @@ def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
     ``.modal_data`` (the ROM's data; save it with :func:`save_modal_data`), ``.model`` (the
     FE model: ``.total_mass()`` [kg], ``.n_dof``) and ``.wall_time`` [s].
     """
-    from anvil_rom.geometry import AnvilSpec, load_anvil
-    from anvil_rom.pipeline import compute_anvil_modes as _compute
+    from anvilwave.anvil_rom.fem.geometry import AnvilSpec, load_anvil
+    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes as _compute
 
     spec = anvil if isinstance(anvil, AnvilSpec) else load_anvil(anvil)
     return _compute(spec, fmax=fmax)
@@ -122,13 +122,13 @@ def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
     ``system.ssp`` of a system into ``out_dir`` (FMI 2.0 co-simulation).
 
     native_anvil : the anvils in C (default; needs a C compiler), else with pythonfmu
-        (:func:`anvilwave.fmus.build_system_fmus`).
+        (:func:`anvilwave.engine.fmus.build_system_fmus`).
 
     Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
     "ssp": path, "anvil": name of the system's anvil FMU, "parameters": {...},
     "time_step": master step [s], "ssp_step": the step of system.ssp [s]}``.
     """
-    from .fmus import build_system_fmus
+    from anvilwave.engine.fmus import build_system_fmus
 
     cfg = system if isinstance(system, SystemConfig) else _load_system(system)
     if anvil is not None:

@@ -9,18 +9,16 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave_inputs import InputError
-
-from .output import ResultWriter
-from .report import gauge_steel_area
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import gauge_steel_area
+from anvilwave.output.writer import ResultWriter
 
 
 def _modes(args: argparse.Namespace) -> int:
-    from anvil_rom.geometry import load_anvil
-    from anvil_rom.modalfile import save_modal_data
-    from anvil_rom.pipeline import anvil_modes_from_calculix, compute_anvil_modes
-
-    from .plots import plot_modes
+    from anvilwave.anvil_rom.fem.geometry import load_anvil
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+    from anvilwave.anvil_rom.fem.pipeline import anvil_modes_from_calculix, compute_anvil_modes
+    from anvilwave.output.plots import plot_modes
 
     spec = load_anvil(args.anvil)
     if args.mesh_size is not None:
@@ -56,7 +54,7 @@ def _modes(args: argparse.Namespace) -> int:
         out.part("modes.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_modes(result, out.part("modes.png"))
         if args.export_ccx is not None:
-            from anvil_rom.calculix import write_ccx_deck_from_mesh
+            from anvilwave.anvil_rom.fem.calculix import write_ccx_deck_from_mesh
 
             write_ccx_deck_from_mesh(args.export_ccx, result.mesh, spec.material,
                                      result.modes.n_modes, title=spec.name)
@@ -66,10 +64,10 @@ def _modes(args: argparse.Namespace) -> int:
 
 
 def _impact(args: argparse.Namespace) -> int:
-    from .engine import build_engine
-    from .plots import plot_impact_blows
-    from .report import summarise, write_csv
-    from .system import load_system
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.output.plots import plot_impact_blows
+    from anvilwave.output.tables import summarise, write_csv
 
     cfg = load_system(args.system)
     if args.anvil is not None:
@@ -78,7 +76,7 @@ def _impact(args: argparse.Namespace) -> int:
     if args.engine == "fmi":
         import tempfile
 
-        from .fmi_engine import run_fmi
+        from anvilwave.engine.fmi import run_fmi
 
         if model not in ("rom", "lumped"):
             raise InputError(str(args.system), "anvil.model",
@@ -113,8 +111,8 @@ def _impact(args: argparse.Namespace) -> int:
 
 
 def _build_fmus(args: argparse.Namespace) -> int:
-    from .fmus import build_system_fmus
-    from .system import load_system
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.fmus import build_system_fmus
 
     cfg = load_system(args.system)
     if args.anvil is not None:
@@ -131,12 +129,11 @@ def _build_fmus(args: argparse.Namespace) -> int:
 
 
 def _fea(args: argparse.Namespace) -> int:
+    from anvilwave.analyses.compare import fea_config, without_soil
+    from anvilwave.config.system import load_system
     from anvilwave.fea.impact import run_impact_fea
-
-    from .compare import fea_config, without_soil
-    from .plots import plot_columns
-    from .report import write_csv
-    from .system import load_system
+    from anvilwave.output.plots import plot_columns
+    from anvilwave.output.tables import write_csv
 
     cfg = without_soil(load_system(args.system))
     config = fea_config(cfg, mesh_size=args.mesh_size, truncate_length=args.truncate)
@@ -167,7 +164,7 @@ def _fea(args: argparse.Namespace) -> int:
 
 
 def _compare(args: argparse.Namespace) -> int:
-    from .system import load_system
+    from anvilwave.config.system import load_system
 
     cfg = load_system(args.system)
     with ResultWriter(args.out) as out:
@@ -178,8 +175,14 @@ def _compare(args: argparse.Namespace) -> int:
 
 def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> tuple[dict, dict]:
     """The comparison output of ``cfg`` into ``out``; returns (comparison, the runs)."""
-    from .compare import compare, comparison_bandwidth, plot_comparison, plot_spectra, run_models
-    from .report import write_csv
+    from anvilwave.analyses.compare import (
+        compare,
+        comparison_bandwidth,
+        plot_comparison,
+        plot_spectra,
+        run_models,
+    )
+    from anvilwave.output.tables import write_csv
 
     with _progress("FEA") as progress:
         runs = run_models(cfg, out.staging, rom_engine=rom_engine, fea_mesh_size=fea_mesh_size,
@@ -210,10 +213,16 @@ def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> d
     head, ram annuli; the in-process engine) against the FEA and the lumped anvil of ``runs``
     (the same free pile): ``interfaces/`` with its series, comparison and band-level figure;
     returns its figures against the FEA for the summary."""
-    from .compare import ModelRun, band_levels, metrics, plot_spectra, without_soil
-    from .engine import build_engine
-    from .report import write_csv
-    from .system import load_system
+    from anvilwave.analyses.compare import (
+        ModelRun,
+        band_levels,
+        metrics,
+        plot_spectra,
+        without_soil,
+    )
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.output.tables import write_csv
 
     cfg = without_soil(load_system(system))
     blow = build_engine(cfg).run()[0]
@@ -289,11 +298,10 @@ def _demo(args: argparse.Namespace) -> int:
     """The Table 1 comparison end to end (the README's main job)."""
     import time
 
-    from anvil_rom.modalfile import save_modal_data
-    from anvil_rom.pipeline import compute_anvil_modes
-
-    from .plots import plot_modes
-    from .system import load_system
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+    from anvilwave.config.system import load_system
+    from anvilwave.output.plots import plot_modes
 
     start = time.perf_counter()
     system = Path(__file__).resolve().parents[1] / "examples" / "table1.toml"
@@ -324,7 +332,7 @@ def _demo(args: argparse.Namespace) -> int:
         else:
             print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
-        from .fmus import build_system_fmus
+        from anvilwave.engine.fmus import build_system_fmus
 
         fmus = build_system_fmus(cfg, out.staging / "fmus")
         print("    " + ", ".join(Path(fmus[k]).name
@@ -587,10 +595,10 @@ def build_parser() -> argparse.ArgumentParser:
 def _drive(args: argparse.Namespace) -> int:
     from dataclasses import replace
 
-    from . import driveability as dv
-    from .engine import build_engine
-    from .report import write_csv
-    from .system import load_system
+    from anvilwave.analyses import drive as dv
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.output.tables import write_csv
 
     cfg = load_system(args.system)
     if cfg.drive is None:
@@ -642,7 +650,7 @@ def _drive(args: argparse.Namespace) -> int:
                   f"{s['max_tension_stress [Pa]'] / 1e6:6.1f} MPa; {s['depths_analysed [-]']} "
                   f"depths in {s['wall_time [s]']:.1f} s")
         if len(results) > 1:
-            from .plots import plot_driveability
+            from anvilwave.output.plots import plot_driveability
 
             cols = {m: {n: np.array([r[n] for r in res["rows"]], dtype=float)
                         for n in dv.COLUMNS} for m, res in results.items()}
@@ -669,10 +677,10 @@ class _Prefixed:
 
 
 def _install(args: argparse.Namespace) -> int:
-    from . import driveability as dv
-    from . import installation as ins
-    from .engine import build_engine
-    from .system import load_system
+    from anvilwave.analyses import drive as dv
+    from anvilwave.analyses import install as ins
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
 
     cfg = load_system(args.system)
     if args.anvil is not None:
@@ -701,7 +709,7 @@ def _install(args: argparse.Namespace) -> int:
 
 
 def _batch(args: argparse.Namespace) -> int:
-    from .campaign import run_campaign
+    from anvilwave.analyses.batch import run_campaign
 
     if args.workers is not None and args.scheduler is not None:
         raise InputError("--workers", "", "give --workers (a local cluster) or --scheduler (a "
@@ -717,7 +725,7 @@ def _batch(args: argparse.Namespace) -> int:
 
 
 def _pda(args: argparse.Namespace) -> int:
-    from .pda_analysis import run_pda
+    from anvilwave.analyses.pda import run_pda
 
     s = run_pda(args.record, args.out, length=args.length, area=args.area,
                 elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed, jc=args.jc)
@@ -727,7 +735,7 @@ def _pda(args: argparse.Namespace) -> int:
 
 
 def _match(args: argparse.Namespace) -> int:
-    from .pda_analysis import run_match
+    from anvilwave.analyses.pda import run_match
 
     s = run_match(args.record, args.system, args.out, shaft_zones=args.zones,
                   imposed=args.imposed)
@@ -738,7 +746,7 @@ def _match(args: argparse.Namespace) -> int:
 
 
 def _compare_pda(args: argparse.Namespace) -> int:
-    from .pda_analysis import run_compare_pda
+    from anvilwave.analyses.pda import run_compare_pda
 
     run_compare_pda(args.record, args.system, args.out)
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
@@ -750,7 +758,7 @@ def _si(value) -> str:
 
 
 def _cache(args: argparse.Namespace) -> int:
-    from .cache import cache_info, clear_cache
+    from anvilwave.config.cache import cache_info, clear_cache
 
     if args.action == "clear":
         count, size = clear_cache()
@@ -780,7 +788,7 @@ def _entries(count: int) -> str:
 
 
 def _schema(args: argparse.Namespace) -> int:
-    from .schema import describe
+    from anvilwave.config.schema import describe
 
     print(describe(args.kind))
     return 0

@@ -35,7 +35,7 @@ import statistics
 import tempfile
 from pathlib import Path
 
-from anvilwave.campaign import load_campaign, run_campaign, run_case
+from anvilwave.analyses.batch import load_campaign, run_campaign, run_case
 
 ROOT = Path(__file__).resolve().parents[1]
 FARM_CASES = 100 * 3 * 2 * 2

@@ -18,9 +18,9 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-from anvilwave.driveability import run_driveability
-from anvilwave.engine import build_engine
-from anvilwave.system import load_system
+from anvilwave.analyses.drive import run_driveability
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
 
 ROOT = Path(__file__).resolve().parents[1]
 

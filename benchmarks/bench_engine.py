@@ -35,13 +35,13 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-from anvil_rom.arrays import aligned_zeros
-from anvilwave.cache import cached_chain
-from anvilwave.engine import ENERGY_STEPS, build_engine
-from anvilwave.system import load_system
-from hammer.database import load_hammer
-from hammer.modal_ram import ModalRamUnit, modal_ram_advance, modal_ram_chain
-from hammer.ram import ram_advance
+from anvilwave.anvil_rom.arrays import aligned_zeros
+from anvilwave.config.cache import cached_chain
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import ENERGY_STEPS, build_engine
+from anvilwave.hammer.database import load_hammer
+from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_advance, modal_ram_chain
+from anvilwave.hammer.ram import ram_advance
 
 ROOT = Path(__file__).resolve().parents[1]
 PAIRS = 5
@@ -103,7 +103,8 @@ def _drive_chain(weight, inverse_mass, stiffness, u, v, forces, h, n_sub, sweeps
 
 def ram_kernel_ratio(unit_engine, chain_engine, repeat: int, sweeps: int = 40) -> float:
     """The two ram kernels alone, as the engine calls them (the modal unit's
-    :func:`hammer.modal_ram.modal_ram_advance`, the chain's :func:`hammer.ram.ram_advance` at
+    :func:`anvilwave.hammer.modal_ram.modal_ram_advance`, the chain's
+    :func:`anvilwave.hammer.ram.ram_advance` at
     its sub-steps), each driven by the unit engine's recorded ram force of one blow, ``sweeps``
     times over: median wall time of the unit's runs over the chain's, alternated."""
     blow = unit_engine.blow()

@@ -11,11 +11,11 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from anvilwave.compare import fea_config, without_soil
-from anvilwave.engine import build_engine
+from anvilwave.analyses.compare import fea_config, without_soil
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.engine.fmi import run_fmi
 from anvilwave.fea.impact import run_impact_fea
-from anvilwave.fmi_engine import run_fmi
-from anvilwave.system import load_system
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -6,8 +6,8 @@ Builds the system's FMUs once (not timed): the native anvils (C, ``build_system_
 default) and the pythonfmu anvils (``native_anvil=False``), with the same pythonfmu Ram and
 PileSoil. Then in ONE process times, for the ROM and the lumped anvil,
 
-- ``direct``: :meth:`anvilwave.engine.Engine.run` (one jitted loop per blow);
-- ``fmi``: :func:`anvilwave.fmi_engine.run_fmi`, Ram, the native Anvil and PileSoil under the
+- ``direct``: :meth:`anvilwave.engine.direct.Engine.run` (one jitted loop per blow);
+- ``fmi``: :func:`anvilwave.engine.fmi.run_fmi`, Ram, the native Anvil and PileSoil under the
   fmpy master with its numba-compiled DESIGN.md loop;
 - ``fmi-pyanvil``: the same with the pythonfmu anvil (the FMI engine before the native anvil);
 - ``fmi-py``: the native-anvil chain with the master loop interpreted by Python (reference).
@@ -42,11 +42,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeat", type=int, default=5, help="runs per engine (default 5)")
     args = parser.parse_args(argv)
 
-    from anvilwave.engine import build_engine
-    from anvilwave.fmi_engine import run_fmi
-    from anvilwave.fmus import build_system_fmus, load_anvil_modal_data
-    from anvilwave.system import load_system
-    from fmu.fmi_master import BlowMaster
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.engine.fmi import run_fmi
+    from anvilwave.engine.fmus import build_system_fmus, load_anvil_modal_data
+    from anvilwave.fmu.fmi_master import BlowMaster
 
     cfg = load_system(args.system)
     cfg = dataclasses.replace(cfg, blows=1)

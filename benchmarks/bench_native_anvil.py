@@ -2,8 +2,9 @@
 
 Run: python benchmarks/bench_native_anvil.py [MODES.npz] [--steps N] [--repeat N]
 
-Builds ``Anvil.fmu`` twice from the same modal data, natively (:mod:`fmu.native_build`) and
-with pythonfmu (:mod:`fmu.fmi_build`), then in ONE process drives each through fmpy's
+Builds ``Anvil.fmu`` twice from the same modal data, natively (:mod:`anvilwave.fmu.native_build`)
+and
+with pythonfmu (:mod:`anvilwave.fmu.fmi_build`), then in ONE process drives each through fmpy's
 ``FMU2Slave`` (ctypes) on the same blow (a ram toe hitting the anvil, a pile head that
 oscillates), after a warm-up (numba compiles the pythonfmu kernels on first use):
 
@@ -39,12 +40,12 @@ CONTACTS = {"ram_contact_stiffness": 2.0e10, "pile_contact_stiffness": 3.0e10}  
 
 
 def _modal_data(path: Path | None):
-    from anvil_rom.modalfile import load_modal_data
+    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
     if path is not None:
         return load_modal_data(path)
-    from anvil_rom.geometry import load_anvil
-    from anvil_rom.pipeline import compute_anvil_modes
+    from anvilwave.anvil_rom.fem.geometry import load_anvil
+    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
     spec = load_anvil(ROOT / "examples" / "anvils" / "s2.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.03})
@@ -111,7 +112,7 @@ def _c_host(native: Path, inputs: np.ndarray, h: float, tmp: Path) -> str:
     """The native exchange timed by the C host (its own report line), or why not."""
     from fmpy import read_model_description
 
-    from fmu.native_build import NATIVE_DIR, NativeBuildError, find_compiler
+    from anvilwave.fmu.native_build import NATIVE_DIR, NativeBuildError, find_compiler
 
     try:
         compiler = find_compiler()
@@ -153,11 +154,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--repeat", type=int, default=3, help="timed runs per FMU (3)")
     args = parser.parse_args(argv)
 
-    from anvil_rom.modalfile import save_modal_data
-    from anvil_rom.rom import ModalAnvil
-    from anvil_rom.unit import AnvilUnit, ContactParameters
-    from fmu.fmi_build import build_anvil_fmu
-    from fmu.native_build import build_native_anvil_fmu
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+    from anvilwave.anvil_rom.rom import ModalAnvil
+    from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
+    from anvilwave.fmu.fmi_build import build_anvil_fmu
+    from anvilwave.fmu.native_build import build_native_anvil_fmu
 
     start = time.perf_counter()
     data = _modal_data(args.modes)

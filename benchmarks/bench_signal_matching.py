@@ -27,9 +27,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import anvilwave  # noqa: E402
-from anvilwave.signal_matching import MatchSettings, match_record  # noqa: E402
-from pile.pda_records import check_gauge_record  # noqa: E402
-from pile.soil import soil_capacities  # noqa: E402
+from anvilwave.analyses.match import MatchSettings, match_record  # noqa: E402
+from anvilwave.pile.pda.records import check_gauge_record  # noqa: E402
+from anvilwave.pile.soil.models import soil_capacities  # noqa: E402
 from tests.test_signal_matching import write_system  # noqa: E402
 
 
@@ -73,7 +73,7 @@ def recovery(seeds: int) -> None:
 
 
 def synthetic_xl() -> None:
-    from anvilwave.pda_analysis import load_record
+    from anvilwave.analyses.pda import load_record
 
     system = ROOT / "examples" / "table1.toml"
     text = system.read_text()

@@ -12,7 +12,8 @@ Model (the same for every pile; nothing is tuned per pile)
 * Soil: the pile's CPT (the 0.5 m series of its foundation; for the prediction piles the
   full-resolution CPT of their foundation, first 0.3 m of every push dropped). Sand and clay
   layers from Robertson's (2009) soil behaviour type index, Ic < 2.6 sand
-  (:func:`pile.cpt_classification.soil_layers_from_cpt`). ASSUMED submerged unit weights
+  (:func:`anvilwave.pile.soil.cpt_classification.soil_layers_from_cpt`). ASSUMED submerged unit
+  weights
   10 kN/m^3 (sand) and 9 kN/m^3 (clay); sea water 10.05 kN/m^3 for u0 below the mudline; the
   water depth plays no part (the cone is zeroed at the seabed). Full-resolution CPTs: layers
   thinner than 0.5 m are merged into their neighbours and the toe resistance is averaged over
@@ -32,7 +33,8 @@ Model (the same for every pile; nothing is tuned per pile)
 * Pile: D 2.48 m with the given bottom wall thickness over its whole length (the upper wall
   make-up is not given: ASSUMED uniform), length = final penetration + 10 m stick-up
   (ASSUMED), steel 210 GPa, 7850 kg/m^3, segments of 0.5 m.
-* Hammer: IHC S-800 class hydraulic hammer (800 kJ, 40 t ram, efficiency 0.95; hammer/data):
+* Hammer: IHC S-800 class hydraulic hammer (800 kJ, 40 t ram, efficiency 0.95;
+anvilwave/hammer/data):
   the README's class for a 2.48 m pile is a hydraulic hammer of about 500-1200 kJ, and the
   S-800 is a usual hammer for 2-3 m jacket pin piles. The fit must keep the largest blow
   energy (0.89 E_ref: the largest normalised energy of the records) within its rating; it
@@ -46,7 +48,7 @@ Model (the same for every pile; nothing is tuned per pile)
   and mass (masses, housing spring); see :func:`driving_system`.
 * Driving: one blow per tip depth from static equilibrium under the hammer's weight, blow
   window 0.2 s (the pile has come to rest), the permanent set (the default rule of
-  :mod:`anvilwave.driveability`). Where the SRD does not carry the weight of pile and
+  :mod:`anvilwave.analyses.drive`). Where the SRD does not carry the weight of pile and
   hammer the pile runs: blow count 0. The blow energy at depth z is the normalised hammer energy
   of the record at z times ONE reference energy E_ref [J], and the SRD is scaled by at most
   ONE global multiplier; both are fitted on all calibration piles at once.
@@ -168,7 +170,7 @@ def driving_system(model: Model) -> dict:
     3.5 m pile): the striker contact by the ram's face area, the housing (one mass) and its
     spring by the ram mass, the helmet (anvil and pile sleeve of a 2.48 m pile) = the ram
     mass. Returns the ``[anvil.classic]`` values (SI)."""
-    from hammer.database import load_hammer
+    from anvilwave.hammer.database import load_hammer
 
     hammer = load_hammer(model.hammer)
     ram_mass = float(np.sum(hammer.ram.mass))
@@ -240,9 +242,9 @@ srd = [[0.0, 1.0, 1.0], [{length!r}, 1.0, 1.0]]
 
 def soil_profile(pile: PileRecord, model: Model):
     """The pile's CPT and its Robertson (2009) sand / clay layers."""
-    from pile.cpt import read_cpt_csv
-    from pile.cpt_classification import soil_layers_from_cpt
-    from pile.soil_profile import SoilProfile
+    from anvilwave.pile.soil.cpt import read_cpt_csv
+    from anvilwave.pile.soil.cpt_classification import soil_layers_from_cpt
+    from anvilwave.pile.soil.profile import SoilProfile
 
     cpt = read_cpt_csv(pile.cpt_file, **pile.cpt_options)
     layers, _ = soil_layers_from_cpt(
@@ -277,16 +279,16 @@ def simulate_pile(job: tuple) -> dict:
     [s/m] and ``run_multiplier`` [-], the SRD multiplier at and below which the pile runs
     under its weight (the SRD scales with the multiplier, so the threshold is exact).
     """
-    from anvilwave.driveability import (
+    from anvilwave.analyses.drive import (
         SrdSource,
         blow_count,
         driving_weight,
         pile_soil_at,
         set_of_blow,
     )
-    from anvilwave.engine import build_engine
-    from anvilwave.system import load_system
-    from pile.soil_profile import AlmHamre2001
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.pile.soil.profile import AlmHamre2001
 
     pile, model, energies, multipliers = job
     with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
@@ -730,7 +732,7 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "isfog_backanalysis")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
                         help="processes over the piles (default: the machine's cores)")
-    parser.add_argument("--hammer", default=Model.hammer, help="hammer of hammer/data")
+    parser.add_argument("--hammer", default=Model.hammer, help="hammer of anvilwave/hammer/data")
     parser.add_argument("--piles", help="calibration piles to use, e.g. AD,AE (default: all)")
     parser.add_argument("--prediction-piles", help="prediction piles (default: all)")
     parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="fullres",

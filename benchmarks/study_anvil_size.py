@@ -19,7 +19,8 @@ Two series, each of a 2 m, a 5.5 m and an 8 m pile, every ram striking at 6.16 m
   but ends before the pile toe reflection reaches the gauge ((2 L - gauge depth) / c0 after
   impact: 15.2 ms for the 40 m pile of s2_class, 22.8 ms for the 60 m pile of m55_class). The
   FEA's toe is free and the 1D models' rests on a stiff elastic bearing
-  (anvilwave.compare.without_soil), so after the reflection the models differ by their boundary, not
+  (anvilwave.analyses.compare.without_soil), so after the reflection the models differ by their
+  boundary, not
   by their anvil.
 
 Per case it prints and writes (study.json) the errors of both anvil models against the FEA in
@@ -38,19 +39,19 @@ import math
 import time
 from pathlib import Path
 
-from anvil_rom.pipeline import compute_anvil_modes
-from anvilwave.compare import (
+from anvilwave.analyses.compare import (
     ModelRun,
     comparison_bandwidth,
     fea_config,
     metrics,
     without_soil,
 )
-from anvilwave.engine import build_engine
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.config.system import SystemConfig, load_system
+from anvilwave.engine.direct import build_engine
 from anvilwave.fea.impact import run_impact_fea
-from anvilwave.system import SystemConfig, load_system
-from hammer.database import load_hammer
-from hammer.ram import RamRod
+from anvilwave.hammer.database import load_hammer
+from anvilwave.hammer.ram import RamRod
 
 ROOT = Path(__file__).resolve().parents[1]
 FULL_WINDOW = 0.025

@@ -16,7 +16,7 @@ Errors are given in two bands: 3.3 kHz (the cut-off of the paper's 0.5 m pile se
 5 kHz (the default fmax; table1.toml's 0.25 m segments cut off at 6.5 kHz). Per fmax also the
 raw ROM peaks (what impact.csv holds) against the FEA's peaks in the 5 kHz band, and the largest
 deviation of the one-third-octave band levels of the pile-head force from the FEA's
-(:func:`anvilwave.compare.band_levels`) up to 1.26 kHz and up to 4 kHz.
+(:func:`anvilwave.analyses.compare.band_levels`) up to 1.26 kHz and up to 4 kHz.
 """
 
 from __future__ import annotations
@@ -28,9 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvil_rom.pipeline import compute_anvil_modes
-from anvilwave.cache import cached_modal_data
-from anvilwave.compare import (
+from anvilwave.analyses.compare import (
     ModelRun,
     band_levels,
     comparison_bandwidth,
@@ -38,12 +36,14 @@ from anvilwave.compare import (
     metrics,
     without_soil,
 )
-from anvilwave.engine import build_engine
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.config.cache import cached_modal_data
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
 from anvilwave.fea.impact import run_impact_fea
-from anvilwave.report import read_csv, write_csv
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
-from hammer.modal_ram import modal_ram_modes
+from anvilwave.hammer.modal_ram import modal_ram_modes
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import read_csv, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 FMAX = (500.0, 1000.0, 2000.0, 3000.0, 5000.0, 7500.0, 10000.0)

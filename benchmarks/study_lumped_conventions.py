@@ -11,7 +11,8 @@ the ROM against the same reference FEA, for the xl8 and three variants of its pr
 records which of them reproduce the paper's two statements.
 
 Every case is the Table 1 system on the free pile of the comparison
-(:func:`anvilwave.compare.without_soil`, via :func:`study_anvil_size.case_config`): the 8 m x
+(:func:`anvilwave.analyses.compare.without_soil`, via :func:`study_anvil_size.case_config`): the 8
+m x
 140 mm x 80 m pile in the paper's 0.5 m segments (comparison band 3.3 kHz), a 275 t uniform
 steel ram at 6.16 m/s, here a Smith rod of 0.5 m segments (the classic programs' ram; the FEA
 does not depend on the 1D ram model), contacts without dashpots, the automatic time step, a
@@ -35,7 +36,8 @@ is cached as CSV in --out and reused on a rerun):
 * ``rom``: the Mode Displacement Method anvil (fmax 5 kHz, static correction on).
 * ``1 lumped``: today's lumped anvil, the rigid FE mass between the contacts of the system, i.e.
   the ram's toe half segment and the pile's top half segment 2 E A / dx
-  (:func:`anvilwave.engine.contact_stiffnesses`). This IS already the Smith-style convention 3
+  (:func:`anvilwave.engine.direct.contact_stiffnesses`). This IS already the Smith-style convention
+  3
   of the issue (pile half segment as the pile-side spring), so 3 is not run separately.
 * ``2a series``: the rigid mass with the anvil's static through-flexibility f = G_rr - 2 G_rp
   + G_pp (G: the inertia-relief flexibility between the ram face and the pile ring of the
@@ -61,10 +63,11 @@ is cached as CSV in --out and reused on a rerun):
   (GRLWEAP's hammer damping is left out.)
 
 Per case and model it writes (study.json, table.md; and prints) the peak pile-head force
-(anvil-pile contact) low-passed at the comparison band (:func:`anvilwave.compare.metrics`,
-:func:`anvilwave.compare.comparison_bandwidth`: 3.3 kHz), its error against the FEA and
+(anvil-pile contact) low-passed at the comparison band (:func:`anvilwave.analyses.compare.metrics`,
+:func:`anvilwave.analyses.compare.comparison_bandwidth`: 3.3 kHz), its error against the FEA and
 whether the model over- or underestimates, the pile-force arrival time
-(:func:`anvilwave.compare.arrival_time`: 20 % of the peak), the time and rate of the steepest
+(:func:`anvilwave.analyses.compare.arrival_time`: 20 % of the peak), the time and rate of the
+steepest
 rise of the band-limited pile force (the "almost stepwise increase") and the longest early
 lift-off of the anvil from the pile (raw contact force); and the peaks again low-passed at
 0.5, 1 and 2 kHz (BANDS: does the verdict depend on the band?). Plots of the pile force go to
@@ -85,21 +88,21 @@ import numpy as np
 from study_anvil_size import FULL_WINDOW, Case, geometry_numbers
 from study_anvil_size import case_config as size_case_config
 
-from anvil_rom.modalfile import ModalData
-from anvil_rom.pipeline import compute_anvil_modes
-from anvilwave.compare import (
+from anvilwave.analyses.compare import (
     ModelRun,
     band_limited,
     comparison_bandwidth,
     fea_config,
     metrics,
 )
-from anvilwave.engine import build_engine, contact_stiffnesses
+from anvilwave.anvil_rom.fem.modalfile import ModalData
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.config.system import SystemConfig
+from anvilwave.engine.direct import build_engine, contact_stiffnesses
 from anvilwave.fea.impact import FeaConfig, run_impact_fea
-from anvilwave.report import read_csv, write_csv
-from anvilwave.system import SystemConfig
-from hammer.driving_system import Cushion
-from hammer.ram import RamRod
+from anvilwave.hammer.driving_system import Cushion
+from anvilwave.hammer.ram import RamRod
+from anvilwave.output.tables import read_csv, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 RAM_MASS = 275000.0

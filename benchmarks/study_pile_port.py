@@ -15,7 +15,8 @@ and its contact are out of the comparison); only the anvil's ports and the pile 
   its own (its own modal participations, the residual flexibility between all ports) and its
   own compression-only contact on the flat head of the 1D pile (stiffness: the pile's top half
   segment, shared by ring area). The K ring forces are one linear complementarity problem per
-  step (:func:`anvil_rom.rings.contact_lcp`). K = 1 is the ROM's port. The engine runs this
+  step (:func:`anvilwave.anvil_rom.rings.contact_lcp`). K = 1 is the ROM's port. The engine runs
+  this
   variant with the modal ram and its own ram force as ``[anvil] pile_port_rings``.
 * ``FEA ram pressure``: the ram face split into six annuli, each loaded by the FEA's nodal
   ram contact forces that fall on it: the FEA's own pressure distribution instead of a uniform
@@ -50,9 +51,10 @@ at 0.125 and 0.0625 m segments (the step scaled), with gravity (the anvil starts
 the rings).
 
 Last, ``closed: the FEA's pile``: the 1D pile is replaced by the reference FEA's own pile, its
-tube as a ring kernel (:func:`pile.head_kernel.ring_kernel`: its mesh, one element per ring,
+tube as a ring kernel (:func:`anvilwave.pile.head_kernel.ring_kernel`: its mesh, one element per
+ring,
 three rings across the wall) with the FEA's penalty contacts
-(:func:`pile.head_kernel.tube_contact_stiffness`), under one ram port, the ram face in six
+(:func:`anvilwave.pile.head_kernel.tube_contact_stiffness`), under one ram port, the ram face in six
 annuli, in two halves of its radius, as a disc and its outer sixth (the rim), and in six annuli
 without the contact dashpot. Every interface is then the FEA's, and what remains is the anvil's
 and the ram's Mode Displacement Method.
@@ -75,20 +77,20 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse.linalg as sla
 
-from anvil_rom.fe import annulus_vectors, assemble, face_load_vector
-from anvil_rom.geometry import Interfaces, Material
-from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
-from anvil_rom.modes import elastic_flexibility, free_free_modes
-from anvil_rom.rings import contact_lcp, ring_static_rest
-from anvil_rom.rom import modal_transition, residual_flexibility
-from anvilwave.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
+from anvilwave.analyses.compare import ModelRun, band_levels, band_limited, fea_config, without_soil
+from anvilwave.anvil_rom.fem.elasticity import annulus_vectors, assemble, face_load_vector
+from anvilwave.anvil_rom.fem.geometry import Interfaces, Material
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave.anvil_rom.fem.modes import elastic_flexibility, free_free_modes
+from anvilwave.anvil_rom.rings import contact_lcp, ring_static_rest
+from anvilwave.anvil_rom.rom import modal_transition, residual_flexibility
+from anvilwave.config.system import load_system
 from anvilwave.fea.bodies import ContactSet
 from anvilwave.fea.impact import build_impact_model
 from anvilwave.fea.solver import integrate
-from anvilwave.report import write_csv
-from anvilwave.system import load_system
-from hammer.modal_ram import default_mesh_size, ram_outline
-from pile.head_kernel import ring_kernel, tube_contact_stiffness
+from anvilwave.hammer.modal_ram import default_mesh_size, ram_outline
+from anvilwave.output.tables import write_csv
+from anvilwave.pile.head_kernel import ring_kernel, tube_contact_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]
 PATCHES = 6
@@ -440,17 +442,19 @@ def run_closed_loop(anvil: Ports, ram: Ports, groups, ram_groups, impact_velocit
     segment's shares), turning with ``rotation`` and, with ``local`` (PATCHES x PATCHES,
     :func:`wall_local_flexibility`), with the wall's local flexibility between them. Every
     contact is one complementarity problem per step. With ``gravity`` [m/s^2] the anvil starts
-    at rest on the rings under its weight (:func:`anvil_rom.rings.ring_static_rest`, with the
+    at rest on the rings under its weight (:func:`anvilwave.anvil_rom.rings.ring_static_rest`, with
+    the
     head's static edge spring and the local flexibility), the pile compressed by that weight
     and held at its bottom by a constant force, the ram falling and its face touching the
     anvil's first annulus, as in the engine and the FEA; without, the anvil and the pile start
     unloaded.
 
-    With a ``kernel`` (steps, K, K) [m/N] (:func:`pile.head_kernel.ring_kernel`, at this
+    With a ``kernel`` (steps, K, K) [m/N] (:func:`anvilwave.pile.head_kernel.ring_kernel`, at this
     ``step``) the pile is that kernel instead of the 1D rod: the rings' displacements are sum_k
     kernel[k] F_(n-k) from their rest, kernel[0] in the complementarity problem, and the ring
     contacts are the springs ``contact`` (K,) [N/m]
-    (:func:`pile.head_kernel.tube_contact_stiffness`); under gravity the rings rest on a flat
+    (:func:`anvilwave.pile.head_kernel.tube_contact_stiffness`); under gravity the rings rest on a
+    flat
     head (the pile's static flexibility under the anvil's weight, 3 MN, is left out)."""
     E, rho, area, _, length = pile
     J, K = len(ram_groups), len(groups)

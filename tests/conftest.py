@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from anvil_rom.fe import assemble
-from anvil_rom.geometry import STEEL
-from anvil_rom.mesh import mesh_outline, to_skfem
+from anvilwave.anvil_rom.fem.elasticity import assemble
+from anvilwave.anvil_rom.fem.geometry import STEEL
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, to_skfem
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -32,7 +32,7 @@ def example_systems() -> list[str]:
 
 def assert_within_issue_bounds(m: dict) -> None:
     """The comparison bounds the issue sets on a ROM's metrics against the FEA
-    (:func:`anvilwave.compare.metrics`, every series low-passed at 5 kHz): pile peak within
+    (:func:`anvilwave.analyses.compare.metrics`, every series low-passed at 5 kHz): pile peak within
     3 %, ram peak within 5 %, normalised RMS of both within 10 %; the raw peaks against the
     FEA's band peaks, pile within 5 %, ram within 10 %."""
     assert abs(m["peak_anvil_pile_force_error [-]"]) <= 0.03
@@ -56,7 +56,7 @@ def examples_dir() -> Path:
 
 @pytest.fixture(scope="session", autouse=True)
 def modal_cache(tmp_path_factory) -> Path:
-    """The modal-data cache of the test session (anvilwave.cache): a folder of the session's
+    """The modal-data cache of the test session (anvilwave.config.cache): a folder of the session's
     temporary tree, shared by the xdist workers (so concurrent writes are exercised), never
     the user's cache. Tests that check the cache itself point it elsewhere."""
     root = tmp_path_factory.getbasetemp()

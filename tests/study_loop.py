@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave.compare import fea_config
+from anvilwave.analyses.compare import fea_config
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -27,9 +27,9 @@ def loop_on_feas_pile(table1, ram_groups, step: float = 2e-5):
     sys.modules[spec.name] = study
     try:
         spec.loader.exec_module(study)
-        from anvil_rom.geometry import STEEL, Material
-        from anvilwave.cache import cached_ring_kernel
-        from pile.head_kernel import echo_free_length, tube_contact_stiffness
+        from anvilwave.anvil_rom.fem.geometry import STEEL, Material
+        from anvilwave.config.cache import cached_ring_kernel
+        from anvilwave.pile.head_kernel import echo_free_length, tube_contact_stiffness
 
         config = fea_config(table1)
         r_in, r_out = config.pile_ring

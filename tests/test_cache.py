@@ -9,12 +9,12 @@ import threading
 import numpy as np
 import pytest
 
-import anvil_rom.pipeline as pipeline
-import anvilwave.cache as cache
-from anvil_rom.geometry import STEEL, AnvilSpec, Interfaces, solid_mass
+import anvilwave.anvil_rom.fem.pipeline as pipeline
+import anvilwave.config.cache as cache
+from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces, solid_mass
 from anvilwave.cli import main
-from anvilwave.engine import build_engine
-from anvilwave.system import load_system
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
 
 from .conftest import EXAMPLES, cylinder_model
 
@@ -117,7 +117,7 @@ def test_concurrent_writers_leave_one_complete_file(cache_dir, disc_modes, monke
         t.join()
     assert not errors
     assert not list(cache_dir.glob("*.part"))
-    from anvil_rom.modalfile import load_modal_data
+    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
     assert load_modal_data(cache_dir / "same.npz").n_modes == disc_modes.n_modes
 
@@ -127,7 +127,7 @@ def test_the_modal_ram_chain_is_cached(cache_dir, monkeypatch):
     p = np.array([1 / np.sqrt(1000.0), 0.02, 0.015])
     mass, stiffness = cache.cached_chain(omega, p)
     assert mass.sum() == pytest.approx(1000.0, rel=1e-9)
-    monkeypatch.setattr("anvil_rom.chain.chain_from_modes",
+    monkeypatch.setattr("anvilwave.anvil_rom.chain.chain_from_modes",
                         lambda *a: (_ for _ in ()).throw(AssertionError("realised again")))
     again = cache.cached_chain(omega, p)
     np.testing.assert_array_equal(again[0], mass)
@@ -135,12 +135,13 @@ def test_the_modal_ram_chain_is_cached(cache_dir, monkeypatch):
 
 
 def test_the_tube_head_kernel_is_cached_and_listed(cache_dir, monkeypatch, capsys):
-    """A tube head's ring kernel (:func:`pile.head_kernel.ring_kernel`) is computed once, read
+    """A tube head's ring kernel (:func:`anvilwave.pile.head_kernel.ring_kernel`) is computed once,
+    read
     back unchanged, and listed by ``anvilwave cache info``."""
     args = (STEEL, 0.95, 1.0, 2.0, 2e-5, 50, 2)
     kernel = cache.cached_ring_kernel(*args)
     assert kernel.shape == (50, 2, 2)
-    monkeypatch.setattr("pile.head_kernel.ring_kernel",
+    monkeypatch.setattr("anvilwave.pile.head_kernel.ring_kernel",
                         lambda *a: (_ for _ in ()).throw(AssertionError("computed again")))
     np.testing.assert_array_equal(cache.cached_ring_kernel(*args), kernel)
     assert main(["cache", "info"]) == 0

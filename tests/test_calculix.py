@@ -14,8 +14,8 @@ import meshio
 import numpy as np
 import pytest
 
-from anvil_rom import calculix
-from anvil_rom.calculix import (
+from anvilwave.anvil_rom.fem import calculix
+from anvilwave.anvil_rom.fem.calculix import (
     CalculixError,
     modes_from_calculix,
     read_dat_frequencies,
@@ -24,11 +24,11 @@ from anvil_rom.calculix import (
     write_ccx_deck,
     write_ccx_deck_from_mesh,
 )
-from anvil_rom.fe import assemble, interface_vectors
-from anvil_rom.geometry import STEEL, Interfaces
-from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
-from anvil_rom.modes import free_free_modes
-from anvilwave_inputs import InputError
+from anvilwave.anvil_rom.fem.elasticity import assemble, interface_vectors
+from anvilwave.anvil_rom.fem.geometry import STEEL, Interfaces
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave.anvil_rom.fem.modes import free_free_modes
+from anvilwave.inputs import InputError
 
 needs_ccx = pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) not installed")
 

@@ -8,8 +8,8 @@ import shutil
 import numpy as np
 import pytest
 
-from anvil_rom.calculix import run_ccx
-from anvil_rom.modalfile import load_modal_data
+from anvilwave.anvil_rom.fem.calculix import run_ccx
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 from anvilwave.cli import main
 
 from .conftest import EXAMPLES

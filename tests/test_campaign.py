@@ -17,15 +17,15 @@ from pathlib import Path
 
 import pytest
 
-from anvilwave.campaign import (
+from anvilwave.analyses.batch import (
     CAMPAIGN_KEYS,
     KEY_PREFIX,
     load_campaign,
     read_campaign_csv,
     run_campaign,
 )
-from anvilwave_inputs import InputError, Table
-from anvilwave_inputs import toml_dumps as toml_text
+from anvilwave.inputs import InputError, Table
+from anvilwave.inputs import toml_dumps as toml_text
 
 from .conftest import EXAMPLES
 

@@ -8,8 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from anvilwave.cli import main
-from anvilwave.compare import (
+from anvilwave.analyses.compare import (
     ModelRun,
     arrival_time,
     band_levels,
@@ -17,6 +16,7 @@ from anvilwave.compare import (
     lowpass,
     plot_spectra,
 )
+from anvilwave.cli import main
 
 from .conftest import assert_within_issue_bounds
 
@@ -164,10 +164,10 @@ def test_table1_pile_port_in_rings_against_fea(demo):
     with 0.0625 m segments the 2.5-4 kHz bands are +4.1 to +5.1 dB (README, "The ROM")."""
     import dataclasses
 
-    from anvilwave.compare import metrics, without_soil
-    from anvilwave.engine import build_engine
-    from anvilwave.report import read_csv
-    from anvilwave.system import load_system
+    from anvilwave.analyses.compare import metrics, without_soil
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.output.tables import read_csv
 
     out, cmp = demo
     fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})

@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from anvilwave.cli import main
-from anvilwave.engine import build_engine
-from anvilwave.report import energy_balance, read_csv, total_energy
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
-from hammer.database import load_hammer
-from hammer.ram import RamRod
-from pile.model import PileSoil
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.hammer.database import load_hammer
+from anvilwave.hammer.ram import RamRod
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import energy_balance, read_csv, total_energy
+from anvilwave.pile.model import PileSoil
 
 from .conftest import EXAMPLES
 
@@ -212,7 +212,7 @@ def table1():
 @pytest.fixture(scope="module")
 def xl8_modal(table1):
     """The xl8 modes, computed once for the tests of this module."""
-    from anvil_rom.pipeline import compute_anvil_modes
+    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
     return compute_anvil_modes(table1.anvil.spec, fmax=table1.anvil.fmax).modal_data
 

@@ -10,16 +10,16 @@ import math
 import numpy as np
 import pytest
 
-import anvilwave.engine as engine_module
-from anvil_rom.contact import contact_force
-from anvil_rom.unit import AnvilUnit
-from anvilwave.engine import COLUMNS, ENERGY_COLUMNS, ENERGY_STEPS, PileState, build_engine
-from anvilwave.report import energy_balance, transferred_energy
-from anvilwave.system import load_system
-from hammer.driving_system import driving_system_forces, driving_system_step
-from hammer.modal_ram import ModalRamUnit, modal_ram_chain
-from hammer.ram import leapfrog_energies, ram_step
-from pile.kernels import (
+import anvilwave.engine.direct as engine_module
+from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.unit import AnvilUnit
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import COLUMNS, ENERGY_COLUMNS, ENERGY_STEPS, PileState, build_engine
+from anvilwave.hammer.driving_system import driving_system_forces, driving_system_step
+from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_chain
+from anvilwave.hammer.ram import leapfrog_energies, ram_step
+from anvilwave.output.tables import energy_balance, transferred_energy
+from anvilwave.pile.kernels import (
     gauge_force,
     gauge_velocity,
     head_displacement,
@@ -29,7 +29,7 @@ from pile.kernels import (
     update_energy,
     update_stress_extremes,
 )
-from pile.model import initial_state
+from anvilwave.pile.model import initial_state
 
 from .conftest import EXAMPLES
 

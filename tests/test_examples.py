@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from anvilwave.system import load_system
+from anvilwave.config.system import load_system
 
 from .conftest import EXAMPLES, example_systems
 

@@ -1,4 +1,5 @@
-"""Tests of pile/fatigue.py: DNV-RP-C203 (2016) S-N curves, rainflow counting (ASTM E1049-85),
+"""Tests of anvilwave/pile/post/fatigue.py: DNV-RP-C203 (2016) S-N curves, rainflow counting (ASTM
+E1049-85),
 Miner's sum and the blow-by-blow streaming count.
 
 Reference values are from /work/shared/reference/driveability-fatigue-pda-spectra.md; the other
@@ -13,7 +14,7 @@ from collections import defaultdict
 import numpy as np
 import pytest
 
-from pile.fatigue import (
+from anvilwave.pile.post.fatigue import (
     DNV_RP_C203_TABLES,
     REFERENCE_THICKNESS_TUBULAR_JOINT,
     RainflowStream,

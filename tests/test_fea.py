@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from anvil_rom.geometry import STEEL, load_anvil
+from anvilwave.anvil_rom.fem.geometry import STEEL, load_anvil
 from anvilwave.fea.bodies import (
     face,
     graded_vertices,
@@ -15,7 +15,7 @@ from anvilwave.fea.bodies import (
     tensor_body,
 )
 from anvilwave.fea.impact import FeaConfig, build_impact_model, run_bar_impact, run_impact_fea
-from anvilwave_inputs import InputError
+from anvilwave.inputs import InputError
 
 from .conftest import EXAMPLES
 

@@ -29,14 +29,14 @@ from fmpy.fmi2 import (  # noqa: E402
 )
 from fmpy.validation import validate_fmu  # noqa: E402
 
-from anvil_rom.geometry import load_anvil  # noqa: E402
-from anvil_rom.modalfile import load_modal_data, save_modal_data  # noqa: E402
-from anvil_rom.pipeline import compute_anvil_modes  # noqa: E402
-from anvil_rom.rom import ModalAnvil  # noqa: E402
-from anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
-from anvilwave_inputs import InputError  # noqa: E402
-from fmu.fmi_build import SHIM_INNER_LIBRARY, build_anvil_fmu, build_fmu  # noqa: E402
-from fmu.fmi_master import ChainMaster, CosimulationError  # noqa: E402
+from anvilwave.anvil_rom.fem.geometry import load_anvil  # noqa: E402
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data  # noqa: E402
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes  # noqa: E402
+from anvilwave.anvil_rom.rom import ModalAnvil  # noqa: E402
+from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
+from anvilwave.fmu.fmi_build import SHIM_INNER_LIBRARY, build_anvil_fmu, build_fmu  # noqa: E402
+from anvilwave.fmu.fmi_master import ChainMaster, CosimulationError  # noqa: E402
+from anvilwave.inputs import InputError  # noqa: E402
 
 from .conftest import EXAMPLES  # noqa: E402
 
@@ -48,7 +48,7 @@ OUTPUTS = ("F_ram", "F_pile", "u_top", "u_bottom")
 # has a module name of its own (pythonfmu runs the first loaded module of a name).
 RAM_SCRIPT = '''"""Test Ram FMU: a rigid ram in free flight (exact, force held over the step)."""
 
-from fmu.units.base import UnitSlave, pin_namespace
+from anvilwave.fmu.units.base import UnitSlave, pin_namespace
 
 pin_namespace(globals())
 
@@ -89,7 +89,7 @@ class TestRigidRam(UnitSlave):
 
 PILE_SCRIPT = '''"""Test PileSoil FMU: a dashpot Z, v = F / Z (force of the step held)."""
 
-from fmu.units.base import UnitSlave, pin_namespace
+from anvilwave.fmu.units.base import UnitSlave, pin_namespace
 
 pin_namespace(globals())
 

@@ -3,7 +3,7 @@
 tests/c_host/fmi_host.c loads an FMU binary with dlopen, runs two instances, resets them and
 reruns (bitwise the same), terminates, frees, dlcloses and exits. The host has no Python: the
 environment is the user's venv ``bin`` on the PATH and nothing else (no LD_PRELOAD, no
-PYTHONPATH, no PYTHONHOME). The FMU's status shim (fmu/units/fmi2_status_shim.c) loads the
+PYTHONPATH, no PYTHONHOME). The FMU's status shim (anvilwave/fmu/units/fmi2_status_shim.c) loads the
 libpython recorded at build time (resources/anvilwave_python.txt), initializes it with the
 venv's python as program name (its site-packages, so anvilwave imports) and never finalizes it,
 and releases pythonfmu's Python state once (pythonfmu 0.7.0 releases it twice at exit).
@@ -29,7 +29,7 @@ pytest.importorskip("pythonfmu")
 
 from fmpy import read_model_description  # noqa: E402
 
-from fmu.fmi_build import (  # noqa: E402
+from anvilwave.fmu.fmi_build import (  # noqa: E402
     RUNTIME_FILE,
     SHIM_INNER_LIBRARY,
     build_fmu,
@@ -37,7 +37,7 @@ from fmu.fmi_build import (  # noqa: E402
     build_ram_fmu,
     toml_dumps,
 )
-from fmu.native_build import NativeBuildError, find_compiler  # noqa: E402
+from anvilwave.fmu.native_build import NativeBuildError, find_compiler  # noqa: E402
 
 from .conftest import EXAMPLES, ROOT  # noqa: E402
 
@@ -70,7 +70,8 @@ def host(tmp_path_factory) -> Path:
     """tests/c_host/fmi_host.c compiled with the system compiler."""
     compiler = _compiler()
     exe = tmp_path_factory.mktemp("c_host") / "fmi_host"
-    run = subprocess.run([*compiler.split(), "-std=c99", "-O2", "-I", str(ROOT / "fmu" / "native"),
+    run = subprocess.run([*compiler.split(), "-std=c99", "-O2", "-I", str(ROOT / "anvilwave" /
+    "fmu" / "native"),
                           "-o", str(exe), str(HOST_SOURCE), "-ldl", "-lm"],
                          capture_output=True, text=True)
     if run.returncode != 0:

@@ -40,20 +40,20 @@ from fmpy.fmi2 import (  # noqa: E402
 )
 from fmpy.validation import validate_fmu  # noqa: E402
 
-from anvilwave.engine import COLUMNS, build_engine  # noqa: E402
-from anvilwave.fmi_engine import run_fmi  # noqa: E402
-from anvilwave.fmus import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
-from anvilwave.system import load_system  # noqa: E402
-from anvilwave_inputs import InputError  # noqa: E402
-from fmu.fmi_build import (  # noqa: E402
+from anvilwave.config.system import load_system  # noqa: E402
+from anvilwave.engine.direct import COLUMNS, build_engine  # noqa: E402
+from anvilwave.engine.fmi import run_fmi  # noqa: E402
+from anvilwave.engine.fmus import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
+from anvilwave.fmu.fmi_build import (  # noqa: E402
     SHIM_INNER_LIBRARY,
     build_ram_fmu,
     hammer_toml,
     pile_soil_toml,
 )
-from fmu.fmi_master import BlowMaster, CosimulationError  # noqa: E402
-from hammer.database import load_hammer  # noqa: E402
-from pile.model import PileSoil, load_pile_soil  # noqa: E402
+from anvilwave.fmu.fmi_master import BlowMaster, CosimulationError  # noqa: E402
+from anvilwave.hammer.database import load_hammer  # noqa: E402
+from anvilwave.inputs import InputError  # noqa: E402
+from anvilwave.pile.model import PileSoil, load_pile_soil  # noqa: E402
 
 from .conftest import EXAMPLES  # noqa: E402
 
@@ -568,7 +568,7 @@ def test_fmpy_cosim_example_swaps_the_anvil_with_fmpy_alone(direct, tmp_path):
     AnvilLumped.fmu swapped in, and plots the pile-head force. Its loop is the DESIGN order with
     the engine's initialisation, so its peaks are the direct engine's (printed to 1 kN)."""
     from anvilwave.cli import main
-    from fmu.native_build import NativeBuildError, find_compiler
+    from anvilwave.fmu.native_build import NativeBuildError, find_compiler
 
     try:
         find_compiler()

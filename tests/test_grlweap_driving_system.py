@@ -15,8 +15,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from anvilwave_inputs import InputError, Table
-from hammer import (
+from anvilwave.hammer import (
     Cushion,
     DrivingSystem,
     driving_system_energy,
@@ -37,8 +36,8 @@ from hammer import (
     series_stiffness,
     strain_energy,
 )
-from hammer.database import DATA_DIR, available_hammers
-from hammer.driving_system import (
+from anvilwave.hammer.database import DATA_DIR, available_hammers
+from anvilwave.hammer.driving_system import (
     N_PARAMS,
     N_STATE,
     P_ASSEMBLY_PRECOMPRESSION,
@@ -55,6 +54,7 @@ from hammer.driving_system import (
     S_HELMET_U,
     S_HELMET_V,
 )
+from anvilwave.inputs import InputError, Table
 
 G = 9.81  # GRLWEAP's gravity in the benchmark [m/s^2]
 KN_PER_MM = 1e6  # [N/m] per [kN/mm]
@@ -531,7 +531,7 @@ def test_driving_system_rejects_non_physical_values():
 def test_grlweap_s4000_hammer_file():
     """The 9-segment ram of GRLWEAP hammer 1372 with its cited source. It is loaded by path:
     a ram of segment masses and springs has no length, which the database files of
-    hammer/data/*.toml (rod rams) all carry."""
+    anvilwave/hammer/data/*.toml (rod rams) all carry."""
     hammer = load_hammer(GRLWEAP_HAMMER)
     ram = hammer.ram
     assert "ihc_s4000_grlweap" not in available_hammers()

@@ -11,8 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from anvilwave_inputs import InputError, Table
-from hammer import (
+from anvilwave.hammer import (
     Hammer,
     RamRod,
     available_hammers,
@@ -35,8 +34,9 @@ from hammer import (
     strain_energy,
     toe_spring_force,
 )
-from hammer.database import DATA_DIR
-from hammer.ram import max_angular_frequency
+from anvilwave.hammer.database import DATA_DIR
+from anvilwave.hammer.ram import max_angular_frequency
+from anvilwave.inputs import InputError, Table
 
 E_STEEL, RHO_STEEL = 210e9, 7850.0
 C_STEEL = math.sqrt(E_STEEL / RHO_STEEL)  # 5172.19 m/s

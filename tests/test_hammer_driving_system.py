@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from anvilwave_inputs import InputError, Table
-from hammer import (
+from anvilwave.hammer import (
     Cushion,
     DrivingSystem,
     RamRod,
@@ -24,7 +23,7 @@ from hammer import (
     required_substeps,
     strain_energy,
 )
-from hammer.driving_system import (
+from anvilwave.hammer.driving_system import (
     P_PC_PRECOMPRESSION,
     S_ASSEMBLY_U,
     S_HC_MAX,
@@ -32,6 +31,7 @@ from hammer.driving_system import (
     S_HELMET_V,
     S_PC_MAX,
 )
+from anvilwave.inputs import InputError, Table
 
 G = 9.81
 # the 8000 x 140 mm pile of the paper's Table 1 (steel): Z = rho c A

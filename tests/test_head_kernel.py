@@ -1,12 +1,12 @@
-"""The pile head's ring kernel (pile/head_kernel.py) against Newton's second law and
+"""The pile head's ring kernel (anvilwave/pile/head_kernel.py) against Newton's second law and
 reciprocity. Its check against the reference FEA's own pile, driven by the contact forces the
 FEA records, is tests/test_study_pile_port.py::test_ring_kernel_reproduces_the_fea_pile."""
 
 import numpy as np
 import pytest
 
-from anvil_rom.geometry import STEEL
-from pile.head_kernel import ring_kernel
+from anvilwave.anvil_rom.fem.geometry import STEEL
+from anvilwave.pile.head_kernel import ring_kernel
 
 R_IN, R_OUT, LENGTH, STEP, RINGS = 0.95, 1.0, 2.0, 2e-5, 2
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from anvilwave.cli import main
-from anvilwave.report import read_csv
+from anvilwave.output.tables import read_csv
 
 from .conftest import EXAMPLES
 
@@ -17,7 +17,7 @@ from .conftest import EXAMPLES
 def test_fmi_and_direct_outputs_agree(tmp_path, anvil, monkeypatch):
     """--engine fmi runs the native anvil FMU (when a C compiler is found) and writes the
     direct engine's numbers (1e-9 of each value)."""
-    import fmu.native_build as native_build
+    import anvilwave.fmu.native_build as native_build
 
     built = []
     build = native_build.build_native_anvil_fmu

@@ -10,11 +10,11 @@ import meshio
 import numpy as np
 import pytest
 
-from anvil_rom.geometry import load_anvil
-from anvil_rom.modalfile import load_modal_data, save_modal_data
-from anvil_rom.pipeline import compute_anvil_modes
+from anvilwave.anvil_rom.fem.geometry import load_anvil
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 from anvilwave.cli import main
-from anvilwave_inputs import InputError
+from anvilwave.inputs import InputError
 
 from .conftest import EXAMPLES
 
@@ -151,7 +151,7 @@ def test_modal_file_corrupt_or_foreign_is_refused(tmp_path, small_modal_data):
                                               (".vtu", "vtu")])
 def test_external_mesh_gives_same_modes(tmp_path, suffix, kind):
     """A mesh read with meshio gives the frequencies of the same mesh made in-process."""
-    from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces
+    from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces
 
     spec = load_anvil(write(tmp_path, GOOD))
     mesh = mesh_outline(split_outline_at_interfaces(spec.outline, spec.interfaces), 0.05)
@@ -171,7 +171,7 @@ def test_external_mesh_gives_same_modes(tmp_path, suffix, kind):
 
 def test_linear_triangle_mesh_is_lifted_to_quadratic(tmp_path):
     """A 3-node triangle mesh is used with quadratic elements on its straight edges."""
-    from anvil_rom.mesh import mesh_outline
+    from anvilwave.anvil_rom.fem.mesh import mesh_outline
 
     mesh = mesh_outline(np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 1.0], [0.0, 1.0]]), 0.05)
     tri3 = mesh.cells[0].data[:, :3]

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from anvilwave.cli import main
-from anvilwave.system import load_system
+from anvilwave.config.system import load_system
 
 from .conftest import EXAMPLES
 
@@ -57,8 +57,8 @@ def test_installation_total_blows_follow_the_driveability(short_install):
     issue's bound). The installation carries the residual stresses and the soil springs'
     plastic offsets from blow to blow: the pile starts each blow pre-compressed with its toe
     already loaded, so it needs fewer blows than a pile that starts every depth from rest."""
-    from anvilwave.driveability import run_driveability
-    from anvilwave.engine import build_engine
+    from anvilwave.analyses.drive import run_driveability
+    from anvilwave.engine.direct import build_engine
 
     out, cfg = short_install
     summary = json.loads((out / "summary.json").read_text())

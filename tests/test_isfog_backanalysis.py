@@ -12,7 +12,7 @@ import sys
 import numpy as np
 import pytest
 
-from pile.cpt_classification import (
+from anvilwave.pile.soil.cpt_classification import (
     merge_thin_layers,
     robertson_1990_normalised_cone_resistance,
     robertson_1990_normalised_friction_ratio,
@@ -23,7 +23,7 @@ from pile.cpt_classification import (
     robertson_wride_1998_soil_behaviour_type_index,
     soil_layers_from_cpt,
 )
-from pile.soil_profile import Cpt
+from anvilwave.pile.soil.profile import Cpt
 
 from .conftest import ROOT, SHARED
 

@@ -10,14 +10,18 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
-from anvil_rom.chain import chain_from_modes, chain_modes
-from anvilwave.compare import ModelRun, comparison_bandwidth, lowpass, metrics, without_soil
-from anvilwave.engine import build_engine
-from anvilwave.report import energy_balance
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
-from hammer.database import load_hammer
-from hammer.modal_ram import (
+from anvilwave.analyses.compare import (
+    ModelRun,
+    comparison_bandwidth,
+    lowpass,
+    metrics,
+    without_soil,
+)
+from anvilwave.anvil_rom.chain import chain_from_modes, chain_modes
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.hammer.database import load_hammer
+from anvilwave.hammer.modal_ram import (
     ModalRamUnit,
     RamToeModes,
     modal_ram,
@@ -27,7 +31,9 @@ from hammer.modal_ram import (
     toe_modes_from_table,
     toe_modes_table,
 )
-from hammer.ram import RamRod
+from anvilwave.hammer.ram import RamRod
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import energy_balance
 
 from .conftest import EXAMPLES
 
@@ -300,7 +306,7 @@ def test_modal_ram_unit_builds_where_the_chain_cannot(hammer, fmax, at_least):
     mode's recurrence is exact for a constant load): started with the half-step velocity v0
     over [-h, 0], u(t) = v0 t + g t (t + h) / 2 and the half-step velocity over [t - h, t] is
     v0 + g t."""
-    from anvilwave.cache import cached_modal_data
+    from anvilwave.config.cache import cached_modal_data
 
     ram = load_hammer(hammer).ram
     modes = modal_ram_modes(ram, fmax, modes=cached_modal_data)
@@ -321,7 +327,7 @@ def test_toe_modes_table_reads_back_exactly_and_refuses_bad_tables(tmp_path):
     """The [ram] kind = "modal" table that Ram.fmu embeds: written and read back, every array
     and number is the same float (TOML writes shortest round-trip reprs); each broken key is
     one InputError naming it."""
-    from anvilwave_inputs import Table, toml_dumps
+    from anvilwave.inputs import Table, toml_dumps
 
     modes = rod_toe_modes(2.0, 0.1, 12)
     path = tmp_path / "ram.toml"
@@ -376,7 +382,7 @@ def test_unit_arrays_aligned_and_padded():
     padding stays exactly at rest through steps under a varying force, and the toe
     displacement the vectorised (reassociated) sum gives equals the exactly rounded sum of
     p_j q_j over the 14 modes to 1e-14 of its size (reassociation moves only the last bits)."""
-    from anvil_rom.arrays import ALIGNMENT, aligned_zeros
+    from anvilwave.anvil_rom.arrays import ALIGNMENT, aligned_zeros
 
     modes = rod_toe_modes(2.0, 0.1, 13)  # the rigid mode and 13 elastic ones
     n = modes.n_modes

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from anvil_rom.fe import assemble, lame_parameters
-from anvil_rom.geometry import STEEL, Interfaces, load_anvil, revolved_volume
-from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
-from anvil_rom.modes import free_free_modes, mesh_resolvable_frequency, sturm_count
-from anvil_rom.pipeline import compute_anvil_modes
+from anvilwave.anvil_rom.fem.elasticity import assemble, lame_parameters
+from anvilwave.anvil_rom.fem.geometry import STEEL, Interfaces, load_anvil, revolved_volume
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave.anvil_rom.fem.modes import free_free_modes, mesh_resolvable_frequency, sturm_count
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
 from .conftest import EXAMPLES, cylinder_model
 
@@ -158,7 +158,7 @@ def test_interface_vectors_have_unit_resultant_and_exact_areas():
 def test_fmax_above_mesh_resolution_is_refused():
     spec = load_anvil(EXAMPLES / "anvils" / "xl8.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.3})
-    from anvilwave_inputs import InputError
+    from anvilwave.inputs import InputError
 
     with pytest.raises(InputError, match="fmax"):
         compute_anvil_modes(spec, fmax=5000.0)

@@ -1,4 +1,5 @@
-"""The native (C) anvil FMUs of :mod:`fmu.native_build`: the numbers of the Python kernels, a
+"""The native (C) anvil FMUs of :mod:`anvilwave.fmu.native_build`: the numbers of the Python
+kernels, a
 clean validation, errors as fmi2Error with the reason, and a plain C host without Python.
 
 The FMUs are built once per module from a coarse modal-data file of the s2 anvil (mesh 0.03 m,
@@ -32,12 +33,11 @@ from fmpy.fmi2 import (  # noqa: E402
 from fmpy.model_description import read_build_description  # noqa: E402
 from fmpy.validation import validate_fmu  # noqa: E402
 
-from anvil_rom.geometry import load_anvil  # noqa: E402
-from anvil_rom.pipeline import compute_anvil_modes  # noqa: E402
-from anvil_rom.rom import ModalAnvil  # noqa: E402
-from anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
-from anvilwave_inputs import InputError  # noqa: E402
-from fmu.native_build import (  # noqa: E402
+from anvilwave.anvil_rom.fem.geometry import load_anvil  # noqa: E402
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes  # noqa: E402
+from anvilwave.anvil_rom.rom import ModalAnvil  # noqa: E402
+from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
+from anvilwave.fmu.native_build import (  # noqa: E402
     MODAL_RESOURCE,
     NativeBuildError,
     build_native_anvil_fmu,
@@ -46,6 +46,7 @@ from fmu.native_build import (  # noqa: E402
     native_modal_data,
     read_modal_resource,
 )
+from anvilwave.inputs import InputError  # noqa: E402
 
 from .conftest import EXAMPLES, ROOT  # noqa: E402
 
@@ -53,7 +54,7 @@ CONTACTS = {"ram_contact_stiffness": 2.0e10, "pile_contact_stiffness": 3.0e10}  
 INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
 OUTPUTS = ("F_ram", "F_pile", "u_top", "u_bottom")
 HOST_SOURCE = ROOT / "tests" / "c_host" / "fmi_host.c"
-NATIVE_DIR = ROOT / "fmu" / "native"
+NATIVE_DIR = ROOT / "anvilwave" / "fmu" / "native"
 
 
 def _compiler() -> str:
@@ -257,7 +258,7 @@ def test_extrapolated_input_is_exact_for_a_constant_acceleration():
     """Closed form: a neighbour at constant acceleration a, reported like the Ram and PileSoil
     units (displacement at t_n, velocity the mean over the last step d, i.e. at t_n - d / 2),
     is extrapolated exactly to any age."""
-    from fmu.coupling import extrapolated_input
+    from anvilwave.fmu.coupling import extrapolated_input
 
     u0, v0, a, d = 1.0e-4, 5.0, -3.0e4, 2.5e-6  # [m, m/s, m/s^2, s]
 
@@ -281,8 +282,8 @@ def test_input_extrapolation_equals_the_python_unit(built, tmp_path, lumped):
     steps alternate 1 and 2.5 us, so the extrapolation interval changes every step), different
     from the plain feedthrough there; in the DESIGN order the option changes no bit."""
     pytest.importorskip("pythonfmu")
-    from anvil_rom.modalfile import save_modal_data
-    from fmu.fmi_build import build_anvil_fmu
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+    from anvilwave.fmu.fmi_build import build_anvil_fmu
 
     modal = save_modal_data(built["data"], tmp_path / "modes.npz")
     python_fmu = build_anvil_fmu(modal, tmp_path, lumped=lumped, **CONTACTS)
@@ -438,8 +439,8 @@ def test_model_description_units_structure_and_sources(built):
 def test_same_interface_as_the_pythonfmu_unit(built, tmp_path, lumped):
     """Same names, value references, types, causalities, variabilities, units, structure."""
     pytest.importorskip("pythonfmu")
-    from anvil_rom.modalfile import save_modal_data
-    from fmu.fmi_build import build_anvil_fmu
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+    from anvilwave.fmu.fmi_build import build_anvil_fmu
 
     modal = save_modal_data(built["data"], tmp_path / "modes.npz")
     python_fmu = build_anvil_fmu(modal, tmp_path, lumped=lumped, **CONTACTS)
@@ -746,7 +747,7 @@ def built_rings(built):
 @pytest.mark.parametrize("case", ["fmax 8 kHz, static correction",
                                   "damped, dashpot, static correction"])
 def test_ring_outputs_equal_the_python_kernels(built_rings, case):
-    """The pile port in two rings (anvil_rom/rings.py) in C: the rest with the rings that
+    """The pile port in two rings (anvilwave/anvil_rom/rings.py) in C: the rest with the rings that
     carry the weight, the complementarity pivoting, the ring forces held over the step. The
     blow of the one-port test against the Python ring unit: round-off only (1e-12, as the
     one port; measured below 1e-13)."""

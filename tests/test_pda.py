@@ -1,4 +1,5 @@
-"""Tests of pile/pda.py (Case method, EMX, FMX/CSX/TSX, BTA) and pile/pda_records.py (gauge
+"""Tests of anvilwave/pile/pda/case_method.py (Case method, EMX, FMX/CSX/TSX, BTA) and
+anvilwave/pile/pda/records.py (gauge
 records, raw channels) on records built exactly, without the simulator.
 
 Exact records: a uniform (or two-impedance) steel pile of length L below the gauges, free of
@@ -20,8 +21,8 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
-from anvilwave_inputs import InputError
-from pile.pda import (
+from anvilwave.inputs import InputError
+from anvilwave.pile.pda.case_method import (
     case_method,
     first_peak_index,
     rausche_goble_1979_beta,
@@ -31,7 +32,7 @@ from pile.pda import (
     wave_down,
     wave_up,
 )
-from pile.pda_records import (
+from anvilwave.pile.pda.records import (
     STANDARD_GRAVITY,
     check_gauge_record,
     gauge_record_from_raw,

@@ -1,4 +1,4 @@
-"""The PDA commands of the system layer (anvilwave/pda_analysis.py): the Case method on the
+"""The PDA commands of the system layer (anvilwave/analyses/pda.py): the Case method on the
 synthetic example record, the PDA summary of simulated blows, compare-pda (the paper's Fig. 4
 and 5), and one clear error for each kind of bad record."""
 
@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 
 import anvilwave
-from anvilwave.pda_analysis import (
+from anvilwave.analyses.match import rest_force_at_gauges
+from anvilwave.analyses.pda import (
     STEEL_WAVE_SPEED,
     load_record,
     pda_summary,
     run_compare_pda,
     run_pda,
 )
-from anvilwave.signal_matching import rest_force_at_gauges
 from tests.conftest import EXAMPLES
 
 RECORD = EXAMPLES / "pda_record_synthetic.csv"

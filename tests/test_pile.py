@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh_tridiagonal
 
-from anvilwave_inputs import InputError, Table
-from pile import (
+from anvilwave.inputs import InputError, Table
+from anvilwave.pile import (
     ENERGY_KINETIC,
     ENERGY_STRAIN,
     WORK_HEAD,
@@ -42,15 +42,15 @@ from pile import (
     substeps,
     toe_resistance,
 )
-from pile.kernels import (
+from anvilwave.pile.kernels import (
     PILE_MASS,
     PILE_STIFFNESS,
     SOIL_CAPACITY,
     SOIL_DASHPOT,
     SOIL_STIFFNESS,
 )
-from pile.soil import lysmer_dashpot, lysmer_stiffness
-from pile.srd import shaft_capacities
+from anvilwave.pile.soil.models import lysmer_dashpot, lysmer_stiffness
+from anvilwave.pile.soil.srd import shaft_capacities
 
 E_STEEL, RHO_STEEL = 210e9, 7850.0
 C_STEEL = math.sqrt(E_STEEL / RHO_STEEL)  # 5172.19 m/s

@@ -1,4 +1,5 @@
-"""The ram face in annuli (``[anvil] ram_port_annuli``, anvil_rom/rings.py): the modal ram's toe
+"""The ram face in annuli (``[anvil] ram_port_annuli``, anvilwave/anvil_rom/rings.py): the modal
+ram's toe
 annuli make up its toe, the annuli's offsets from the ram unit's toe are the ram's own annulus
 displacements, the engine's blow is the pile-port study's closed loop with six ram annuli on the
 FEA's pile, and examples/table1_interfaces.toml against the reference FEA (band levels, peaks,
@@ -13,15 +14,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from anvil_rom.modalfile import ModalData
-from anvil_rom.rings import RamFace, ram_face_advance
-from anvilwave.cache import cached_modal_data
-from anvilwave.compare import ModelRun, band_levels, fea_config, metrics, without_soil
-from anvilwave.engine import build_engine
-from anvilwave.report import total_energy
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
-from hammer.modal_ram import ModalRamUnit, modal_ram_modes
+from anvilwave.analyses.compare import ModelRun, band_levels, fea_config, metrics, without_soil
+from anvilwave.anvil_rom.fem.modalfile import ModalData
+from anvilwave.anvil_rom.rings import RamFace, ram_face_advance
+from anvilwave.config.cache import cached_modal_data
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_modes
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import total_energy
 
 from .conftest import assert_within_issue_bounds
 from .study_loop import loop_on_feas_pile
@@ -175,7 +176,7 @@ def test_no_worse_at_fmax_10_khz(against_fea, tmp_path, step):
     band to 4 kHz still within 1 dB of the FEA (measured 0.61 and 0.66 dB; 0.71 at 5 kHz), the
     band peaks within the issue's bounds (pile +0.2 %, ram -0.8 % at 5 us) and the energy
     within 0.5 % (measured -0.10 %; at 10 us it drifted +2.0 % while the tube head booked its
-    work with the held force's rectangle, :func:`anvil_rom.rings.head_push`)."""
+    work with the held force's rectangle, :func:`anvilwave.anvil_rom.rings.head_push`)."""
     path = _system(tmp_path, "fmax = 5000.0 ", "fmax = 10000.0", "fmax10.toml")
     path.write_text(path.read_text().replace("time_step = 2.0e-5 ", f"time_step = {step!r} "))
     cfg = without_soil(load_system(path))
@@ -226,7 +227,7 @@ def test_refusals(table1, tmp_path):
                             "ram_port_annuli = 6\nram_contact_stiffness = 1e12"))
     with pytest.raises(InputError, match="anvil.ram_port_annuli.*ram_model = 'modal'"):
         load_system(_system(tmp_path, 'ram_model = "modal"', 'ram_model = "rod"'))
-    from anvilwave.fmus import build_system_fmus
+    from anvilwave.engine.fmus import build_system_fmus
 
     with pytest.raises(InputError, match="ram_port_annuli.*in-process engine only"):
         build_system_fmus(dataclasses.replace(table1, anvil=dataclasses.replace(
@@ -249,7 +250,7 @@ def _no_rings(tmp_path):
 def test_modal_data_annulus_keys(table1):
     """The modal-data record checks the annulus keys: both or none, with the ring keys; their
     areas make up the ram face and their participations add up to the face's."""
-    from anvilwave.engine import anvil_modal_data
+    from anvilwave.engine.direct import anvil_modal_data
 
     data = anvil_modal_data(table1)
     assert data.participation_ram_annuli.shape == (6, data.n_modes)

@@ -1,4 +1,5 @@
-"""The anvil's pile port split into rings (anvil_rom/rings.py, ``[anvil] pile_port_rings``):
+"""The anvil's pile port split into rings (anvilwave/anvil_rom/rings.py, ``[anvil]
+pile_port_rings``):
 the contact solver against enumeration, the rest on the pile, the one-port limit in the
 engine, the energy balance, the modal-data keys and the refusals."""
 
@@ -11,14 +12,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from anvil_rom.modalfile import load_modal_data, save_modal_data
-from anvil_rom.rings import contact_lcp, ring_static_rest
-from anvil_rom.rom import ModalAnvil
-from anvilwave.compare import without_soil
-from anvilwave.engine import anvil_modal_data, build_engine, contact_stiffnesses
-from anvilwave.report import total_energy
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
+from anvilwave.analyses.compare import without_soil
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data
+from anvilwave.anvil_rom.rings import contact_lcp, ring_static_rest
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import total_energy
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -186,7 +187,7 @@ def test_fmi_engine_with_rings_equals_direct(table1, tmp_path, native):
     """The FMI engine on a system with three rings (F_pile the rings' sum) gives the direct
     engine's blow with the native C anvil (when a compiler is found) and with the pythonfmu
     anvil: forces to 1e-9 of their peaks (measured ~1e-11: round-off of the separate calls)."""
-    from anvilwave.fmi_engine import run_fmi
+    from anvilwave.engine.fmi import run_fmi
 
     ringed = with_rings(table1, 3)
     direct = build_engine(ringed).blow()

@@ -7,10 +7,10 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 
-from anvil_rom.contact import contact_force
-from anvil_rom.geometry import load_anvil
-from anvil_rom.pipeline import compute_anvil_modes
-from anvil_rom.rom import (
+from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.fem.geometry import load_anvil
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.anvil_rom.rom import (
     ModalAnvil,
     anvil_contact_forces,
     modal_interface,
@@ -210,7 +210,7 @@ def test_static_correction_makes_static_response_exact(xl8_coarse):
 
 
 def test_fmax_below_first_flexible_mode_is_refused(xl8_coarse):
-    from anvilwave_inputs import InputError
+    from anvilwave.inputs import InputError
 
     with pytest.raises(InputError, match="first flexible mode"):
         ModalAnvil.from_modal_data(xl8_coarse.modal_data, fmax=50.0)

@@ -27,10 +27,9 @@ import numpy as np
 import pytest
 
 import anvilwave
-from pile.kernels import SOIL_CAPACITY, SOIL_ROWS, SOIL_STIFFNESS
-from pile.pda_records import check_gauge_record
-from pile.pile import PileSpec, Section, pile_parameters
-from pile.signal_matching import (
+from anvilwave.pile.kernels import SOIL_CAPACITY, SOIL_ROWS, SOIL_STIFFNESS
+from anvilwave.pile.pda.records import check_gauge_record
+from anvilwave.pile.pda.signal_matching import (
     IMPOSED_VELOCITY,
     IMPOSED_WAVE_DOWN,
     davisson_1972_offset_limit,
@@ -44,7 +43,8 @@ from pile.signal_matching import (
     run_prescribed_head,
     static_load_test,
 )
-from pile.soil import soil_capacities
+from anvilwave.pile.pile import PileSpec, Section, pile_parameters
+from anvilwave.pile.soil.models import soil_capacities
 
 E, RHO = 210e9, 7850.0
 C = math.sqrt(E / RHO)
@@ -184,7 +184,7 @@ def test_preload_is_held_at_rest():
     arrays = np.ascontiguousarray(pile_parameters(pile))
     soil = np.zeros((SOIL_ROWS, arrays.shape[1] + 1))
     soil[SOIL_CAPACITY, -1], soil[SOIL_STIFFNESS, -1] = 1e7, 1e9  # a toe to stand on
-    from pile.static import static_equilibrium
+    from anvilwave.pile.static import static_equilibrium
 
     k_h = face_stiffness(pile)
     u, off = static_equilibrium(arrays, soil, 2e5, 0.0)
@@ -277,7 +277,7 @@ def recovery(tmp_path_factory):
 
 
 def test_recovery_of_the_srd(recovery):
-    from anvilwave.pda_analysis import run_match
+    from anvilwave.analyses.pda import run_match
 
     assert recovery["set"] > 0.005  # the blow moves the pile well past its quakes
     start = time.perf_counter()
@@ -301,7 +301,7 @@ def test_recovery_of_the_srd(recovery):
         assert key in saved
     for name in ("match.png", "match.csv", "static_load_test.csv", "static_load_test.png"):
         assert (out / name).stat().st_size > 0
-    from anvilwave.report import read_csv
+    from anvilwave.output.tables import read_csv
 
     slt = read_csv(out / "static_load_test.csv")
     assert np.all(np.diff(slt["settlement [m]"]) > 0) and np.all(np.diff(slt["load [N]"]) >= 0)
@@ -309,7 +309,7 @@ def test_recovery_of_the_srd(recovery):
 
 
 def test_recovery_imposing_the_wave_down(recovery):
-    from anvilwave.pda_analysis import run_match
+    from anvilwave.analyses.pda import run_match
 
     result = run_match(recovery["record"], recovery["guess"], recovery["folder"] / "wd",
                        imposed="wave_down")
@@ -319,7 +319,7 @@ def test_recovery_imposing_the_wave_down(recovery):
 
 
 def test_match_needs_a_long_enough_record(recovery, tmp_path):
-    from anvilwave.pda_analysis import run_match
+    from anvilwave.analyses.pda import run_match
 
     lines = recovery["record"].read_text().splitlines()[:400]  # 7.6 ms < 2L/c
     short = tmp_path / "short.csv"
@@ -330,7 +330,7 @@ def test_match_needs_a_long_enough_record(recovery, tmp_path):
 
 
 def test_check_gauge_record_is_what_the_match_reads(recovery):
-    from anvilwave.pda_analysis import load_record
+    from anvilwave.analyses.pda import load_record
 
     record, notes, kind = load_record(recovery["record"])
     assert kind == "gauge" and notes == []

@@ -1,4 +1,5 @@
-"""Tests of pile/soil_profile.py and pile/cpt.py: stresses, qt, SRD distributions per tip depth,
+"""Tests of anvilwave/pile/soil/profile.py and anvilwave/pile/soil/cpt.py: stresses, qt, SRD
+distributions per tip depth,
 user tables per tip depth, and CPT file reading (good files, bad files, the ISFOG 2020 CPTs).
 
 Hand values are worked in the comments; the Alm & Hamre distributions are checked against an
@@ -15,10 +16,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from anvilwave_inputs import InputError
-from pile import srd_methods as sm
-from pile.cpt import read_cpt_csv
-from pile.soil_profile import (
+from anvilwave.inputs import InputError
+from anvilwave.pile.soil import srd_methods as sm
+from anvilwave.pile.soil.cpt import read_cpt_csv
+from anvilwave.pile.soil.profile import (
     AlmHamre2001,
     Cpt,
     SoilLayer,

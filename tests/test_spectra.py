@@ -1,4 +1,5 @@
-"""Tests of pile/spectra.py: one-third-octave bands (IEC 61260-1 base ten), band energies of a
+"""Tests of anvilwave/pile/post/spectra.py: one-third-octave bands (IEC 61260-1 base ten), band
+energies of a
 force pulse against their closed form, Parseval, and the valid band.
 
 Check pulse (/work/shared/reference/driveability-fatigue-pda-spectra.md, "Force spectra"):
@@ -25,7 +26,7 @@ import math
 import numpy as np
 import pytest
 
-from pile.spectra import (
+from anvilwave.pile.post.spectra import (
     band_numbers_between,
     energy_level,
     energy_spectral_density,

@@ -1,4 +1,4 @@
-"""Tests of pile/srd_methods.py: the SRD formulas against independent values.
+"""Tests of anvilwave/pile/soil/srd_methods.py: the SRD formulas against independent values.
 
 Alm & Hamre (2001) values are those of /work/shared/reference/srd-methods.md (another open
 implementation, run for this project, printed to 3 decimals in kPa). Stevens et al. (1982) and
@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from pile import srd_methods as sm
+from anvilwave.pile.soil import srd_methods as sm
 
 KPA = 1e3
 REF_PA = 101.325e3  # [Pa] atmospheric pressure used by the reference implementation

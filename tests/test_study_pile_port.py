@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as sla
 
-from anvil_rom.fe import assemble, face_load_vector
-from anvil_rom.geometry import STEEL
-from anvil_rom.mesh import mesh_outline, to_skfem
+from anvilwave.anvil_rom.fem.elasticity import assemble, face_load_vector
+from anvilwave.anvil_rom.fem.geometry import STEEL
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, to_skfem
 
 PATH = Path(__file__).resolve().parents[1] / "benchmarks" / "study_pile_port.py"
 
@@ -173,9 +173,9 @@ def test_closed_loop_reproduces_the_engine(study):
     differ slightly) and the pile peak within 1 % (measured 0.15 %)."""
     import dataclasses
 
-    from anvilwave.compare import without_soil
-    from anvilwave.engine import build_engine
-    from anvilwave.system import load_system
+    from anvilwave.analyses.compare import without_soil
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
 
     cfg = without_soil(load_system(PATH.parents[1] / "examples" / "table1.toml"))
     blow = build_engine(dataclasses.replace(cfg, time_step=2e-5)).blow()
@@ -201,8 +201,8 @@ def test_closed_loop_reproduces_the_engine(study):
 
 
 def _table1(study):
-    from anvilwave.compare import without_soil
-    from anvilwave.system import load_system
+    from anvilwave.analyses.compare import without_soil
+    from anvilwave.config.system import load_system
 
     cfg = without_soil(load_system(PATH.parents[1] / "examples" / "table1.toml"))
     section = cfg.pile_soil.pile.sections[0]
@@ -211,7 +211,8 @@ def _table1(study):
 
 
 def test_ring_kernel_reproduces_the_fea_pile(study):
-    """The ring kernel of the FEA's pile (:func:`pile.head_kernel.ring_kernel`), driven by the
+    """The ring kernel of the FEA's pile (:func:`anvilwave.pile.head_kernel.ring_kernel`), driven
+    by the
     contact forces the reference FEA itself records on the pile top's nodes in the Table 1 blow (8
     ms, a boundary node's force split half and half between its two rings), gives the FEA's
     area-weighted mean pile-head displacement within 0.5 % of its peak, RMS (measured 0.02 %), and
@@ -220,8 +221,8 @@ def test_ring_kernel_reproduces_the_fea_pile(study):
     toe reflection returns after 11.6 ms."""
     from scipy.integrate import cumulative_trapezoid
 
-    from anvilwave.compare import fea_config
-    from pile.head_kernel import ring_kernel
+    from anvilwave.analyses.compare import fea_config
+    from anvilwave.pile.head_kernel import ring_kernel
 
     cfg, r_in, r_out = _table1(study)
     record = study.instrumented_fea(cfg, duration=0.008)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from anvilwave_inputs import Table
+from anvilwave.inputs import Table
 
 from .conftest import EXAMPLES, ROOT, example_systems
 
@@ -88,9 +88,9 @@ def test_resource_bombs_are_refused_with_their_estimate(tmp_path, kind, key):
 
 
 def test_every_key_the_examples_use_is_documented():
-    from anvil_rom.geometry import load_anvil
-    from anvilwave.schema import documented
-    from anvilwave.system import load_system
+    from anvilwave.anvil_rom.fem.geometry import load_anvil
+    from anvilwave.config.schema import documented
+    from anvilwave.config.system import load_system
 
     Table.record = used = []
     try:
@@ -100,10 +100,10 @@ def test_every_key_the_examples_use_is_documented():
             load_anvil(path)
     finally:
         Table.record = None
-    # hammer files (hammer/data, each citing its source) are their own format
+    # hammer files (anvilwave/hammer/data, each citing its source) are their own format
     system_keys = {k for f, k in used if Path(f).parent == EXAMPLES}
     anvil_keys = {k for f, k in used if Path(f).parent == EXAMPLES / "anvils"}
     assert system_keys and anvil_keys
     missing = sorted(k for k in system_keys if not documented("system", k))
     missing += sorted(k for k in anvil_keys if not documented("anvil", k))
-    assert not missing, f"keys accepted but not in anvilwave/schema.py: {missing}"
+    assert not missing, f"keys accepted but not in anvilwave/config/schema.py: {missing}"

@@ -1,4 +1,5 @@
-"""The anvil's rings on a tube head (``[anvil] pile_head = "tube"``, pile/head_kernel.py): the
+"""The anvil's rings on a tube head (``[anvil] pile_head = "tube"``,
+anvilwave/pile/head_kernel.py): the
 1D head's response the correction removes is the engine's own, the engine's blow is the study's
 closed loop on the FEA's pile, its band levels against the reference FEA, its energy balance and
 the refusals."""
@@ -11,14 +12,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from anvilwave.compare import ModelRun, band_levels, fea_config, without_soil
-from anvilwave.engine import build_engine
-from anvilwave.report import total_energy
-from anvilwave.system import load_system
-from anvilwave_inputs import InputError
-from pile.head_kernel import rod_head_response
-from pile.kernels import HEAD_EXTRAPOLATION, stable_time_step
-from pile.model import substeps
+from anvilwave.analyses.compare import ModelRun, band_levels, fea_config, without_soil
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.inputs import InputError
+from anvilwave.output.tables import total_energy
+from anvilwave.pile.head_kernel import rod_head_response
+from anvilwave.pile.kernels import HEAD_EXTRAPOLATION, stable_time_step
+from anvilwave.pile.model import substeps
 
 from .study_loop import loop_on_feas_pile
 
@@ -128,7 +129,7 @@ def test_tube_head_refusals(table1, tmp_path):
     wrong.write_text(text.replace('pile_head = "tube"', 'pile_head = "shell"'))
     with pytest.raises(InputError, match="pile_head"):
         load_system(wrong)
-    from anvilwave.fmus import build_system_fmus
+    from anvilwave.engine.fmus import build_system_fmus
 
     with pytest.raises(InputError, match="pile_head.*in-process engine only"):
         build_system_fmus(on_rings(table1, "tube"), tmp_path / "fmus")

@@ -1,6 +1,7 @@
 """Building blocks of the reference impact FEA: bodies, faces, contacts, boundaries, probes.
 
-Every body is an axisymmetric solid assembled with :func:`anvil_rom.fe.assemble` (quadratic
+Every body is an axisymmetric solid assembled with
+:func:`anvilwave.anvil_rom.fem.elasticity.assemble` (quadratic
 Lagrange elements, 2 pi r weighting, u_r = 0 on the axis) and HRZ-lumped. Bodies touch along
 horizontal faces whose nodes sit at the SAME radii on both sides (conforming meshes), so a
 contact is a set of node pairs. Cylinders and tubes are structured (r, z) tensor meshes of
@@ -20,8 +21,13 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 import skfem
 
-from anvil_rom.fe import AxisymmetricModel, _stiffness_form, assemble, lame_parameters
-from anvil_rom.geometry import Material
+from anvilwave.anvil_rom.fem.elasticity import (
+    AxisymmetricModel,
+    _stiffness_form,
+    assemble,
+    lame_parameters,
+)
+from anvilwave.anvil_rom.fem.geometry import Material
 
 _GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
@@ -177,7 +183,7 @@ class ContactSet:
 
     The overlap of pair i is d_i = u_upper_i - u_lower_i - gap_i (z down, u the axial
     displacement from the undeformed stack); the pair force follows
-    :func:`anvil_rom.contact.contact_force` and pushes the upper node up, the lower down.
+    :func:`anvilwave.anvil_rom.contact.contact_force` and pushes the upper node up, the lower down.
 
     stiffness : (n,) pair stiffness [N/m]; damping : (n,) pair dashpot [N s/m].
     gap : (n,) initial geometric gap [m] (0: the faces touch in the undeformed stack).

@@ -1,6 +1,7 @@
 """Reference impact FEA: ram + anvil + pile top, axisymmetric, explicit (the paper's Fig. 1).
 
-The ram (solid steel cylinder), the anvil (an :class:`~anvil_rom.geometry.AnvilSpec` outline)
+The ram (solid steel cylinder), the anvil (an :class:`~anvilwave.anvil_rom.fem.geometry.AnvilSpec`
+outline)
 and the pile (steel tube, to full length or truncated with an absorbing boundary) are three
 axisymmetric elastic bodies (see :mod:`anvilwave.fea.bodies`) that touch through
 compression-only node-to-node penalty contacts on conforming faces (lift-off and re-impact
@@ -41,11 +42,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from anvil_rom.geometry import STEEL, AnvilSpec, Interfaces, Material
-from anvil_rom.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
-from anvilwave_inputs import InputError
-
-from .bodies import (
+from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces, Material
+from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave.fea.bodies import (
     Body,
     ContactSet,
     Face,
@@ -59,7 +58,8 @@ from .bodies import (
     tensor_body,
     vertex_radii,
 )
-from .solver import ExplicitSystem, HighPassDashpots, Transient, integrate
+from anvilwave.fea.solver import ExplicitSystem, HighPassDashpots, Transient, integrate
+from anvilwave.inputs import InputError
 
 DEFAULT_CONTACT_STIFFNESS_FACTOR = 1.0
 """alpha in the penalty stiffness per unit area alpha * E / h [-] (h: element size at the face).

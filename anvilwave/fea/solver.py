@@ -15,7 +15,8 @@ stable for h <= 2 / omega_max, omega_max^2 the largest eigenvalue of M^-1 (K + K
 every contact closed (the stiffest state; centred diagonal damping does not lower the limit).
 omega_max is found with Lanczos (ARPACK) on M^-1/2 K M^-1/2 and the step gets a safety factor.
 The hot loop is one serial numba kernel (a symmetric CSR mat-vec fused with the update, the
-contact pairs through :func:`anvil_rom.contact.contact_force`); no Python per step or element.
+contact pairs through :func:`anvilwave.anvil_rom.contact.contact_force`); no Python per step or
+element.
 Serial on purpose: on a 2-core machine shared with other work, threads waiting at a barrier
 for a descheduled sibling made a parallel (prange) mat-vec 10-50 x slower, not faster.
 """
@@ -31,10 +32,9 @@ import scipy.sparse as sp
 from numba import njit
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from anvil_rom.contact import contact_force
-from anvil_rom.fe import max_eigenvalue
-
-from .bodies import ContactSet, contact_matrix
+from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.fem.elasticity import max_eigenvalue
+from anvilwave.fea.bodies import ContactSet, contact_matrix
 
 
 @dataclass
@@ -324,7 +324,7 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                  mw_vmass, mw_vold, u, v, f_lower, f_contact, pair_force, pair_vold, v_record,
                  record)
 
-    from anvilwave.kernels import announce_compilation
+    from anvilwave.engine.compilation import announce_compilation
 
     announce_compilation()
     advance(0)  # compile (or load from numba's cache) outside the timed stepping

@@ -1,0 +1,402 @@
+"""PDA records in the system layer: the Case method (``anvilwave pda``), signal matching
+(``anvilwave match``) and the paper's Fig. 4 and 5 (``anvilwave compare-pda``), plus the PDA
+quantities of simulated blows (:func:`pda_summary`).
+
+Records are gauge records (``time [s]``, ``force [N]``, ``velocity [m/s]``) or raw channels
+(``time [s]``, ``strain_1 [-]``/``[microstrain]``, ``strain_2``, ``acceleration_1 [m/s^2]``/
+``[g]``, ``acceleration_2``), told apart by their header (:mod:`anvilwave.pile.pda.records`). Lines
+at the
+top of the file that start with ``#`` are comments (where the record comes from); they are
+carried into the results as ``record_notes``.
+
+Every command writes its folder through :class:`anvilwave.output.writer.ResultWriter` (all files or
+none). Bad records and inputs stop with one :class:`anvilwave.InputError`.
+
+References
+----------
+Rausche, F., Goble, G.G., Likins, G.E. (1985). Dynamic determination of pile capacity. ASCE J.
+Geotech. Eng. 111(3), 367-383.
+Ligthart, J.A.J., Orlando, M. A novel anvil modelling approach for pile driveability
+prediction, validated with PDA measurements (HVR Engineering): Fig. 4 and 5.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from anvilwave.inputs import InputError, read_text
+from anvilwave.output.writer import ResultWriter
+from anvilwave.pile.kernels import SOIL_CAPACITY, SOIL_DASHPOT, SOIL_SMITH
+from anvilwave.pile.pda.case_method import (
+    case_method,
+    pile_impedance,
+    transferred_energy,
+    wave_down,
+    wave_up,
+)
+from anvilwave.pile.pda.records import (
+    CLIP_RUN,
+    GaugeRecord,
+    gauge_record_from_raw,
+    read_gauge_record,
+)
+from anvilwave.pile.pile import STEEL_DENSITY, STEEL_YOUNGS_MODULUS
+
+STEEL_WAVE_SPEED = math.sqrt(STEEL_YOUNGS_MODULUS / STEEL_DENSITY)
+"""Bar wave speed of the project's steel, sqrt(210 GPa / 7850 kg/m^3) = 5172.2 m/s."""
+RAW_MARKER = "strain_1 ["
+"""A header with a column starting like this is a raw-channel record."""
+ONSET_FRACTION = 0.2
+"""compare-pda: a force 'arrives' when it first exceeds this fraction of its peak (as
+:data:`anvilwave.analyses.compare.ARRIVAL_FRACTION`)."""
+ALIGNMENTS = ("rom", "lumped", "none")
+"""compare-pda: put the record's force arrival on that model's, or keep the record's time."""
+
+
+# ---------------------------------------------------------------------------------- records
+def load_record(path: str | Path, *, area: float | None = None,
+                elastic_modulus: float = STEEL_YOUNGS_MODULUS,
+                strain_calibration: tuple[float, float] = (1.0, 1.0),
+                acceleration_calibration: tuple[float, float] = (1.0, 1.0),
+                clip_run: int = CLIP_RUN) -> tuple[GaugeRecord, list[str], str]:
+    """Read a gauge record or a raw-channel record (module notes).
+
+    path : the CSV file.
+    area : steel area at the gauges [m^2] (raw channels: force = E A mean strain).
+    elastic_modulus : E [Pa] (raw channels).
+    strain_calibration, acceleration_calibration : factors on the raw channels [-].
+    clip_run : see :mod:`anvilwave.pile.pda.records` [-].
+
+    Returns (record, comment lines, ``"gauge"`` or ``"raw"``).
+    """
+    path = Path(path)
+    lines = read_text(path).splitlines(keepends=True)
+    notes = []
+    while lines and lines[0].lstrip().startswith("#"):
+        notes.append(lines.pop(0).strip().lstrip("#").strip())
+    header = lines[0] if lines else ""
+    kind = "raw" if RAW_MARKER in header else "gauge"
+    if kind == "raw" and area is None:
+        raise InputError(path, "strain_1", "a raw-channel record needs the steel area at the "
+                                           "gauges (--area) to convert strain to force")
+    with tempfile.TemporaryDirectory(prefix="anvilwave-record-") as tmp:
+        source = path
+        if notes:  # the readers take the header on the first line: hand them the data
+            source = Path(tmp) / path.name
+            source.write_text("".join(lines), encoding="utf-8")
+        try:
+            if kind == "raw":
+                record = gauge_record_from_raw(
+                    source, area=area, elastic_modulus=elastic_modulus,
+                    strain_calibration=strain_calibration,
+                    acceleration_calibration=acceleration_calibration, clip_run=clip_run)
+            else:
+                record = read_gauge_record(source, clip_run)
+        except InputError as exc:
+            rule = re.sub(r"line (\d+)", lambda m: f"line {int(m.group(1)) + len(notes)}",
+                          exc.rule)
+            raise InputError(path, exc.key, rule) from None
+    return GaugeRecord(record.time, record.force, record.velocity, str(path)), notes, kind
+
+
+def _finite(value):
+    return None if value is None or not math.isfinite(value) else float(value)
+
+
+# ---------------------------------------------------------------------------------- Case method
+def run_pda(record_path: str | Path, out_dir: str | Path, *, length: float, area: float,
+            elastic_modulus: float = STEEL_YOUNGS_MODULUS, wave_speed: float | None = None,
+            jc: float, t1_signal: str = "velocity", rmx_window: float | None = None,
+            strain_calibration: tuple[float, float] = (1.0, 1.0),
+            acceleration_calibration: tuple[float, float] = (1.0, 1.0)) -> dict:
+    """Case method of a record: ``DIR/pda.json``, ``DIR/pda.csv`` and ``DIR/pda.png``.
+
+    record_path : gauge record or raw channels CSV.
+    out_dir : result folder DIR.
+    length : pile length below the gauges L [m].
+    area : steel area at the gauges A [m^2].
+    elastic_modulus : E [Pa] (default steel, 210 GPa).
+    wave_speed : c [m/s] (default sqrt(E / 7850 kg/m^3): 5172.2 m/s for steel).
+    jc : Case damping factor Jc [-].
+    t1_signal, rmx_window : see :func:`anvilwave.pile.pda.case_method.case_method` (rmx_window [s]).
+    strain_calibration, acceleration_calibration : raw-channel factors [-].
+
+    Returns the summary ``{"RTL [N]", "RSP [N]", "RMX [N]", "EMX [J]", "FMX [N]", "CSX [Pa]",
+    "TSX [Pa]", "BTA [-]"}``; pda.json holds it plus ``details`` and ``inputs``.
+    """
+    for name, value in (("length", length), ("area", area),
+                        ("elastic_modulus", elastic_modulus)):
+        if not (value is not None and value > 0.0 and math.isfinite(value)):
+            raise InputError(record_path, name, f"must be a positive number, got {value!r}")
+    c = math.sqrt(elastic_modulus / STEEL_DENSITY) if wave_speed is None else wave_speed
+    if not (c > 0.0 and math.isfinite(c)):
+        raise InputError(record_path, "wave_speed", f"must be a positive number, got {c!r}")
+    if not (jc >= 0.0 and math.isfinite(jc)):
+        raise InputError(record_path, "jc", f"must be a number >= 0, got {jc!r}")
+    record, notes, kind = load_record(record_path, area=area, elastic_modulus=elastic_modulus,
+                                      strain_calibration=strain_calibration,
+                                      acceleration_calibration=acceleration_calibration)
+    try:
+        result = case_method(record.time, record.force, record.velocity, area=area,
+                             elastic_modulus=elastic_modulus, wave_speed=c,
+                             length_below_gauges=length, case_damping=jc,
+                             t1_signal=t1_signal, rmx_window=rmx_window)
+    except ValueError as exc:
+        raise InputError(record_path, "time [s]", str(exc)) from None
+    summary = result.summary()
+    z = result.impedance
+    columns = {
+        "time [s]": record.time, "force [N]": record.force,
+        "impedance_times_velocity [N]": z * record.velocity,
+        "wave_down [N]": wave_down(record.force, record.velocity, z),
+        "wave_up [N]": wave_up(record.force, record.velocity, z),
+        "transferred_energy [J]": transferred_energy(record.time, record.force,
+                                                     record.velocity),
+    }
+    content = dict(summary)
+    content["details"] = {k: _finite(v) for k, v in result.details().items()}
+    content["inputs"] = {"record": str(record_path), "record_kind": kind,
+                         "length_below_gauges [m]": length, "area [m^2]": area,
+                         "elastic_modulus [Pa]": elastic_modulus, "wave_speed [m/s]": c,
+                         "case_damping [-]": jc, "t1_signal": t1_signal}
+    content["record_notes"] = notes
+    from anvilwave.output.pda_plots import plot_pda
+    from anvilwave.output.tables import write_csv
+
+    with ResultWriter(out_dir) as out:
+        out.part("pda.json").write_text(json.dumps(content, indent=2) + "\n")
+        write_csv(columns, out.part("pda.csv"))
+        plot_pda(columns, result, out.part("pda.png"),
+                 title=f"{Path(record_path).name}: Case method (Jc = {jc:g})")
+    return summary
+
+
+# ---------------------------------------------------------------------------------- simulated
+def case_damping_of_soil(cfg) -> float:
+    """Case damping Jc [-] equivalent to a system's soil damping: the sum of the soil dashpots
+    (Smith-viscous J R_u, a radiation dashpot, or Smith J R_u at full mobilisation) over the
+    pile impedance at the gauges, i.e. Jc Z v = the soil's damping force when every spring
+    moves with the same velocity v (the Case method lumps all damping at the toe)."""
+    arrays = cfg.pile_soil.arrays()
+    dashpots = float(np.sum(arrays.soil[SOIL_DASHPOT]
+                            + arrays.soil[SOIL_SMITH] * arrays.soil[SOIL_CAPACITY]))
+    section = _gauge_section(cfg)
+    return dashpots / float(pile_impedance(section.youngs_modulus, section.area,
+                                           section.wave_speed))
+
+
+def _gauge_section(cfg):
+    pile = cfg.pile_soil.pile
+    depth = 0.0
+    for section in pile.sections:
+        depth += section.length
+        if pile.gauge_depth < depth:
+            return section
+    return pile.sections[-1]
+
+
+def pda_summary(columns: dict[str, np.ndarray], cfg, *, case_damping: float | None = None
+                ) -> dict:
+    """EMX, FMX and RMX of a simulated blow, as a PDA would report them.
+
+    columns : the blow's time series (``time [s]``, ``gauge_force [N]``,
+        ``gauge_velocity [m/s]``).
+    cfg : the ``SystemConfig`` simulated (pile, gauge depth, soil).
+    case_damping : Jc [-] (default :func:`case_damping_of_soil`).
+
+    The gauges are zeroed at rest as a PDA's are: the force at the first sample (the hammer
+    and pile weights at rest) is subtracted. L is the pile length below the gauges, Z and c
+    those of the section at the gauges. RMX needs the record to reach t1 + 2L/c; it is None
+    when the blow is shorter. Returns ``{"EMX [J]", "FMX [N]", "RMX [N]",
+    "case_damping [-]"}``.
+    """
+    t = np.asarray(columns["time [s]"], dtype=float)
+    force = np.asarray(columns["gauge_force [N]"], dtype=float)
+    force = force - force[0]
+    velocity = np.asarray(columns["gauge_velocity [m/s]"], dtype=float)
+    pile = cfg.pile_soil.pile
+    section = _gauge_section(cfg)
+    jc = case_damping_of_soil(cfg) if case_damping is None else float(case_damping)
+    out = {"EMX [J]": float(np.max(transferred_energy(t, force, velocity))),
+           "FMX [N]": float(np.max(force)), "RMX [N]": None, "case_damping [-]": jc}
+    length = pile.length - pile.gauge_depth
+    try:
+        result = case_method(t, force, velocity, area=section.area,
+                             elastic_modulus=section.youngs_modulus,
+                             wave_speed=section.wave_speed, length_below_gauges=length,
+                             case_damping=jc)
+    except ValueError:  # shorter than t1 + 2L/c (or no velocity peak): no RMX
+        return out
+    out["RMX [N]"] = result.rmx
+    return out
+
+
+# ---------------------------------------------------------------------------------- matching
+def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | Path, *,
+              shaft_zones: int = 3, imposed: str = "velocity",
+              segment_length: float | None = None, fit_quakes: bool = True,
+              fit_dampings: bool = True, preload: float | None = None) -> dict:
+    """Signal matching of a record with the pile and soil of a system file.
+
+    record_path : gauge record or raw channels CSV (raw: converted with the area and modulus
+        of the system's pile at the gauges).
+    system_path : system file (pile, gauge depth, soil model and starting SRD, gravity, and
+        the hammer and anvil resting on the pile).
+    out_dir : result folder DIR: ``match.json``, ``match.csv``, ``match.png``,
+        ``static_load_test.csv``, ``static_load_test.png``.
+    shaft_zones : number of shaft resistance zones [-].
+    imposed : ``"velocity"`` or ``"wave_down"``.
+    segment_length : segment length of the matching model [m] (default: the system's).
+    fit_quakes, fit_dampings : fit them, or keep the system's.
+    preload : force on the gauges at rest [N] (default from the system file).
+
+    Returns the match.json content (``rut [N]``, ``rut_shaft [N]``, ``rut_toe [N]``,
+    ``match_quality [-]``, the fitted parameters ...).
+    """
+    from anvilwave.analyses.match import MatchSettings, match_record
+    from anvilwave.config.system import load_system
+    from anvilwave.output.pda_plots import plot_match, plot_static_load_test
+    from anvilwave.output.tables import write_csv
+    from anvilwave.pile.pda.signal_matching import IMPOSED
+
+    if imposed not in IMPOSED:
+        raise InputError(system_path, "imposed", f"must be one of {', '.join(IMPOSED)}, got "
+                                                 f"{imposed!r}")
+    if not (isinstance(shaft_zones, int) and shaft_zones >= 1):
+        raise InputError(system_path, "shaft_zones", f"must be an integer >= 1, got "
+                                                     f"{shaft_zones!r}")
+    cfg = load_system(system_path)
+    section = _gauge_section(cfg)
+    record, notes, kind = load_record(record_path, area=section.area,
+                                      elastic_modulus=section.youngs_modulus)
+    settings = MatchSettings(shaft_zones=shaft_zones, imposed=imposed,
+                             segment_length=segment_length, fit_quakes=fit_quakes,
+                             fit_dampings=fit_dampings, preload=preload)
+    try:
+        result = match_record(record, cfg, settings)
+    except ValueError as exc:  # a record the match cannot use (no rising wave down ...)
+        raise InputError(record_path, "", str(exc)) from None
+    content = result.summary()
+    content["record"] = str(record_path)
+    content["record_kind"] = kind
+    content["system"] = str(system_path)
+    content["record_notes"] = notes
+    with ResultWriter(out_dir) as out:
+        out.part("match.json").write_text(json.dumps(content, indent=2) + "\n")
+        write_csv(result.columns, out.part("match.csv"))
+        write_csv(result.static_load_test, out.part("static_load_test.csv"))
+        plot_match(result.columns, out.part("match.png"),
+                   title=f"{Path(record_path).name}: signal matching, MQ = "
+                         f"{result.match_quality:.3f}, Rut = {result.soil.rut / 1e6:.2f} MN")
+        plot_static_load_test(result, cfg, out.part("static_load_test.png"))
+    return content
+
+
+# ---------------------------------------------------------------------------------- Fig. 4, 5
+def onset_time(time, force) -> float:
+    """First time [s] a force exceeds ONSET_FRACTION of its peak (NaN if never)."""
+    f = np.asarray(force, dtype=float)
+    above = np.flatnonzero(f > ONSET_FRACTION * float(np.max(f)))
+    return float(np.asarray(time)[above[0]]) if above.size else math.nan
+
+
+def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: str | Path, *,
+                    align: str = "rom", modal_data=None) -> dict:
+    """The paper's Fig. 4 (pile-top force) and Fig. 5 (pile-top velocity) for a record.
+
+    The system is simulated with the ROM anvil and with the lumped (rigid) anvil of its anvil
+    file, over its ``[simulation] duration``; the gauge signals are compared with the record.
+    The simulated force has its value at rest (the weights of the anvil and the pile above
+    the gauges) removed, as gauges zeroed at rest do. ``align``: the record's time is shifted
+    so that its force arrival (:func:`onset_time`) coincides with the ``"rom"`` or
+    ``"lumped"`` model's, or kept (``"none"``: a record whose t = 0 is the ram impact). The
+    arrival of the aligned model then says nothing; the other's difference to it is the
+    anvil's wave travel the lumped model lacks.
+
+    Writes ``fig4_pile_top_force.png``, ``fig5_pile_top_velocity.png``,
+    ``compare_pda.json`` and ``compare_pda.csv`` (record and models on the record's samples
+    within the simulated window). Returns the compare_pda.json content.
+    """
+    from anvilwave.api import compute_anvil_modes, simulate
+    from anvilwave.config.system import load_system
+    from anvilwave.output.pda_plots import plot_compare_pda
+    from anvilwave.output.tables import write_csv
+
+    if align not in ALIGNMENTS:
+        raise InputError(system_path, "align", f"must be one of {', '.join(ALIGNMENTS)}, got "
+                                               f"{align!r}")
+    cfg = load_system(system_path)
+    if cfg.anvil.spec is None:
+        raise InputError(system_path, "anvil.file", "compare-pda runs the ROM and the lumped "
+                                                    "anvil: the system needs an anvil file")
+    section = _gauge_section(cfg)
+    record, notes, kind = load_record(record_path, area=section.area,
+                                      elastic_modulus=section.youngs_modulus)
+    if modal_data is None:
+        modal_data = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
+    runs = {}
+    for model in ("rom", "lumped"):
+        blow = simulate(cfg.with_anvil_model(model), modal_data=modal_data)[0]
+        c = blow.columns
+        runs[model] = {"time": c["time [s]"],
+                       "force": c["gauge_force [N]"] - c["gauge_force [N]"][0],
+                       "velocity": c["gauge_velocity [m/s]"],
+                       "rest_force": float(c["gauge_force [N]"][0])}
+    measured_onset = onset_time(record.time, record.force)
+    shift = 0.0
+    if align != "none":
+        shift = onset_time(runs[align]["time"], runs[align]["force"]) - measured_onset
+    t_rec = record.time + shift
+    start, end = runs["rom"]["time"][0], runs["rom"]["time"][-1]
+    inside = (t_rec >= start) & (t_rec <= end)
+    if np.count_nonzero(inside) < 3:
+        raise InputError(record_path, "time [s]", f"the record (shifted by {shift:g} s) does "
+                                                  "not overlap the simulated window "
+                                                  f"[{start:g}, {end:g}] s")
+    grid = t_rec[inside]
+    columns = {"time [s]": grid, "measured_force [N]": record.force[inside],
+               "measured_velocity [m/s]": record.velocity[inside]}
+    for model, run in runs.items():
+        columns[f"{model}_force [N]"] = np.interp(grid, run["time"], run["force"])
+        columns[f"{model}_velocity [m/s]"] = np.interp(grid, run["time"], run["velocity"])
+    f_m, v_m = columns["measured_force [N]"], columns["measured_velocity [m/s]"]
+    content = {"measured": {"peak_force [N]": float(f_m.max()),
+                            "peak_velocity [m/s]": float(v_m.max()),
+                            "force_arrival_time [s]": onset_time(grid, f_m)},
+               "alignment": align, "record_time_shift [s]": shift}
+    for model in runs:
+        f, v = columns[f"{model}_force [N]"], columns[f"{model}_velocity [m/s]"]
+        content[model] = {
+            "peak_force [N]": float(f.max()), "peak_velocity [m/s]": float(v.max()),
+            "peak_force_error [-]": float(f.max() / f_m.max() - 1.0),
+            "peak_velocity_error [-]": float(v.max() / v_m.max() - 1.0),
+            "force_normalised_rms_error [-]": float(np.sqrt(np.mean((f - f_m) ** 2))
+                                                    / np.abs(f_m).max()),
+            "velocity_normalised_rms_error [-]": float(np.sqrt(np.mean((v - v_m) ** 2))
+                                                       / np.abs(v_m).max()),
+            "force_arrival_time [s]": onset_time(runs[model]["time"], runs[model]["force"]),
+            "removed_rest_force [N]": runs[model]["rest_force"],
+        }
+    content["rom_minus_lumped_arrival [s]"] = (content["rom"]["force_arrival_time [s]"]
+                                               - content["lumped"]["force_arrival_time [s]"])
+    content.update({"record": str(record_path), "record_kind": kind,
+                    "system": str(system_path), "record_notes": notes})
+    name = Path(record_path).name
+    with ResultWriter(out_dir) as out:
+        out.part("compare_pda.json").write_text(json.dumps(content, indent=2) + "\n")
+        write_csv(columns, out.part("compare_pda.csv"))
+        plot_compare_pda(columns, "force [N]", out.part("fig4_pile_top_force.png"),
+                         f"Fig. 4: pile-top force at the gauges, {name}")
+        plot_compare_pda(columns, "velocity [m/s]", out.part("fig5_pile_top_velocity.png"),
+                         f"Fig. 5: pile-top velocity at the gauges, {name}")
+    return content
+
+
+__all__ = ["ALIGNMENTS", "STEEL_WAVE_SPEED", "case_damping_of_soil", "load_record",
+           "onset_time", "pda_summary", "run_compare_pda", "run_match", "run_pda"]

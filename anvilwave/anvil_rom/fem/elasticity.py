@@ -1,0 +1,286 @@
+"""Axisymmetric linear elasticity with scikit-fem: stiffness, mass, interface vectors.
+
+Displacement u = (u_r, u_z) on the (r, z) half-section, z down. The strains of a solid of
+revolution without torsion are (Timoshenko & Goodier, Theory of Elasticity, sec. 114)::
+
+    eps_rr = du_r/dr,  eps_zz = du_z/dz,  eps_tt = u_r / r,  gamma_rz = du_r/dz + du_z/dr
+
+and every integral carries the circumference 2 pi r, so K and M describe the whole body (the
+total mass is rho times the revolved volume). Nodes on the axis r = 0 have u_r = 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as sla
+import skfem
+from skfem import BilinearForm, LinearForm
+
+from anvilwave.anvil_rom.fem.geometry import Interfaces, Material
+
+
+def lame_parameters(material: Material) -> tuple[float, float]:
+    """Lamé parameters (lambda, mu) [Pa] of an isotropic material."""
+    E, nu = material.youngs_modulus, material.poisson_ratio
+    return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
+
+
+def _strains(u, r):
+    """(eps_rr, eps_zz, eps_tt, gamma_rz) of a vector field evaluated at quadrature points."""
+    g = u.grad
+    return g[0, 0], g[1, 1], u[0] / r, g[0, 1] + g[1, 0]
+
+
+@BilinearForm
+def _stiffness_form(u, v, w):
+    r = w.x[0]
+    eu, ev = _strains(u, r), _strains(v, r)
+    tr_u, tr_v = eu[0] + eu[1] + eu[2], ev[0] + ev[1] + ev[2]
+    energy = (w.lam * tr_u * tr_v
+              + 2.0 * w.mu * (eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2])
+              + w.mu * eu[3] * ev[3])
+    return 2.0 * np.pi * r * energy
+
+
+@BilinearForm
+def _mass_form(u, v, w):
+    return 2.0 * np.pi * w.x[0] * w.rho * (u[0] * v[0] + u[1] * v[1])
+
+
+@LinearForm
+def _axial_pressure_form(v, w):
+    return 2.0 * np.pi * w.x[0] * v[1]
+
+
+@dataclass
+class AxisymmetricModel:
+    """Assembled FE model of an axisymmetric solid.
+
+    stiffness, mass : (n, n) sparse matrices on the free DOFs (axis u_r removed) [N/m], [kg].
+    free_dofs : indices of the free DOFs in the full scikit-fem DOF numbering.
+    basis : the scikit-fem basis (full DOF numbering).
+    """
+
+    mesh: skfem.Mesh
+    basis: skfem.Basis
+    material: Material
+    stiffness: sp.csr_matrix
+    mass: sp.csr_matrix
+    free_dofs: np.ndarray
+
+    @property
+    def n_dof(self) -> int:
+        """Number of free degrees of freedom."""
+        return len(self.free_dofs)
+
+    @property
+    def axial_free(self) -> np.ndarray:
+        """Unit axial translation (rigid-body direction) on the free DOFs."""
+        e = np.zeros(self.basis.N)
+        e[self.basis.nodal_dofs[1]] = 1.0
+        if self.basis.facet_dofs.size:
+            e[self.basis.facet_dofs[1]] = 1.0
+        if getattr(self.basis, "interior_dofs", np.empty((0, 0))).size:
+            e[self.basis.interior_dofs[1]] = 1.0
+        return e[self.free_dofs]
+
+    def total_mass(self) -> float:
+        """Total mass from the mass matrix, e_z^T M e_z [kg]."""
+        e = self.axial_free
+        return float(e @ (self.mass @ e))
+
+    def expand(self, x_free: np.ndarray) -> np.ndarray:
+        """Free-DOF vector(s) -> full DOF vector(s) with zeros on the axis."""
+        x_free = np.asarray(x_free)
+        out = np.zeros((self.basis.N,) + x_free.shape[1:])
+        out[self.free_dofs] = x_free
+        return out
+
+    def nodal(self, x_free: np.ndarray) -> np.ndarray:
+        """(n_nodes, 2) displacement (u_r, u_z) at the mesh nodes from a free-DOF vector."""
+        full = self.expand(x_free)
+        return full[self.node_dofs]
+
+    @property
+    def node_dofs(self) -> np.ndarray:
+        """(n_nodes, 2) DOF indices (u_r, u_z) of every mesh node (mesh.doflocs order)."""
+        b = self.basis
+        parts = [b.nodal_dofs.T]
+        if b.facet_dofs.size:
+            parts.append(b.facet_dofs.T)
+        if getattr(b, "interior_dofs", np.empty((0, 0))).size:
+            parts.append(b.interior_dofs.T)
+        return np.vstack(parts)
+
+    @property
+    def node_coordinates(self) -> np.ndarray:
+        """(n_nodes, 2) coordinates (r, z) [m] of the rows of :meth:`nodal`."""
+        return self.basis.doflocs[:, self.node_dofs[:, 0]].T
+
+    def lumped_mass(self) -> np.ndarray:
+        """Diagonal (HRZ) lumped mass on the free DOFs [kg].
+
+        Hinton, Rock & Zienkiewicz (1976): diagonal of the consistent mass scaled so that each
+        direction keeps the total mass. Row-sum lumping gives zero or negative corner masses
+        for quadratic triangles; HRZ keeps every entry positive.
+        """
+        diag = self.mass.diagonal()
+        e = self.axial_free
+        total = self.total_mass()
+        axial = e > 0
+        out = np.empty_like(diag)
+        out[axial] = diag[axial] * total / diag[axial].sum()
+        radial = ~axial
+        if radial.any():
+            out[radial] = diag[radial] * total / (diag[radial].sum() + _axis_radial_diag(self))
+        return out
+
+
+def _axis_radial_diag(model: AxisymmetricModel) -> float:
+    """Part of the radial mass diagonal that sits on the (removed) axis DOFs."""
+    full = _mass_form.assemble(model.basis, rho=model.material.density).diagonal()
+    removed = np.setdiff1d(np.arange(model.basis.N), model.free_dofs)
+    return float(full[removed].sum())
+
+
+def element_for(mesh: skfem.Mesh) -> skfem.Element:
+    """Quadratic Lagrange vector element matching the mesh type."""
+    if isinstance(mesh, skfem.MeshTri2 | skfem.MeshTri1):
+        return skfem.ElementVector(skfem.ElementTriP2())
+    if isinstance(mesh, skfem.MeshQuad2 | skfem.MeshQuad1):
+        return skfem.ElementVector(skfem.ElementQuad2())
+    raise TypeError(f"unsupported mesh type {type(mesh).__name__}")
+
+
+def assemble(mesh: skfem.Mesh, material: Material, intorder: int = 4) -> AxisymmetricModel:
+    """Assemble K and the consistent M of an axisymmetric solid, axis u_r removed.
+
+    Parameters
+    ----------
+    mesh : skfem mesh in (r, z) [m].
+    material : linear elastic material.
+    intorder : quadrature order (4 integrates the P2 mass exactly on straight triangles
+        except for the 1/r hoop term, which is smooth away from the axis).
+    """
+    basis = skfem.Basis(mesh, element_for(mesh), intorder=intorder)
+    lam, mu = lame_parameters(material)
+    K = _stiffness_form.assemble(basis, lam=lam, mu=mu)
+    M = _mass_form.assemble(basis, rho=material.density)
+    tol = 1e-9 * max(np.abs(mesh.p).max(), 1.0)
+    axis_facets = mesh.facets_satisfying(lambda x: np.abs(x[0]) < tol, boundaries_only=True)
+    axis_dofs = basis.get_dofs(axis_facets).nodal.get("u^1", np.empty(0, dtype=np.int64))
+    axis_dofs = np.union1d(axis_dofs, basis.get_dofs(axis_facets).facet.get("u^1", []))
+    # any node exactly on the axis (also isolated ones) gets u_r = 0
+    on_axis = np.abs(basis.doflocs[0]) < tol
+    radial = np.zeros(basis.N, dtype=bool)
+    radial[basis.nodal_dofs[0]] = True
+    if basis.facet_dofs.size:
+        radial[basis.facet_dofs[0]] = True
+    axis_dofs = np.union1d(axis_dofs, np.flatnonzero(on_axis & radial)).astype(np.int64)
+    free = np.setdiff1d(np.arange(basis.N), axis_dofs)
+    return AxisymmetricModel(mesh, basis, material, K[free][:, free].tocsr(),
+                             M[free][:, free].tocsr(), free)
+
+
+def face_load_vector(model: AxisymmetricModel, select) -> tuple[np.ndarray, float]:
+    """Unit-resultant axial load vector of a uniform pressure on selected boundary facets.
+
+    Parameters
+    ----------
+    model : the assembled model.
+    select : callable (r, z) -> bool on facet midpoints, choosing the loaded facets.
+
+    Returns
+    -------
+    b : (n_free,) vector with sum over axial DOFs equal to 1 (a pressure 1/A [Pa] on area A).
+    area : loaded area A = integral of 2 pi r ds [m^2].
+    """
+    mesh = model.mesh
+    facets = mesh.facets_satisfying(lambda x: select(x[0], x[1]), boundaries_only=True)
+    if len(facets) == 0:
+        return np.zeros(model.n_dof), 0.0
+    fbasis = skfem.FacetBasis(mesh, model.basis.elem, facets=facets, intorder=4)
+    raw = _axial_pressure_form.assemble(fbasis)
+    area = float(raw.sum())  # integral of 2 pi r N_i, summed over the partition of unity
+    return raw[model.free_dofs] / area, area
+
+
+def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                      ) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Load/output vectors of the ram face (top) and the pile ring (bottom).
+
+    Returns b_ram, b_pile (unit resultant, uniform pressure) and their areas [m^2]. The same
+    vector gives the force-weighted mean axial displacement, u = b^T x (collocated, passive).
+    """
+    z = model.mesh.p[1]
+    scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
+    tol = 1e-7 * scale
+    ztop, zbot = z.min(), z.max()
+    r_in, r_out = interfaces.pile_ring
+    b_ram, a_ram = face_load_vector(
+        model, lambda r, zz: (np.abs(zz - ztop) < tol) & (r <= interfaces.ram_contact_radius + tol))
+    b_pile, a_pile = face_load_vector(
+        model, lambda r, zz: (np.abs(zz - zbot) < tol) & (r >= r_in - tol) & (r <= r_out + tol))
+    return b_ram, b_pile, a_ram, a_pile
+
+
+def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Load/output vectors of the pile ring split into ``interfaces.pile_rings`` equal-width
+    rings across the wall (:func:`annulus_vectors` on the bottom face).
+
+    Returns B (n_free, K), unit-resultant uniform pressures, and the ring areas (K,) [m^2].
+    Their area-weighted sum is the whole ring's vector (:func:`interface_vectors`). A ring
+    with no facet (a mesh coarser than the rings) has area 0.
+    """
+    r_in, r_out = interfaces.pile_ring
+    return annulus_vectors(model, model.mesh.p[1].max(), r_in, r_out, interfaces.pile_rings)
+
+
+def ram_annulus_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                        ) -> tuple[np.ndarray, np.ndarray]:
+    """Load/output vectors of the ram face split into ``interfaces.ram_annuli`` equal-width
+    annuli from the axis to the ram contact radius (:func:`annulus_vectors` on the top face):
+    B (n_free, J) and the annuli's areas (J,) [m^2]."""
+    return annulus_vectors(model, model.mesh.p[1].min(), 0.0, interfaces.ram_contact_radius,
+                           interfaces.ram_annuli)
+
+
+def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m]
+    of the boundary face at height z [m] (each facet to the annulus holding its midpoint):
+    B (n_free, count) and the annuli's areas (count,) [m^2] (0 for an annulus without facet).
+    """
+    scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
+    tol = 1e-7 * scale
+    edges = np.linspace(r_lo, r_hi, count + 1)
+    columns, areas = [], []
+    for k in range(count):
+        lo = edges[k] - (tol if k == 0 else 0.0)
+        hi = edges[k + 1] + (tol if k == count - 1 else 0.0)
+        b, a = face_load_vector(
+            model, lambda r, zz, lo=lo, hi=hi: (np.abs(zz - z) < tol) & (r >= lo) & (r < hi))
+        columns.append(b)
+        areas.append(a)
+    return np.column_stack(columns), np.array(areas)
+
+
+def max_eigenvalue(stiffness: sp.spmatrix, mass: np.ndarray, tol: float = 1e-4) -> float:
+    """Largest eigenvalue omega_max^2 of M^-1 K [rad^2/s^2], M diagonal.
+
+    Lanczos (ARPACK, which="LA") on the symmetric M^-1/2 K M^-1/2; if it does not converge,
+    the Gershgorin bound max_i sum_j |A_ij| (never below the true value) is used instead.
+    """
+    s = 1.0 / np.sqrt(mass)
+    A = (sp.diags(s) @ stiffness @ sp.diags(s)).tocsr()
+    v0 = np.random.default_rng(0).standard_normal(A.shape[0])
+    try:
+        lam = sla.eigsh(A, k=1, which="LA", tol=tol, v0=v0, ncv=min(40, A.shape[0] - 1),
+                        maxiter=20 * A.shape[0], return_eigenvectors=False)
+        return float(lam[0]) * (1.0 + 10.0 * tol)
+    except sla.ArpackNoConvergence:
+        return float(np.abs(A).sum(axis=1).max())

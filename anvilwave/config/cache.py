@@ -1,0 +1,251 @@
+"""The modal-data cache: the ROM of an anvil (or of a modal ram) computed once per machine.
+
+The eigenvalue problem of an anvil takes seconds to minutes and its result depends only on the
+anvil's geometry (outline or mesh file), material, mesh size, interfaces, fmax and damping
+ratio, and on the code that computes it. :func:`cached_modal_data` keys the modal data by all
+of these and keeps it as a modal-data file (:mod:`anvilwave.anvil_rom.fem.modalfile`) in a user
+cache
+directory, so that every later process, on this machine or on a cluster node sharing the
+directory (dask workers), reads it in milliseconds instead of solving again. The modal ram's
+spring-mass chain, realised from its modes in multiple precision, is kept the same way
+(:func:`cached_chain`, an ``.npz`` of two arrays).
+
+Where: ``$ANVILWAVE_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/anvilwave``, else
+``~/.cache/anvilwave`` (the XDG / platformdirs convention). ``anvilwave cache info`` shows
+the directory and its entries, ``anvilwave cache clear`` empties it; deleting the directory by
+hand is as good.
+
+The key (SHA-256) covers the anvil description, fmax, the damping ratio, the anvilwave
+version, the modal-data format version, a hash of the source files of the modal analysis
+(:data:`CODE_FILES`) and the versions of gmsh and scikit-fem, so a code or mesher change
+computes afresh instead of reusing stale modes. Writes are atomic (a temporary file in the
+same directory, then ``os.replace``): concurrent workers computing the same entry each write a
+complete file and the last one wins; a reader never sees a half-written file. A file that
+cannot be read (truncated, foreign) counts as a miss and is replaced.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+import zipfile
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+ENVIRONMENT_VARIABLE = "ANVILWAVE_CACHE_DIR"
+"""Environment variable that overrides the cache directory."""
+CACHE_VERSION = 1
+"""Layout version of the cache entries (part of every key)."""
+CODE_FILES = ("fem/geometry.py", "fem/mesh.py", "fem/elasticity.py", "fem/modes.py",
+              "fem/pipeline.py", "fem/modalfile.py", "chain.py")
+"""Source files of :mod:`anvilwave.anvil_rom` that define the modal data and the modal ram's chain
+(hashed into every key)."""
+SUFFIX = ".npz"
+
+
+def cache_dir() -> Path:
+    """The cache directory (module docstring); not created here."""
+    override = os.environ.get(ENVIRONMENT_VARIABLE)
+    if override:
+        return Path(override).expanduser()
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg).expanduser() if xdg else Path.home() / ".cache"
+    return base / "anvilwave"
+
+
+@lru_cache(maxsize=1)
+def code_version() -> str:
+    """What the modal data depends on besides its inputs: package, format and mesher versions
+    and a hash of the modal analysis's source files."""
+    from importlib import metadata
+
+    import anvilwave.anvil_rom as anvil_rom
+    from anvilwave.anvil_rom.fem.modalfile import VERSION
+
+    def version(name: str) -> str:
+        try:
+            return metadata.version(name)
+        except metadata.PackageNotFoundError:
+            return "unknown"
+
+    h = hashlib.sha256()
+    root = Path(anvil_rom.__file__).parent
+    for name in CODE_FILES:
+        h.update(name.encode())
+        h.update((root / name).read_bytes())
+    return (f"anvilwave {version('anvilwave')}; modal format {VERSION}; "
+            f"cache {CACHE_VERSION}; gmsh {version('gmsh')}; scikit-fem {version('scikit-fem')}; "
+            f"source {h.hexdigest()[:16]}")
+
+
+def modal_key(spec, fmax: float) -> str:
+    """Cache key (hex SHA-256) of the modal data of ``spec`` (an AnvilSpec) up to fmax [Hz]."""
+    itf = spec.interfaces
+    description = {
+        "geometry": spec.geometry_hash(),  # outline or mesh file, material, mesh size
+        "interfaces": None if itf is None else [itf.ram_contact_radius, itf.pile_contact_radius,
+                                                itf.pile_contact_width]
+        + ([itf.pile_rings] if itf.pile_rings > 1 else [])  # one port: the keys of before
+        + ([itf.ram_annuli] if itf.ram_annuli > 1 else []),
+        "fmax": float(fmax),
+        "damping_ratio": float(spec.damping_ratio),
+        "code": code_version(),
+    }
+    text = json.dumps(description, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def cached_modal_data(spec, fmax: float | None = None):
+    """The modal data (``ModalData``) of an anvil spec up to ``fmax`` [Hz] (default: the
+    spec's), from the cache or computed
+    (:func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`) and
+    stored. The spec needs its interfaces (the ROM is projected on them)."""
+    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
+    from anvilwave.inputs import InputError
+
+    fmax = float(spec.fmax if fmax is None else fmax)
+    path = cache_dir() / (modal_key(spec, fmax) + SUFFIX)
+    if path.is_file():
+        try:
+            return load_modal_data(path)
+        except InputError:
+            pass  # unreadable: computed again and replaced below
+    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+
+    data = compute_anvil_modes(spec, fmax=fmax).modal_data
+    if data is not None:
+        _store(data, path)
+    return data
+
+
+CHAIN_SUFFIX = ".chain.npz"
+
+
+def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`anvilwave.anvil_rom.chain.chain_from_modes` of ``omega`` [rad/s] and ``participation``
+    [kg^-1/2], from the cache or realised and stored: (masses [kg], springs [N/m])."""
+    omega = np.ascontiguousarray(omega, dtype=float)
+    participation = np.ascontiguousarray(participation, dtype=float)
+    h = hashlib.sha256(b"chain")
+    h.update(omega.tobytes())
+    h.update(participation.tobytes())
+    h.update(code_version().encode())
+    path = cache_dir() / (h.hexdigest() + CHAIN_SUFFIX)
+    if path.is_file():
+        try:
+            with np.load(path, allow_pickle=False) as npz:
+                mass, stiffness = npz["mass"], npz["stiffness"]
+            if mass.ndim == 1 and stiffness.shape == (mass.size - 1,):
+                return mass, stiffness
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            pass  # unreadable: realised again and replaced below
+    from anvilwave.anvil_rom.chain import chain_from_modes
+
+    mass, stiffness = chain_from_modes(omega, participation)
+    _write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
+    return mass, stiffness
+
+
+KERNEL_SUFFIX = ".head.npz"
+
+
+def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step: float,
+                       steps: int, rings: int) -> np.ndarray:
+    """:func:`anvilwave.pile.head_kernel.ring_kernel` of a tube (its arguments), from the cache or
+    computed and stored (it takes tens of seconds for a long tube)."""
+    from anvilwave.pile import head_kernel
+    from anvilwave.pile.head_kernel import ring_kernel
+
+    description = [material.youngs_modulus, material.poisson_ratio, material.density, r_in,
+                   r_out, length, step, int(steps), int(rings), code_version(),
+                   hashlib.sha256(Path(head_kernel.__file__).read_bytes()).hexdigest()]
+    key = hashlib.sha256(json.dumps(description).encode()).hexdigest()
+    path = cache_dir() / (key + KERNEL_SUFFIX)
+    if path.is_file():
+        try:
+            with np.load(path, allow_pickle=False) as npz:
+                kernel = npz["kernel"]
+            if kernel.shape == (int(steps), int(rings), int(rings)):
+                return kernel
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+            pass  # unreadable: computed again and replaced below
+    kernel = ring_kernel(material, r_in, r_out, length, step, steps, rings)
+    _write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
+    return kernel
+
+
+def _write_atomic(path: Path, write) -> None:
+    """``write(file object)`` into a temporary file beside ``path``, then rename it onto
+    ``path``; a cache that cannot be written is skipped (the value is only not reused)."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=path.name[:16] + "-", suffix=".part", dir=path.parent)
+        try:
+            with os.fdopen(fd, "wb") as fh:
+                write(fh)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+    except OSError:
+        pass
+
+
+def _store(data, path: Path) -> None:
+    """Write modal data atomically (:func:`_write_atomic` of
+    :func:`anvilwave.anvil_rom.fem.modalfile.write_modal_data`)."""
+    from anvilwave.anvil_rom.fem.modalfile import write_modal_data
+
+    _write_atomic(path, lambda fh: write_modal_data(data, fh))
+
+
+def cache_info() -> dict:
+    """``{"directory": str, "entries": int, "bytes": int, "files": [...]}`` of the cache; each
+    file ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
+    data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain), ``"head_kernel_steps",
+    "rings"`` (a tube head's ring kernel) or ``"unreadable"``."""
+    directory = cache_dir()
+    files = sorted(directory.glob("*" + SUFFIX)) if directory.is_dir() else []
+    rows = []
+    for path in files:
+        row = {"name": path.name, "bytes": path.stat().st_size}
+        try:
+            if path.name.endswith(CHAIN_SUFFIX):
+                with np.load(path, allow_pickle=False) as npz:
+                    row.update({"chain_masses": int(npz["mass"].size),
+                                "total_mass [kg]": float(npz["mass"].sum())})
+            elif path.name.endswith(KERNEL_SUFFIX):
+                with np.load(path, allow_pickle=False) as npz:
+                    row.update({"head_kernel_steps": int(npz["kernel"].shape[0]),
+                                "rings": int(npz["kernel"].shape[1])})
+            else:
+                from anvilwave.anvil_rom.fem.modalfile import load_modal_data
+
+                data = load_modal_data(path)
+                row.update({"modes": data.n_modes, "fmax [Hz]": data.fmax, "n_dof": data.n_dof,
+                            "total_mass [kg]": data.total_mass})
+        except Exception:  # an unreadable entry is listed as such
+            row["unreadable"] = True
+        rows.append(row)
+    return {"directory": str(directory), "entries": len(rows),
+            "bytes": int(sum(r["bytes"] for r in rows)), "files": rows}
+
+
+def clear_cache() -> tuple[int, int]:
+    """Delete every cache entry (and stale temporary files); returns (files, bytes) removed."""
+    directory = cache_dir()
+    if not directory.is_dir():
+        return 0, 0
+    count = size = 0
+    for path in list(directory.glob("*" + SUFFIX)) + list(directory.glob("*.part")):
+        try:
+            size += path.stat().st_size
+            path.unlink()
+            count += 1
+        except FileNotFoundError:
+            pass
+    return count, size

@@ -1,0 +1,323 @@
+"""The system configuration file: hammer, anvil, pile and soil, and the simulation settings.
+
+A system file is TOML (every key is checked; units in brackets)::
+
+    [simulation]
+    duration = 0.025            # [s] simulated time of one blow
+    time_step = 5e-6            # [s] optional; default: automatic, below every stable limit
+    output_interval = 1e-5      # [s] optional; default: every step
+    gravity = 9.81              # [m/s^2]
+    blows = 1                   # consecutive blows (the FMI master and the direct engine)
+
+    [hammer]
+    database = "illustrative_5500kj"   # a hammer of anvilwave/hammer/data, or file =
+    "my_hammer.toml"
+    energy = 5.5e6              # [J] optional blow energy (default: the rated energy)
+                                # or impact_velocity = 6.0 [m/s]
+    ram_model = "modal"         # optional: "rod" (default, Smith's 1D chain) or "modal" (the
+                                # ram's own Mode Displacement Method ROM up to the anvil's
+                                # fmax, anvilwave/hammer/modal_ram.py)
+    ram_mesh_size = 0.1         # [m] optional, modal ram only (default: from fmax and radius)
+
+    [anvil]
+    model = "rom"               # "rom" (Mode Displacement Method), "lumped" (rigid FE mass),
+                                # "classic" (cushion-helmet system, see [anvil.classic]), or
+                                # "none" (the ram bears on the pile through the contact spring)
+    file = "anvils/xl8.toml"    # anvil geometry (rom, lumped)
+    fmax = 5000.0               # [Hz] optional, ROM frequency content
+    damping_ratio = 0.0         # [-] optional
+    static_correction = true    # optional
+    pile_port_rings = 3         # optional (rom only): the pile port split into this many
+                                # rings across the pile wall (default 1;
+                                # anvilwave/anvil_rom/rings.py)
+    ram_port_annuli = 6         # optional (with pile_port_rings >= 2 and the modal ram): the
+                                # ram port split into this many equal-width annuli (default 1)
+    ram_contact_stiffness = 1e12    # [N/m] optional, default: the ram's toe half segment
+    ram_contact_damping = "ram-impedance"   # [N s/m] optional (default 0), a number or the
+                                # ram's toe bar impedance A sqrt(E rho)
+    pile_contact_stiffness = 1e12   # [N/m] optional, default: the pile's top half segment
+
+    [pile]      # see anvilwave/pile/pile.py          [soil]      # see
+    anvilwave/pile/soil/models.py
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from anvilwave.anvil_rom.fem.geometry import DEFAULT_FMAX, AnvilSpec, load_anvil
+from anvilwave.config.budget import check_run_budget
+from anvilwave.config.cache import cached_modal_data
+from anvilwave.hammer.database import Hammer, available_hammers, load_hammer
+from anvilwave.hammer.driving_system import DrivingSystem
+from anvilwave.hammer.modal_ram import modal_ram
+from anvilwave.inputs import InputError, Table
+from anvilwave.pile.model import PileSoil
+
+ANVIL_MODELS = ("rom", "lumped", "classic", "none")
+RAM_MODELS = ("rod", "modal")
+
+
+@dataclass(frozen=True)
+class AnvilSettings:
+    """How the anvil unit is modelled (see the module docstring)."""
+
+    model: str
+    spec: AnvilSpec | None = None
+    fmax: float | None = None
+    damping_ratio: float | None = None
+    static_correction: bool = True
+    mass: float | None = None
+    ram_contact_stiffness: float | None = None
+    pile_contact_stiffness: float | None = None
+    ram_contact_damping: float = 0.0
+    pile_contact_damping: float = 0.0
+    classic: DrivingSystem | None = None
+    pile_head: str = "rod"
+
+
+@dataclass(frozen=True)
+class SystemConfig:
+    """A validated system file.
+
+    duration : simulated time of one blow [s].
+    time_step : master step [s], None for automatic.
+    output_interval : spacing of the recorded samples [s], None for every step.
+    gravity : [m/s^2].
+    blows : number of consecutive blows.
+    impact_velocity : ram velocity at first contact [m/s].
+    drive : the ``[driveability]`` settings (:class:`anvilwave.analyses.drive.DriveSettings`).
+    srd : the ``[srd]`` source of a drive analysis (:class:`anvilwave.analyses.drive.SrdSource`).
+    install : the ``[installation]`` settings (:class:`anvilwave.analyses.install.InstallSettings`).
+    """
+
+    source: str
+    duration: float
+    time_step: float | None
+    output_interval: float | None
+    gravity: float
+    blows: int
+    hammer: Hammer
+    impact_velocity: float
+    anvil: AnvilSettings
+    pile_soil: PileSoil
+    drive: object = None
+    srd: object = None
+    install: object = None
+
+    @property
+    def blow_energy(self) -> float:
+        """Blow energy of the system's impact velocity [J]: m v^2 / (2 efficiency) (the
+        kinetic energy where the hammer has no efficiency)."""
+        kinetic = 0.5 * float(np.sum(self.hammer.ram.mass)) * self.impact_velocity**2
+        eff = self.hammer.efficiency
+        return kinetic / eff if eff == eff and eff > 0 else kinetic
+
+    def with_energy(self, energy: float) -> SystemConfig:
+        """The same system at another blow energy [J] (the hammer's efficiency applies)."""
+        if not energy > 0.0:
+            raise InputError(self.source, "hammer.energy", f"must be positive, got {energy!r}")
+        return replace(self, impact_velocity=self.hammer.impact_velocity_at(energy))
+
+    def with_anvil_model(self, model: str) -> SystemConfig:
+        """The same system with another anvil model ("rom", "lumped", "classic")."""
+        if model == self.anvil.model:
+            return self
+        if model in ("rom", "lumped") and self.anvil.spec is None:
+            raise InputError(self.source, "anvil.file", f"the {model!r} anvil needs an anvil "
+                                                         "geometry file")
+        if model == "classic" and self.anvil.classic is None:
+            raise InputError(self.source, "anvil.classic", "the 'classic' anvil needs an "
+                                                           "[anvil.classic] table")
+        return replace(self, anvil=replace(self.anvil, model=model))
+
+
+def load_system(path: str | Path) -> SystemConfig:
+    """Read and validate a system file."""
+    root = Table.from_file(path)
+    source = str(path)
+
+    sim = root.table("simulation")
+    duration = sim.number("duration", gt=0.0, le=10.0, unit="s")
+    time_step = sim.number("time_step", None, gt=0.0, unit="s")
+    output_interval = sim.number("output_interval", None, gt=0.0, unit="s")
+    gravity = sim.number("gravity", 9.81, ge=0.0, le=20.0, unit="m/s^2")
+    blows = sim.integer("blows", 1, ge=1)
+    sim.finish()
+    if output_interval is not None and output_interval > duration:
+        raise sim.error("output_interval", "must not exceed the duration")
+
+    hammer, velocity, ram_options = _hammer(root.table("hammer"), gravity)
+    anvil = _anvil(root.table("anvil"), hammer, source)
+    drive = srd = None
+    if root.has("driveability"):
+        from anvilwave.analyses.drive import load_drive_settings
+
+        drive = load_drive_settings(root.table("driveability"), source)
+    install = None
+    if root.has("installation"):
+        from anvilwave.analyses.install import load_install_settings
+
+        install = load_install_settings(root.table("installation"))
+    srd_table = root.table("srd", required=False)
+    pile_soil = PileSoil.from_tables(
+        root.table("pile"), root.table("soil", required=False),
+        srd_optional=srd_table is not None,
+        default_penetration=float(drive.depths[-1]) if drive is not None else None)
+    if srd_table is not None:
+        from anvilwave.analyses.drive import load_srd_source, pile_soil_at
+
+        if pile_soil.soil is None:
+            raise root.error("soil", "an [srd] table needs a [soil] table (soil model, quakes "
+                                     "and dampings)")
+        srd = load_srd_source(srd_table, source, pile_soil)
+        if pile_soil.soil.srd is None:  # the impact's soil: the [srd] at the penetration
+            try:
+                pile_soil = pile_soil_at(pile_soil, srd, pile_soil.soil.penetration, 1.0)[0]
+            except ValueError as exc:
+                raise InputError(source, "srd", str(exc)) from None
+    root.finish()
+    config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
+                          velocity, anvil, pile_soil, drive, srd, install)
+    check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
+    if anvil.spec is not None and getattr(anvil.spec.interfaces, "ram_annuli", 1) > 1 and (
+            ram_options["ram_model"] != "modal"):
+        raise InputError(source, "anvil.ram_port_annuli", "the ram face in annuli is the modal "
+                                                          "ram's: it needs [hammer] ram_model = "
+                                                          "'modal'")
+    if ram_options["ram_model"] == "modal":
+        config = replace(config, hammer=_modal_hammer(hammer, anvil,
+                                                      ram_options["ram_mesh_size"], source))
+    return config
+
+
+def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
+                  source: str) -> Hammer:
+    """The hammer with its ram replaced by the ram's modal ROM at the anvil's fmax."""
+    if anvil.fmax is not None:
+        fmax = anvil.fmax
+    else:
+        fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
+    try:
+        annuli = getattr(getattr(anvil.spec, "interfaces", None), "ram_annuli", 1)
+        ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
+                        modes=cached_modal_data, annuli=annuli)
+    except InputError as exc:
+        if exc.key == "fmax":  # the mesh does not resolve fmax
+            key = "hammer.ram_mesh_size" if mesh_size is not None else "anvil.fmax"
+        elif exc.key == "modes":  # more modes below fmax than one chain can carry
+            key = "anvil.fmax"
+        else:
+            key = "hammer.ram_model"
+        raise InputError(source, key, f"modal ram of {hammer.name}: {exc.rule}") from None
+    return replace(hammer, ram=ram)
+
+
+def _hammer(table: Table, gravity: float) -> tuple[Hammer, float, dict]:
+    if table.has("database") == table.has("file"):
+        raise table.error("database", "give exactly one of database = \"name\" (one of "
+                                      f"{', '.join(available_hammers())}) or file = \"path\"")
+    if table.has("database"):
+        name = table.string("database", choices=available_hammers())
+        hammer = load_hammer(name, gravity)
+    else:
+        path = table.path("file")
+        if not path.exists():
+            raise table.error("file", f"hammer file {path} not found")
+        hammer = load_hammer(path, gravity)
+    if table.has("energy") and table.has("impact_velocity"):
+        raise table.error("impact_velocity", "give either energy or impact_velocity, not both")
+    if table.has("energy"):
+        energy = table.number("energy", gt=0.0, unit="J")
+        if hammer.rated_energy == hammer.rated_energy and energy > hammer.rated_energy * 1.0001:
+            raise table.error("energy", f"exceeds the rated energy of {hammer.name} "
+                                        f"({hammer.rated_energy / 1e3:g} kJ)")
+        velocity = hammer.impact_velocity_at(energy)
+    else:
+        velocity = table.number("impact_velocity", hammer.impact_velocity, gt=0.0, le=50.0,
+                                unit="m/s")
+    options = {"ram_model": table.string("ram_model", "rod", choices=RAM_MODELS),
+               "ram_mesh_size": table.number("ram_mesh_size", None, gt=0.0, le=1.0, unit="m")}
+    if options["ram_mesh_size"] is not None and options["ram_model"] != "modal":
+        raise table.error("ram_mesh_size", "applies to ram_model = \"modal\" only")
+    table.finish()
+    return hammer, velocity, options
+
+
+CONTACT_DAMPING_RULES = ("ram-impedance",)
+"""Named values of ``ram_contact_damping``: "ram-impedance" is the bar impedance E A / c of the
+ram's striking section (:attr:`anvilwave.hammer.ram.RamRod.toe_impedance`)."""
+
+
+def _ram_contact_damping(table: Table, hammer: Hammer, source: str) -> float:
+    """``ram_contact_damping`` [N s/m]: a number, or "ram-impedance" (the ram's toe bar
+    impedance A sqrt(E rho): a dashpot that lets what the modes above fmax would carry away
+    from the contact, as waves into the ram, leave the contact instead of ringing in it)."""
+    if isinstance(table.data.get("ram_contact_damping"), str):
+        table.string("ram_contact_damping", choices=CONTACT_DAMPING_RULES)
+        value = hammer.ram.toe_impedance
+        if not np.isfinite(value):
+            raise InputError(source, "anvil.ram_contact_damping",
+                             "\"ram-impedance\" needs a ram given by its shape (diameter and "
+                             "mass or length, or a profile)")
+        return float(value)
+    return table.number("ram_contact_damping", 0.0, ge=0.0, unit="N s/m")
+
+
+def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
+    model = table.string("model", choices=ANVIL_MODELS)
+    spec = None
+    if table.has("file"):
+        path = table.path("file")
+        if not path.exists():
+            raise table.error("file", f"anvil file {path} not found")
+        spec = load_anvil(path)
+        if spec.interfaces is None:
+            raise table.error("file", f"{path} has no [interfaces]: the ROM needs them")
+    elif model in ("rom", "lumped"):
+        raise table.error("file", f"is required for the {model!r} anvil")
+    classic_table = table.table("classic", required=False)
+    classic = DrivingSystem.from_table(classic_table) if classic_table is not None else None
+    if model == "classic" and classic is None:
+        raise table.error("classic", "is required for the 'classic' anvil")
+    settings = AnvilSettings(
+        model=model,
+        spec=spec,
+        fmax=table.number("fmax", None, gt=0.0, unit="Hz"),
+        damping_ratio=table.number("damping_ratio", None, ge=0.0, lt=1.0),
+        static_correction=table.boolean("static_correction", True),
+        mass=table.number("mass", None, gt=0.0, unit="kg"),
+        ram_contact_stiffness=table.number("ram_contact_stiffness", None, gt=0.0, unit="N/m"),
+        pile_contact_stiffness=table.number("pile_contact_stiffness", None, gt=0.0, unit="N/m"),
+        ram_contact_damping=_ram_contact_damping(table, hammer, source),
+        pile_contact_damping=table.number("pile_contact_damping", 0.0, ge=0.0, unit="N s/m"),
+        classic=classic,
+    )
+    rings = table.integer("pile_port_rings", 1, ge=1)
+    if rings > 1:
+        if model != "rom":
+            raise table.error("pile_port_rings", "splits the ROM's pile port: it needs model = "
+                                                 "'rom'")
+        settings = replace(settings, spec=replace(
+            spec, interfaces=replace(spec.interfaces, pile_rings=rings)))
+    annuli = table.integer("ram_port_annuli", 1, ge=1)
+    if annuli > 1:
+        if rings < 2:
+            raise table.error("ram_port_annuli", "splits the ram port with the pile port in "
+                                                 "rings: it needs pile_port_rings >= 2")
+        if settings.ram_contact_stiffness is not None:
+            raise table.error("ram_port_annuli", "the annuli's contacts are the modal ram's "
+                                                 "residual flexibility: omit "
+                                                 "ram_contact_stiffness")
+        settings = replace(settings, spec=replace(settings.spec, interfaces=replace(
+            settings.spec.interfaces, ram_annuli=annuli)))
+    head = table.string("pile_head", "rod", choices=("rod", "tube"))
+    if head == "tube" and rings < 2:
+        raise table.error("pile_head", "'tube' puts the rings on an FE tube head: it needs "
+                                       "pile_port_rings >= 2")
+    settings = replace(settings, pile_head=head)
+    table.finish()
+    return settings

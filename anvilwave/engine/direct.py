@@ -1,0 +1,1234 @@
+"""The in-process system engine: ram -> anvil unit -> pile/soil in one compiled loop per blow.
+
+The step order is the master algorithm of DESIGN.md, the same as the FMI master's:
+
+1. read the ram toe (u, v) and the pile head (u, v) at t_n (states, no feedthrough);
+2. the anvil unit turns them into the two contact forces at t_n (feedthrough);
+3. the forces are held over [t_n, t_n+1] while ram, anvil unit and pile/soil each advance.
+
+Time is t_n = t0 + n h, never accumulated, with t0 = -h/2: the ram starts half a step before
+the first contact (t = 0), see :meth:`Engine.blow`. The kernels are those of the physics
+packages (the FMUs run the same ones): :func:`anvilwave.hammer.ram.ram_advance`,
+:func:`anvilwave.anvil_rom.unit.modal_unit_advance` (or the classic driving system, or no anvil) and
+:func:`anvilwave.pile.kernels.pile_advance`.
+
+Speed (benchmarks/bench_engine.py): everything that does not change during a run is prepared
+once per engine (inverse masses, weights, yield displacements, the anvil's step coefficients
+and its state at rest, the pile's static state, the coupled stability limit), so a blow only
+copies its start state and runs the loop. The loop is compiled per anvil model and per choice
+of recording and energy bookkeeping (the unused branches are removed at compile time, nothing
+is dispatched inside it) with the units' kernels inlined; every unit is one sweep over its
+degrees of freedom per step. It records the time series every ``record_every`` steps and the
+energies at most every ENERGY_STEPS steps; between those rows only the soil's works are summed
+(per mass), the gravity work follows from the states and the pile dashpots' work from the
+pile's exact energy balance. With ``record=False`` it keeps only the blow's summary (stress
+extremes, EMX, peak head force, toe displacement, set), computed inside the loop, so thousands
+of blows take no memory. The time stepping is compiled without fastmath; only the sums of
+the energy bookkeeping may be reassociated (:data:`anvilwave.pile.kernels.ENERGY_SUMS`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from numba import njit
+
+from anvilwave.anvil_rom.arrays import aligned_copy, aligned_zeros
+from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.rings import (
+    RamFace,
+    copy_ring_state,
+    ring_contact,
+    ring_elastic_forces,
+    ring_faces,
+    ring_interface,
+    ring_unit_advance,
+    ring_unit_energy_at,
+)
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.unit import (
+    AnvilUnit,
+    ContactParameters,
+    modal_unit_advance,
+    modal_unit_contact,
+    modal_unit_dashpot_power,
+    modal_unit_energy_at,
+    modal_unit_interface,
+)
+from anvilwave.config.system import SystemConfig
+from anvilwave.hammer.driving_system import (
+    driving_system_energy,
+    driving_system_forces,
+    driving_system_losses,
+    driving_system_stable_time_step,
+    driving_system_step,
+    interface_time_step,
+)
+from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_advance, modal_ram_energies
+from anvilwave.hammer.ram import leapfrog_energies, ram_advance
+from anvilwave.hammer.ram import stable_time_step as ram_stable_time_step
+from anvilwave.inputs import InputError
+from anvilwave.pile.kernels import (
+    HEAD_EXTRAPOLATION,
+    PILE_STIFFNESS,
+    SOIL_STIFFNESS,
+    WORK_GRAVITY,
+    WORK_HEAD,
+    WORK_PILE_DAMPING,
+    WORK_SOIL_DAMPING,
+    WORK_SOIL_STATIC,
+    fold_elongations,
+    gauge_force,
+    gauge_velocity,
+    head_displacement,
+    head_face_work,
+    head_velocity,
+    pile_advance,
+    pile_energies,
+    sweep_arrays,
+    update_energy,
+)
+from anvilwave.pile.kernels import stable_time_step as pile_stable_time_step
+from anvilwave.pile.model import initial_state, substeps
+
+COLUMNS = (
+    "time [s]",
+    "ram_anvil_force [N]",
+    "anvil_pile_force [N]",
+    "pile_head_velocity [m/s]",
+    "gauge_force [N]",
+    "gauge_velocity [m/s]",
+    "ram_toe_velocity [m/s]",
+    "anvil_top_displacement [m]",
+    "anvil_bottom_displacement [m]",
+    "pile_head_displacement [m]",
+    "pile_toe_displacement [m]",
+)
+ENERGY_COLUMNS = (
+    "ram_kinetic [J]", "ram_strain [J]", "ram_gravity_potential [J]",
+    "anvil_kinetic [J]", "anvil_potential [J]",
+    "pile_kinetic [J]", "pile_strain [J]", "pile_gravity_work [J]",
+    "soil_static_work [J]", "soil_damping_work [J]", "pile_damping_work [J]",
+    "pile_head_work [J]", "pile_head_face_work [J]", "contact_damping_work [J]",
+)
+STEPS_PER_PERIOD_AT_FMAX = 8
+"""The automatic step samples the ROM's highest frequency fmax at least this often: the contact
+forces are exchanged once per step, so the anvil's modes up to fmax must be resolved by the
+exchange (Table 1, fmax 5 kHz: peak forces change by < 1 % from h = 1 / (8 fmax) = 25 us down to
+2.5 us, while h = 80 us, near the stability limit, misplaces a re-impact by 35 %)."""
+ACCURACY_FRACTION = 0.4
+"""The automatic step is at most this fraction of the stability limit 2 / omega_max, i.e. the
+highest frequency of the coupled system is sampled about 8 times per period (pi / 0.4). The
+impact starts with a jump in velocity that excites the top of the spectrum: the lumped-anvil
+ram force of Table 1 is within 2 % of its h -> 0 value at 0.4 of the limit but 10 % low at
+0.84. Chains of equal segments meeting at the Courant number 1 are exact; give that step
+explicitly (simulation.time_step) for such validation cases."""
+
+ENERGY_STEPS = 20
+"""The energy series of a blow is recorded at most every this many master steps by default
+(:meth:`Engine.blow`): a row of it (a pass over every unit's states) costs about what a step
+costs, and the balance needs no finer sampling: each row is exact, and the works between the
+rows are summed at every step (Table 1: a row every 0.5 ms, 51 rows)."""
+
+NO_MODAL_RAM = (np.zeros((9, 0)), np.zeros(0), np.zeros(3))
+"""run_blow's ``modal_ram`` when the ram is a chain (a unit without modes)."""
+
+# the blow summary the loop fills (BlowResult fields of the same names)
+(S_MAX_COMPRESSION, S_MAX_TENSION, S_EMX_GAUGE, S_EMX_HEAD, S_MAX_HEAD_FORCE, S_MAX_TOE,
+ S_TOE_START, S_TOE_END, S_TOE_VELOCITY_END) = range(9)
+SUMMARY_SIZE = 9
+
+
+def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays,
+                             participation_ram=None, participation_pile=None) -> float:
+    """Largest stable master step [s] of the whole coupled chain, 2 / omega_max.
+
+    Every unit is a leapfrog (the modal anvil its exact central-difference counterpart) and
+    the contact forces are exchanged at t_n, so the system is one central-difference scheme:
+    stable for h < 2 / omega_max of the linearised system ram chain + contact springs + anvil +
+    pile chain with its soil springs. The anvil's modes enter as free unit masses coupled
+    through their participations: their own stiffness needs no limit (they are integrated
+    exactly) and their step mobility c_j <= h^2 makes this bound conservative. Without
+    participations the contact is one spring from the ram toe to the pile head (no anvil).
+
+    omega_max^2 is the largest eigenvalue of M^-1/2 K M^-1/2, found by bisection with a
+    definiteness test (:func:`_below_spectrum`) that follows the matrix's structure: two chains
+    (three diagonals) joined through the anvil's dense block of modes. Each test costs about
+    one elimination of that block, so an engine gets its limit in milliseconds, without a
+    dense eigenvalue solver (nor its threads).
+    """
+    ram_mass = np.asarray(ram_mass, float)
+    ram_stiffness = np.asarray(ram_stiffness, float)
+    pile_mass = np.asarray(pile_arrays.pile[0], float)
+    k_chain = np.asarray(pile_arrays.pile[PILE_STIFFNESS][:-1], float)
+    soil_k = pile_arrays.soil[SOIL_STIFFNESS]
+    n_r, n_p = len(ram_mass), len(pile_mass)
+    n_a = 0 if participation_ram is None else len(participation_ram)
+    # the stiffness matrix by blocks: ram chain, anvil modes, pile chain
+    ram_diagonal = np.zeros(n_r)
+    ram_diagonal[:-1] += ram_stiffness
+    ram_diagonal[1:] += ram_stiffness
+    ram_diagonal[-1] += k_ram
+    pile_diagonal = np.zeros(n_p)
+    pile_diagonal[:-1] += k_chain
+    pile_diagonal[1:] += k_chain
+    pile_diagonal += soil_k[:n_p]
+    pile_diagonal[-1] += soil_k[n_p]
+    if n_a:
+        top = np.asarray(participation_ram, float)
+        bottom = np.asarray(participation_pile, float)
+        # ram contact k (u_toe - top . q)^2 / 2, pile contact k (bottom . q - u_head)^2 / 2
+        block = k_ram * np.outer(top, top) + k_pile * np.outer(bottom, bottom)
+        to_toe = -k_ram * top
+        to_head = -k_pile * bottom
+        toe_head = 0.0
+        pile_diagonal[0] += k_pile
+    else:
+        block = np.zeros((0, 0))
+        to_toe = to_head = np.zeros(0)
+        toe_head = -k_ram
+        pile_diagonal[0] += k_ram
+    # scaled by M^-1/2 (the modes have unit mass)
+    r = 1.0 / np.sqrt(ram_mass)
+    p = 1.0 / np.sqrt(pile_mass)
+    arrays = (ram_diagonal * r * r, -ram_stiffness * r[:-1] * r[1:],
+              np.ascontiguousarray(block), to_toe * r[-1], to_head * p[0],
+              toe_head * r[-1] * p[0],
+              pile_diagonal * p * p, -k_chain * p[:-1] * p[1:])
+    return float(2.0 / math.sqrt(_largest_eigenvalue(*arrays)))
+
+
+def modal_ram_coupled_stable_time_step(participation_toe, k_ram, k_pile, pile_arrays,
+                                       participation_ram, participation_pile) -> float:
+    """:func:`coupled_stable_time_step` with a modal ram unit [s]: the ram's modes, like the
+    anvil's, enter as free unit masses coupled through their toe participations (each is
+    integrated exactly; the bound is conservative). One dense symmetric eigenvalue problem of
+    the ram's and the anvil's modes and the pile chain (a few hundred to a few thousand rows).
+    """
+    from scipy.linalg import eigvalsh
+
+    pile_mass = np.asarray(pile_arrays.pile[0], float)
+    k_chain = np.asarray(pile_arrays.pile[PILE_STIFFNESS][:-1], float)
+    soil_k = pile_arrays.soil[SOIL_STIFFNESS]
+    toe = np.asarray(participation_toe, float)
+    top = np.asarray(participation_ram, float)
+    bottom = np.asarray(participation_pile, float)
+    n_r, n_a, n_p = toe.size, top.size, pile_mass.size
+    # ram contact k (toe . q_r - top . q_a)^2 / 2, pile contact k (bottom . q_a - u_head)^2 / 2
+    ram_side = np.concatenate((toe, -top, np.zeros(n_p)))
+    pile_side = np.concatenate((np.zeros(n_r), bottom, np.zeros(n_p)))
+    pile_side[n_r + n_a] = -1.0 / math.sqrt(pile_mass[0])
+    a = k_ram * np.outer(ram_side, ram_side) + k_pile * np.outer(pile_side, pile_side)
+    r = 1.0 / np.sqrt(pile_mass)
+    diagonal = np.zeros(n_p)
+    diagonal[:-1] += k_chain
+    diagonal[1:] += k_chain
+    diagonal += soil_k[:n_p]
+    diagonal[-1] += soil_k[n_p]
+    j = np.arange(n_r + n_a, n_r + n_a + n_p)
+    a[j, j] += diagonal * r * r
+    a[j[:-1], j[1:]] -= k_chain * r[:-1] * r[1:]
+    a[j[1:], j[:-1]] -= k_chain * r[:-1] * r[1:]
+    n = a.shape[0]
+    largest = float(eigvalsh(a, subset_by_index=[n - 1, n - 1])[0])
+    return 2.0 / math.sqrt(largest)
+
+
+@njit(cache=True)
+def _below_spectrum(sigma, ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
+                    pile_diagonal, pile_off, work):
+    """True if sigma exceeds every eigenvalue, i.e. A - sigma I is negative definite: its
+    symmetric elimination (ram chain, the toe's couplings into the block of modes and the head,
+    the block, the head and the pile chain) meets only negative pivots. ``work`` is scratch of
+    the block's shape plus one column."""
+    d = _chain_pivot(ram_diagonal, ram_off, sigma, ram_diagonal[0] - sigma)
+    if d >= 0.0:
+        return False
+    # eliminate the toe: the block of modes, its column to the head and the head's pivot
+    n = block.shape[0]
+    for i in range(n):
+        for j in range(n):
+            work[i, j] = block[i, j] - to_toe[i] * to_toe[j] / d
+        work[i, i] -= sigma
+        work[i, n] = to_head[i] - to_toe[i] * toe_head / d
+    head = (pile_diagonal[0] - sigma) - toe_head * toe_head / d
+    for k in range(n):
+        pivot = work[k, k]
+        if pivot >= 0.0:
+            return False
+        for i in range(k + 1, n):
+            factor = work[i, k] / pivot
+            for j in range(k + 1, n + 1):
+                work[i, j] -= factor * work[k, j]
+        head -= work[k, n] * work[k, n] / pivot
+    return _chain_pivot(pile_diagonal, pile_off, sigma, head) < 0.0
+
+
+@njit(cache=True, inline='always')
+def _chain_pivot(diagonal, off, sigma, first):
+    """The last pivot of the symmetric elimination of a chain (tridiagonal: ``diagonal``,
+    ``off``) shifted by sigma, from its first pivot ``first``, or the first pivot >= 0 met
+    (then A - sigma I is not negative definite)."""
+    d = first
+    if d >= 0.0:
+        return d
+    for i in range(1, diagonal.size):
+        d = (diagonal[i] - sigma) - off[i - 1] ** 2 / d
+        if d >= 0.0:
+            return d
+    return d
+
+
+@njit(cache=True)
+def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
+                        pile_diagonal, pile_off):
+    """Largest eigenvalue of the coupled matrix (:func:`_below_spectrum`) by bisection between
+    0 and a Gershgorin bound, to the last bits; returns the upper end of the final bracket."""
+    upper = 0.0
+    for i in range(ram_diagonal.size):
+        row = ram_diagonal[i]
+        if i > 0:
+            row += abs(ram_off[i - 1])
+        if i < ram_off.size:
+            row += abs(ram_off[i])
+        upper = max(upper, row)
+    upper = max(upper, ram_diagonal[-1] + abs(ram_off[-1]) if ram_off.size else 0.0)
+    toe_row = abs(toe_head)
+    for i in range(block.shape[0]):
+        row = abs(to_toe[i]) + abs(to_head[i])
+        toe_row += abs(to_toe[i])
+        for j in range(block.shape[0]):
+            row += abs(block[i, j])
+        upper = max(upper, row)
+    upper = max(upper, ram_diagonal[-1] + toe_row + (abs(ram_off[-1]) if ram_off.size else 0.0))
+    head_row = abs(toe_head)
+    for i in range(to_head.size):
+        head_row += abs(to_head[i])
+    for i in range(pile_diagonal.size):
+        row = pile_diagonal[i]
+        if i > 0:
+            row += abs(pile_off[i - 1])
+        if i < pile_off.size:
+            row += abs(pile_off[i])
+        if i == 0:
+            row += head_row
+        upper = max(upper, row)
+    upper *= 1.0 + 1e-12
+    lower = 0.0
+    work = np.empty((block.shape[0], block.shape[0] + 1))
+    for _ in range(200):
+        middle = 0.5 * (lower + upper)
+        if middle <= lower or middle >= upper:
+            break
+        if _below_spectrum(middle, ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
+                           pile_diagonal, pile_off, work):
+            upper = middle
+        else:
+            lower = middle
+    return upper
+
+
+# ----------------------------------------------------------------- the loop
+@njit(cache=True)
+def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
+             soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
+             n_steps, record_every, energy_every, out, energies, works, stresses, summary,
+             sections=None, modal_ram=NO_MODAL_RAM, rings=None):
+    """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
+
+    The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvilwave.anvil_rom.unit`),
+    ``classic`` = (P, S) (:mod:`anvilwave.hammer.driving_system`) or ``direct`` = [k, c] (one
+    contact
+    spring, no anvil); the other two are None, and the compiler keeps only the code of the
+    given one. ``ram`` = (weight, inverse mass, stiffness, mass); the pile as
+    :func:`anvilwave.pile.kernels.pile_advance` takes it, with ``pile`` and ``probes`` its
+    parameter and
+    probe arrays. ``start`` = (u, v, energy) of the pile at the start of the blow.
+
+    Records every ``record_every`` steps into ``out`` (COLUMNS x rows) and every
+    ``energy_every`` steps and at the last into ``energies`` (time and ENERGY_COLUMNS x rows)
+    unless they are None. ``works``: the per-mass soil work sums of
+    :func:`anvilwave.pile.kernels.pile_advance` (None: no energy bookkeeping); ``stresses`` =
+    (stress
+    factors [N/m^3], largest and smallest shortening of each spring [m]), folded at every
+    step (:func:`anvilwave.pile.kernels.fold_elongations`); ``summary`` (SUMMARY_SIZE) receives the
+    blow's summary. ``face0`` is the head face displacement the anvil unit's pile input is
+    measured from. ``sections`` = (spring indices, buffer (n_sections, rows)) records the
+    elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
+    recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
+    :class:`anvilwave.hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``,
+    ``ram_v``
+    are then unused) unless C has no columns (:data:`NO_MODAL_RAM`: the chain runs). Both rams
+    run in the one compiled loop, chosen at run time, so that a ram model does not change how
+    the compiler lays out the rest of the step. ``rings`` (:mod:`anvilwave.anvil_rom.rings`: RP, A,
+    T, W,
+    F, E, ring, scratch, R) splits the modal unit's pile port into rings. Returns the numbers
+    of rows recorded (columns, energies).
+    """
+    weight, inverse_mass, ram_stiffness, ram_mass = ram
+    toe = ram_u.shape[0] - 1
+    ram_is_modal = modal_ram[0].shape[1] > 0
+    last = pu.shape[0] - 1
+    extrapolation = probes[HEAD_EXTRAPOLATION]
+    dt_ram = h / ram_nsub
+    dt_pile = h / pile_nsub
+    head_work0 = head_face_work(probes, start[2])
+    pile_mass = pile[0]
+    stored0 = 0.0
+    if works is not None:  # the pile's kinetic and strain energy at the start
+        kinetic, strain, _, _, _ = pile_energies(pile_mass, pile_sweep[2], pile_sweep[0], pu,
+                                                 pv, dt_pile, pu, pv, works)
+        stored0 = kinetic + strain
+    work_gauge = 0.0
+    work_contact = 0.0  # dissipated by the contact dashpots since the blow started
+    damped = False
+    if modal is not None:
+        damped = modal[0][1] != 0.0 or modal[0][3] != 0.0
+    if direct is not None:
+        damped = direct[1] != 0.0
+    power_before = 0.0
+    emx_gauge = 0.0
+    emx_head = 0.0
+    max_head_force = 0.0
+    max_toe = pu[last]
+    row = 0
+    countdown = 0
+    energy_row = 0
+    energy_countdown = 0
+    for n in range(n_steps + 1):
+        # 1. states of the neighbours at t_n
+        if ram_is_modal:
+            u_ram = modal_ram[2][0]
+            v_ram = modal_ram[2][1]
+        else:
+            u_ram = ram_u[toe]
+            v_ram = ram_v[toe]
+        u_pile = pu[0] + extrapolation * (pu[0] - pu[1]) - face0
+        v_pile = head_velocity(probes, pv)
+        # 2. contact forces at t_n (feedthrough of the anvil unit); of the three blocks the
+        # compiler keeps the one whose unit is given (an "is not None" of a None is pruned)
+        f_ram = 0.0
+        f_pile = 0.0
+        u_top = u_pile
+        u_bottom = u_pile
+        fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
+        fe_pile = 0.0
+        if modal is not None and rings is None:
+            f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
+            fe_ram = f_ram
+            fe_pile = f_pile
+            if damped:
+                fe_ram, fe_pile, power = modal_unit_dashpot_power(
+                    modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+                work_contact += h * power
+        if modal is not None and rings is not None:
+            f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
+            fe_ram = f_ram
+            fe_pile = f_pile
+            if damped:
+                fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile,
+                                                             v_pile)
+                work_contact += h * power
+        if classic is not None:
+            f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
+                                                                   v_ram, u_pile, v_pile)
+        if direct is not None:
+            f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
+            f_pile = f_ram
+            fe_ram = f_ram
+            if damped:
+                fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
+                work_contact += h * (f_ram - fe_ram) * (v_ram - v_pile)
+        # the blow's summary at t_n
+        f_gauge = gauge_force(pile, probes, pu, pv)
+        v_gauge = gauge_velocity(probes, pv)
+        power = f_gauge * v_gauge
+        if n > 0:
+            work_gauge += 0.5 * (power_before + power) * h
+        power_before = power
+        emx_gauge = max(emx_gauge, work_gauge)
+        emx_head = max(emx_head, head_face_work(probes, pen) - head_work0)
+        max_head_force = max(max_head_force, f_pile)
+        max_toe = max(max_toe, pu[last])
+        if countdown == 0:
+            countdown = record_every
+            row += 1
+            if sections is not None:
+                idx, buf = sections
+                for j in range(idx.size):
+                    buf[j, row - 1] = pu[idx[j]] - pu[idx[j] + 1]
+            if out is not None:
+                if modal is not None and rings is None:
+                    P = modal[0]
+                    u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
+                    u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
+                if modal is not None and rings is not None:
+                    u_top, u_bottom = ring_faces(rings)
+                out[0, row - 1] = t0 + n * h
+                out[1, row - 1] = f_ram
+                out[2, row - 1] = f_pile
+                out[3, row - 1] = v_pile
+                out[4, row - 1] = f_gauge
+                out[5, row - 1] = v_gauge
+                out[6, row - 1] = v_ram
+                out[7, row - 1] = u_top
+                out[8, row - 1] = u_bottom
+                out[9, row - 1] = u_pile + face0
+                out[10, row - 1] = pu[last]
+        if energies is not None:
+            if energy_countdown == 0 or n == n_steps:
+                energy_countdown = energy_every
+                kin = 0.0
+                pot = 0.0
+                if modal is not None and rings is None:
+                    kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
+                                                    u_ram, v_ram, u_pile, v_pile, fe_ram,
+                                                    fe_pile)
+                if modal is not None and rings is not None:
+                    if not damped:  # the elastic forces are the forces
+                        rings[5][:] = rings[4]
+                    kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
+                                                   v_ram, u_pile, v_pile)
+                    pot += rings[13][1]  # handed to the tube head (0 on the 1D head)
+                if classic is not None:
+                    kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
+                                                                        u_ram, u_pile)
+                    # the cushions' restitution losses are energy the system no longer holds
+                    pot = recoverable + potential + driving_system_losses(classic[0],
+                                                                          classic[1])
+                if direct is not None:
+                    pot = 0.5 * fe_ram * fe_ram / direct[0]
+                if ram_is_modal:
+                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], modal_ram[2],
+                                                    gravity, h)
+                else:
+                    ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v,
+                                                   gravity, dt_ram)
+                kinetic, strain, grav, soil_static, soil_damping = pile_energies(
+                    pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1],
+                    works)
+                damping = _pile_damping_work(pen[WORK_HEAD] - start[2][WORK_HEAD], grav,
+                                             soil_static, soil_damping,
+                                             kinetic + strain - stored0)
+                r = energy_row
+                energies[0, r] = t0 + n * h
+                energies[1, r] = ke
+                energies[2, r] = se
+                energies[3, r] = pe
+                energies[4, r] = kin
+                energies[5, r] = pot
+                energies[6, r] = kinetic
+                energies[7, r] = strain
+                energies[8, r] = start[2][WORK_GRAVITY] + grav
+                energies[9, r] = start[2][WORK_SOIL_STATIC] + soil_static
+                energies[10, r] = start[2][WORK_SOIL_DAMPING] + soil_damping
+                energies[11, r] = start[2][WORK_PILE_DAMPING] + damping
+                energies[12, r] = pen[WORK_HEAD]
+                energies[13, r] = head_face_work(probes, pen)
+                energies[14, r] = work_contact
+                energy_row += 1
+            energy_countdown -= 1
+        countdown -= 1
+        if n == n_steps:
+            break
+        # 3. every unit over [t_n, t_n+1] with the forces held
+        if ram_is_modal:
+            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
+        else:
+            ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
+        if modal is not None and rings is None:
+            modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
+        if modal is not None and rings is not None:
+            ring_unit_advance(modal[0], modal[1], modal[2], f_ram, rings, modal[3])
+        if classic is not None:
+            driving_system_step(classic[0], classic[1], u_ram, v_ram, u_pile, v_pile, h,
+                                classic[2])
+        fold_elongations(pu, stresses[1], stresses[2])
+        pile_advance(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, f_pile, h, pile_nsub,
+                     works, None)
+    # the end state: its stresses, energies and works
+    factor, largest, smallest = stresses
+    fold_elongations(pu, largest, smallest)
+    compression = 0.0
+    tension = 0.0
+    for i in range(last):
+        compression = max(compression, factor[i] * largest[i])
+        tension = min(tension, factor[i] * smallest[i])
+    update_energy(pile, pu, pv, pen, dt_pile)
+    if works is not None:
+        kinetic, strain, grav, soil_static, soil_damping = pile_energies(
+            pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1], works)
+        pen[WORK_GRAVITY] = start[2][WORK_GRAVITY] + grav
+        pen[WORK_SOIL_STATIC] = start[2][WORK_SOIL_STATIC] + soil_static
+        pen[WORK_SOIL_DAMPING] = start[2][WORK_SOIL_DAMPING] + soil_damping
+        pen[WORK_PILE_DAMPING] = start[2][WORK_PILE_DAMPING] + _pile_damping_work(
+            pen[WORK_HEAD] - start[2][WORK_HEAD], grav, soil_static, soil_damping,
+            kinetic + strain - stored0)
+    summary[S_MAX_COMPRESSION] = compression
+    summary[S_MAX_TENSION] = tension
+    summary[S_EMX_GAUGE] = emx_gauge
+    summary[S_EMX_HEAD] = emx_head
+    summary[S_MAX_HEAD_FORCE] = max_head_force
+    summary[S_MAX_TOE] = max_toe
+    summary[S_TOE_START] = start[0][last]
+    summary[S_TOE_END] = pu[last]
+    summary[S_TOE_VELOCITY_END] = pv[last]
+    return row, energy_row
+
+
+@njit(cache=True)
+def _pile_damping_work(head, gravity, soil_static, soil_damping, stored):
+    """Work of the pile's material dashpots in the blow [J]: the remainder of the pile's exact
+    discrete energy balance (pile.kernels module docstring), head + gravity work - soil works
+    - change of kinetic and strain energy, all since the start of the blow. Booked this way
+    the loop sums no work over the free length of the pile; tests/test_pile.py checks the
+    balance with every work summed (pile_step)."""
+    return head + gravity - soil_static - soil_damping - stored
+
+
+# ----------------------------------------------------------------- results and state
+@dataclass
+class PileState:
+    """The state of the pile and its soil between blows (the engine keeps its own copies).
+
+    u : (N,) displacements [m]; v : (N,) velocities [m/s] (positive down, leapfrog half-step
+    values); soil_offset : (N + 1,) plastic offsets of the soil springs [m] (toe last);
+    energy : (ENERGY_SIZE,) energies and works of :mod:`anvilwave.pile.kernels` [J].
+    """
+
+    u: np.ndarray
+    v: np.ndarray
+    soil_offset: np.ndarray
+    energy: np.ndarray
+    start_soil_offset: np.ndarray | None = field(default=None, repr=False, compare=False)
+    """Of a blow's final state: the soil offsets at the start of that blow [m]."""
+
+    def copy(self) -> PileState:
+        return PileState(self.u.copy(), self.v.copy(), self.soil_offset.copy(),
+                         self.energy.copy())
+
+    @property
+    def toe_displacement(self) -> float:
+        """Displacement of the toe mass [m]."""
+        return float(self.u[-1])
+
+    # the names of the kernel arguments
+    pu = property(lambda self: self.u, doc="Alias of ``u``.")
+    pv = property(lambda self: self.v, doc="Alias of ``v``.")
+    poff = property(lambda self: self.soil_offset, doc="Alias of ``soil_offset``.")
+    pen = property(lambda self: self.energy, doc="Alias of ``energy``.")
+
+    _KEYS = {"pile_u": "u", "pile_v": "v", "soil_offset": "soil_offset",
+             "soil_offset_start": "start_soil_offset", "energy": "energy"}
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        """Mapping access with the keys of earlier versions' ``final_state`` dict."""
+        value = getattr(self, self._KEYS[key])
+        if value is None:
+            raise KeyError(key)
+        return value
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._KEYS and getattr(self, self._KEYS[key]) is not None
+
+
+@dataclass
+class BlowResult:
+    """Time series and summary of one simulated blow (columns: COLUMNS, ENERGY_COLUMNS).
+
+    columns, energies : recorded time series (empty with ``record=False``; energies also
+    empty with ``energy=False``). The summary is computed inside the loop at every step,
+    recorded or not: max_compression_stress, max_tension_stress [Pa] (over all springs and
+    steps; tension negative), emx_gauge [J] (largest running integral of gauge force x gauge
+    velocity, trapezoidal at the master steps), emx_head [J] (largest work done by the head
+    force on the pile-top face since the blow started: ENTHRU at the head, GRLWEAP's
+    location), max_pile_head_force [N] (anvil-pile contact force), max_toe_displacement [m],
+    permanent_set [m] (toe displacement at the end minus at the start), toe_velocity_end [m/s].
+    section_strain : (rows, n_sections) elongation u_i - u_i+1 [m] of the springs asked for
+    with ``sections`` at every record row (times the stress factor: the stress, positive in
+    compression), or None.
+    """
+
+    columns: dict[str, np.ndarray]
+    energies: dict[str, np.ndarray]
+    time_step: float
+    n_steps: int
+    wall_time: float
+    input_energy: float
+    max_compression_stress: float
+    max_tension_stress: float
+    emx_gauge: float
+    emx_head: float
+    max_pile_head_force: float
+    max_toe_displacement: float
+    permanent_set: float
+    toe_velocity_end: float
+    impact_velocity: float
+    initial_state: PileState
+    final_state: PileState
+    section_strain: np.ndarray | None = None
+
+    @property
+    def pile_max_compression_stress(self) -> float:
+        """Alias of ``max_compression_stress`` [Pa]."""
+        return self.max_compression_stress
+
+    @property
+    def pile_max_tension_stress(self) -> float:
+        """Alias of ``max_tension_stress`` [Pa]."""
+        return self.max_tension_stress
+
+
+@dataclass
+class AnvilKernels:
+    """An anvil unit as kernel arrays: the state at rest S (copied for every blow).
+
+    kind : "rom", "lumped", "classic" or "none"; P, C, S : the kernel arrays (C unused for
+    classic and none); u_top0 : top face at rest [m]; stable_step : the coupled stability
+    limit of this unit [s]; n_sub : its sub-steps (classic); unit : the AnvilUnit or
+    DrivingSystem.
+    """
+
+    kind: str
+    P: np.ndarray
+    C: np.ndarray
+    S: np.ndarray
+    u_top0: float
+    stable_step: float
+    n_sub: int = 1
+    unit: object = None
+
+
+_WARM: set = set()
+"""Loop variants already compiled or loaded in this process."""
+
+
+@dataclass
+class Engine:
+    """The in-process engine for one system configuration and anvil model.
+
+    Build it with :func:`build_engine`. :meth:`blow` simulates one blow from a given pile
+    state, :meth:`run` consecutive blows; :meth:`static_state` is the state a blow starts from
+    by default and :meth:`with_pile_soil` the same engine on another soil or penetration.
+    """
+
+    config: SystemConfig
+    anvil: AnvilKernels
+    ram_mass: np.ndarray
+    ram_stiffness: np.ndarray
+    pile_arrays: object
+    time_step: float
+    limits: dict[str, float]
+    modal: object = None
+    ram_modes: object = None
+    """:class:`anvilwave.hammer.modal_ram.RamToeModes` of a modal ram unit (None: the ram chain)."""
+    ram_unit: object = None
+    """The :class:`anvilwave.hammer.modal_ram.ModalRamUnit` of ``ram_modes``, its step coefficients
+    set
+    (built here when None; engines for other soils share it: every blow restarts its state)."""
+
+    def __post_init__(self):
+        g = self.config.gravity
+        self._ram = tuple(aligned_copy(a) for a in (self.ram_mass * g, 1.0 / self.ram_mass,
+                                                    self.ram_stiffness, self.ram_mass))
+        self._ram_nsub = substeps(self.time_step,
+                                  ram_stable_time_step(self.ram_mass, self.ram_stiffness))
+        if self.ram_modes is not None and self.ram_unit is None:
+            self.ram_unit = ModalRamUnit(self.ram_modes, g)
+            self.ram_unit.start(0.0, 0.0, self.time_step)  # the step's coefficients
+        self._prepare_pile()
+
+    def _prepare_pile(self) -> None:
+        a = self.pile_arrays
+        self._sweep = sweep_arrays(a.pile, a.soil, self.config.gravity)
+        self._pile_nsub = substeps(self.time_step, pile_stable_time_step(a.pile, a.soil))
+        factor = self.config.pile_soil.stress_factors()
+        springs = factor.size
+        self._stresses = (aligned_copy(factor), aligned_zeros(springs), aligned_zeros(springs))
+        n = a.pile.shape[1]
+        self._works = (aligned_zeros(n), aligned_zeros(n))
+        self._static = None
+
+    # ------------------------------------------------------------------ state
+    @property
+    def static_head_force(self) -> float:
+        """Weight resting on the pile head before a blow [N] (anvil, helmet, assembly)."""
+        return _static_pile_force(self.anvil, self.config.gravity)
+
+    def static_state(self) -> PileState:
+        """The pile and soil at rest under the anvil's (or helmet's) weight and their own
+        (:func:`anvilwave.pile.model.initial_state`): the state a blow starts from by default. A
+        copy."""
+        if self._static is None:
+            s = initial_state(self.pile_arrays, head_force=self.static_head_force,
+                              gravity=self.config.gravity)
+            self._static = PileState(*(np.array(a, dtype=float) for a in s))
+        return self._static.copy()
+
+    def with_pile_soil(self, pile_soil) -> Engine:
+        """This engine for another :class:`anvilwave.pile.model.PileSoil` with the same pile
+        discretisation (another soil, SRD or penetration): the anvil unit, the ram (a modal
+        ram's unit too) and the time step are shared; only the pile's arrays, its sub-steps and
+        its static state are new.
+
+        The coupled stability limit is not recomputed: the soil springs are orders of magnitude
+        softer than the contact and pile springs that set it, and the pile sub-steps within its
+        own limit (soil included). Raises ValueError if the pile's segments differ.
+        """
+        arrays = pile_soil.arrays()
+        mine = self.pile_arrays.pile
+        if arrays.pile.shape != mine.shape or not np.array_equal(arrays.pile, mine):
+            raise ValueError("with_pile_soil needs the same pile (sections, segment length, "
+                             "material damping): only the soil may change")
+        limits = dict(self.limits)
+        limits["pile"] = float(pile_stable_time_step(arrays.pile, arrays.soil))
+        return Engine(replace(self.config, pile_soil=pile_soil), self.anvil, self.ram_mass,
+                      self.ram_stiffness, arrays, self.time_step, limits, self.modal,
+                      self.ram_modes, self.ram_unit)
+
+    # ------------------------------------------------------------------ blows
+    def blow(self, state: PileState | None = None, impact_velocity: float | None = None,
+             duration: float | None = None, record_interval: float | None = None,
+             record: bool = True, energy: bool | None = None,
+             energy_interval: float | None = None, sections=None) -> BlowResult:
+        """Simulate one blow from ``state`` (default :meth:`static_state`; not modified).
+
+        The ram starts at ``impact_velocity`` [m/s] (default: the system's) on the anvil at
+        rest on the pile head; the blow lasts ``duration`` [s] (default: the system's) and is
+        recorded every ``record_interval`` [s] (default: the system's output interval, else
+        every step). record : keep the time series (False: the summary only, no memory per
+        step). energy : keep the energy bookkeeping (the ENERGY_COLUMNS series and the works of
+        the final state; default: as ``record``). energy_interval : spacing of the energy
+        series [s] (default: every record, but at least ENERGY_STEPS master steps apart); the
+        last step is always in it, and each of its rows is exact (the works are summed at
+        every step). The result's ``final_state`` is the state the next blow starts from.
+        """
+        cfg = self.config
+        h = self.time_step
+        duration = cfg.duration if duration is None else float(duration)
+        velocity = cfg.impact_velocity if impact_velocity is None else float(impact_velocity)
+        if not (math.isfinite(duration) and duration > 0.0):
+            raise ValueError(f"duration must be positive [s], got {duration!r}")
+        if not (math.isfinite(velocity) and velocity > 0.0):
+            raise ValueError(f"impact_velocity must be positive [m/s], got {velocity!r}")
+        interval = cfg.output_interval if record_interval is None else record_interval
+        n_steps = int(round(duration / h))
+        rings = getattr(self.anvil.unit, "rings", None)
+        head = None if rings is None else rings[9]  # the tube head's correction
+        if head is not None and head.shape[0] > 1 and n_steps >= head.shape[0]:
+            raise ValueError(f"duration {duration:g} s is longer than the tube head's kernel "
+                             f"({(head.shape[0] - 1) * h:g} s, [anvil] pile_head = 'tube'): "
+                             "set [simulation] duration to the longest blow")
+        record_every = 1 if interval is None else max(1, int(round(interval / h)))
+        if energy_interval is None:
+            energy_every = record_every * -(-ENERGY_STEPS // record_every)
+        else:
+            energy_every = max(1, int(round(float(energy_interval) / h)))
+        energy = record if energy is None else bool(energy)
+        start = self.static_state() if state is None else state.copy()
+        pu, pv, poff, pen = (aligned_copy(start.u), aligned_copy(start.v),
+                             aligned_copy(start.soil_offset), start.energy.copy())
+        probes = self.pile_arrays.probes
+        face0 = float(head_displacement(probes, pu))
+        anvil = self.anvil
+        # the ram starts half a step before the first contact (t0 = -h/2): with the leapfrog's
+        # staggered velocities the first two displacement levels are then the exact ones, and
+        # a chain meeting a chain at the Courant number 1 is exact
+        t0 = -0.5 * h
+        ram_u = aligned_zeros(self.ram_mass.shape)
+        ram_u[:] = anvil.u_top0 + t0 * velocity
+        ram_v = aligned_zeros(self.ram_mass.shape)
+        ram_v[:] = velocity
+        modal_ram = NO_MODAL_RAM
+        if self.ram_unit is not None:
+            unit = self.ram_unit
+            unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
+            modal_ram = (unit.C, unit.S, unit.toe)
+        modal = classic = direct = rings = None
+        if anvil.kind in ("rom", "lumped"):
+            S = anvil.S.copy()
+            interface = np.empty(4)
+            modal_unit_interface(anvil.P, anvil.C, S, interface)
+            modal = (anvil.P, anvil.C, S, interface)
+            if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
+                rings = copy_ring_state(anvil.unit.rings)
+                # the tube head's history and the ram face's modes start with the blow
+                anvil.unit.restart_head(rings)
+                ring_interface(anvil.C, S, rings, h)
+        elif anvil.kind == "classic":
+            classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
+        else:
+            direct = anvil.P
+        n_rows = n_steps // record_every + 1
+        # filled (NaN) here: the memory is touched before the loop, not inside its timing
+        out = np.full((len(COLUMNS), n_rows), np.nan) if record else None
+        energies = (np.full((1 + len(ENERGY_COLUMNS), n_steps // energy_every + 2), np.nan)
+                    if record and energy else None)
+        works = None
+        if energy:
+            works = self._works
+            for w in works:
+                w.fill(0.0)
+        stresses = self._stresses
+        stresses[1].fill(0.0)
+        stresses[2].fill(0.0)
+        summary = np.zeros(SUMMARY_SIZE)
+        section_args = None
+        if sections is not None:
+            idx = np.ascontiguousarray(sections, dtype=np.int64)
+            if idx.size and (idx.min() < 0 or idx.max() >= probes_springs(self.pile_arrays)):
+                raise ValueError("sections: spring indices out of range")
+            section_args = (idx, np.full((idx.size, n_rows), np.nan))
+        pile_sweep, soil_sweep, first_soil = self._sweep
+        args = [modal, classic, direct, self._ram, ram_u, ram_v, self._ram_nsub,
+                self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
+                pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
+                h, n_steps, record_every, energy_every, out, energies, works, stresses,
+                summary, section_args, modal_ram, rings]
+        _warm_up(args, anvil.kind, record, energy, section_args is not None)
+        begin = time.perf_counter()
+        rows, energy_rows = run_blow(*args)
+        wall = time.perf_counter() - begin
+        columns = {} if out is None else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
+        series = {}
+        if energies is not None:
+            series = {name: energies[i, :energy_rows]
+                      for i, name in enumerate(("time [s]",) + ENERGY_COLUMNS)}
+        final = PileState(pu, pv, poff, pen, start_soil_offset=start.soil_offset)
+        return BlowResult(
+            columns=columns, energies=series, time_step=h, n_steps=n_steps, wall_time=wall,
+            input_energy=0.5 * float(self.ram_mass.sum()) * velocity**2,
+            max_compression_stress=float(summary[S_MAX_COMPRESSION]),
+            max_tension_stress=float(summary[S_MAX_TENSION]),
+            emx_gauge=float(summary[S_EMX_GAUGE]), emx_head=float(summary[S_EMX_HEAD]),
+            max_pile_head_force=float(summary[S_MAX_HEAD_FORCE]),
+            max_toe_displacement=float(summary[S_MAX_TOE]),
+            permanent_set=float(summary[S_TOE_END] - summary[S_TOE_START]),
+            toe_velocity_end=float(summary[S_TOE_VELOCITY_END]), impact_velocity=velocity,
+            initial_state=start, final_state=final,
+            section_strain=(section_args[1][:, :rows].T.copy() if section_args is not None
+                            else None))
+
+    def run(self, duration: float | None = None, record_interval: float | None = None,
+            progress: bool = False, record: bool = True, energy: bool | None = None,
+            blows: int | None = None, energy_interval: float | None = None
+            ) -> list[BlowResult]:
+        """Simulate ``blows`` (default ``config.blows``) consecutive blows of ``duration``
+        [s] each (:meth:`blow`): each blow restarts the ram at its impact velocity on the anvil
+        at rest; the pile keeps its permanent set and soil state from the previous blow."""
+        count = self.config.blows if blows is None else int(blows)
+        sequence = range(count)
+        if progress and count > 1:
+            from tqdm import tqdm
+
+            sequence = tqdm(sequence, desc="blows", unit="blow")
+        results = []
+        state = None
+        for _ in sequence:
+            result = self.blow(state, duration=duration, record_interval=record_interval,
+                               record=record, energy=energy, energy_interval=energy_interval)
+            state = result.final_state
+            results.append(result)
+        return results
+
+
+WARM_UP_STEPS = 200
+"""Steps of the trial run that compiles or loads a loop variant (on copies of the states)."""
+_STATE_ARGUMENTS = (4, 5, 12, 13, 14, 15, 25, 26, 27, 28, 29)
+"""Positions in run_blow's arguments of what the loop writes (the others are read only)."""
+
+
+def probes_springs(arrays) -> int:
+    """Number of pile springs (segments - 1)."""
+    return int(arrays.pile.shape[1] - 1)
+
+
+def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
+    """Compile (or load from numba's cache) this variant of the loop, once per process, and
+    run it for a few steps on copies of the states, so that the blow's timing excludes the
+    compilation and the first touch of the code and of the parameter arrays."""
+    key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
+           args[32] is not None)
+    if key in _WARM:
+        return
+    from anvilwave.engine.compilation import announce_compilation
+
+    announce_compilation((run_blow,))
+
+    def copy(a):
+        if isinstance(a, np.ndarray):
+            return a.copy()
+        if isinstance(a, tuple):
+            return tuple(copy(x) for x in a)
+        return a
+
+    trial = list(args)
+    for i in _STATE_ARGUMENTS:
+        trial[i] = copy(trial[i])
+    modal, classic = trial[0], trial[1]
+    if modal is not None:  # (P, C, S, interface): the last two change
+        trial[0] = (modal[0], modal[1], modal[2].copy(), modal[3].copy())
+    if classic is not None:  # (P, S, n_sub)
+        trial[1] = (classic[0], classic[1].copy(), classic[2])
+    trial[22] = min(trial[22], WARM_UP_STEPS)  # n_steps
+    if trial[30] is not None:  # the sections' buffer is written
+        trial[30] = (trial[30][0], trial[30][1].copy())
+    # the modal ram's (C, S, toe): the last two change
+    trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
+    if trial[32] is not None:  # the rings' state changes
+        trial[32] = copy_ring_state(trial[32])
+    run_blow(*trial)
+    _WARM.add(key)
+
+
+def _static_pile_force(anvil: AnvilKernels, gravity: float) -> float:
+    if anvil.kind == "none":
+        return 0.0
+    if anvil.kind == "classic":
+        return anvil.unit.static_pile_force(gravity)
+    return anvil.unit.anvil.total_mass * gravity
+
+
+def _anvil_kernels(cfg: SystemConfig, ram_mass, pile_arrays, modal, mass,
+                   ram_modes=None) -> AnvilKernels:
+    """The anvil unit at rest and its coupled stability limit (the step is set later)."""
+    settings = cfg.anvil
+    if ram_modes is not None and settings.model not in ("rom", "lumped"):
+        raise InputError(cfg.source, "hammer.ram_model", "the modal ram unit runs with the "
+                                                         "ROM or lumped anvil")
+    if settings.model == "none":
+        # ram toe and pile head: the two contact springs in series (ram_contact_damping acts)
+        contact = _contact(cfg)
+        k = 1.0 / (1.0 / contact.ram_stiffness + 1.0 / contact.pile_stiffness)
+        P = np.array([k, contact.ram_damping])
+        limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness, k, k, pile_arrays)
+        return AnvilKernels("none", P, np.zeros((1, 1)), np.zeros(1), 0.0, float(limit), 1,
+                            None)
+    if settings.model == "classic":
+        ds = settings.classic
+        P = ds.parameters(cfg.gravity)
+        S = ds.initial_state(P)
+        limit = min(driving_system_stable_time_step(P),
+                    interface_time_step(P, ram_mass[-1], pile_arrays.pile[0, 0]))
+        return AnvilKernels("classic", P, np.zeros((1, 1)), S, 0.0, float(limit), 1, ds)
+    if settings.model == "rom":
+        try:
+            rom = ModalAnvil.from_modal_data(modal, fmax=settings.fmax,
+                                             damping_ratio=settings.damping_ratio,
+                                             static_correction=settings.static_correction,
+                                             source=cfg.source)
+        except InputError as exc:
+            raise InputError(cfg.source, f"anvil.{exc.key}", exc.rule) from None
+    else:
+        rom = ModalAnvil.rigid(mass)
+    face = _ram_face(cfg, rom, ram_modes) if rom.n_annuli > 1 else None
+    unit = AnvilUnit(rom, _contact(cfg), gravity=cfg.gravity, ram_face=face)
+    u_top0, _ = unit.rest_on_pile(0.0)
+    if ram_modes is not None:
+        limit = modal_ram_coupled_stable_time_step(
+            ram_modes.participation, unit.contact.ram_stiffness, unit.contact.pile_stiffness,
+            pile_arrays, rom.participation_ram, rom.participation_pile)
+    else:
+        limit = coupled_stable_time_step(ram_mass, cfg.hammer.ram.stiffness,
+                                         unit.contact.ram_stiffness,
+                                         unit.contact.pile_stiffness, pile_arrays,
+                                         rom.participation_ram, rom.participation_pile)
+    return AnvilKernels(settings.model, unit.P, unit.C, unit.S, u_top0, float(limit), 1, unit)
+
+
+def _ram_face(cfg: SystemConfig, rom: ModalAnvil, ram_modes) -> RamFace:
+    """The modal ram's toe in annuli for the anvil's ram port in annuli (``[anvil]
+    ram_port_annuli``): the same annuli, the ram's toe the anvil's ram face (to 1 mm)."""
+    J = rom.n_annuli
+    if ram_modes is None or ram_modes.n_annuli != J:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         f"the anvil's ram port in {J} annuli needs the modal ram unit with its "
+                         "toe in as many annuli ([hammer] ram_model = 'modal', the ROM or "
+                         "lumped anvil)")
+    toe = 0.5 * cfg.hammer.ram.toe_diameter
+    face = cfg.anvil.spec.interfaces.ram_contact_radius
+    if not abs(toe - face) <= 1e-3:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         f"the annuli are the ram toe's (radius {toe:g} m) and the anvil's ram "
+                         f"face's (radius {face:g} m): they must be the same face (to 1 mm)")
+    return RamFace.of(ram_modes.omega, ram_modes.annulus_participation, ram_modes.participation,
+                      ram_modes.annulus_residual, ram_modes.annulus_areas)
+
+
+def _set_step(anvil: AnvilKernels, h: float) -> AnvilKernels:
+    """The anvil unit prepared for the master step h [s]."""
+    if anvil.kind == "classic":
+        n_sub = max(1, int(np.ceil(h / driving_system_stable_time_step(anvil.P))))
+        return replace(anvil, n_sub=n_sub)
+    if anvil.kind in ("rom", "lumped"):
+        anvil.unit.set_step(h)
+        return replace(anvil, P=anvil.unit.P.copy(), C=anvil.unit.C.copy(),
+                       S=anvil.unit.S.copy())
+    return anvil
+
+
+def contact_stiffnesses(cfg: SystemConfig) -> tuple[float, float]:
+    """Default (ram, pile) contact stiffnesses [N/m]: the half segments of the neighbours.
+
+    The ram toe mass and the pile top mass sit half a segment from the faces they touch, so the
+    contact springs are those half segments, 2 E A / dx (Smith 1960); a value in the system file
+    replaces them (e.g. a cushion). A rigid ram has no half segment: its contact stiffness must
+    be given.
+    """
+    s = cfg.anvil
+    k_pile = s.pile_contact_stiffness or cfg.pile_soil.head_contact_stiffness()
+    k_ram = s.ram_contact_stiffness
+    if k_ram is None:
+        k_ram = cfg.hammer.ram.toe_stiffness
+        if not np.isfinite(k_ram):
+            raise InputError(cfg.source, "anvil.ram_contact_stiffness",
+                             "is required with a rigid ram or a ram given as explicit segments "
+                             "(there is no toe half segment to take it from)")
+    return float(k_ram), float(k_pile)
+
+
+def _contact(cfg: SystemConfig) -> ContactParameters:
+    s = cfg.anvil
+    k_ram, k_pile = contact_stiffnesses(cfg)
+    return ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
+
+
+def anvil_modal_data(cfg: SystemConfig):
+    """The modal data of the system's anvil, from the modal-data cache
+    (:func:`anvilwave.config.cache.cached_modal_data`: computed once per machine)."""
+    from anvilwave.config.cache import cached_modal_data
+
+    try:
+        return cached_modal_data(cfg.anvil.spec, fmax=cfg.anvil.fmax)
+    except InputError as exc:
+        if exc.key != "fmax" or cfg.anvil.fmax is None:
+            raise
+        raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
+
+
+def _modal_ram_as_chain(cfg: SystemConfig):
+    """The system's modal-unit ram as its equivalent chain (cached)."""
+    from anvilwave.config.cache import cached_chain
+    from anvilwave.hammer.modal_ram import modal_ram_chain
+
+    try:
+        return modal_ram_chain(cfg.hammer.ram, cfg.hammer.ram.modes, cached_chain)
+    except InputError as exc:
+        raise InputError(cfg.source, "anvil.model", f"the {cfg.anvil.model} anvil steps the "
+                                                    f"modal ram as its chain: {exc.rule}"
+                         ) from None
+
+
+def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
+    """Assemble the components of a system.
+
+    modal : precomputed ModalData of the anvil; default: the ROM anvil's from the modal-data
+    cache (computed on a miss), the lumped anvil's mass from its geometry without modes
+    (:func:`anvilwave.anvil_rom.fem.geometry.solid_mass`).
+    ram_modes : :class:`anvilwave.hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
+    (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`, exact per mode, its residual flexibility the
+    ram's
+    side of the contact) instead of the system's ram chain; None: the system's ram (a modal
+    ram given as toe modes, ``ram_model = "modal"``, runs as the unit with the ROM and lumped
+    anvils and as its equivalent chain with the classic driving system, whose kernel steps a
+    ram chain).
+    """
+    if ram_modes is None and cfg.hammer.ram.is_modal_unit:
+        if cfg.anvil.model in ("rom", "lumped"):
+            ram_modes = cfg.hammer.ram.modes
+        else:
+            cfg = replace(cfg, hammer=replace(cfg.hammer, ram=_modal_ram_as_chain(cfg)))
+    if ram_modes is not None:
+        ram = replace(cfg.hammer.ram, toe_stiffness=ram_modes.toe_stiffness)
+        cfg = replace(cfg, hammer=replace(cfg.hammer, ram=ram))
+    ram = cfg.hammer.ram
+    ram_mass = np.ascontiguousarray(ram.mass, dtype=float)
+    ram_stiffness = np.ascontiguousarray(ram.stiffness, dtype=float)
+    if ram_modes is not None:  # a one-mass stand-in: the input energy; the kernel skips it
+        ram_mass = np.array([ram_modes.total_mass])
+        ram_stiffness = np.zeros(0)
+    arrays = cfg.pile_soil.arrays()
+    if cfg.anvil.model == "rom" and modal is None:
+        modal = anvil_modal_data(cfg)
+    mass = None
+    if cfg.anvil.model == "lumped":
+        if cfg.anvil.mass is not None:
+            mass = cfg.anvil.mass
+        elif modal is not None:
+            mass = modal.total_mass
+        else:
+            from anvilwave.anvil_rom.fem.geometry import solid_mass
+
+            mass = solid_mass(cfg.anvil.spec)
+    anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass, ram_modes)
+    limits = {
+        "ram": float(ram_stable_time_step(ram_mass, ram_stiffness)),
+        "pile": float(pile_stable_time_step(arrays.pile, arrays.soil)),
+        "anvil coupling": float(anvil.stable_step),
+    }
+    if cfg.anvil.model == "rom":
+        fmax = anvil.unit.anvil.fmax
+        limits["anvil fmax sampling"] = 1.0 / (STEPS_PER_PERIOD_AT_FMAX * fmax)
+    stable = min(limits["ram"], limits["pile"], limits["anvil coupling"])
+    if cfg.time_step is None:
+        h = min(ACCURACY_FRACTION * stable, limits.get("anvil fmax sampling", np.inf))
+        # a whole number of steps per output interval keeps the records on the grid (an
+        # interval shorter than the step records every step)
+        if cfg.output_interval is not None and cfg.output_interval > h:
+            h = cfg.output_interval / int(np.ceil(cfg.output_interval / h))
+    else:
+        h = cfg.time_step
+        # ram and pile sub-step on their own; the contact coupling cannot
+        if h > limits["anvil coupling"]:
+            raise InputError(cfg.source, "simulation.time_step",
+                             f"{h:g} s is above the stable limit of the anvil contact coupling "
+                             f"({limits['anvil coupling']:.3g} s): use a smaller step or omit "
+                             "time_step for the automatic choice")
+    if cfg.anvil.model == "rom" and cfg.anvil.pile_head == "tube":
+        anvil = _tube_head(cfg, anvil, arrays, float(h))
+    anvil = _set_step(anvil, float(h))
+    return Engine(cfg, anvil, ram_mass, ram_stiffness, arrays, float(h), limits, modal,
+                  ram_modes)
+
+
+def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> AnvilKernels:
+    """The anvil's rings put on a tube head (``[anvil] pile_head = "tube"``): the pile's top
+    section as an FE tube (:mod:`anvilwave.pile.head_kernel`, cached), its correction to the 1D
+    head for
+    the step ``h`` [s] over the longest blow the file sets (``[simulation]`` or
+    ``[driveability] duration``), the rings' contact springs the tube's; the anvil rests on it
+    afresh."""
+    from anvilwave.anvil_rom.fem.geometry import STEEL, Material
+    from anvilwave.config.cache import cached_ring_kernel
+    from anvilwave.pile.head_kernel import (
+        echo_free_length,
+        head_correction,
+        rod_head_response,
+        tube_contact_stiffness,
+    )
+    from anvilwave.pile.model import substeps
+
+    unit = anvil.unit
+    pile = cfg.pile_soil.pile
+    top = pile.sections[0]
+    r_out = 0.5 * top.outer_diameter
+    r_in = r_out - top.wall_thickness
+    ring = cfg.anvil.spec.interfaces.pile_ring
+    if max(abs(ring[0] - r_in), abs(ring[1] - r_out)) > 1e-3:
+        raise InputError(cfg.source, "anvil.pile_head",
+                         f"the tube head is the pile's top section (walls {r_in:g} to {r_out:g} "
+                         f"m), but the anvil's pile ring spans {ring[0]:g} to {ring[1]:g} m: "
+                         "they must be the same ring (to 1 mm)")
+    duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
+    steps = int(round(duration / h)) + 1
+    length = echo_free_length(top.wave_speed, duration)
+    material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
+    tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
+    n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))
+    rod = rod_head_response(pile, h, steps, n_sub, float(arrays.probes[HEAD_EXTRAPOLATION]))
+    u_top0, _ = unit.set_head((head_correction(tube, rod), tube_contact_stiffness(
+        top.youngs_modulus, top.wall_thickness, unit.anvil.ring_areas)))
+    return replace(anvil, S=unit.S.copy(), u_top0=u_top0)

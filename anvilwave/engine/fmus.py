@@ -1,0 +1,204 @@
+"""The FMUs of a system file: the four units with the system's parameter values and
+``system.ssp`` (the system layer's side of :mod:`anvilwave.fmu.ssp`, which knows no system files).
+
+Anvil units. ``Anvil.fmu`` and ``AnvilLumped.fmu`` are native by default
+(:func:`anvilwave.fmu.native_build.build_native_anvil_fmu`: C, no Python at run time, the C sources
+inside, so that tools that are not Python can run them); ``native_anvil=False`` (command line
+``build-fmus --python-anvil``) builds the pythonfmu anvils of :mod:`anvilwave.fmu.units.anvil`
+under the
+same names instead (same variables and value references, same numbers to round-off). The native
+build needs a C compiler: without one, ``native_anvil=True`` stops with an
+:class:`~anvilwave.inputs.InputError` naming what is missing, and ``native_anvil=None`` (what
+``impact --engine fmi`` uses) falls back to the pythonfmu anvils with a warning. Ram and
+PileSoil are pythonfmu units (their status shim runs them in C hosts when the Python that built
+them, with anvilwave, is still installed: :mod:`anvilwave.fmu.fmi_build`).
+
+``system.ssp`` is for Jacobi-type masters (OSP libcosim and most SSP runners: every unit steps,
+then the outputs are exchanged, so the anvil's forces reach ram and pile one step late). Its
+anvil turns ``input_extrapolation`` on (:mod:`anvilwave.fmu.coupling`: the inputs extrapolated to
+the
+unit's time, the missed contact impulse given back) and its fixed step is the engine's step h
+over :data:`SSP_STEP_DIVISOR`, from -step/2 (the ram touches the anvil half a step after the
+start, as in the engine). Measured on Table 1 (modal ram, ROM anvil) with libcosim at h/4: peak
+forces within 0.3 % of the fmpy master (DESIGN.md order) on the same step. The FMUs themselves
+keep ``input_extrapolation`` off, so the fmpy master and ``run_fmi`` run the DESIGN order as
+before (with it on they would give the same bits).
+"""
+
+from __future__ import annotations
+
+import tempfile
+import warnings
+from pathlib import Path
+from typing import Any
+
+from anvilwave.config.system import SystemConfig
+from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
+from anvilwave.fmu.ssp import ANVIL_FMU, write_ssp
+from anvilwave.inputs import InputError
+
+
+def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
+    """The modal data of the system's anvil: ``anvil_model`` (a ModalData or a modal-data
+    ``.npz`` path) or that of the anvil file, from the modal-data cache as the engine takes it
+    (:func:`anvilwave.config.cache.cached_modal_data`)."""
+    from anvilwave.anvil_rom.fem.modalfile import ModalData, load_modal_data
+
+    if isinstance(anvil_model, ModalData):
+        return anvil_model
+    if anvil_model is not None:
+        return load_modal_data(Path(anvil_model))
+    if cfg.anvil.spec is None:
+        raise InputError(cfg.source, "anvil.file", "the FMUs need the anvil geometry (the "
+                                                   "Anvil and AnvilLumped units are built "
+                                                   "from its modes)")
+    from anvilwave.engine.direct import anvil_modal_data
+
+    return anvil_modal_data(cfg)
+
+
+def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
+    """The FMU parameter values of a system (per FMU type), as the engine sets its units.
+
+    Also returns, under ``"_rest"``, the anvil top face at rest [m] per anvil FMU.
+    """
+    from anvilwave.anvil_rom.rom import ModalAnvil
+    from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
+    from anvilwave.engine.direct import contact_stiffnesses
+
+    s = cfg.anvil
+    k_ram, k_pile = contact_stiffnesses(cfg)
+    contacts = {"ram_contact_stiffness": k_ram, "pile_contact_stiffness": k_pile,
+                "ram_contact_damping": float(s.ram_contact_damping),
+                "pile_contact_damping": float(s.pile_contact_damping),
+                "gravity": float(cfg.gravity)}
+    rom = {**contacts, "fmax": float(s.fmax if s.fmax is not None else modal.fmax),
+           "damping_ratio": float(s.damping_ratio if s.damping_ratio is not None
+                                  else modal.damping_ratio),
+           "static_correction": bool(s.static_correction)}
+    lumped_mass = float(s.mass if s.mass is not None else modal.total_mass)
+    lumped = {**contacts, "mass": lumped_mass}
+    contact = ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
+    rest = {}
+    for kind, anvil in (("Anvil", ModalAnvil.from_modal_data(
+            modal, fmax=s.fmax, damping_ratio=s.damping_ratio,
+            static_correction=s.static_correction, source=f"{cfg.source}: anvil")),
+            ("AnvilLumped", ModalAnvil.rigid(lumped_mass))):
+        rest[kind] = (float(AnvilUnit(anvil, contact, gravity=cfg.gravity).rest_on_pile(0.0)[0]),
+                      float(anvil.total_mass * cfg.gravity))
+    kind = ANVIL_FMU.get(s.model, "Anvil")
+    ram = {"v_impact": float(cfg.impact_velocity), "gravity": float(cfg.gravity),
+           "contact_displacement": rest[kind][0], "contact_time": 0.0}
+    pile = {"static_head_load": rest[kind][1], "gravity": float(cfg.gravity)}
+    return {"Ram": ram, "Anvil": rom, "AnvilLumped": lumped, "PileSoil": pile, "_rest": rest}
+
+
+SSP_STEP_DIVISOR = 4
+"""The SSP's fixed step is the engine's step over this (module docstring)."""
+SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
+"""Anvil parameters that ``system.ssp`` sets on top of the build's (module docstring)."""
+
+
+def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
+                      time_step: float | None = None, ssp: bool = True,
+                      native_anvil: bool | None = True) -> dict[str, Any]:
+    """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
+    ``system.ssp`` for a system into ``out_dir`` (module docstring).
+
+    anvil_model : precomputed modal data of the anvil (``ModalData`` or a ``.npz`` path);
+        default: computed from the system's anvil file (as
+        :func:`anvilwave.engine.direct.build_engine`).
+    time_step : master step h [s] (default: the engine's); the SSP's default experiment
+        starts at -step/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+    native_anvil : True: native anvils (InputError without a C compiler); False: the
+        pythonfmu anvils; None: native when a C compiler is found, else pythonfmu with a
+        warning.
+
+    Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
+    "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
+    "anvil_implementation": "native" or "pythonfmu",
+    "parameters": {fmu type: {name: value}}, "time_step": h [s], "ssp_step": [s],
+    "modal_data": ModalData,
+    "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
+    The anvil model of the system must be "rom" or "lumped" (InputError otherwise).
+    """
+    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+
+    if cfg.anvil.model not in ANVIL_FMU:
+        raise InputError(cfg.source, "anvil.model",
+                         f"the FMI units model the anvil as 'rom' or 'lumped', not "
+                         f"{cfg.anvil.model!r}")
+    if cfg.anvil.model == "rom" and cfg.anvil.pile_head != "rod":
+        raise InputError(cfg.source, "anvil.pile_head",
+                         f"{cfg.anvil.pile_head!r} runs in the in-process engine only (the anvil "
+                         "FMUs put the rings on the 1D head): use the direct engine "
+                         "(--engine direct, compare --rom-engine direct)")
+    if cfg.anvil.model == "rom" and cfg.anvil.spec.interfaces.ram_annuli > 1:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         "the ram face in annuli runs in the in-process engine only (Ram.fmu "
+                         "and the anvil FMUs have one toe port): use the direct engine "
+                         "(--engine direct, compare --rom-engine direct)")
+    native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
+    modal = load_anvil_modal_data(cfg, anvil_model)
+    parameters = system_parameters(cfg, modal)
+    rest = parameters.pop("_rest")
+    if time_step is None:
+        from anvilwave.engine.direct import build_engine
+
+        time_step = build_engine(cfg, modal).time_step
+    out_dir = Path(out_dir)
+    step = float(time_step) / SSP_STEP_DIVISOR
+    result: dict[str, Any] = {"anvil": ANVIL_FMU[cfg.anvil.model], "parameters": parameters,
+                              "time_step": float(time_step), "ssp_step": step,
+                              "modal_data": modal, "anvil_rest": rest,
+                              "anvil_implementation": "native" if native else "pythonfmu"}
+    with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
+        stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
+        result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
+        if native:
+            from anvilwave.fmu.native_build import build_native_anvil_fmu
+
+            result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
+                                                     **parameters["Anvil"])
+            result["AnvilLumped"] = build_native_anvil_fmu(modal, out_dir / "AnvilLumped.fmu",
+                                                           lumped=True,
+                                                           **parameters["AnvilLumped"])
+        else:
+            modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
+            result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
+            result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
+                                                    **parameters["AnvilLumped"])
+        result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
+                                                 **parameters["PileSoil"])
+    if ssp:
+        kind = result["anvil"]
+        result["ssp"] = write_ssp(
+            out_dir / "system.ssp",
+            {"Ram": result["Ram"], "Anvil": result[kind], "PileSoil": result["PileSoil"]},
+            {"Ram": parameters["Ram"], "Anvil": {**parameters[kind], **SSP_ANVIL_PARAMETERS},
+             "PileSoil": parameters["PileSoil"]},
+            name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * step,
+            stop_time=cfg.duration, step_size=step)
+    return result
+
+
+def _native_anvil_wanted(native_anvil: bool | None) -> bool:
+    """Whether to build the native anvils (module docstring); InputError when they are asked
+    for and cannot be built here."""
+    if native_anvil is False:
+        return False
+    from anvilwave.fmu.native_build import NativeBuildError, find_compiler
+
+    try:
+        find_compiler()
+    except NativeBuildError as exc:
+        if native_anvil is None:
+            warnings.warn(f"the native anvil FMUs cannot be built ({exc}): using the pythonfmu "
+                          "anvils (the same numbers)", stacklevel=3)
+            return False
+        raise InputError("native Anvil FMU", "compiler",
+                         f"{exc}; or build the pythonfmu anvils instead (anvilwave build-fmus "
+                         "--python-anvil, build_system_fmus(native_anvil=False))") from None
+    return True
+
+

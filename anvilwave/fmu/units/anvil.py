@@ -1,0 +1,242 @@
+"""The anvil FMU slaves: FMI variables mapped onto :class:`anvilwave.anvil_rom.unit.AnvilUnit`.
+
+Interface (DESIGN.md, the contract): inputs ``u_ram`` [m], ``v_ram`` [m/s] (ram toe),
+``u_pile`` [m], ``v_pile`` [m/s] (pile head); outputs ``F_ram``, ``F_pile`` [N] (contact forces,
+compression positive) and ``u_top``, ``u_bottom`` [m] (anvil interface displacements); z down.
+
+An anvil whose modal data split the pile port into rings (``pile_port_rings``,
+:mod:`anvilwave.anvil_rom.rings`) keeps this interface: ``F_pile`` is the sum of the ring forces and
+``u_bottom`` the rings' area-weighted mean displacement.
+
+The forces are a direct feedthrough of the inputs: they are evaluated from the inputs set at the
+current communication point (``AnvilUnit.forces``), so a master that sets the ram and pile
+states and then reads the forces gets the forces at that instant. ``fmi2DoStep`` holds these
+forces over the step (``AnvilUnit.step``). The anvil accepts any communication step ``h`` in one
+step, without sub-stepping: the modal integration is unconditionally stable and exact for free
+vibration and for a held force at any ``h`` (see :mod:`anvilwave.anvil_rom.rom`; a change of ``h``
+is
+handled by ``AnvilUnit.set_step``). Sub-steps inside the anvil could not help the explicit
+exchange anyway, since the forces are held over the whole communication step: its stability
+limit (``AnvilUnit.stable_time_step``) is for the master to respect.
+
+At the end of initialization the anvil rests on the pile in static equilibrium under gravity
+(``start_at_rest``, default on; ``AnvilUnit.rest_on_pile``) with the pile head at
+``initial_pile_head_displacement`` [m]; the ram touches the top face when its toe displacement
+equals the ``u_top`` output.
+
+Input extrapolation (parameter ``input_extrapolation``, default off; ``system.ssp`` turns it
+on): for Jacobi-type masters, which read the anvil's forces after its step with the inputs of
+the step before, the inputs are extrapolated to the unit's time and the contact impulse the
+neighbours missed is given back (:mod:`anvilwave.fmu.coupling`). In the DESIGN.md order it changes
+no bit.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from numba import njit
+from pythonfmu import DefaultExperiment
+
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data
+from anvilwave.anvil_rom.rings import ring_unit_outputs
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.unit import (
+    GRAVITY,
+    AnvilUnit,
+    ContactParameters,
+    modal_unit_forces,
+    modal_unit_outputs,
+    modal_unit_step,
+)
+from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION, InputExtrapolation
+from anvilwave.fmu.units.base import UnitSlave
+from anvilwave.inputs import InputError
+
+INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
+
+
+@njit(cache=True)
+def anvil_outputs(P, C, S, u_ram, v_ram, u_pile, v_pile):
+    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] in one call: the contact forces of
+    :meth:`AnvilUnit.forces` and the interface displacements of :meth:`AnvilUnit.outputs`."""
+    force_ram, force_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
+    u_top, _, u_bottom, _ = modal_unit_outputs(P, C, S, force_ram, force_pile)
+    return force_ram, force_pile, u_top, u_bottom
+
+
+class AnvilSlaveBase(UnitSlave):
+    """Variables and mapping shared by the ROM anvil and the lumped (rigid) anvil."""
+
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.02, step_size=1e-5)
+    extrapolation: InputExtrapolation | None = None  # with input_extrapolation, once built
+
+    parameter_fallbacks: ClassVar[dict] = {
+        "ram_contact_stiffness": None,
+        "pile_contact_stiffness": None,
+        "ram_contact_damping": 0.0,
+        "pile_contact_damping": 0.0,
+        "gravity": GRAVITY,
+        "start_at_rest": True,
+        "initial_pile_head_displacement": 0.0,
+        "input_extrapolation": False,
+    }
+    # inputs each output depends on directly (subclasses narrow it when they can)
+    feedthrough: ClassVar[dict[str, tuple[str, ...]]] = {
+        "F_ram": INPUTS, "F_pile": INPUTS, "u_top": INPUTS, "u_bottom": INPUTS,
+    }
+
+    def register_variables(self) -> None:
+        self.register_anvil_parameters()
+        p = self.add_parameter
+        p("ram_contact_stiffness", "N/m", "Ram-anvil compression-only contact spring [N/m]")
+        p("pile_contact_stiffness", "N/m", "Anvil-pile compression-only contact spring [N/m]")
+        p("ram_contact_damping", "N.s/m", "Ram-anvil contact dashpot [N s/m]")
+        p("pile_contact_damping", "N.s/m", "Anvil-pile contact dashpot [N s/m]")
+        p("gravity", "m/s2", "Gravitational acceleration, 0 switches it off [m/s^2]")
+        p("start_at_rest", None, "Start in static equilibrium on the pile under gravity (else "
+                                 "undeformed at zero displacement) [-]", bool)
+        p("initial_pile_head_displacement", "m",
+          "Pile head displacement the anvil rests on at the start, positive down [m]")
+        p("input_extrapolation", None, INPUT_EXTRAPOLATION_DESCRIPTION, bool)
+        i = self.add_input
+        i("u_ram", "m", "Ram toe displacement, positive down [m]")
+        i("v_ram", "m/s", "Ram toe velocity, positive down [m/s]")
+        i("u_pile", "m", "Pile head displacement, positive down [m]")
+        i("v_pile", "m/s", "Pile head velocity, positive down [m/s]")
+        o = self.add_output
+        o("F_ram", "N", "Ram-anvil contact force, compression positive [N]",
+          self.feedthrough["F_ram"])
+        o("F_pile", "N", "Anvil-pile contact force, compression positive [N]",
+          self.feedthrough["F_pile"])
+        o("u_top", "m", "Anvil top face displacement (ram contact), positive down [m]",
+          self.feedthrough["u_top"])
+        o("u_bottom", "m", "Anvil bottom ring displacement (pile contact), positive down [m]",
+          self.feedthrough["u_bottom"])
+
+    def register_anvil_parameters(self) -> None:
+        raise NotImplementedError
+
+    def make_anvil(self) -> ModalAnvil:
+        raise NotImplementedError
+
+    # ------------------------------------------------------------------ mapping
+    def build_component(self) -> AnvilUnit:
+        par = self.parameters
+        contact = ContactParameters(
+            ram_stiffness=par["ram_contact_stiffness"],
+            pile_stiffness=par["pile_contact_stiffness"],
+            ram_damping=par["ram_contact_damping"],
+            pile_damping=par["pile_contact_damping"])
+        gravity = par["gravity"]
+        if not abs(gravity) < float("inf"):
+            raise InputError(self.instance_name, "gravity", f"must be finite, got {gravity!r}")
+        return AnvilUnit(self.make_anvil(), contact, gravity)
+
+    def start_component(self) -> None:
+        if self.parameters["start_at_rest"]:
+            self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
+        # compile (or load) the step kernel now, on copies, not inside the first doStep
+        unit = self.component
+        modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
+        self.extrapolation = (InputExtrapolation(self.start_time)
+                              if self.parameters["input_extrapolation"] else None)
+
+    def compute_outputs(self, inputs, outputs) -> None:
+        unit = self.component
+        x = self.extrapolation
+        if unit.rings is not None:  # the pile port in rings: F_pile their sum
+            outputs[:] = ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings,
+                                           *(inputs if x is None else x.extrapolated(inputs)))
+        elif x is None:
+            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, inputs[0], inputs[1], inputs[2],
+                                       inputs[3])
+        else:
+            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *x.extrapolated(inputs))
+        if x is None:
+            return
+        x.evaluated = (outputs[0], outputs[1])
+        outputs[0] += x.correction[0]
+        outputs[1] += x.correction[1]
+
+    def advance(self, h: float) -> None:
+        x = self.extrapolation
+        if x is None:
+            self.component.step(self.outputs[0], self.outputs[1], h)
+            return
+        unit = self.component
+        force_ram, force_pile = unit.forces(*x.extrapolated(self.inputs))
+        x.stepped(force_ram, force_pile)
+        unit.step(force_ram, force_pile, h)
+
+    # input extrapolation: the unit's time, the inputs' time, the forces read
+    def set_real(self, vrs, values):
+        if self.extrapolation is not None:
+            self.extrapolation.note_inputs(self.inputs)
+        return super().set_real(vrs, values)
+
+    def get_real(self, vrs):
+        values = super().get_real(vrs)
+        x = self.extrapolation
+        if x is not None and x.evaluated is not None:
+            x.sent = x.evaluated
+        return values
+
+    def do_step(self, current_time: float, step_size: float) -> bool:
+        done = super().do_step(current_time, step_size)
+        if done and self.extrapolation is not None:
+            self.extrapolation.time = current_time + step_size
+        return done
+
+
+class AnvilROMSlave(AnvilSlaveBase):
+    """The Mode Displacement Method anvil from an embedded modal-data file (``Anvil.fmu``)."""
+
+    kind = "Anvil"
+    description = ("anvilwave anvil: Mode Displacement Method ROM with compression-only ram and "
+                   "pile contacts (SI units, z down, compression positive)")
+    parameter_fallbacks: ClassVar[dict] = {
+        **AnvilSlaveBase.parameter_fallbacks,
+        "modal_data_file": None,
+        "fmax": 0.0,
+        "damping_ratio": None,
+        "static_correction": False,
+    }
+
+    def register_anvil_parameters(self) -> None:
+        p = self.add_parameter
+        p("modal_data_file", None, "Modal-data file (.npz); a relative name is looked up in the "
+                                   "FMU resources, where the build embeds it [-]", str)
+        p("fmax", "Hz", "Frequency content of the ROM: modes up to fmax are kept, 0 keeps all "
+                        "modes of the file [Hz]")
+        p("damping_ratio", "1", "Modal damping ratio of the flexible modes [-]")
+        p("static_correction", None, "Add the residual flexibility of the truncated modes "
+                                     "(static correction) [-]", bool)
+
+    def make_anvil(self) -> ModalAnvil:
+        par = self.parameters
+        path = self.resource_path(par["modal_data_file"])
+        data = load_modal_data(path)
+        fmax = par["fmax"] if par["fmax"] != 0.0 else None
+        return ModalAnvil.from_modal_data(data, fmax=fmax, damping_ratio=par["damping_ratio"],
+                                          static_correction=par["static_correction"],
+                                          source=str(path))
+
+
+class AnvilLumpedSlave(AnvilSlaveBase):
+    """The rigid lumped-mass anvil of the classic programs (``AnvilLumped.fmu``)."""
+
+    kind = "AnvilLumped"
+    description = ("anvilwave anvil: rigid lumped mass with compression-only ram and pile "
+                   "contacts (SI units, z down, compression positive)")
+    parameter_fallbacks: ClassVar[dict] = {**AnvilSlaveBase.parameter_fallbacks, "mass": None}
+    # a rigid body has no static correction: each force sees only its own contact
+    feedthrough: ClassVar[dict[str, tuple[str, ...]]] = {
+        "F_ram": ("u_ram", "v_ram"), "F_pile": ("u_pile", "v_pile"), "u_top": (), "u_bottom": (),
+    }
+
+    def register_anvil_parameters(self) -> None:
+        self.add_parameter("mass", "kg", "Anvil mass (the FE model's total mass) [kg]")
+
+    def make_anvil(self) -> ModalAnvil:
+        return ModalAnvil.rigid(self.parameters["mass"])

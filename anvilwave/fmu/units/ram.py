@@ -1,0 +1,204 @@
+"""The ram FMU slave: FMI variables mapped onto a :class:`anvilwave.hammer.ram.RamRod` and its
+kernel.
+
+Interface (DESIGN.md, the contract): input ``F_toe`` [N] (ram-anvil contact force, compression
+positive, pushes the toe up); outputs ``u_toe`` [m], ``v_toe`` [m/s] (toe mass, z down). The
+outputs are states: no feedthrough of ``F_toe``.
+
+The ram is either the lumped chain of :mod:`anvilwave.hammer.ram` stepped by
+:func:`anvilwave.hammer.ram.ram_advance` (the kernel of the in-process engine) with ``F_toe`` held
+over
+each communication step, sub-stepped within the chain's stable limit (``n_sub =
+pile.model.substeps(h, stable_time_step)``, exactly as the engine does), or a modal ram (a
+hammer file whose ``[ram]`` has ``kind = "modal"``: the toe modes of
+:mod:`anvilwave.hammer.modal_ram`), stepped by the engine's modal ram unit
+(:class:`anvilwave.hammer.modal_ram.ModalRamUnit`: every mode exact over the step for the held
+force, no
+sub-steps). Any communication step ``h`` is accepted.
+
+Start: at ``fmi2SetupExperiment``'s start time t_s every mass moves at ``v_impact`` and the
+ram is undeformed, placed so that the toe reaches ``contact_displacement`` at
+``contact_time``: u = contact_displacement + v_impact (t_s - contact_time). The in-process
+engine starts half a step before the first contact (t_s = -h/2, contact_time = 0) with
+contact_displacement = the anvil top face at rest (the ``u_top`` output of the anvil after its
+initialization); a master does the same to reproduce it.
+
+The ram data come from a hammer: ``hammer`` names a hammer of the database
+(``anvilwave/hammer/data``,
+e.g. ``"illustrative_5500kj"``) or a hammer TOML file (a relative name is looked up in the
+FMU's resources, where :func:`anvilwave.fmu.fmi_build.build_ram_fmu` embeds it).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+import numpy as np
+from pythonfmu import DefaultExperiment
+
+from anvilwave.fmu.units.base import UnitSlave
+from anvilwave.hammer.database import available_hammers, load_hammer
+from anvilwave.hammer.modal_ram import ModalRamUnit
+from anvilwave.hammer.ram import ram_advance, stable_time_step
+from anvilwave.inputs import InputError
+from anvilwave.pile.model import substeps
+
+DEFAULT_HAMMER = "illustrative_5500kj"
+
+
+class RamState:
+    """The ram's arrays and state (the kernel's arguments), built from the parameters."""
+
+    def __init__(self, mass: np.ndarray, stiffness: np.ndarray, gravity: float):
+        self.mass = np.ascontiguousarray(mass, dtype=np.float64)
+        self.stiffness = np.ascontiguousarray(stiffness, dtype=np.float64)
+        self.gravity = float(gravity)
+        self.u = np.zeros_like(self.mass)
+        self.v = np.zeros_like(self.mass)
+        self.stable_step = float(stable_time_step(self.mass, self.stiffness))
+        self._h = math.nan
+        self._n_sub = 1
+        # the step's arrays, prepared once, as the engine does
+        self.weight = self.mass * self.gravity
+        self.inverse_mass = 1.0 / self.mass
+        # compile (or load) the kernel now, on copies, not inside the first doStep
+        ram_advance(self.weight, self.inverse_mass, self.stiffness, self.u.copy(),
+                    self.v.copy(), 0.0, 1e-9, 1)
+
+    def start(self, displacement: float, velocity: float) -> None:
+        self.u[:] = displacement
+        self.v[:] = velocity
+
+    def step(self, toe_force: float, h: float) -> None:
+        if h != self._h:
+            self._n_sub = substeps(h, self.stable_step)
+            self._h = h
+        ram_advance(self.weight, self.inverse_mass, self.stiffness, self.u, self.v, toe_force,
+                    h, self._n_sub)
+
+
+class ModalRamState:
+    """A modal ram's unit (the engine's :class:`anvilwave.hammer.modal_ram.ModalRamUnit`) behind the
+    interface of :class:`RamState`."""
+
+    def __init__(self, toe_modes, gravity: float):
+        self.unit = ModalRamUnit(toe_modes, gravity)
+        self._start: tuple[float, float] | None = None
+        self.u = np.zeros(1)  # the toe state, as RamState's last entries
+        self.v = np.zeros(1)
+        # compile (or load) the kernel now, not inside the first doStep (start() at the first
+        # step sets the whole state again)
+        self.unit.start(0.0, 1.0, 1e-6)
+        self.unit.step(0.0)
+
+    def start(self, displacement: float, velocity: float) -> None:
+        # the two-step state needs the step: it is set up at the first step
+        self._start = (displacement, velocity)
+        self.u[0] = displacement
+        self.v[0] = velocity
+
+    def step(self, toe_force: float, h: float) -> None:
+        unit = self.unit
+        if self._start is not None:
+            unit.start(self._start[0], self._start[1], h)
+            self._start = None
+        else:
+            unit.set_step(h)
+        self.u[0], self.v[0] = unit.step(toe_force)
+
+
+class RamSlave(UnitSlave):
+    """The ram (``Ram.fmu``): a lumped rod of the hammer database or an embedded hammer file."""
+
+    kind = "Ram"
+    description = ("anvilwave ram: lumped-mass rod (leapfrog, sub-stepped within its stable "
+                   "limit) or modal ram unit (toe modes, exact per mode), struck face force "
+                   "in, toe state out (SI units, z down)")
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.02, step_size=1e-5)
+    parameter_fallbacks: ClassVar[dict] = {
+        "hammer": DEFAULT_HAMMER,
+        "v_impact": 0.0,
+        "mass": 0.0,
+        "gravity": 9.81,
+        "contact_displacement": 0.0,
+        "contact_time": 0.0,
+    }
+
+    def register_variables(self) -> None:
+        p = self.add_parameter
+        p("hammer", None, "Hammer: a name of the hammer database (anvilwave/hammer/data) "
+                          "or a hammer TOML "
+                          "file; a relative file name is looked up in the FMU resources [-]", str)
+        p("v_impact", "m/s", "Ram velocity at the first contact, positive down; 0 takes the "
+                             "hammer's impact velocity at its rated energy [m/s]")
+        p("mass", "kg", "Ram mass; the segment masses are scaled to it (the density that gives "
+                        "it); 0 keeps the hammer's mass [kg]")
+        p("gravity", "m/s2", "Gravitational acceleration on the ram masses, 0 switches it off "
+                             "[m/s^2]")
+        p("contact_displacement", "m", "Toe displacement at the first contact (the anvil top "
+                                       "face at rest), positive down [m]")
+        p("contact_time", "s", "Time of the first contact; the ram starts at the experiment's "
+                               "start time in free flight at v_impact towards it [s]")
+        self.add_input("F_toe", "N", "Ram-anvil contact force on the toe, compression positive "
+                                     "(pushes the toe up) [N]")
+        self.add_output("u_toe", "m", "Ram toe displacement, positive down [m]")
+        self.add_output("v_toe", "m/s", "Ram toe velocity (leapfrog half-step value), positive "
+                                        "down [m/s]")
+
+    # ------------------------------------------------------------------ mapping
+    def build_component(self) -> RamState:
+        par = self.parameters
+        name = self.instance_name
+        gravity = par["gravity"]
+        if not (math.isfinite(gravity) and 0.0 <= gravity <= 20.0):
+            raise InputError(name, "gravity", f"must be in [0, 20] m/s^2, got {gravity!r}")
+        hammer = self._hammer(par["hammer"], gravity)
+        mass = hammer.ram.mass
+        wanted = par["mass"]
+        if not (math.isfinite(wanted) and wanted >= 0.0):
+            raise InputError(name, "mass", f"must be positive (or 0: the hammer's), got "
+                                           f"{wanted!r} kg")
+        if wanted > 0.0 and wanted != hammer.ram.total_mass:
+            if hammer.ram.is_modal_unit:
+                raise InputError(name, "mass", f"a modal ram keeps its own mass "
+                                               f"({hammer.ram.total_mass:.6g} kg): give 0, got "
+                                               f"{wanted!r} kg")
+            mass = mass * (wanted / hammer.ram.total_mass)
+        velocity = par["v_impact"]
+        if velocity == 0.0:
+            velocity = hammer.impact_velocity
+        if not (math.isfinite(velocity) and 0.0 < velocity <= 50.0):
+            raise InputError(name, "v_impact", f"must be in (0, 50] m/s, got {velocity!r}")
+        for key in ("contact_displacement", "contact_time"):
+            if not math.isfinite(par[key]):
+                raise InputError(name, key, f"must be finite, got {par[key]!r}")
+        self.velocity = velocity
+        if hammer.ram.is_modal_unit:
+            return ModalRamState(hammer.ram.modes, gravity)
+        return RamState(mass, hammer.ram.stiffness, gravity)
+
+    def _hammer(self, name: str, gravity: float):
+        if name in available_hammers():
+            return load_hammer(name, gravity)
+        path = self.resource_path(name)
+        if path.suffix != ".toml" or not path.is_file():
+            raise InputError(self.instance_name, "hammer",
+                             f"{name!r} is neither a hammer of the database "
+                             f"({', '.join(available_hammers())}) nor a hammer file (.toml) "
+                             "in the FMU resources")
+        return load_hammer(path, gravity)
+
+    def start_component(self) -> None:
+        par = self.parameters
+        ram = self.component
+        ram.start(par["contact_displacement"]
+                  + self.velocity * (self.start_time - par["contact_time"]), self.velocity)
+
+    def compute_outputs(self, inputs, outputs) -> None:
+        ram = self.component
+        outputs[0] = ram.u[-1]
+        outputs[1] = ram.v[-1]
+
+    def advance(self, h: float) -> None:
+        self.component.step(self.inputs[0], h)

@@ -1,0 +1,524 @@
+"""The ram as a non-uniform 1D elastic rod of lumped masses and springs (or a rigid body).
+
+Discretisation (Smith 1960): the ram, top to toe, is cut into segments of length dx_j, area A_j,
+modulus E; segment j becomes a mass m_j = rho A_j dx_j at its centre, and neighbouring centres
+are joined by the two half segments in series, 1 / k = dx_j / (2 E A_j) + dx_j+1 / (2 E A_j+1).
+So n segments carry n masses and n - 1 springs; mass 0 is the top segment and mass n - 1 the toe
+segment. The half segment below the toe mass, ``toe_stiffness`` = 2 E A / dx, joins the toe mass
+to the striking face: it is the ram's side of the contact spring, as in Smith's model, so that
+ram, contact and the neighbour form one regular chain (a rod striking a rod of the same section
+is then exactly the uniform chain, dispersion free at the Courant number 1). The lumping keeps
+the total mass and the centre of mass exactly, and the springs in series with the toe half
+segment and the top half segment give the static stiffness E A / L of a uniform ram. A rigid ram
+is n = 1 (no toe spring: the contact stiffness must then be given).
+
+Time stepping: leapfrog (symplectic Euler, v += dt a; u += dt v), second order for the staggered
+velocity, stable for dt < 2 / omega_max; for a uniform chain omega_max = 2 c / dx, and at the
+Courant number c dt / dx = 1 the scheme propagates waves without dispersion.
+
+Sign conventions: z down; u, v positive downward; spring force N_j = k_j (u_j - u_{j+1}) is
+positive in compression; the toe force F_toe (contact with the anvil) is positive in compression
+and pushes the toe mass upward.
+
+References
+----------
+Smith, E.A.L. (1960). Pile-driving analysis by the wave equation. Journal of the Soil Mechanics
+    and Foundations Division, ASCE, 86(SM4), 35-61.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from anvilwave.inputs import Table
+
+STEEL_ELASTIC_MODULUS = 210e9
+"""Young's modulus of steel [Pa] (DESIGN.md)."""
+STEEL_DENSITY = 7850.0
+"""Density of steel [kg/m^3] (DESIGN.md)."""
+DEFAULT_SEGMENT_LENGTH = 0.5
+"""Default ram element length [m]; cut-off frequency c / (pi dx) = 3.3 kHz in steel."""
+
+
+# --------------------------------------------------------------------------- discretisation
+def lump_rod(lengths, areas, elastic_modulus: float, density: float,
+             segment_length: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Lumped masses [kg], springs [N/m] and toe half-segment spring [N/m] of a rod made of
+    uniform sections (top first).
+
+    Each section of length L_s is cut into ceil(L_s / segment_length) equal segments; each
+    segment's mass rho A dx sits at its centre, centres are joined by two half segments in
+    series, and the toe half segment 2 E A / dx joins the last mass to the striking face.
+
+    Parameters
+    ----------
+    lengths : array_like
+        Section lengths [m], top to toe.
+    areas : array_like
+        Section cross-section areas [m^2].
+    elastic_modulus : float
+        Young's modulus E [Pa].
+    density : float
+        Density rho [kg/m^3].
+    segment_length : float
+        Largest element length dx [m].
+
+    Returns
+    -------
+    mass : (n,) segment masses [kg]; stiffness : (n - 1,) springs between them [N/m];
+    toe_stiffness : the toe half segment 2 E A / dx [N/m].
+    """
+    element_dx = []
+    element_area = []
+    for length, area in zip(np.asarray(lengths, float), np.asarray(areas, float), strict=True):
+        count = max(1, math.ceil(length / segment_length - 1e-9))
+        element_dx += [length / count] * count
+        element_area += [area] * count
+    dx = np.array(element_dx)
+    area = np.array(element_area)
+    half = 2.0 * elastic_modulus * area / dx  # stiffness of a half segment
+    stiffness = 1.0 / (1.0 / half[:-1] + 1.0 / half[1:])
+    mass = density * area * dx
+    return mass, stiffness, float(half[-1])
+
+
+def circle_area(outer_diameter: float, inner_diameter: float = 0.0) -> float:
+    """Area [m^2] of a solid (inner 0) or hollow circular section; diameters [m]."""
+    return 0.25 * math.pi * (outer_diameter**2 - inner_diameter**2)
+
+
+@dataclass(frozen=True, eq=False)
+class RamRod:
+    """A ram as n lumped masses (top first) joined by n - 1 springs; rigid when n = 1.
+
+    Attributes
+    ----------
+    mass : (n,) ndarray
+        Nodal masses [kg], node 0 at the top, node n - 1 at the toe.
+    stiffness : (n - 1,) ndarray
+        Spring stiffnesses [N/m]; spring j joins nodes j and j + 1.
+    length : float
+        Ram length [m] (nan when built from explicit segments or as a rigid body).
+    toe_diameter : float
+        Diameter of the striking face [m] (nan if unknown); the anvil ROM needs it.
+    toe_stiffness : float
+        Half segment between the toe mass and the striking face [N/m], the ram's side of the
+        contact spring (nan for a rigid ram or explicit segments: give a contact stiffness).
+        For a modal ram, the residual flexibility of its truncated modes at the toe, inverted.
+    sections : (s, 3) ndarray or None
+        The ram's shape, top to toe: rows [length, outer diameter, inner diameter] [m] (None
+        when built from explicit segments or as a rigid body); the modal ram is built from it.
+    elastic_modulus, density : float
+        Material of ``sections`` [Pa], [kg/m^3] (nan when unknown).
+    fmax : float
+        Frequency content [Hz] of a modal ram (:mod:`anvilwave.hammer.modal_ram`); nan for a Smith
+        rod.
+    modes : :class:`anvilwave.hammer.modal_ram.RamToeModes` or None
+        A modal ram run as the modal unit (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`): its
+        toe
+        modes; ``mass`` is then the one total mass (the ram's weight and impact energy) and
+        ``stiffness`` empty. None for a Smith rod and for a modal ram realised as a chain.
+    """
+
+    mass: np.ndarray
+    stiffness: np.ndarray
+    length: float = math.nan
+    toe_diameter: float = math.nan
+    toe_stiffness: float = math.nan
+    sections: np.ndarray | None = None
+    elastic_modulus: float = math.nan
+    density: float = math.nan
+    fmax: float = math.nan
+    modes: object = None
+
+    def __post_init__(self):
+        mass = np.ascontiguousarray(self.mass, dtype=np.float64).copy()
+        stiffness = np.ascontiguousarray(self.stiffness, dtype=np.float64).copy()
+        if mass.ndim != 1 or mass.size < 1:
+            raise ValueError("mass must be a 1D array with at least one entry")
+        if stiffness.shape != (mass.size - 1,):
+            raise ValueError(f"stiffness must have {mass.size - 1} entries, got {stiffness.size}")
+        if not (np.all(np.isfinite(mass)) and np.all(mass > 0.0)):
+            raise ValueError("masses must be finite and positive")
+        if not (np.all(np.isfinite(stiffness)) and np.all(stiffness > 0.0)):
+            raise ValueError("stiffnesses must be finite and positive")
+        object.__setattr__(self, "mass", mass)
+        object.__setattr__(self, "stiffness", stiffness)
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def rigid(cls, mass: float, toe_diameter: float = math.nan) -> RamRod:
+        """A rigid ram of mass [kg] (one mass, no spring)."""
+        return cls(np.array([float(mass)]), np.zeros(0), math.nan, toe_diameter)
+
+    @classmethod
+    def from_profile(cls, lengths, outer_diameters, inner_diameters=None, *,
+                     elastic_modulus: float = STEEL_ELASTIC_MODULUS,
+                     density: float = STEEL_DENSITY,
+                     segment_length: float = DEFAULT_SEGMENT_LENGTH) -> RamRod:
+        """A ram of circular sections (top to toe); lengths and diameters [m], E [Pa],
+        density [kg/m^3], segment_length [m]. Inner diameters default to 0 (solid)."""
+        lengths = np.asarray(lengths, float)
+        outer = np.asarray(outer_diameters, float)
+        inner = np.zeros_like(outer) if inner_diameters is None else np.asarray(
+            inner_diameters, float)
+        areas = [circle_area(o, i) for o, i in zip(outer, inner, strict=True)]
+        mass, stiffness, toe = lump_rod(lengths, areas, elastic_modulus, density,
+                                        segment_length)
+        sections = np.column_stack([lengths, outer, inner])
+        return cls(mass, stiffness, float(lengths.sum()), float(outer[-1]), toe, sections,
+                   float(elastic_modulus), float(density))
+
+    @classmethod
+    def uniform(cls, length: float, diameter: float, **kwargs) -> RamRod:
+        """A solid steel-like cylinder of length [m] and diameter [m] (keywords as from_profile)."""
+        return cls.from_profile([length], [diameter], **kwargs)
+
+    @classmethod
+    def from_segments(cls, masses, stiffnesses, toe_diameter: float = math.nan) -> RamRod:
+        """A ram from explicit masses [kg] (top first) and the springs [N/m] between them."""
+        return cls(np.asarray(masses, float), np.asarray(stiffnesses, float), math.nan,
+                   toe_diameter)
+
+    # ------------------------------------------------------------------ properties
+    @property
+    def n_masses(self) -> int:
+        return self.mass.size
+
+    @property
+    def total_mass(self) -> float:
+        """Ram mass [kg]."""
+        return float(self.mass.sum())
+
+    @property
+    def is_modal(self) -> bool:
+        """True for a modal ram (:mod:`anvilwave.hammer.modal_ram`)."""
+        return not math.isnan(self.fmax)
+
+    @property
+    def is_modal_unit(self) -> bool:
+        """True for a modal ram run as the modal unit (``modes`` given)."""
+        return self.modes is not None
+
+    @property
+    def is_rigid(self) -> bool:
+        return self.mass.size == 1 and self.modes is None
+
+    @property
+    def static_stiffness(self) -> float:
+        """Stiffness between the top mass and the striking face [N/m]: the springs and the toe
+        half segment in series (inf when rigid; without the toe half segment if unknown)."""
+        if self.is_rigid:
+            return math.inf
+        toe = 0.0 if math.isnan(self.toe_stiffness) else 1.0 / self.toe_stiffness
+        return float(1.0 / (np.sum(1.0 / self.stiffness) + toe))
+
+    @property
+    def toe_impedance(self) -> float:
+        """Bar impedance of the striking face's section, E A / c = A sqrt(E rho) [N s/m] (nan
+        when the ram has no shape: explicit segments, rigid, toe modes alone)."""
+        if self.sections is None:
+            return math.nan
+        outer, inner = self.sections[-1, 1], self.sections[-1, 2]
+        return circle_area(outer, inner) * math.sqrt(self.elastic_modulus * self.density)
+
+    def stable_time_step(self) -> float:
+        """Largest stable leapfrog step [s] (Gershgorin bound; inf when rigid)."""
+        return stable_time_step(self.mass, self.stiffness)
+
+    def initial_state(self, impact_velocity: float) -> tuple[np.ndarray, np.ndarray]:
+        """(u, v) at the first contact t = 0 [m, m/s]: undeformed, every mass at v_impact.
+
+        A falling ram carries no internal force (gravity accelerates all masses alike), so
+        u = 0 and v = impact velocity is its exact state at impact.
+        """
+        return np.zeros(self.n_masses), np.full(self.n_masses, float(impact_velocity))
+
+
+# --------------------------------------------------------------------------- kernels
+@njit(cache=True, inline='always')
+def ram_advance(weight, inverse_mass, stiffness, u, v, toe_force, h, n_sub):
+    """Advance the ram over a communication step h [s] in n_sub leapfrog sub-steps, in place.
+
+    The physics of :func:`ram_step` on arrays prepared once: weight m g [N] and inverse mass
+    1 / m [1/kg] of every mass (top first), the n - 1 springs [N/m]. One sweep per sub-step:
+    the spring below mass i is evaluated before u_i moves and carried to mass i + 1, so every
+    force is that of the displacements at the start of the sub-step.
+    """
+    dt = h / n_sub
+    last = u.shape[0] - 1
+    for _ in range(n_sub):
+        from_above = 0.0
+        for i in range(last):
+            spring = stiffness[i] * (u[i] - u[i + 1])
+            v_new = v[i] + dt * (from_above + weight[i] - spring) * inverse_mass[i]
+            v[i] = v_new
+            u[i] += dt * v_new
+            from_above = spring
+        v_new = v[last] + dt * (from_above + weight[last] - toe_force) * inverse_mass[last]
+        v[last] = v_new
+        u[last] += dt * v_new
+
+
+@njit(cache=True)
+def ram_step(mass, stiffness, u, v, toe_force, gravity, h, n_sub):
+    """Advance the ram over a communication step h [s] in n_sub leapfrog sub-steps.
+
+    Works in place on u, v. The toe force is held constant over the step. Each sub-step is the
+    symplectic Euler (leapfrog) update v += dt a(u); u += dt v, so v is the velocity half a
+    sub-step before u. The leapfrog form matters for the coupling: the master holds the contact
+    force computed from the displacements at t_n, and a velocity-Verlet step with that held
+    force (u += h v + h^2 a / 2, v += h a) would be unstable for the contact spring (energy
+    growth (w h)^2 / 2 per step); leapfrog keeps it stable up to w h < 2.
+
+    Parameters
+    ----------
+    mass : (n,) nodal masses [kg], top first.
+    stiffness : (n - 1,) springs [N/m].
+    u, v : (n,) displacements [m] and velocities [m/s], positive down.
+    toe_force : contact force on the toe [N], positive in compression (pushes the toe up).
+    gravity : gravitational acceleration [m/s^2] (0 to switch it off).
+    h : communication step [s].
+    n_sub : number of sub-steps (h / n_sub below :func:`stable_time_step`).
+
+    A convenience form of :func:`ram_advance` that prepares its arrays on every call.
+    """
+    ram_advance(mass * gravity, 1.0 / mass, stiffness, u, v, toe_force, h, n_sub)
+
+
+@njit(cache=True, fastmath={"reassoc"})
+def leapfrog_energies(mass, stiffness, u, v, gravity, dt):
+    """(kinetic, strain, gravity potential) [J] in the leapfrog's conserved (shadow) form.
+
+    With v the velocity of the last sub-step dt [s] (u_prev = u - dt v): kinetic sum m v^2 / 2,
+    strain sum k e e_prev / 2 and gravity potential -sum m g (u + u_prev) / 2, whose sum changes
+    exactly by the work of the external forces for the central-difference scheme (Belytschko,
+    Liu & Moran 2000, sec. 6.2), instead of oscillating by O(dt) like the plain energies.
+    The sums may be added in any order (fastmath reassociation only: their last bits).
+    """
+    last = mass.shape[0] - 1
+    kinetic = 0.5 * mass[last] * v[last] * v[last]
+    strain = 0.0
+    potential = -(mass[last] * gravity * (u[last] - 0.5 * dt * v[last]))
+    for i in range(last):
+        kinetic += 0.5 * mass[i] * v[i] * v[i]
+        potential -= mass[i] * gravity * (u[i] - 0.5 * dt * v[i])
+        e = u[i] - u[i + 1]
+        strain += 0.5 * stiffness[i] * e * (e - dt * (v[i] - v[i + 1]))
+    return kinetic, strain, potential
+
+
+@njit(cache=True)
+def stable_time_step(mass, stiffness):
+    """Stable step of the leapfrog for the chain [s]: 2 / omega_max, inf for one mass.
+
+    omega_max^2 is bounded by Gershgorin's theorem twice over, and the smaller bound is used:
+    the row sums of M^-1 K, 2 (k_{i-1} + k_i) / m_i, and the discs of the symmetric
+    M^-1/2 K M^-1/2, (k_{i-1} + k_i) / m_i + k_{i-1} / sqrt(m_{i-1} m_i) + k_i / sqrt(m_i m_{i+1}).
+    The first is exact for a long uniform chain, 4 k / m = (2 c / dx)^2;
+    both are conservative otherwise.
+    """
+    n = mass.shape[0]
+    row_sum = 0.0
+    disc = 0.0
+    for i in range(n):
+        k_sum = 0.0
+        off = 0.0
+        if i > 0:
+            k_sum += stiffness[i - 1]
+            off += stiffness[i - 1] / (math.sqrt(mass[i - 1]) * math.sqrt(mass[i]))
+        if i < n - 1:
+            k_sum += stiffness[i]
+            off += stiffness[i] / (math.sqrt(mass[i]) * math.sqrt(mass[i + 1]))
+        row_sum = max(row_sum, 2.0 * k_sum / mass[i])
+        disc = max(disc, k_sum / mass[i] + off)
+    omega2 = min(row_sum, disc)
+    if omega2 == 0.0:
+        return np.inf
+    return 2.0 / math.sqrt(omega2)
+
+
+@njit(cache=True)
+def required_substeps(h, stable_step, safety=0.9):
+    """Smallest n_sub with h / n_sub <= safety * stable_step (at least 1).
+
+    Parameters
+    ----------
+    h : communication step [s].
+    stable_step : stable sub-step [s] (may be inf).
+    safety : fraction of the stable step to use [-].
+    """
+    if not stable_step < np.inf:
+        return 1
+    n = int(math.ceil(h / (safety * stable_step) - 1e-12))
+    return n if n > 1 else 1
+
+
+@njit(cache=True)
+def spring_forces(stiffness, u, out):
+    """Spring forces N_j = k_j (u_j - u_{j+1}) [N] (compression positive) into out (n - 1,)."""
+    for j in range(stiffness.shape[0]):
+        out[j] = stiffness[j] * (u[j] - u[j + 1])
+
+
+@njit(cache=True)
+def toe_spring_force(stiffness, u):
+    """Force in the lowest ram spring [N], compression positive (0 for a rigid ram)."""
+    n = stiffness.shape[0]
+    if n == 0:
+        return 0.0
+    return stiffness[n - 1] * (u[n - 1] - u[n])
+
+
+@njit(cache=True)
+def kinetic_energy(mass, v):
+    """Kinetic energy sum(m v^2) / 2 [J]."""
+    energy = 0.0
+    for i in range(mass.shape[0]):
+        energy += 0.5 * mass[i] * v[i] * v[i]
+    return energy
+
+
+@njit(cache=True)
+def strain_energy(stiffness, u):
+    """Strain energy of the springs sum(k (u_j - u_{j+1})^2) / 2 [J]."""
+    energy = 0.0
+    for j in range(stiffness.shape[0]):
+        d = u[j] - u[j + 1]
+        energy += 0.5 * stiffness[j] * d * d
+    return energy
+
+
+@njit(cache=True)
+def gravity_potential_energy(mass, u, gravity):
+    """Gravitational potential energy relative to u = 0 [J]: -g sum(m u) (z down)."""
+    energy = 0.0
+    for i in range(mass.shape[0]):
+        energy -= gravity * mass[i] * u[i]
+    return energy
+
+
+@njit(cache=True)
+def momentum(mass, v):
+    """Axial momentum sum(m v) [kg m/s], positive down."""
+    total = 0.0
+    for i in range(mass.shape[0]):
+        total += mass[i] * v[i]
+    return total
+
+
+def max_angular_frequency(mass, stiffness) -> float:
+    """Exact largest natural angular frequency of the free chain [rad/s] (scipy; for checks)."""
+    from anvilwave.anvil_rom.chain import chain_modes
+
+    mass = np.asarray(mass, float)
+    if mass.size == 1:
+        return 0.0
+    return float(chain_modes(mass, stiffness)[0].max())
+
+
+# --------------------------------------------------------------------------- input
+def ram_from_table(table: Table) -> RamRod:
+    """Read a ram from a TOML table (errors name the key and the rule).
+
+    Keys
+    ----
+    kind : "rod" (default), "rigid" or "modal".
+    rigid: ``mass`` [kg], optional ``diameter`` [m] of the striking face.
+    modal: the toe modes of a modal ram (:func:`anvilwave.hammer.modal_ram.toe_modes_from_table`:
+    what
+    a Ram FMU embeds).
+    rod, one of
+      * ``diameter`` [m] with ``mass`` [kg] or ``length`` [m]: a uniform solid cylinder;
+      * ``profile`` = [[length, outer_diameter], ...] or [[length, outer, inner], ...] [m],
+        top to toe, optionally with ``mass`` [kg] (then the density is the one that gives it);
+      * ``segment_masses`` [kg] (top first) and ``segment_stiffnesses`` [N/m] (n - 1 springs).
+    With the first two: ``elastic_modulus`` [Pa] (210e9), ``density`` [kg/m^3] (7850),
+    ``segment_length`` [m] (0.5).
+    """
+    kind = table.string("kind", "rod", choices=("rod", "rigid", "modal"))
+    if kind == "modal":
+        from anvilwave.hammer.modal_ram import ram_from_toe_modes, toe_modes_from_table
+
+        diameter = _optional(table.number("diameter", None, gt=0, unit="m"))
+        modes = toe_modes_from_table(table)
+        table.finish()
+        return ram_from_toe_modes(modes, diameter)
+    if kind == "rigid":
+        mass = table.number("mass", gt=0, unit="kg")
+        diameter = _optional(table.number("diameter", None, gt=0, unit="m"))
+        table.finish()
+        return RamRod.rigid(mass, diameter)
+
+    if table.has("segment_masses") or table.has("segment_stiffnesses"):
+        masses = table.array("segment_masses")
+        stiffnesses = table.array("segment_stiffnesses", min_rows=0)
+        if np.any(masses <= 0):
+            raise table.error("segment_masses", "must all be greater than 0 kg")
+        if np.any(stiffnesses <= 0):
+            raise table.error("segment_stiffnesses", "must all be greater than 0 N/m")
+        if stiffnesses.size != masses.size - 1:
+            raise table.error("segment_stiffnesses",
+                              f"must have one entry fewer than segment_masses "
+                              f"({masses.size - 1}), got {stiffnesses.size}")
+        diameter = _optional(table.number("diameter", None, gt=0, unit="m"))
+        table.finish()
+        return RamRod.from_segments(masses, stiffnesses, diameter)
+
+    elastic_modulus = table.number("elastic_modulus", STEEL_ELASTIC_MODULUS, gt=0, unit="Pa")
+    segment_length = table.number("segment_length", DEFAULT_SEGMENT_LENGTH, gt=0, unit="m")
+    if table.has("profile"):
+        lengths, outer, inner = _profile(table)
+        volume = float(sum(circle_area(o, i) * L for L, o, i in zip(lengths, outer, inner,
+                                                                     strict=True)))
+        if table.has("mass"):
+            if table.has("density"):
+                raise table.error("density", "cannot be given together with profile and mass "
+                                  "(the density is derived from them)")
+            density = table.number("mass", gt=0, unit="kg") / volume
+        else:
+            density = table.number("density", STEEL_DENSITY, gt=0, unit="kg/m^3")
+        table.finish()
+        return RamRod.from_profile(lengths, outer, inner, elastic_modulus=elastic_modulus,
+                                   density=density, segment_length=segment_length)
+
+    density = table.number("density", STEEL_DENSITY, gt=0, unit="kg/m^3")
+    diameter = table.number("diameter", gt=0, unit="m")
+    if table.has("mass") == table.has("length"):
+        raise table.error("length", "give exactly one of mass and length with diameter "
+                          "(or a profile, or segment_masses)")
+    area = circle_area(diameter)
+    if table.has("mass"):
+        length = table.number("mass", gt=0, unit="kg") / (density * area)
+    else:
+        length = table.number("length", gt=0, unit="m")
+    table.finish()
+    return RamRod.uniform(length, diameter, elastic_modulus=elastic_modulus, density=density,
+                          segment_length=segment_length)
+
+
+def _profile(table: Table) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    raw = table.data["profile"]
+    columns = len(raw[0]) if isinstance(raw, list) and raw and isinstance(raw[0], list) else 2
+    if columns not in (2, 3):
+        raise table.error("profile", "rows must be [length, outer_diameter] or "
+                          "[length, outer_diameter, inner_diameter] [m]")
+    rows = table.array("profile", columns=columns)
+    lengths, outer = rows[:, 0], rows[:, 1]
+    inner = rows[:, 2] if columns == 3 else np.zeros_like(outer)
+    if np.any(lengths <= 0):
+        raise table.error("profile", "section lengths must be greater than 0 m")
+    if np.any(outer <= 0):
+        raise table.error("profile", "outer diameters must be greater than 0 m")
+    if np.any(inner < 0) or np.any(inner >= outer):
+        raise table.error("profile", "inner diameters must be at least 0 m and below the "
+                          "outer diameter")
+    return lengths, outer, inner
+
+
+def _optional(value: float | None) -> float:
+    return math.nan if value is None else value

@@ -1,0 +1,282 @@
+"""Validated reading of TOML input files (and the one TOML writer, :func:`toml_dumps`).
+
+Every user-facing configuration (anvil, hammer, pile, system) is read through :class:`Table`,
+so that a bad value always stops with one line naming the file, the key and the rule that was
+broken, and an unknown key is rejected instead of silently ignored.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+import re
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+_MISSING = object()
+
+
+class InputError(Exception):
+    """A user input broke a rule.
+
+    ``str(error)`` is a single line ``<file>: <key>: <rule>`` meant to be shown to the user as it
+    is, without a traceback.
+    """
+
+    def __init__(self, source: str, key: str, rule: str):
+        self.source = str(source)
+        self.key = key
+        self.rule = rule
+        where = f"{self.source}: {key}" if key else self.source
+        super().__init__(f"{where}: {rule}")
+
+    def __reduce__(self):
+        """Pickled with its three fields, so an error raised in a worker process reaches the
+        parent as itself (process pools, dask)."""
+        return (InputError, (self.source, self.key, self.rule))
+
+
+def read_text(path: str | Path, encoding: str = "utf-8") -> str:
+    """The text of an input file; a missing or unreadable file is an :class:`InputError`."""
+    path = Path(path)
+    try:
+        return path.read_text(encoding=encoding)
+    except FileNotFoundError:
+        raise InputError(path, "", "file not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(path, "", f"cannot be read ({exc})") from None
+
+
+def read_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML file, turning I/O and syntax problems into :class:`InputError`."""
+    path = Path(path)
+    text = read_text(path)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(path, "", f"is not valid TOML ({exc})") from None
+
+
+class Table:
+    """A TOML table whose keys are taken one by one with their rules.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed table.
+    source : str or Path
+        The file it came from (used in error messages).
+    prefix : str
+        Dotted key of this table inside the file ("" for the root).
+    """
+
+    def __init__(self, data: dict[str, Any], source: str | Path, prefix: str = ""):
+        if not isinstance(data, dict):
+            raise InputError(source, prefix or "<root>", "must be a table")
+        self.data = data
+        self.source = str(source)
+        self.prefix = prefix
+        self._used: set[str] = set()
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> Table:
+        return cls(read_toml(path), path)
+
+    # ------------------------------------------------------------------ helpers
+    def key(self, name: str) -> str:
+        return f"{self.prefix}.{name}" if self.prefix else name
+
+    def error(self, name: str, rule: str) -> InputError:
+        return InputError(self.source, self.key(name), rule)
+
+    def has(self, name: str) -> bool:
+        return name in self.data
+
+    record: list[tuple[str, str]] | None = None
+    """When a list, every key asked for is appended to it as (file, dotted key without array
+    indices):
+    the tests check that each accepted key is documented (``anvilwave.config.schema``)."""
+
+    def _get(self, name: str, default: Any) -> Any:
+        self._used.add(name)
+        if Table.record is not None:
+            Table.record.append((self.source, re.sub(r"\[\d+\]", "", self.key(name))))
+        if name in self.data:
+            return self.data[name]
+        if default is _MISSING:
+            raise self.error(name, "is required but missing")
+        return default
+
+    # ------------------------------------------------------------------ typed getters
+    def number(
+        self,
+        name: str,
+        default: Any = _MISSING,
+        *,
+        gt: float | None = None,
+        ge: float | None = None,
+        lt: float | None = None,
+        le: float | None = None,
+        unit: str = "",
+    ) -> float:
+        """A finite real number, with optional bounds."""
+        value = self._get(name, default)
+        if value is None:
+            return None  # only reachable through an explicit default of None
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise self.error(name, f"must be a number{_unit(unit)}, got {value!r}")
+        value = float(value)
+        if not math.isfinite(value):
+            raise self.error(name, f"must be finite, got {value!r}")
+        for bound, ok, word in (
+            (gt, lambda v, b: v > b, "greater than"),
+            (ge, lambda v, b: v >= b, "at least"),
+            (lt, lambda v, b: v < b, "less than"),
+            (le, lambda v, b: v <= b, "at most"),
+        ):
+            if bound is not None and not ok(value, bound):
+                raise self.error(name, f"must be {word} {bound:g}{_unit(unit)}, got {value:g}")
+        return value
+
+    def integer(self, name: str, default: Any = _MISSING, *, ge: int | None = None) -> int:
+        value = self._get(name, default)
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise self.error(name, f"must be an integer, got {value!r}")
+        if ge is not None and value < ge:
+            raise self.error(name, f"must be at least {ge}, got {value}")
+        return int(value)
+
+    def boolean(self, name: str, default: Any = _MISSING) -> bool:
+        value = self._get(name, default)
+        if not isinstance(value, bool):
+            raise self.error(name, f"must be true or false, got {value!r}")
+        return value
+
+    def string(self, name: str, default: Any = _MISSING, *, choices=None) -> str:
+        value = self._get(name, default)
+        if value is None:
+            return None
+        if not isinstance(value, str):
+            raise self.error(name, f"must be a string, got {value!r}")
+        if choices is not None and value not in choices:
+            raise self.error(name, f"must be one of {', '.join(map(repr, choices))}, got {value!r}")
+        return value
+
+    def path(self, name: str, default: Any = _MISSING) -> Path | None:
+        """A file path, relative to the directory of the input file."""
+        value = self.string(name, default)
+        if value is None:
+            return None
+        path = Path(value)
+        if not path.is_absolute():
+            path = Path(self.source).parent / path
+        return path
+
+    def array(
+        self, name: str, default: Any = _MISSING, *, columns: int | None = None, min_rows: int = 1
+    ) -> np.ndarray:
+        """A list of numbers, or with ``columns`` a list of rows of that many numbers."""
+        value = self._get(name, default)
+        if value is None:
+            return None
+        shape_rule = f"a list of [{', '.join(['x'] * columns)}] rows" if columns else "a list"
+        if not isinstance(value, list) or len(value) < min_rows:
+            raise self.error(name, f"must be {shape_rule} of numbers with at least {min_rows} "
+                                   "entries")
+        try:
+            arr = np.array(value, dtype=float)
+        except (TypeError, ValueError):
+            raise self.error(name, f"must be {shape_rule} of numbers") from None
+        expected_ndim = 2 if columns else 1
+        if arr.ndim != expected_ndim or (columns and arr.shape[1] != columns):
+            raise self.error(name, f"must be {shape_rule} of numbers")
+        if not np.all(np.isfinite(arr)):
+            raise self.error(name, "must contain finite numbers only")
+        return arr
+
+    def table(self, name: str, required: bool = True) -> Table | None:
+        value = self._get(name, _MISSING if required else None)
+        if value is None:
+            return None
+        if not isinstance(value, dict):
+            raise self.error(name, "must be a table")
+        return Table(value, self.source, self.key(name))
+
+    def tables(self, name: str, required: bool = True) -> list[Table]:
+        """An array of tables (``[[name]]``)."""
+        value = self._get(name, _MISSING if required else [])
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            raise self.error(name, "must be an array of tables ([[...]])")
+        return [Table(v, self.source, f"{self.key(name)}[{i}]") for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        """Reject the keys nobody asked for (typos, unsupported options)."""
+        unknown = sorted(set(self.data) - self._used)
+        if unknown:
+            allowed = ", ".join(sorted(self._used)) or "none"
+            raise self.error(unknown[0], f"unknown key (allowed here: {allowed})")
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+# ---------------------------------------------------------------------------- writing
+def toml_dumps(root: dict[str, Any]) -> str:
+    """TOML text of a nested dict of strings, booleans, numbers, lists and tables.
+
+    Floats are written with ``repr`` so they read back bit for bit.
+    """
+    lines: list[str] = []
+    _toml_table(root, [], lines)
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _toml_table(table: dict[str, Any], path: list[str], lines: list[str]) -> None:
+    def is_table(v):
+        return isinstance(v, dict)
+
+    def is_table_array(v):
+        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
+
+    for key, value in table.items():
+        if not (is_table(value) or is_table_array(value)):
+            lines.append(f"{_toml_key(key)} = {_toml_value(value)}")
+    for key, value in table.items():
+        if is_table(value):
+            lines += ["", f"[{'.'.join(map(_toml_key, path + [key]))}]"]
+            _toml_table(value, path + [key], lines)
+        elif is_table_array(value):
+            for item in value:
+                lines += ["", f"[[{'.'.join(map(_toml_key, path + [key]))}]]"]
+                _toml_table(item, path + [key], lines)
+
+
+def _toml_key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool | np.bool_):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        value = float(value)
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a JSON string is a valid TOML basic string
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # an inline table (inside an array of mixed values)
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v)}"
+                               for k, v in value.items()) + "}"
+    raise TypeError(f"cannot write {type(value).__name__} to TOML")

@@ -1,0 +1,1 @@
+"""PDA: gauge records, the Case method and the physics of signal matching."""

@@ -1,0 +1,2 @@
+"""Post-processing of blows: installation fatigue (S-N curves, rainflow, Miner) and force
+spectra."""

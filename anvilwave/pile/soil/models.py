@@ -1,0 +1,257 @@
+"""Soil models along the shaft and at the toe, selectable by name.
+
+A soil table is TOML::
+
+    [soil]
+    model = "smith-viscous"      # "smith", "smith-viscous" or "lysmer-toe"
+    penetration = 30.0           # [m] embedded length (the pile sticks up L - penetration)
+    quake_shaft = 0.0025         # [m]
+    quake_toe = 0.0025           # [m]   not for "lysmer-toe"
+    damping_shaft = 0.65         # [s/m] Smith damping factor J
+    damping_toe = 0.5            # [s/m] not for "lysmer-toe"
+    friction_perimeter = "outside+inside"   # or "outside"
+    toe_area = "annulus"         # or "plugged"
+    srd = [[0.0, 0.0, 0.0], [30.0, 80e3, 8e6]]  # depth [m], unit shaft [Pa], unit toe [Pa]
+
+Models (every soil spring is the elastic-perfectly-plastic Smith spring of
+:func:`anvilwave.pile.kernels.soil_resistance`; they differ only in the parameter arrays, so one
+kernel
+serves all and the in-process engine needs no branch):
+
+``"smith"``         Smith (1960): quake q, R_d = J |R_s| v (damping proportional to the
+                    mobilised static resistance).
+``"smith-viscous"`` GRLWEAP's Smith-viscous damping: R_d = J R_u v, a linear dashpot
+                    c = J R_u (the default: damping does not depend on the history of R_s).
+``"lysmer-toe"``    Smith-viscous shaft; the toe is Lysmer's analog (Lysmer & Richart 1966) of
+                    a rigid disc of radius r0 on an elastic half-space: spring
+                    k = 4 G r0 / (1 - nu) with a plastic limit at the toe capacity (so its quake
+                    is R_u / k) and a radiation dashpot c = 3.4 r0^2 sqrt(G rho) / (1 - nu)
+                    = (3.4 / pi) / (1 - nu) rho c_s A, with c_s = sqrt(G / rho) and r0 the
+                    radius of the toe area A. Keys: toe_shear_modulus [Pa], toe_density
+                    [kg/m^3], toe_poisson_ratio [-] (default 0.3) instead of quake_toe and
+                    damping_toe. Deeks & Randolph (1995) use this toe in wave-equation analysis.
+
+Shaft springs resist both ways with the same capacity (friction reverses); the toe takes no
+tension (it lifts off and re-contacts at its permanent set). Defaults: quake 2.5 mm shaft and
+toe (GRLWEAP's recommendation for the shaft and for the toe of non-displacement piles such as
+coring open-ended tubes; D/120 of the toe diameter is the offshore choice for plugged/
+displacement toes - set ``quake_toe`` explicitly), Smith damping 0.65 s/m shaft (clay;
+0.16 s/m for sand) and 0.5 s/m toe.
+
+References
+----------
+Smith, E.A.L. (1960). Pile driving analysis by the wave equation. ASCE J. Soil Mech. Found.
+Div. 86(4), 35-61.
+Lysmer, J., Richart, F.E. (1966). Dynamic response of footings to vertical loading. ASCE J.
+Soil Mech. Found. Div. 92(SM1), 65-91.
+Deeks, A.J., Randolph, M.F. (1995). A simple model for inelastic footing response to transient
+loading. Int. J. Numer. Anal. Methods Geomech. 19(5), 307-329.
+Rausche, F., Goble, G.G., Likins, G.E. GRLWEAP background report (Pile Dynamics Inc.).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from anvilwave.inputs import Table
+from anvilwave.pile.kernels import (
+    SOIL_CAPACITY,
+    SOIL_DASHPOT,
+    SOIL_ROWS,
+    SOIL_SMITH,
+    SOIL_STIFFNESS,
+    SOIL_TENSION,
+)
+from anvilwave.pile.pile import PileSpec, Segments, discretise
+from anvilwave.pile.soil.srd import (
+    PERIMETERS,
+    TOE_AREAS,
+    SoilResistanceTable,
+    shaft_capacities,
+    toe_area,
+    toe_capacity,
+)
+
+MODELS = ("smith", "smith-viscous", "lysmer-toe")
+"""Soil model names."""
+DEFAULT_MODEL = "smith-viscous"
+DEFAULT_QUAKE = 0.0025
+"""Default shaft and toe quake [m]."""
+DEFAULT_DAMPING_SHAFT = 0.65
+"""Default Smith damping factor on the shaft [s/m]."""
+DEFAULT_DAMPING_TOE = 0.5
+"""Default Smith damping factor at the toe [s/m]."""
+DEFAULT_TOE_POISSON_RATIO = 0.3
+
+
+@dataclass(frozen=True, eq=False)
+class SoilSpec:
+    """Soil along an embedded pile.
+
+    model : one of :data:`MODELS`.
+    penetration : embedded length below the mudline [m].
+    srd : unit resistances against depth below the mudline.
+    quake_shaft, quake_toe : quakes [m] (quake_toe unused by "lysmer-toe").
+    damping_shaft, damping_toe : Smith damping factors J [s/m] (damping_toe unused by
+        "lysmer-toe").
+    friction_perimeter : "outside+inside" or "outside"
+    (:func:`anvilwave.pile.soil.srd.shaft_perimeter`).
+    toe_area : "annulus" or "plugged" (:func:`anvilwave.pile.soil.srd.toe_area`).
+    toe_shear_modulus : soil shear modulus below the toe G [Pa] ("lysmer-toe").
+    toe_density : soil density below the toe [kg/m^3] ("lysmer-toe").
+    toe_poisson_ratio : soil Poisson's ratio below the toe [-] ("lysmer-toe").
+    capacities : optional (shaft per segment (N,) [N], toe [N]) given directly (an SRD
+        distribution computed elsewhere, e.g. per tip depth with friction fatigue); when set,
+        ``srd``, ``friction_perimeter`` and ``toe_area`` do not enter the capacities.
+    """
+
+    model: str
+    penetration: float
+    srd: SoilResistanceTable | None
+    quake_shaft: float = DEFAULT_QUAKE
+    quake_toe: float = DEFAULT_QUAKE
+    damping_shaft: float = DEFAULT_DAMPING_SHAFT
+    damping_toe: float = DEFAULT_DAMPING_TOE
+    friction_perimeter: str = PERIMETERS[0]
+    toe_area: str = TOE_AREAS[0]
+    toe_shear_modulus: float = 0.0
+    toe_density: float = 0.0
+    toe_poisson_ratio: float = DEFAULT_TOE_POISSON_RATIO
+    capacities: tuple | None = None
+
+
+def lysmer_stiffness(shear_modulus: float, radius: float, poisson_ratio: float) -> float:
+    """Static stiffness of a rigid disc on an elastic half-space, 4 G r0 / (1 - nu) [N/m].
+
+    shear_modulus G [Pa], radius r0 [m], poisson_ratio nu [-] (Lysmer & Richart 1966).
+    """
+    return 4.0 * shear_modulus * radius / (1.0 - poisson_ratio)
+
+
+def lysmer_dashpot(shear_modulus: float, density: float, radius: float,
+                   poisson_ratio: float) -> float:
+    """Radiation dashpot of Lysmer's analog, 3.4 r0^2 sqrt(G rho) / (1 - nu) [N s/m].
+
+    shear_modulus G [Pa], density rho [kg/m^3], radius r0 [m], poisson_ratio nu [-].
+    """
+    return 3.4 * radius * radius * math.sqrt(shear_modulus * density) / (1.0 - poisson_ratio)
+
+
+def smith_springs(capacity, quake, damping, viscous: bool) -> tuple:
+    """(stiffness [N/m], Smith J [s/m], dashpot [N s/m]) arrays of Smith springs.
+
+    capacity R_u [N], quake q [m], damping J [s/m]; ``viscous`` selects Smith-viscous
+    (c = J R_u) instead of Smith (J applied to |R_s| in the kernel).
+    """
+    capacity = np.asarray(capacity, dtype=float)
+    stiffness = capacity / quake
+    if viscous:
+        return stiffness, np.zeros_like(capacity), damping * capacity
+    return stiffness, np.full_like(capacity, damping), np.zeros_like(capacity)
+
+
+def soil_capacities(soil: SoilSpec, pile: PileSpec, segments: Segments | None = None):
+    """Static shaft resistance per segment (N,) [N] and toe resistance [N]."""
+    seg = segments if segments is not None else discretise(pile)
+    if soil.capacities is not None:
+        shaft, toe = soil.capacities
+        shaft = np.asarray(shaft, dtype=float)
+        if shaft.shape != (seg.count,):
+            raise ValueError(f"capacities: {shaft.shape[0]} shaft values for "
+                             f"{seg.count} segments")
+        return shaft.copy(), float(toe)
+    mudline = pile.length - soil.penetration
+    shaft = shaft_capacities(soil.srd, seg.top, seg.bottom, mudline, seg.outer_diameter,
+                             seg.wall_thickness, soil.friction_perimeter)
+    toe = toe_capacity(soil.srd, soil.penetration, seg.outer_diameter[-1],
+                       seg.wall_thickness[-1], soil.toe_area)
+    return shaft, toe
+
+
+def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
+                    segments: Segments | None = None) -> np.ndarray:
+    """The soil parameter array of the kernels, shape (SOIL_ROWS, N+1), float64 (toe last).
+
+    ``soil=None`` gives a pile without soil (all zeros: a free toe).
+    """
+    seg = segments if segments is not None else discretise(pile)
+    params = np.zeros((SOIL_ROWS, seg.count + 1))
+    if soil is None:
+        return params
+    shaft, toe = soil_capacities(soil, pile, seg)
+    viscous = soil.model != "smith"
+    k, smith, dashpot = smith_springs(shaft, soil.quake_shaft, soil.damping_shaft, viscous)
+    params[SOIL_CAPACITY, :-1] = shaft
+    params[SOIL_TENSION, :-1] = shaft
+    params[SOIL_STIFFNESS, :-1] = k
+    params[SOIL_SMITH, :-1] = smith
+    params[SOIL_DASHPOT, :-1] = dashpot
+    params[SOIL_CAPACITY, -1] = toe
+    params[SOIL_TENSION, -1] = 0.0
+    if soil.model == "lysmer-toe":
+        area = toe_area(seg.outer_diameter[-1], seg.wall_thickness[-1], soil.toe_area)
+        radius = math.sqrt(area / math.pi)
+        params[SOIL_STIFFNESS, -1] = lysmer_stiffness(soil.toe_shear_modulus, radius,
+                                                      soil.toe_poisson_ratio)
+        params[SOIL_DASHPOT, -1] = lysmer_dashpot(soil.toe_shear_modulus, soil.toe_density,
+                                                  radius, soil.toe_poisson_ratio)
+    else:
+        k, smith, dashpot = smith_springs(np.array([toe]), soil.quake_toe, soil.damping_toe,
+                                          viscous)
+        params[SOIL_STIFFNESS, -1] = k[0]
+        params[SOIL_SMITH, -1] = smith[0]
+        params[SOIL_DASHPOT, -1] = dashpot[0]
+    return params
+
+
+# ---------------------------------------------------------------------------- input
+def soil_from_table(table: Table, pile_length: float, srd_optional: bool = False,
+                    default_penetration: float | None = None) -> SoilSpec:
+    """Read and validate the ``[soil]`` table (module docstring).
+
+    pile_length : length of the pile the soil is for [m] (bounds the penetration).
+    srd_optional : the SRD comes from elsewhere (a drive analysis's ``[srd]`` table): ``srd``
+        may be omitted, and ``penetration`` then defaults to ``default_penetration`` [m].
+    """
+    model = table.string("model", DEFAULT_MODEL, choices=MODELS)
+    if srd_optional and default_penetration is not None:
+        penetration = table.number("penetration", min(default_penetration, pile_length),
+                                   ge=0.0, le=pile_length, unit="m")
+    else:
+        penetration = table.number("penetration", ge=0.0, le=pile_length, unit="m")
+    srd = None
+    if table.has("srd") or not srd_optional:
+        rows = table.array("srd", columns=3)
+        srd = SoilResistanceTable.from_rows(rows)
+        problem = srd.check()
+        if problem is None and srd.depth[-1] < penetration:
+            problem = (f"must reach the penetration depth {penetration:g} m "
+                       f"(last row at {srd.depth[-1]:g} m)")
+        if problem is not None:
+            raise table.error("srd", problem)
+    common = dict(
+        model=model, penetration=penetration, srd=srd,
+        quake_shaft=table.number("quake_shaft", DEFAULT_QUAKE, gt=0.0, unit="m"),
+        damping_shaft=table.number("damping_shaft", DEFAULT_DAMPING_SHAFT, ge=0.0, unit="s/m"),
+        friction_perimeter=table.string("friction_perimeter", PERIMETERS[0], choices=PERIMETERS),
+        toe_area=table.string("toe_area", TOE_AREAS[0], choices=TOE_AREAS),
+    )
+    if model == "lysmer-toe":
+        spec = SoilSpec(
+            **common,
+            toe_shear_modulus=table.number("toe_shear_modulus", gt=0.0, unit="Pa"),
+            toe_density=table.number("toe_density", gt=0.0, unit="kg/m^3"),
+            toe_poisson_ratio=table.number("toe_poisson_ratio", DEFAULT_TOE_POISSON_RATIO,
+                                           ge=0.0, lt=0.5),
+        )
+    else:
+        spec = SoilSpec(
+            **common,
+            quake_toe=table.number("quake_toe", DEFAULT_QUAKE, gt=0.0, unit="m"),
+            damping_toe=table.number("damping_toe", DEFAULT_DAMPING_TOE, ge=0.0, unit="s/m"),
+        )
+    table.finish()
+    return spec
