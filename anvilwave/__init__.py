@@ -1,27 +1,48 @@
 """anvilwave: impact pile driving with a Mode Displacement Method anvil.
 
-The system layer and public API. Scripting users (who would otherwise batch a closed program's
-executable) work with a handful of functions, all SI, with the names and units of the files
-the command line writes:
+The public API, all SI, with the names and units of the files the command line writes:
 
 - :func:`load_system` - read and validate a system file (TOML);
-- :func:`simulate` - run its blows with the in-process engine (``engine="direct"``) or the
-  FMUs through fmpy (``engine="fmi"``); each :class:`Blow` has ``columns`` (``impact.csv``)
-  and ``summary`` (``summary.json``);
-- :func:`compute_anvil_modes` - free-free modes and modal ROM data of an anvil file;
-- :func:`build_fmus` - the four FMI 2.0 units and ``system.ssp`` of a system;
+- :func:`simulate` - its blows with the in-process engine (``engine="direct"``) or the FMUs
+  through fmpy (``engine="fmi"``), each a :class:`Blow` (``impact``);
+- :func:`drive`, :func:`compare_anvils` - driveability against the tip depth
+  (:class:`DriveResult`);
+- :func:`install` - blow-by-blow installation with fatigue (:class:`InstallResult`);
+- :func:`pda`, :func:`match`, :func:`compare_pda` - gauge records: the Case method, signal
+  matching, the paper's Fig. 4 and 5;
+- :func:`batch` - a wind-farm campaign on dask (:class:`BatchResult`);
+- :func:`compute_anvil_modes`, :func:`build_fmus` - the anvil's modes, the system's FMUs;
 - :class:`InputError` - every bad input, one line naming the file, the key and the rule.
 
-Layers (DESIGN.md, enforced by import-linter): the physics packages ``anvilwave.anvil_rom``,
-``hammer``,
-``pile`` <- ``anvilwave.fmu`` (FMI units, FMU build, SSP, fmpy master) <- ``anvilwave`` (system
-files,
-engine, analyses, reports, plots, command line).
+Layers, bottom to top (enforced by import-linter): ``anvilwave.inputs`` <- ``anvil_rom``
+<- ``hammer`` | ``pile`` <- ``fmu`` <- ``config`` <- ``engine`` <- ``fea`` <- ``output``
+<- ``analyses`` <- ``api`` <- ``cli``.
 """
 
-from anvilwave.api import Blow, build_fmus, compute_anvil_modes, load_system, simulate
-from anvilwave.config.system import SystemConfig
+from anvilwave.api import (
+    BatchResult,
+    Blow,
+    ComparePdaResult,
+    DriveResult,
+    InstallResult,
+    MatchResult,
+    PdaResult,
+    SystemConfig,
+    batch,
+    build_fmus,
+    compare_anvils,
+    compare_pda,
+    compute_anvil_modes,
+    drive,
+    install,
+    load_system,
+    match,
+    pda,
+    simulate,
+)
 from anvilwave.inputs import InputError
 
-__all__ = ["Blow", "InputError", "SystemConfig", "build_fmus", "compute_anvil_modes",
-           "load_system", "simulate"]
+__all__ = ["BatchResult", "Blow", "ComparePdaResult", "DriveResult", "InputError",
+           "InstallResult", "MatchResult", "PdaResult", "SystemConfig", "batch", "build_fmus",
+           "compare_anvils", "compare_pda", "compute_anvil_modes", "drive", "install",
+           "load_system", "match", "pda", "simulate"]

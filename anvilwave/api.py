@@ -10,128 +10,160 @@ instead of a batch file around an executable::
         blow = anvilwave.simulate(system.with_fmax(fmax))[0]
         print(fmax, blow.summary["peak_anvil_pile_force [N]"])
 
-Results carry the names and units of the files the command line writes: ``Blow.columns`` are
-the columns of ``impact.csv`` (``"time [s]"``, ``"anvil_pile_force [N]"`` ...) and
-``Blow.summary`` the entries of ``summary.json``. All values are SI.
+Every analysis returns a documented result dataclass whose names and units are those of the
+files the command line writes (``write(...)`` writes them): :class:`Blow` (``impact``),
+:class:`DriveResult` (``drive``), :class:`InstallResult` (``install``), :class:`PdaResult`
+(``pda``), :class:`MatchResult` (``match``), :class:`ComparePdaResult` (``compare-pda``) and
+:class:`BatchResult` (``batch``). All values are SI.
 """
 
 from __future__ import annotations
 
-import tempfile
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
-import numpy as np
-
+from anvilwave.analyses import drive as _drive
+from anvilwave.analyses import install as _install
+from anvilwave.analyses.batch import BatchResult, run_campaign
+from anvilwave.analyses.drive import DriveResult
+from anvilwave.analyses.impact import Blow, build_fmus, compute_anvil_modes, simulate
+from anvilwave.analyses.install import InstallResult
+from anvilwave.analyses.pda import (
+    ComparePdaResult,
+    MatchResult,
+    PdaResult,
+    compare_pda,
+    match,
+    pda,
+)
 from anvilwave.config.system import SystemConfig
 from anvilwave.config.system import load_system as _load_system
 
-ENGINES = ("direct", "fmi")
-"""``"direct"``: the in-process engine; ``"fmi"``: the four FMUs through the fmpy master."""
-
-
-@dataclass
-class Blow:
-    """One simulated blow.
-
-    columns : time series ``{"name [unit]": array}`` (the columns of ``impact.csv``).
-    summary : the blow's ``summary.json`` entries (peaks [N], stresses [Pa], transferred
-        energy [J], permanent set [m], energy balance, wall time [s] ...).
-    energies : energy bookkeeping time series [J] (in-process engine only; empty otherwise).
-    """
-
-    columns: dict[str, np.ndarray]
-    summary: dict[str, Any]
-    energies: dict[str, np.ndarray] = field(default_factory=dict)
-
-    def __getitem__(self, name: str) -> np.ndarray:
-        return self.columns[name]
+__all__ = ["Blow", "BatchResult", "ComparePdaResult", "DriveResult", "InstallResult",
+           "MatchResult", "PdaResult", "SystemConfig", "batch", "build_fmus", "compare_anvils",
+           "compare_pda", "compute_anvil_modes", "drive", "install", "load_system", "match",
+           "pda", "simulate"]
 
 
 def load_system(path: str | Path) -> SystemConfig:
-    """Read and validate a system file (TOML; keys documented in :mod:`anvilwave.config.schema`).
+    """Read and validate a system file.
 
-    Raises :class:`anvilwave.InputError` (one line: file, key, rule) on bad input.
+    Parameters
+    ----------
+    path : str or Path
+        The system file (TOML; every key is documented in :mod:`anvilwave.config.schema`).
+
+    Returns
+    -------
+    SystemConfig
+
+    Raises
+    ------
+    anvilwave.InputError
+        One line naming the file, the key and the rule.
     """
     return _load_system(path)
 
 
-def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
-             anvil: str | None = None, modal_data=None, progress: bool = False) -> list[Blow]:
-    """Simulate the blows of a system (``[simulation] blows`` consecutive blows).
+def _system(system: SystemConfig | str | Path) -> SystemConfig:
+    return system if isinstance(system, SystemConfig) else _load_system(system)
+
+
+def drive(system: SystemConfig | str | Path, *, anvil: str | None = None,
+          bound: str | None = None, workers: int | None = None,
+          progress: bool = False) -> DriveResult:
+    """Driveability against the tip depth (``anvilwave drive``).
 
     Parameters
     ----------
-    system : a :class:`SystemConfig` (from :func:`load_system`) or the path of a system file.
-    engine : ``"direct"`` (in-process numba engine) or ``"fmi"`` (FMUs through fmpy; the
-        FMUs are built in a temporary folder).
-    anvil : override the anvil model: ``"rom"``, ``"lumped"``, ``"classic"`` or ``"none"``.
-    modal_data : precomputed modal data of the anvil (``ModalData`` or a ``modes.npz`` path),
-        to skip the eigenvalue problem.
-    progress : show a progress bar over the blows.
+    system : SystemConfig, str or Path
+        A system (or its file) with a ``[driveability]`` table.
+    anvil : str, optional
+        The anvil model instead of the system's (``"rom"``, ``"lumped"``, ``"classic"``,
+        ``"none"``).
+    bound : str, optional
+        The SRD bound (``"lower"``, ``"best"``, ``"upper"``) instead of the table's.
+    workers : int, optional
+        Processes over the depths (default: the machine's cores).
+    progress : bool
+        A progress bar.
+
+    Returns
+    -------
+    DriveResult
+        ``rows`` (the columns of driveability.csv), ``summary`` (summary.json) and the
+        ``time_series`` of the chosen depths.
     """
-    from anvilwave.output.tables import gauge_steel_area, summarise
-
-    cfg = system if isinstance(system, SystemConfig) else _load_system(system)
-    if anvil is not None:
-        cfg = cfg.with_anvil_model(anvil)
-    if engine not in ENGINES:
-        raise ValueError(f"engine must be one of {ENGINES}, got {engine!r}")
-    if engine == "fmi":
-        from anvilwave.engine.fmi import run_fmi
-
-        with tempfile.TemporaryDirectory(prefix="anvilwave-fmus-") as tmp:
-            results = run_fmi(cfg, tmp, anvil_model=modal_data, progress=None)
-    else:
-        from anvilwave.engine.direct import build_engine
-
-        modal = modal_data
-        if modal is not None and not hasattr(modal, "frequencies"):
-            from anvilwave.anvil_rom.fem.modalfile import load_modal_data
-
-            modal = load_modal_data(Path(modal))
-        results = build_engine(cfg, modal).run(progress=progress)
-    area = gauge_steel_area(cfg)
-    return [Blow(columns=r.columns, summary=summarise(r, cfg, engine, cfg.anvil.model, area),
-                 energies=getattr(r, "energies", None) or {})
-            for r in results]
+    return _drive.drive(_system(system), anvil=anvil, bound=bound, workers=workers,
+                        progress=progress)
 
 
-def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
-    """Free-free modes and the modal ROM data of an anvil (or any axisymmetric body).
+def compare_anvils(system: SystemConfig | str | Path, *, bound: str | None = None,
+                   workers: int | None = None, progress: bool = False
+                   ) -> dict[str, DriveResult]:
+    """Driveability with every anvil model the system has (``drive --compare-anvils``): the
+    Mode Displacement Method anvil, the rigid lumped anvil and the classic driving system.
 
-    anvil : an anvil file (TOML, see the README) or an ``AnvilSpec``.
-    fmax : frequency content [Hz] (default: the file's ``[modes] fmax``).
+    Parameters
+    ----------
+    system : SystemConfig, str or Path
+        A system (or its file) with a ``[driveability]`` table.
+    bound, workers, progress
+        As for :func:`drive`.
 
-    Returns an ``AnvilModes`` with ``.modes.frequencies`` [Hz] (rigid-body mode first),
-    ``.modal_data`` (the ROM's data; save it with :func:`save_modal_data`), ``.model`` (the
-    FE model: ``.total_mass()`` [kg], ``.n_dof``) and ``.wall_time`` [s].
+    Returns
+    -------
+    dict
+        ``{model: DriveResult}``.
     """
-    from anvilwave.anvil_rom.fem.geometry import AnvilSpec, load_anvil
-    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes as _compute
-
-    spec = anvil if isinstance(anvil, AnvilSpec) else load_anvil(anvil)
-    return _compute(spec, fmax=fmax)
+    return _drive.compare_anvils(_system(system), bound=bound, workers=workers,
+                                 progress=progress)
 
 
-def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
-               anvil: str | None = None, modal_data=None,
-               native_anvil: bool = True) -> dict[str, Any]:
-    """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
-    ``system.ssp`` of a system into ``out_dir`` (FMI 2.0 co-simulation).
+def install(system: SystemConfig | str | Path, *, anvil: str | None = None,
+            progress: bool = False) -> InstallResult:
+    """Blow-by-blow installation with residual stresses, fatigue and spectra
+    (``anvilwave install``).
 
-    native_anvil : the anvils in C (default; needs a C compiler), else with pythonfmu
-        (:func:`anvilwave.engine.fmus.build_system_fmus`).
+    Parameters
+    ----------
+    system : SystemConfig, str or Path
+        A system (or its file) with ``[driveability]`` (energy schedule, refusal) and
+        optionally ``[installation]``.
+    anvil : str, optional
+        The anvil model instead of the system's.
+    progress : bool
+        A progress bar.
 
-    Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
-    "ssp": path, "anvil": name of the system's anvil FMU, "parameters": {...},
-    "time_step": master step [s], "ssp_step": the step of system.ssp [s]}``.
+    Returns
+    -------
+    InstallResult
+        ``blows`` (blows.csv), ``fatigue`` (fatigue.csv), ``spectra`` (spectra.csv) and
+        ``summary`` (summary.json).
     """
-    from anvilwave.engine.fmus import build_system_fmus
+    return _install.install(_system(system), anvil=anvil, progress=progress)
 
-    cfg = system if isinstance(system, SystemConfig) else _load_system(system)
-    if anvil is not None:
-        cfg = cfg.with_anvil_model(anvil)
-    Path(out_dir).mkdir(parents=True, exist_ok=True)
-    return build_system_fmus(cfg, out_dir, modal_data, native_anvil=native_anvil)
+
+def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = None,
+          scheduler=None, progress: bool = False) -> BatchResult:
+    """A campaign: the driveability of many foundation positions, hammers and anvils on dask
+    (``anvilwave batch``). Resumable: cases finished in ``out_dir`` are not run again.
+
+    Parameters
+    ----------
+    campaign : str or Path
+        The campaign file (TOML).
+    out_dir : str or Path
+        The campaign folder (``cases/<case>/``, ``campaign.csv``, ``plots/``).
+    workers : int, optional
+        Worker processes of a local dask cluster (default: the machine's cores).
+    scheduler : optional
+        A running dask scheduler (address, cluster object or client) instead.
+    progress : bool
+        A progress bar over the cases.
+
+    Returns
+    -------
+    BatchResult
+    """
+    return run_campaign(campaign, out_dir, workers=workers, scheduler=scheduler,
+                        progress=progress)

@@ -9,16 +9,43 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave import api
+from anvilwave.analyses.compare import (
+    ModelRun,
+    band_levels,
+    compare,
+    comparison_bandwidth,
+    fea_config,
+    metrics,
+    plot_comparison,
+    plot_spectra,
+    run_models,
+    without_soil,
+)
+from anvilwave.analyses.drive import (
+    available_anvil_models,
+    drive_bearing_graph,
+    write_anvil_comparison,
+)
+from anvilwave.analyses.impact import write_blows
+from anvilwave.anvil_rom.fem.calculix import write_ccx_deck_from_mesh
+from anvilwave.anvil_rom.fem.geometry import load_anvil
+from anvilwave.anvil_rom.fem.modalfile import save_modal_data
+from anvilwave.anvil_rom.fem.modes import ModeSolveError
+from anvilwave.anvil_rom.fem.pipeline import anvil_modes_from_calculix, compute_anvil_modes
+from anvilwave.config.cache import cache_info, clear_cache
+from anvilwave.config.schema import describe
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.engine.fmus import build_system_fmus
+from anvilwave.fea.impact import run_impact_fea
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import gauge_steel_area
+from anvilwave.output.plots import plot_columns, plot_modes
+from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter
 
 
 def _modes(args: argparse.Namespace) -> int:
-    from anvilwave.anvil_rom.fem.geometry import load_anvil
-    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
-    from anvilwave.anvil_rom.fem.pipeline import anvil_modes_from_calculix, compute_anvil_modes
-    from anvilwave.output.plots import plot_modes
 
     spec = load_anvil(args.anvil)
     if args.mesh_size is not None:
@@ -54,7 +81,6 @@ def _modes(args: argparse.Namespace) -> int:
         out.part("modes.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_modes(result, out.part("modes.png"))
         if args.export_ccx is not None:
-            from anvilwave.anvil_rom.fem.calculix import write_ccx_deck_from_mesh
 
             write_ccx_deck_from_mesh(args.export_ccx, result.mesh, spec.material,
                                      result.modes.n_modes, title=spec.name)
@@ -64,44 +90,13 @@ def _modes(args: argparse.Namespace) -> int:
 
 
 def _impact(args: argparse.Namespace) -> int:
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
-    from anvilwave.output.plots import plot_impact_blows
-    from anvilwave.output.tables import summarise, write_csv
-
     cfg = load_system(args.system)
-    if args.anvil is not None:
-        cfg = cfg.with_anvil_model(args.anvil)
-    model = cfg.anvil.model
-    if args.engine == "fmi":
-        import tempfile
-
-        from anvilwave.engine.fmi import run_fmi
-
-        if model not in ("rom", "lumped"):
-            raise InputError(str(args.system), "anvil.model",
-                             f"the FMI engine has the 'rom' and 'lumped' anvil units, not "
-                             f"{model!r}: use --engine direct")
-        with tempfile.TemporaryDirectory(prefix="anvilwave-fmus-") as tmp:
-            blows = run_fmi(cfg, tmp, progress=None)
-    else:
-        engine = build_engine(cfg)
-        blows = engine.run(progress=True)
-    gauge_area = gauge_steel_area(cfg)
+    blows = api.simulate(cfg, engine=args.engine, anvil=args.anvil, progress=True)
+    model = blows[0].summary["anvil_model"]
     with ResultWriter(args.out) as out:
-        summaries = []
-        for i, blow in enumerate(blows):
-            name = "impact.csv" if len(blows) == 1 else f"impact_blow{i + 1}.csv"
-            write_csv(blow.columns, out.part(name))
-            summaries.append(summarise(blow, cfg, args.engine, model, gauge_area))
-        summary = dict(summaries[0])
-        summary["system"] = str(args.system)
-        if len(blows) > 1:
-            summary["blows"] = summaries
-        out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-        plot_impact_blows(blows, out.part("impact.png"),
-                          title=f"{Path(args.system).name}: {model} anvil, {args.engine} engine")
-    s = summaries[0]
+        write_blows(blows, out, system=str(args.system),
+                    title=f"{Path(args.system).name}: {model} anvil, {args.engine} engine")
+    s = blows[0].summary
     print(f"{Path(args.system).name} [{model}, {args.engine}]: peak ram-anvil "
           f"{s['peak_ram_anvil_force [N]'] / 1e6:.1f} MN, anvil-pile "
           f"{s['peak_anvil_pile_force [N]'] / 1e6:.1f} MN; "
@@ -111,14 +106,9 @@ def _impact(args: argparse.Namespace) -> int:
 
 
 def _build_fmus(args: argparse.Namespace) -> int:
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.fmus import build_system_fmus
-
-    cfg = load_system(args.system)
-    if args.anvil is not None:
-        cfg = cfg.with_anvil_model(args.anvil)
     with ResultWriter(args.out) as out:
-        built = build_system_fmus(cfg, out.staging, native_anvil=not args.python_anvil)
+        built = api.build_fmus(args.system, out.staging, anvil=args.anvil,
+                               native_anvil=not args.python_anvil)
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
     print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}; system.ssp uses "
@@ -129,11 +119,6 @@ def _build_fmus(args: argparse.Namespace) -> int:
 
 
 def _fea(args: argparse.Namespace) -> int:
-    from anvilwave.analyses.compare import fea_config, without_soil
-    from anvilwave.config.system import load_system
-    from anvilwave.fea.impact import run_impact_fea
-    from anvilwave.output.plots import plot_columns
-    from anvilwave.output.tables import write_csv
 
     cfg = without_soil(load_system(args.system))
     config = fea_config(cfg, mesh_size=args.mesh_size, truncate_length=args.truncate)
@@ -164,7 +149,6 @@ def _fea(args: argparse.Namespace) -> int:
 
 
 def _compare(args: argparse.Namespace) -> int:
-    from anvilwave.config.system import load_system
 
     cfg = load_system(args.system)
     with ResultWriter(args.out) as out:
@@ -175,14 +159,6 @@ def _compare(args: argparse.Namespace) -> int:
 
 def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> tuple[dict, dict]:
     """The comparison output of ``cfg`` into ``out``; returns (comparison, the runs)."""
-    from anvilwave.analyses.compare import (
-        compare,
-        comparison_bandwidth,
-        plot_comparison,
-        plot_spectra,
-        run_models,
-    )
-    from anvilwave.output.tables import write_csv
 
     with _progress("FEA") as progress:
         runs = run_models(cfg, out.staging, rom_engine=rom_engine, fea_mesh_size=fea_mesh_size,
@@ -213,16 +189,6 @@ def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> d
     head, ram annuli; the in-process engine) against the FEA and the lumped anvil of ``runs``
     (the same free pile): ``interfaces/`` with its series, comparison and band-level figure;
     returns its figures against the FEA for the summary."""
-    from anvilwave.analyses.compare import (
-        ModelRun,
-        band_levels,
-        metrics,
-        plot_spectra,
-        without_soil,
-    )
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
-    from anvilwave.output.tables import write_csv
 
     cfg = without_soil(load_system(system))
     blow = build_engine(cfg).run()[0]
@@ -298,10 +264,6 @@ def _demo(args: argparse.Namespace) -> int:
     """The Table 1 comparison end to end (the README's main job)."""
     import time
 
-    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
-    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
-    from anvilwave.config.system import load_system
-    from anvilwave.output.plots import plot_modes
 
     start = time.perf_counter()
     system = Path(__file__).resolve().parents[1] / "examples" / "table1.toml"
@@ -332,7 +294,6 @@ def _demo(args: argparse.Namespace) -> int:
         else:
             print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
-        from anvilwave.engine.fmus import build_system_fmus
 
         fmus = build_system_fmus(cfg, out.staging / "fmus")
         print("    " + ", ".join(Path(fmus[k]).name
@@ -593,113 +554,53 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _drive(args: argparse.Namespace) -> int:
-    from dataclasses import replace
-
-    from anvilwave.analyses import drive as dv
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
-    from anvilwave.output.tables import write_csv
-
     cfg = load_system(args.system)
-    if cfg.drive is None:
-        raise InputError(str(args.system), "driveability", "the drive analysis needs a "
-                                                           "[driveability] table")
-    settings = cfg.drive
-    if args.bound is not None:
-        settings = replace(settings, bound=args.bound)
-    srd = cfg.srd if cfg.srd is not None else dv.load_srd_source(None, cfg.source,
-                                                                 cfg.pile_soil)
-    models = [args.anvil] if args.anvil else [cfg.anvil.model]
-    if args.compare_anvils:
-        models = [m for m in ("rom", "lumped", "classic")
-                  if m == cfg.anvil.model or (m in ("rom", "lumped") and cfg.anvil.spec)
-                  or (m == "classic" and cfg.anvil.classic is not None)]
-    results = {}
-    with ResultWriter(args.out) as out:
-        for k, model in enumerate(models):
-            run_cfg = cfg.with_anvil_model(model)
-            engine = build_engine(run_cfg)
-            if args.bearing_graph is not None:
-                rows = dv.bearing_graph(engine, run_cfg, srd, settings, args.bearing_graph)
-                cols = {n: np.array([r[n] for r in rows], dtype=float) for n in dv.COLUMNS}
-                write_csv(cols, out.part(f"bearing_graph_{model}.csv"))
-                for r in rows:
-                    print(f"{model:7s} Rut {r['srd [N]'] / 1e6:8.2f} MN: "
+    name = Path(args.system).name
+    if args.bearing_graph is not None:
+        models = list(available_anvil_models(cfg)) if args.compare_anvils else [args.anvil]
+        with ResultWriter(args.out) as out:
+            for model in models:
+                graph = drive_bearing_graph(cfg, args.bearing_graph, anvil=model,
+                                            bound=args.bound)
+                write_csv(graph.columns(), out.part(f"bearing_graph_{graph.model}.csv"))
+                for r in graph.rows:
+                    print(f"{graph.model:7s} Rut {r['srd [N]'] / 1e6:8.2f} MN: "
                           f"{r['blows_per_0.25m [-]']:8.1f} blows/0.25 m")
-                continue
-            result = dv.run_driveability(run_cfg, srd, settings, engine, workers=args.workers,
-                                         progress=True)
-            prefix = "" if k == 0 else f"{model}/"
-            dv.write_results(result, _Prefixed(out, prefix), run_cfg, settings,
-                             title=f"{Path(args.system).name}: {model} anvil, "
-                                   f"{settings.bound} SRD")
-            for depth in settings.time_series_depths:
-                blow = dv.time_series(engine, run_cfg, srd, settings, float(depth))
-                if blow is None:  # the SRD there does not carry the weight: no blow
-                    print(f"{model:7s} no blow at {float(depth):g} m (the pile runs under its "
-                          "own weight there): no time series")
-                    continue
-                write_csv(blow.columns, out.part(f"{prefix}blow_{float(depth):g}m.csv"))
-            results[model] = result
-            s = result["summary"]
-            refusal = s["refusal_depth [m]"]
-            print(f"{model:7s} total blows {s['total_blows [-]']:8.0f}, driving time "
-                  f"{s['driving_time [s]'] / 3600:6.2f} h, refusal "
-                  f"{'none' if refusal is None else f'{refusal:g} m'}, max compression "
-                  f"{s['max_compression_stress [Pa]'] / 1e6:6.1f} MPa, max tension "
-                  f"{s['max_tension_stress [Pa]'] / 1e6:6.1f} MPa; {s['depths_analysed [-]']} "
-                  f"depths in {s['wall_time [s]']:.1f} s")
-        if len(results) > 1:
-            from anvilwave.output.plots import plot_driveability
-
-            cols = {m: {n: np.array([r[n] for r in res["rows"]], dtype=float)
-                        for n in dv.COLUMNS} for m, res in results.items()}
-            first = next(iter(results))
-            plot_driveability(cols[first], results[first]["summary"],
-                              out.part("driveability_anvils.png"),
-                              title=f"{Path(args.system).name}: anvil models",
-                              others={m: c for m, c in cols.items() if m != first})
-            comparison = {m: res["summary"] for m, res in results.items()}
-            out.part("anvil_comparison.json").write_text(
-                json.dumps(dv._jsonable(comparison), indent=2) + "\n")
+        print(f"-> {args.out}")
+        return 0
+    if args.compare_anvils:
+        results = api.compare_anvils(cfg, bound=args.bound, workers=args.workers,
+                                     progress=True)
+    else:
+        result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
+                           progress=True)
+        results = {result.model: result}
+    with ResultWriter(args.out) as out:
+        write_anvil_comparison(results, out, title=name)
+    for model, result in results.items():
+        for depth, blow in result.time_series.items():
+            if blow is None:
+                print(f"{model:7s} no blow at {depth:g} m (the pile runs under its own weight "
+                      "there): no time series")
+        s = result.summary
+        refusal = s["refusal_depth [m]"]
+        print(f"{model:7s} total blows {s['total_blows [-]']:8.0f}, driving time "
+              f"{s['driving_time [s]'] / 3600:6.2f} h, refusal "
+              f"{'none' if refusal is None else f'{refusal:g} m'}, max compression "
+              f"{s['max_compression_stress [Pa]'] / 1e6:6.1f} MPa, max tension "
+              f"{s['max_tension_stress [Pa]'] / 1e6:6.1f} MPa; {s['depths_analysed [-]']} "
+              f"depths in {s['wall_time [s]']:.1f} s")
     print(f"-> {args.out}")
     return 0
 
 
-class _Prefixed:
-    """A ResultWriter view that puts every part under a sub-folder."""
-
-    def __init__(self, out, prefix: str):
-        self.out, self.prefix = out, prefix
-
-    def part(self, name: str):
-        return self.out.part(self.prefix + name)
-
-
 def _install(args: argparse.Namespace) -> int:
-    from anvilwave.analyses import drive as dv
-    from anvilwave.analyses import install as ins
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
-
-    cfg = load_system(args.system)
-    if args.anvil is not None:
-        cfg = cfg.with_anvil_model(args.anvil)
-    if cfg.drive is None:
-        raise InputError(str(args.system), "driveability", "the installation takes its energy "
-                                                           "schedule and refusal from a "
-                                                           "[driveability] table")
-    srd = cfg.srd if cfg.srd is not None else dv.load_srd_source(None, cfg.source,
-                                                                 cfg.pile_soil)
-    settings = cfg.install if cfg.install is not None else ins.InstallSettings()
-    engine = build_engine(cfg)
-    result = ins.run_installation(cfg, srd, cfg.drive, settings, engine, progress=True)
-    result["summary"]["system"] = str(args.system)
+    result = api.install(args.system, anvil=args.anvil, progress=True)
+    model = result.summary["anvil_model"]
     with ResultWriter(args.out) as out:
-        ins.write_results(result, out, title=f"{Path(args.system).name}: installation, "
-                                             f"{cfg.anvil.model} anvil")
-    s = result["summary"]
-    print(f"{Path(args.system).name} [{cfg.anvil.model}]: {s['total_blows [-]']} blows from "
+        result.write(out, title=f"{Path(args.system).name}: installation, {model} anvil")
+    s = result.summary
+    print(f"{Path(args.system).name} [{model}]: {s['total_blows [-]']} blows from "
           f"{s['start_depth [m]']:.1f} to {s['final_depth [m]']:.2f} m ({s['stopped_by']}), "
           f"driving time {s['driving_time [s]'] / 3600:.2f} h, max damage "
           f"{s['max_damage [-]']:.3g} at {s['max_damage_depth_below_head [m]']:.1f} m below "
@@ -709,36 +610,34 @@ def _install(args: argparse.Namespace) -> int:
 
 
 def _batch(args: argparse.Namespace) -> int:
-    from anvilwave.analyses.batch import run_campaign
-
     if args.workers is not None and args.scheduler is not None:
         raise InputError("--workers", "", "give --workers (a local cluster) or --scheduler (a "
                                           "running one), not both")
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
-    r = run_campaign(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler,
-                     progress=True)
-    print(f"{r['cases']} cases: {r['ok']} ok, {r['error']} failed, {r['pending']} pending "
-          f"({r['ran']} run, {r['skipped']} finished before) on {r['workers']} workers in "
-          f"{r['wall_time [s]']:.1f} s -> {r['campaign_csv']}")
-    return 0 if r["error"] == 0 and r["pending"] == 0 else 1
+    r = api.batch(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler,
+                  progress=True)
+    print(f"{r.cases} cases: {r.ok} ok, {r.error} failed, {r.pending} pending ({r.ran} run, "
+          f"{r.skipped} finished before) on {r.workers} workers in {r.wall_time:.1f} s -> "
+          f"{r.campaign_csv}")
+    return 0 if r.error == 0 and r.pending == 0 else 1
 
 
 def _pda(args: argparse.Namespace) -> int:
-    from anvilwave.analyses.pda import run_pda
-
-    s = run_pda(args.record, args.out, length=args.length, area=args.area,
-                elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed, jc=args.jc)
-    print("  ".join(f"{k} {_si(v)}" for k, v in s.items() if isinstance(v, float | int)))
+    result = api.pda(args.record, length=args.length, area=args.area,
+                     elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed,
+                     jc=args.jc)
+    result.write(args.out)
+    print("  ".join(f"{k} {_si(v)}" for k, v in result.summary.items()
+                    if isinstance(v, float | int)))
     print(f"-> {args.out}")
     return 0
 
 
 def _match(args: argparse.Namespace) -> int:
-    from anvilwave.analyses.pda import run_match
-
-    s = run_match(args.record, args.system, args.out, shaft_zones=args.zones,
-                  imposed=args.imposed)
+    result = api.match(args.record, args.system, shaft_zones=args.zones, imposed=args.imposed)
+    result.write(args.out)
+    s = result.content
     print(f"Rut {s['rut [N]'] / 1e6:.2f} MN (shaft {s['rut_shaft [N]'] / 1e6:.2f} MN, toe "
           f"{s['rut_toe [N]'] / 1e6:.2f} MN), match quality {s['match_quality [-]']:.3f} "
           f"-> {args.out}")
@@ -746,9 +645,7 @@ def _match(args: argparse.Namespace) -> int:
 
 
 def _compare_pda(args: argparse.Namespace) -> int:
-    from anvilwave.analyses.pda import run_compare_pda
-
-    run_compare_pda(args.record, args.system, args.out)
+    api.compare_pda(args.record, args.system).write(args.out)
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
     return 0
 
@@ -758,7 +655,6 @@ def _si(value) -> str:
 
 
 def _cache(args: argparse.Namespace) -> int:
-    from anvilwave.config.cache import cache_info, clear_cache
 
     if args.action == "clear":
         count, size = clear_cache()
@@ -788,19 +684,14 @@ def _entries(count: int) -> str:
 
 
 def _schema(args: argparse.Namespace) -> int:
-    from anvilwave.config.schema import describe
 
     print(describe(args.kind))
     return 0
 
 
 def _user_error(exc: Exception) -> bool:
-    """An input error, or a modal analysis that cannot be solved (its module is only loaded,
-    and so only checked, when modes were computed: the command line imports it lazily)."""
-    if isinstance(exc, InputError):
-        return True
-    modes = sys.modules.get("anvil_rom.modes")
-    return modes is not None and isinstance(exc, modes.ModeSolveError)
+    """An input error, or a modal analysis that cannot be solved."""
+    return isinstance(exc, InputError | ModeSolveError)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -67,8 +67,8 @@ def measure(campaign_path: Path, scratch: Path, workers: int, k: int) -> dict:
         rss[s["worker_pid"]] = max(rss.get(s["worker_pid"], 0.0), s["worker_max_rss [B]"])
     case_time = [s["wall_time [s]"] for s in summaries]
     shutil.rmtree(out, ignore_errors=True)
-    return {"workers": workers, "wall [s]": result["wall_time [s]"], "ok": result["ok"],
-            "cases": result["cases"], "case wall [s]": case_time, "rss [B]": rss,
+    return {"workers": workers, "wall [s]": result.wall_time, "ok": result.ok,
+            "cases": result.cases, "case wall [s]": case_time, "rss [B]": rss,
             "load": load}
 
 

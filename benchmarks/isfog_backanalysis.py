@@ -279,13 +279,8 @@ def simulate_pile(job: tuple) -> dict:
     [s/m] and ``run_multiplier`` [-], the SRD multiplier at and below which the pile runs
     under its weight (the SRD scales with the multiplier, so the threshold is exact).
     """
-    from anvilwave.analyses.drive import (
-        SrdSource,
-        blow_count,
-        driving_weight,
-        pile_soil_at,
-        set_of_blow,
-    )
+    from anvilwave.analyses.drive import blow_count, driving_weight, set_of_blow
+    from anvilwave.config.drive import SrdSource, pile_soil_at
     from anvilwave.config.system import load_system
     from anvilwave.engine.direct import build_engine
     from anvilwave.pile.soil.profile import AlmHamre2001

@@ -36,8 +36,8 @@ from pathlib import Path
 import numpy as np
 
 import anvilwave
+from anvilwave.analyses.impact import gauge_steel_area
 from anvilwave.analyses.pda import load_record
-from anvilwave.output.tables import gauge_steel_area
 
 HERE = Path(__file__).resolve().parent
 SYSTEM = HERE / "table1.toml"

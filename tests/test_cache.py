@@ -11,7 +11,8 @@ import pytest
 
 import anvilwave.anvil_rom.fem.pipeline as pipeline
 import anvilwave.config.cache as cache
-from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces, solid_mass
+from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces
+from anvilwave.anvil_rom.fem.pipeline import solid_mass
 from anvilwave.cli import main
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine

@@ -155,8 +155,8 @@ def _names_of(out: Path) -> list[str]:
 def test_campaign_completes_with_every_case_exactly_once(finished):
     path, out, result = finished
     cases = [c.name for c in load_campaign(path).cases]
-    assert len(cases) == 6 and result["workers"] == 2
-    assert result["ok"] == 6 and result["error"] == 0 and result["ran"] == 6
+    assert len(cases) == 6 and result.workers == 2
+    assert result.ok == 6 and result.error == 0 and result.ran == 6
     rows = read_campaign_csv(out / "campaign.csv")
     assert [r["case"] for r in rows] == cases  # each once, in the campaign's order
     header = list(rows[0])
@@ -165,7 +165,7 @@ def test_campaign_completes_with_every_case_exactly_once(finished):
                       "max_compression_stress [Pa]", "max_tension_stress [Pa]",
                       "driving_time [s]", "wall_time [s]", "error"]
     for r in rows:
-        assert r["status"] == "ok" and r["error"] == ""
+        assert r["status"] == "ok" and r.error == ""
         assert r["total_blows [-]"] > 0 and r["max_blow_count [1/m]"] > 0
         assert r["max_compression_stress [Pa]"] > 0 >= r["max_tension_stress [Pa]"]
         folder = out / "cases" / r["case"]
@@ -197,8 +197,8 @@ def test_rerun_does_nothing_new(finished):
     stamps = {p: p.stat().st_mtime_ns for p in (out / "cases").rglob("*")}
     before = (out / "campaign.csv").read_text()
     result = run_campaign(path, out, progress=False, plots=False)
-    assert result["ran"] == 0 and result["skipped"] == 6 and result["ok"] == 6
-    assert result["workers"] == 0  # no cluster started
+    assert result.ran == 0 and result.skipped == 6 and result.ok == 6
+    assert result.workers == 0  # no cluster started
     assert {p: p.stat().st_mtime_ns for p in (out / "cases").rglob("*")} == stamps
     assert (out / "campaign.csv").read_text() == before
 
@@ -210,12 +210,12 @@ def test_a_changed_case_runs_again_alone(tmp_path, cluster):
     write_campaign(tmp_path, positions=(("P1", 8.0), ("P2", 7.0)), bounds=("best",))
     result = run_campaign(path, out, scheduler=cluster.scheduler_address, progress=False,
                           plots=False)
-    assert result["ran"] == 1 and result["skipped"] == 1 and result["ok"] == 2
+    assert result.ran == 1 and result.skipped == 1 and result.ok == 2
     path.write_text(path.read_text().replace("target_penetration = 7.0",
                                              "target_penetration = 6.0"))
     result = run_campaign(path, out, scheduler=cluster.scheduler_address, progress=False,
                           plots=False)
-    assert result["ran"] == 1 and result["skipped"] == 1
+    assert result.ran == 1 and result.skipped == 1
     rows = read_campaign_csv(out / "campaign.csv")
     assert [r["case"] for r in rows] == ["P1_best_illustrative_s2_lumped",
                                          "P2_best_illustrative_s2_lumped"]
@@ -261,7 +261,7 @@ def test_a_worker_killed_mid_case_still_gives_a_complete_campaign(tmp_path, clus
     assert killed is not None, "no case was caught running"
     assert not runner.is_alive()
     assert killed[1] not in alive  # that worker process is gone (its nanny started another)
-    assert result["ok"] == len(names) and result["error"] == 0
+    assert result.ok == len(names) and result.error == 0
     assert _names_of(out) == names  # complete, every case once
     summary = json.loads((out / "cases" / killed[0] / "summary.json").read_text())
     assert summary["worker_pid"] != killed[1]  # the killed case ran again elsewhere
@@ -275,7 +275,7 @@ def test_a_bad_case_is_recorded_with_its_error_while_the_others_succeed(tmp_path
     out = tmp_path / "out"
     result = run_campaign(path, out, scheduler=cluster.scheduler_address, progress=False,
                           plots=True)
-    assert result["ok"] == 1 and result["error"] == 2
+    assert result.ok == 1 and result.error == 2
     rows = {r["position"]: r for r in read_campaign_csv(out / "campaign.csv")}
     assert rows["P1"]["status"] == "ok" and rows["P1"]["total_blows [-]"] > 0
     # a position whose CPT file is missing: found before the run, named with its file
@@ -293,8 +293,8 @@ def test_a_bad_case_is_recorded_with_its_error_while_the_others_succeed(tmp_path
     (tmp_path / "missing_cpt.csv").write_text((tmp_path / "cpt_good.csv").read_text())
     result = run_campaign(path, out, scheduler=cluster.scheduler_address, progress=False,
                           plots=False)
-    assert result["ran"] == 2 and result["skipped"] == 1
-    assert result["ok"] == 2 and result["error"] == 1
+    assert result.ran == 2 and result.skipped == 1
+    assert result.ok == 2 and result.error == 1
 
 
 # ----------------------------------------------------------------------------- the file

@@ -9,13 +9,14 @@ import math
 import numpy as np
 import pytest
 
+from anvilwave.analyses.impact import energy_balance, total_energy
 from anvilwave.cli import main
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.hammer.database import load_hammer
 from anvilwave.hammer.ram import RamRod
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import energy_balance, read_csv, total_energy
+from anvilwave.output.tables import read_csv
 from anvilwave.pile.model import PileSoil
 
 from .conftest import EXAMPLES

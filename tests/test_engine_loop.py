@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import anvilwave.engine.direct as engine_module
+from anvilwave.analyses.impact import energy_balance
 from anvilwave.anvil_rom.contact import contact_force
 from anvilwave.anvil_rom.unit import AnvilUnit
 from anvilwave.config.system import load_system
@@ -18,7 +19,7 @@ from anvilwave.engine.direct import COLUMNS, ENERGY_COLUMNS, ENERGY_STEPS, PileS
 from anvilwave.hammer.driving_system import driving_system_forces, driving_system_step
 from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_chain
 from anvilwave.hammer.ram import leapfrog_energies, ram_step
-from anvilwave.output.tables import energy_balance, transferred_energy
+from anvilwave.output.tables import transferred_energy
 from anvilwave.pile.kernels import (
     gauge_force,
     gauge_velocity,

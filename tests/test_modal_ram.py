@@ -17,6 +17,7 @@ from anvilwave.analyses.compare import (
     metrics,
     without_soil,
 )
+from anvilwave.analyses.impact import energy_balance
 from anvilwave.anvil_rom.chain import chain_from_modes, chain_modes
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
@@ -33,7 +34,6 @@ from anvilwave.hammer.modal_ram import (
 )
 from anvilwave.hammer.ram import RamRod
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import energy_balance
 
 from .conftest import EXAMPLES
 

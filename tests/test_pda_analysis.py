@@ -12,14 +12,9 @@ import numpy as np
 import pytest
 
 import anvilwave
+from anvilwave.analyses.impact import pda_summary
 from anvilwave.analyses.match import rest_force_at_gauges
-from anvilwave.analyses.pda import (
-    STEEL_WAVE_SPEED,
-    load_record,
-    pda_summary,
-    run_compare_pda,
-    run_pda,
-)
+from anvilwave.analyses.pda import STEEL_WAVE_SPEED, load_record, run_compare_pda, run_pda
 from tests.conftest import EXAMPLES
 
 RECORD = EXAMPLES / "pda_record_synthetic.csv"

@@ -15,6 +15,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from anvilwave.analyses.compare import ModelRun, band_levels, fea_config, metrics, without_soil
+from anvilwave.analyses.impact import total_energy
 from anvilwave.anvil_rom.fem.modalfile import ModalData
 from anvilwave.anvil_rom.rings import RamFace, ram_face_advance
 from anvilwave.config.cache import cached_modal_data
@@ -22,7 +23,6 @@ from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_modes
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import total_energy
 
 from .conftest import assert_within_issue_bounds
 from .study_loop import loop_on_feas_pile

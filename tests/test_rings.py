@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 
 from anvilwave.analyses.compare import without_soil
+from anvilwave.analyses.impact import total_energy
 from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data
 from anvilwave.anvil_rom.rings import contact_lcp, ring_static_rest
 from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import total_energy
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from anvilwave.analyses.compare import ModelRun, band_levels, fea_config, without_soil
+from anvilwave.analyses.impact import total_energy
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
-from anvilwave.output.tables import total_energy
 from anvilwave.pile.head_kernel import rod_head_response
 from anvilwave.pile.kernels import HEAD_EXTRAPOLATION, stable_time_step
 from anvilwave.pile.model import substeps

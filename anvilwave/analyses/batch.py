@@ -111,7 +111,16 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.analyses.drive import COLUMNS, run_driveability
+from anvilwave.config.drive import load_srd_source
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import anvil_modal_data
+from anvilwave.hammer.database import available_hammers, load_hammer
 from anvilwave.inputs import InputError, Table, read_toml, toml_dumps
+from anvilwave.output.campaign_plots import plot_campaign
+from anvilwave.output.plots import plot_driveability
+from anvilwave.output.tables import write_csv
+from anvilwave.pile.model import PileSoil
 
 ALLOWED_FAILURES = 3
 """Worker deaths a case survives on the LocalCluster before it is recorded as failed."""
@@ -257,7 +266,6 @@ class Campaign:
 
 def load_campaign(path: str | Path) -> Campaign:
     """Read and check a campaign file (module docstring) and compose its cases."""
-    from anvilwave.config.system import load_system
 
     path = Path(path)
     root = Table.from_file(path)
@@ -354,7 +362,6 @@ def _schedule_rows(table: Table, key: str, source_rule: str) -> np.ndarray | Non
 
 
 def _hammers(axes: Table, base: dict, base_cfg, source: str) -> list[HammerEntry]:
-    from anvilwave.hammer.database import available_hammers, load_hammer
 
     if not axes.has("hammers"):
         table = base["hammer"]
@@ -510,8 +517,6 @@ def _check_position(t: Table, target: float, pile: dict, soil: dict, srd: dict,
                     srd_source: str, prefix: str, base: dict) -> None:
     """Pile, soil and SRD of a position through the system file's own readers (which also
     read its CPT file)."""
-    from anvilwave.analyses.drive import load_srd_source
-    from anvilwave.pile.model import PileSoil
 
     pile_soil = PileSoil.from_tables(Table(pile, t.source, t.key("pile")),
                                      Table(soil, t.source, t.key("soil")),
@@ -606,8 +611,6 @@ def run_case(spec: dict) -> dict:
     system = folder / "system.toml"
     _write_atomic(system, spec["system_text"])
     try:
-        from anvilwave.analyses.drive import run_driveability
-        from anvilwave.config.system import load_system
 
         cfg = load_system(system)
         result = run_driveability(cfg, cfg.srd, cfg.drive, None, workers=1)
@@ -663,8 +666,6 @@ def _write_case(folder: Path, result: dict, summary: dict, cfg, spec: dict,
                 start: float) -> None:
     """driveability.csv (and .png), then summary.json atomically and last (with the case's
     wall time since ``start`` [s] (perf_counter) and its worker's peak memory)."""
-    from anvilwave.analyses.drive import COLUMNS
-    from anvilwave.output.tables import write_csv
 
     staging = Path(tempfile.mkdtemp(prefix=".partial-", dir=folder))
     try:
@@ -672,7 +673,6 @@ def _write_case(folder: Path, result: dict, summary: dict, cfg, spec: dict,
         columns = {n: np.array([r[n] for r in rows], dtype=float) for n in COLUMNS}
         write_csv(columns, staging / "driveability.csv")
         if spec.get("plots", True):
-            from anvilwave.output.plots import plot_driveability
 
             plot_driveability(columns, summary, staging / "driveability.png",
                               title=f"case {spec['name']}: {cfg.anvil.model} anvil, "
@@ -737,8 +737,42 @@ def _jsonable(x):
 
 
 # ----------------------------------------------------------------------------- campaign
+@dataclass
+class BatchResult:
+    """A campaign run (``anvilwave batch``).
+
+    Attributes
+    ----------
+    cases : int
+        Cases of the campaign [-].
+    ran, skipped : int
+        Cases run now, and cases finished in the folder before (not run again) [-].
+    ok, error, pending : int
+        Cases by status in ``campaign.csv`` [-].
+    workers : int
+        Dask workers used (0: nothing to run) [-].
+    wall_time : float
+        [s].
+    campaign_csv : str
+        The campaign table (one row per case: its axes, status, summary and timings).
+    rows : list of dict
+        Its rows.
+    """
+
+    cases: int
+    ran: int
+    skipped: int
+    ok: int
+    error: int
+    pending: int
+    workers: int
+    wall_time: float
+    campaign_csv: str
+    rows: list[dict]
+
+
 def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int | None = None,
-                 scheduler=None, progress: bool = True, plots: bool = True) -> dict:
+                 scheduler=None, progress: bool = True, plots: bool = True) -> BatchResult:
     """Run every case of a campaign not finished yet in ``out_dir`` (module docstring).
 
     campaign_path : the campaign file (TOML).
@@ -750,8 +784,7 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
     progress : a progress bar over the cases (stderr).
     plots : each case's driveability.png and the campaign plots.
 
-    Returns ``{"cases", "ran", "skipped", "ok", "error", "pending", "workers", "wall_time
-    [s]", "campaign_csv", "rows"}``.
+    Returns a :class:`BatchResult`.
     """
     start = time.perf_counter()
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
@@ -793,14 +826,15 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
         rows = collect(campaign, out)
         _write_atomic(out / "campaign.csv", campaign_csv_text(campaign, rows))
     if plots:
-        from anvilwave.output.campaign_plots import plot_campaign
 
         plot_campaign(campaign, rows, out)
     counts = {s: sum(r["status"] == s for r in rows)
               for s in (STATUS_OK, STATUS_ERROR, STATUS_PENDING)}
-    return {"cases": len(campaign.cases), "ran": len(runnable), "skipped": len(finished),
-            **counts, "workers": n_workers, "wall_time [s]": time.perf_counter() - start,
-            "campaign_csv": str(out / "campaign.csv"), "rows": rows}
+    return BatchResult(cases=len(campaign.cases), ran=len(runnable), skipped=len(finished),
+                       ok=counts[STATUS_OK], error=counts[STATUS_ERROR],
+                       pending=counts[STATUS_PENDING], workers=n_workers,
+                       wall_time=time.perf_counter() - start,
+                       campaign_csv=str(out / "campaign.csv"), rows=rows)
 
 
 def _spec(case: Case, cases_dir: Path, plots: bool) -> dict:
@@ -813,8 +847,6 @@ def _prepare(campaign: Campaign, runnable: list[Case], out: Path) -> None:
     """Load one case of every hammer x anvil model combination on the driver: a problem of
     the combination (a hammer's anvil table) stops the campaign; the anvil and ram modes
     go into the modal-data cache for the workers. Other problems are left to the cases."""
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import anvil_modal_data
 
     firsts: dict[tuple, Case] = {}
     for c in runnable:

@@ -17,8 +17,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from anvilwave.config.system import SystemConfig
+from anvilwave.engine.direct import build_engine
+from anvilwave.engine.fmi import run_fmi
+from anvilwave.fea.impact import FeaConfig, run_impact_fea
 from anvilwave.inputs import InputError
 from anvilwave.pile.model import PileSoil
+from anvilwave.pile.post.spectra import band_numbers_between, third_octave_band_energies
+from anvilwave.pile.soil.models import SoilSpec
+from anvilwave.pile.soil.srd import SoilResistanceTable
 
 ARRIVAL_FRACTION = 0.2
 """The pile force 'arrives' when it first exceeds this fraction of its peak (above the static
@@ -28,8 +34,6 @@ preload): a threshold clear of the preload (1 % of the peak) and of the lift-off
 def without_soil(cfg: SystemConfig) -> SystemConfig:
     """The same system on a pile without shaft resistance, standing on an elastic toe bearing
     (unit toe resistance 1 GPa, no damping): the comparison's common ground with the FEA."""
-    from anvilwave.pile.soil.models import SoilSpec
-    from anvilwave.pile.soil.srd import SoilResistanceTable
 
     toe_only = SoilSpec(model="smith-viscous", penetration=0.0,
                         srd=SoilResistanceTable.from_rows(np.array([[0.0, 0.0, 1.0e9]])),
@@ -43,7 +47,6 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
 
     truncate_length : modelled pile length with an absorbing cut [m] (None: full length).
     """
-    from anvilwave.fea.impact import FeaConfig
 
     ram = cfg.hammer.ram
     if not (math.isfinite(ram.toe_diameter) and math.isfinite(ram.length)):
@@ -179,14 +182,12 @@ def metrics(run: ModelRun, reference: ModelRun | None, preload: float,
 def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True,
                fea_mesh_size: float | None = None, progress=None) -> dict[str, ModelRun]:
     """Run the ROM, the lumped anvil and (optionally) the FEA on a free-pile copy of ``cfg``."""
-    from anvilwave.engine.direct import build_engine
 
     cfg = without_soil(cfg)
     runs = {}
     for model in ("rom", "lumped"):
         start = time.perf_counter()
         if model == "rom" and rom_engine == "fmi":
-            from anvilwave.engine.fmi import run_fmi
 
             blow = run_fmi(cfg.with_anvil_model("rom"), work_dir / "fmus")[0]
         else:
@@ -196,7 +197,6 @@ def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True
                                 "total_time [s]": time.perf_counter() - start,
                                 "engine": rom_engine if model == "rom" else "direct"})
     if fea:
-        from anvilwave.fea.impact import run_impact_fea
 
         config = fea_config(cfg, mesh_size=fea_mesh_size)
         result = run_impact_fea(config, progress=progress)
@@ -241,7 +241,6 @@ def band_levels(runs: dict[str, ModelRun], bandwidth: float,
     lowest sampling rate) and no higher than ``bandwidth`` [Hz], the comparison band of the
     1D models (:func:`comparison_bandwidth`).
     """
-    from anvilwave.pile.post.spectra import band_numbers_between, third_octave_band_energies
 
     def step(run):
         t = run.columns["time [s]"]

@@ -24,81 +24,101 @@ from __future__ import annotations
 
 import bisect
 import json
-import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from anvilwave.inputs import InputError, Table
+from anvilwave.analyses.drive import driving_weight
+from anvilwave.config.drive import impact_at, load_srd_source, pile_soil_at, segment_capacities
+from anvilwave.config.install import InstallSettings
+from anvilwave.engine.direct import build_engine
+from anvilwave.inputs import InputError
+from anvilwave.output.plots import plot_installation
+from anvilwave.output.tables import write_csv, write_dict_rows
+from anvilwave.pile.post.fatigue import StreamingMinerDamage, sn_curve
+from anvilwave.pile.post.spectra import third_octave_band_energies
 
 BLOW_COLUMNS = ("blow [-]", "tip_depth [m]", "set [m]", "energy_setting [J]", "enthru [J]",
                 "max_compression_stress [Pa]", "max_tension_stress [Pa]",
                 "max_pile_head_force [N]", "srd [N]")
 FATIGUE_COLUMNS = ("depth_below_head [m]", "sn_curve", "environment", "scf [-]",
                    "thickness [m]", "damage [-]", "closed_cycles [-]")
+"""Columns of ``fatigue.csv``."""
+SPECTRA_COLUMNS = ("tip_depth [m]", "band_centre [Hz]", "band_energy_level [dB]", "valid [-]")
+"""Columns of ``spectra.csv``."""
 
 
-@dataclass(frozen=True)
-class InstallSettings:
-    """The ``[installation]`` table.
+@dataclass
+class InstallResult:
+    """A blow-by-blow installation (``anvilwave install``).
 
-    start_depth : tip depth of the first blow [m] (None: the self-weight penetration).
-    target_depth : final tip depth [m] (None: the last depth of ``[driveability]``).
-    max_blows : safety limit on the number of blows [-].
-    srd_update : tip movement that triggers a rebuild of the SRD distribution [m].
-    weld_depths : sections for fatigue, depth below the pile head [m] (None: every spring).
-    sn_curve, environment, edition, scf : DNV-RP-C203 S-N curve of the sections.
-    spectra_depths : tip depths whose first blow's head force spectrum is written [m].
-    record_interval : sampling of the stress histories and head force [s] (None: every step).
+    Attributes
+    ----------
+    source : str
+        The system file.
+    blows : list of dict
+        One row per blow, keyed by :data:`BLOW_COLUMNS` (the columns of ``blows.csv``).
+    fatigue : list of dict
+        One row per fatigue section, keyed by :data:`FATIGUE_COLUMNS` (``fatigue.csv``):
+        Miner's damage [-] and the closed cycles [-] over the whole installation.
+    spectra : list of dict
+        The pile-head force band levels of the first blow past each spectra depth
+        (``spectra.csv``: tip depth [m], band centre [Hz], band energy level [dB], valid).
+    summary : dict
+        The entries of ``summary.json``: ``"total_blows [-]"``, ``"start_depth [m]"``,
+        ``"final_depth [m]"``, ``"refusal_depth [m]"``, ``"driving_time [s]"``,
+        ``"max_damage [-]"``, ``"stopped_by"``, ``"wall_time [s]"`` ...
     """
 
-    start_depth: float | None = None
-    target_depth: float | None = None
-    max_blows: int = 20000
-    srd_update: float = 0.05
-    weld_depths: tuple | None = None
-    sn_curve: str = "D"
-    environment: str = "seawater-cp"
-    edition: str = "2016"
-    scf: float = 1.0
-    spectra_depths: tuple = ()
-    record_interval: float | None = None
+    source: str
+    blows: list[dict]
+    fatigue: list[dict]
+    spectra: list[dict]
+    summary: dict
+
+    def write(self, out, title: str = "", driveability: dict | None = None) -> None:
+        """blows.csv, fatigue.csv, spectra.csv, summary.json and installation.png into a
+        ResultWriter ``out``."""
+        write_csv({c: np.array([r[c] for r in self.blows], dtype=float) for c in BLOW_COLUMNS},
+                  out.part("blows.csv"))
+        write_dict_rows(self.fatigue, FATIGUE_COLUMNS, out.part("fatigue.csv"))
+        write_dict_rows(self.spectra, SPECTRA_COLUMNS, out.part("spectra.csv"))
+        summary = dict(self.summary)
+        summary["system"] = self.source
+        out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+        plot_installation({"blows": self.blows, "fatigue": self.fatigue,
+                           "spectra": self.spectra, "summary": summary},
+                          out.part("installation.png"), title=title, driveability=driveability)
 
 
-def load_install_settings(table: Table | None) -> InstallSettings:
-    """Read and validate ``[installation]`` (absent: the defaults)."""
-    from anvilwave.pile.post.fatigue import EDITIONS, ENVIRONMENTS, dnv_rp_c203_curve
+def install(cfg, *, anvil: str | None = None, progress: bool = False) -> InstallResult:
+    """Drive the pile blow by blow from the self-weight penetration to the target depth or
+    refusal, with the residual stresses, fatigue and spectra of ``[installation]``.
 
-    if table is None:
-        return InstallSettings()
-    welds = table.array("weld_depths", None)
-    if welds is not None and np.any(welds < 0.0):
-        raise table.error("weld_depths", "depths below the pile head must be >= 0 m")
-    edition = table.string("edition", "2016", choices=tuple(EDITIONS))
-    curve = table.string("sn_curve", "D")
-    try:
-        dnv_rp_c203_curve(curve, edition)
-    except ValueError as exc:
-        raise table.error("sn_curve", str(exc)) from None
-    spectra = table.array("spectra_depths", None)
-    s = InstallSettings(
-        start_depth=table.number("start_depth", None, gt=0.0, unit="m"),
-        target_depth=table.number("target_depth", None, gt=0.0, unit="m"),
-        max_blows=table.integer("max_blows", 20000, ge=1),
-        srd_update=table.number("srd_update", 0.05, gt=0.0, le=1.0, unit="m"),
-        weld_depths=tuple(float(w) for w in welds) if welds is not None else None,
-        sn_curve=curve,
-        environment=table.string("environment", "seawater-cp", choices=ENVIRONMENTS),
-        edition=edition,
-        scf=table.number("scf", 1.0, ge=1.0, le=10.0),
-        spectra_depths=tuple(float(d) for d in spectra) if spectra is not None else (),
-        record_interval=table.number("record_interval", None, gt=0.0, le=1e-3, unit="s"),
-    )
-    if s.max_blows > 200_000:
-        raise table.error("max_blows", f"must be at most 200000, got {s.max_blows}")
-    table.finish()
-    return s
+    Parameters
+    ----------
+    cfg : SystemConfig
+        A system with a ``[driveability]`` table (energy schedule, refusal) and optionally
+        ``[installation]`` (defaults: :class:`~anvilwave.config.install.InstallSettings`).
+    anvil : str, optional
+        Install with this anvil model instead of the system's.
+    progress : bool
+        A progress bar over the penetration.
+
+    Returns
+    -------
+    InstallResult
+    """
+    if anvil is not None:
+        cfg = cfg.with_anvil_model(anvil)
+    if cfg.drive is None:
+        raise InputError(str(cfg.source), "driveability", "the installation takes its energy "
+                                                          "schedule and refusal from a "
+                                                          "[driveability] table")
+    srd = cfg.srd if cfg.srd is not None else load_srd_source(None, cfg.source, cfg.pile_soil)
+    settings = cfg.install if cfg.install is not None else InstallSettings()
+    return run_installation(cfg, srd, cfg.drive, settings, build_engine(cfg), progress=progress)
 
 
 def fatigue_sections(pile_soil, settings: InstallSettings):
@@ -116,7 +136,6 @@ def fatigue_sections(pile_soil, settings: InstallSettings):
 
 def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0.1) -> float:
     """First tip depth (on a ``step`` [m] grid) where the SRD carries the driving weight."""
-    from anvilwave.analyses.drive import driving_weight, segment_capacities
 
     weight = driving_weight(cfg, engine.static_head_force)
     length = cfg.pile_soil.pile.length
@@ -130,11 +149,9 @@ def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0
 
 
 def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
-                     progress: bool = False) -> dict:
-    """Simulate every blow; returns the blow rows, fatigue rows, spectra rows and summary."""
-    from anvilwave.analyses.drive import impact_at, pile_soil_at
-    from anvilwave.pile.post.fatigue import StreamingMinerDamage, sn_curve
-    from anvilwave.pile.post.spectra import third_octave_band_energies
+                     progress: bool = False) -> InstallResult:
+    """Simulate every blow; returns the blow rows, fatigue rows, spectra rows and summary
+    (:class:`InstallResult`)."""
 
     start_wall = time.perf_counter()
     multiplier = drive.multiplier
@@ -249,38 +266,5 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
         "wall_time [s]": time.perf_counter() - start_wall,
     }
     summary["seconds_per_blow [s]"] = summary["wall_time [s]"] / max(total, 1)
-    return {"blows": rows, "fatigue": fatigue_rows, "spectra": spectra_rows,
-            "summary": summary}
-
-
-def blow_count_profile(rows: list[dict], bin_size: float = 0.25) -> tuple[np.ndarray, ...]:
-    """(depth at the bin's bottom [m], blows in the bin [-]) of the blows per ``bin_size``."""
-    tip = np.array([r["tip_depth [m]"] for r in rows])
-    if tip.size == 0:
-        return np.zeros(0), np.zeros(0)
-    edges = np.arange(math.floor(tip[0] / bin_size) * bin_size, tip[-1] + bin_size, bin_size)
-    counts, _ = np.histogram(tip, bins=edges)
-    return edges[1:], counts.astype(float)
-
-
-def write_results(result: dict, out, title: str = "") -> None:
-    """blows.csv, fatigue.csv, spectra.csv, summary.json and the figures into a ResultWriter."""
-    import csv
-
-    from anvilwave.output.plots import plot_installation
-    from anvilwave.output.tables import write_csv
-
-    blows = result["blows"]
-    write_csv({c: np.array([r[c] for r in blows], dtype=float) for c in BLOW_COLUMNS},
-              out.part("blows.csv"))
-    with open(out.part("fatigue.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=FATIGUE_COLUMNS)
-        w.writeheader()
-        w.writerows(result["fatigue"])
-    with open(out.part("spectra.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=("tip_depth [m]", "band_centre [Hz]",
-                                          "band_energy_level [dB]", "valid [-]"))
-        w.writeheader()
-        w.writerows(result["spectra"])
-    out.part("summary.json").write_text(json.dumps(result["summary"], indent=2) + "\n")
-    plot_installation(result, out.part("installation.png"), title=title)
+    return InstallResult(source=str(cfg.source), blows=rows, fatigue=fatigue_rows,
+                         spectra=spectra_rows, summary=summary)

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from anvilwave.engine.compilation import announce_compilation
 from anvilwave.inputs import InputError
 from anvilwave.pile.kernels import (
     SOIL_CAPACITY,
@@ -412,7 +413,6 @@ def match_record(record: GaugeRecord, cfg, settings: MatchSettings | None = None
     """Fit the soil of a system (``SystemConfig``) to a gauge record (module notes)."""
     from scipy.optimize import least_squares
 
-    from anvilwave.engine.compilation import announce_compilation
 
     settings = settings or MatchSettings()
     started = _time.perf_counter()

@@ -26,16 +26,20 @@ import json
 import math
 import re
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from anvilwave.analyses.impact import compute_anvil_modes, gauge_section, simulate
+from anvilwave.analyses.match import MatchSettings, match_record
+from anvilwave.config.system import load_system
 from anvilwave.inputs import InputError, read_text
+from anvilwave.output.pda_plots import plot_compare_pda, plot_match, plot_pda, plot_static_load_test
+from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter
-from anvilwave.pile.kernels import SOIL_CAPACITY, SOIL_DASHPOT, SOIL_SMITH
 from anvilwave.pile.pda.case_method import (
     case_method,
-    pile_impedance,
     transferred_energy,
     wave_down,
     wave_up,
@@ -46,6 +50,7 @@ from anvilwave.pile.pda.records import (
     gauge_record_from_raw,
     read_gauge_record,
 )
+from anvilwave.pile.pda.signal_matching import IMPOSED
 from anvilwave.pile.pile import STEEL_DENSITY, STEEL_YOUNGS_MODULUS
 
 STEEL_WAVE_SPEED = math.sqrt(STEEL_YOUNGS_MODULUS / STEEL_DENSITY)
@@ -110,15 +115,53 @@ def _finite(value):
 
 
 # ---------------------------------------------------------------------------------- Case method
-def run_pda(record_path: str | Path, out_dir: str | Path, *, length: float, area: float,
+@dataclass
+class PdaResult:
+    """The Case method of one record (``anvilwave pda``).
+
+    Attributes
+    ----------
+    record : str
+        The record file.
+    summary : dict
+        ``RTL [N]``, ``RSP [N]``, ``RMX [N]``, ``EMX [J]``, ``FMX [N]``, ``CSX [Pa]``,
+        ``TSX [Pa]``, ``BTA [-]``.
+    content : dict
+        ``pda.json``: the summary, ``details`` (t1, 2L/c, the waves at t1 ...), ``inputs``
+        and the record's notes.
+    columns : dict
+        ``pda.csv``: time [s], force [N], Z v [N], wave down and up [N], transferred energy
+        [J].
+    jc : float
+        The Case damping used [-].
+    case : object
+        The Case method's full result (:func:`anvilwave.pile.pda.case_method.case_method`).
+    """
+
+    record: str
+    summary: dict
+    content: dict
+    columns: dict
+    jc: float
+    case: object = None
+
+    def write(self, out_dir: str | Path) -> None:
+        """``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``."""
+        with ResultWriter(out_dir) as out:
+            out.part("pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
+            write_csv(self.columns, out.part("pda.csv"))
+            plot_pda(self.columns, self.case, out.part("pda.png"),
+                     title=f"{Path(self.record).name}: Case method (Jc = {self.jc:g})")
+
+
+def pda(record_path: str | Path, *, length: float, area: float,
             elastic_modulus: float = STEEL_YOUNGS_MODULUS, wave_speed: float | None = None,
             jc: float, t1_signal: str = "velocity", rmx_window: float | None = None,
             strain_calibration: tuple[float, float] = (1.0, 1.0),
-            acceleration_calibration: tuple[float, float] = (1.0, 1.0)) -> dict:
-    """Case method of a record: ``DIR/pda.json``, ``DIR/pda.csv`` and ``DIR/pda.png``.
+            acceleration_calibration: tuple[float, float] = (1.0, 1.0)) -> PdaResult:
+    """The Case method of a record (``anvilwave pda``).
 
     record_path : gauge record or raw channels CSV.
-    out_dir : result folder DIR.
     length : pile length below the gauges L [m].
     area : steel area at the gauges A [m^2].
     elastic_modulus : E [Pa] (default steel, 210 GPa).
@@ -127,8 +170,9 @@ def run_pda(record_path: str | Path, out_dir: str | Path, *, length: float, area
     t1_signal, rmx_window : see :func:`anvilwave.pile.pda.case_method.case_method` (rmx_window [s]).
     strain_calibration, acceleration_calibration : raw-channel factors [-].
 
-    Returns the summary ``{"RTL [N]", "RSP [N]", "RMX [N]", "EMX [J]", "FMX [N]", "CSX [Pa]",
-    "TSX [Pa]", "BTA [-]"}``; pda.json holds it plus ``details`` and ``inputs``.
+    Returns a :class:`PdaResult`: its ``summary`` ``{"RTL [N]", "RSP [N]", "RMX [N]",
+    "EMX [J]", "FMX [N]", "CSX [Pa]", "TSX [Pa]", "BTA [-]"}``; ``content`` (pda.json) holds it
+    plus ``details`` and ``inputs``.
     """
     for name, value in (("length", length), ("area", area),
                         ("elastic_modulus", elastic_modulus)):
@@ -166,104 +210,79 @@ def run_pda(record_path: str | Path, out_dir: str | Path, *, length: float, area
                          "elastic_modulus [Pa]": elastic_modulus, "wave_speed [m/s]": c,
                          "case_damping [-]": jc, "t1_signal": t1_signal}
     content["record_notes"] = notes
-    from anvilwave.output.pda_plots import plot_pda
-    from anvilwave.output.tables import write_csv
 
-    with ResultWriter(out_dir) as out:
-        out.part("pda.json").write_text(json.dumps(content, indent=2) + "\n")
-        write_csv(columns, out.part("pda.csv"))
-        plot_pda(columns, result, out.part("pda.png"),
-                 title=f"{Path(record_path).name}: Case method (Jc = {jc:g})")
-    return summary
+    return PdaResult(record=str(record_path), summary=summary, content=content,
+                     columns=columns, jc=jc, case=result)
 
 
-# ---------------------------------------------------------------------------------- simulated
-def case_damping_of_soil(cfg) -> float:
-    """Case damping Jc [-] equivalent to a system's soil damping: the sum of the soil dashpots
-    (Smith-viscous J R_u, a radiation dashpot, or Smith J R_u at full mobilisation) over the
-    pile impedance at the gauges, i.e. Jc Z v = the soil's damping force when every spring
-    moves with the same velocity v (the Case method lumps all damping at the toe)."""
-    arrays = cfg.pile_soil.arrays()
-    dashpots = float(np.sum(arrays.soil[SOIL_DASHPOT]
-                            + arrays.soil[SOIL_SMITH] * arrays.soil[SOIL_CAPACITY]))
-    section = _gauge_section(cfg)
-    return dashpots / float(pile_impedance(section.youngs_modulus, section.area,
-                                           section.wave_speed))
+def run_pda(record_path: str | Path, out_dir: str | Path, **options) -> dict:
+    """:func:`pda` written to ``out_dir`` (``pda.json``, ``pda.csv``, ``pda.png``); returns
+    the summary."""
+    result = pda(record_path, **options)
+    result.write(out_dir)
+    return result.summary
 
 
-def _gauge_section(cfg):
-    pile = cfg.pile_soil.pile
-    depth = 0.0
-    for section in pile.sections:
-        depth += section.length
-        if pile.gauge_depth < depth:
-            return section
-    return pile.sections[-1]
-
-
-def pda_summary(columns: dict[str, np.ndarray], cfg, *, case_damping: float | None = None
-                ) -> dict:
-    """EMX, FMX and RMX of a simulated blow, as a PDA would report them.
-
-    columns : the blow's time series (``time [s]``, ``gauge_force [N]``,
-        ``gauge_velocity [m/s]``).
-    cfg : the ``SystemConfig`` simulated (pile, gauge depth, soil).
-    case_damping : Jc [-] (default :func:`case_damping_of_soil`).
-
-    The gauges are zeroed at rest as a PDA's are: the force at the first sample (the hammer
-    and pile weights at rest) is subtracted. L is the pile length below the gauges, Z and c
-    those of the section at the gauges. RMX needs the record to reach t1 + 2L/c; it is None
-    when the blow is shorter. Returns ``{"EMX [J]", "FMX [N]", "RMX [N]",
-    "case_damping [-]"}``.
-    """
-    t = np.asarray(columns["time [s]"], dtype=float)
-    force = np.asarray(columns["gauge_force [N]"], dtype=float)
-    force = force - force[0]
-    velocity = np.asarray(columns["gauge_velocity [m/s]"], dtype=float)
-    pile = cfg.pile_soil.pile
-    section = _gauge_section(cfg)
-    jc = case_damping_of_soil(cfg) if case_damping is None else float(case_damping)
-    out = {"EMX [J]": float(np.max(transferred_energy(t, force, velocity))),
-           "FMX [N]": float(np.max(force)), "RMX [N]": None, "case_damping [-]": jc}
-    length = pile.length - pile.gauge_depth
-    try:
-        result = case_method(t, force, velocity, area=section.area,
-                             elastic_modulus=section.youngs_modulus,
-                             wave_speed=section.wave_speed, length_below_gauges=length,
-                             case_damping=jc)
-    except ValueError:  # shorter than t1 + 2L/c (or no velocity peak): no RMX
-        return out
-    out["RMX [N]"] = result.rmx
-    return out
 
 
 # ---------------------------------------------------------------------------------- matching
-def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | Path, *,
+@dataclass
+class MatchResult:
+    """Signal matching of one record (``anvilwave match``).
+
+    Attributes
+    ----------
+    record : str
+        The record file.
+    content : dict
+        ``match.json``: ``rut [N]``, ``rut_shaft [N]``, ``rut_toe [N]``,
+        ``match_quality [-]``, the fitted shaft zones, quakes [m] and dampings [s/m].
+    match : object
+        The match (:func:`anvilwave.analyses.match.match_record`): its ``columns``
+        (measured and computed waves [N]) and ``static_load_test`` (load [N], settlement
+        [m]).
+    config : SystemConfig
+        The system matched.
+    """
+
+    record: str
+    content: dict
+    match: object
+    config: object
+
+    def write(self, out_dir: str | Path) -> None:
+        """``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
+        ``static_load_test.png`` into the result folder ``out_dir``."""
+        result = self.match
+        with ResultWriter(out_dir) as out:
+            out.part("match.json").write_text(json.dumps(self.content, indent=2) + "\n")
+            write_csv(result.columns, out.part("match.csv"))
+            write_csv(result.static_load_test, out.part("static_load_test.csv"))
+            plot_match(result.columns, out.part("match.png"),
+                       title=f"{Path(self.record).name}: signal matching, MQ = "
+                             f"{result.match_quality:.3f}, Rut = {result.soil.rut / 1e6:.2f} MN")
+            plot_static_load_test(result, self.config, out.part("static_load_test.png"))
+
+
+def match(record_path: str | Path, system_path: str | Path, *,
               shaft_zones: int = 3, imposed: str = "velocity",
               segment_length: float | None = None, fit_quakes: bool = True,
-              fit_dampings: bool = True, preload: float | None = None) -> dict:
+          fit_dampings: bool = True, preload: float | None = None) -> MatchResult:
     """Signal matching of a record with the pile and soil of a system file.
 
     record_path : gauge record or raw channels CSV (raw: converted with the area and modulus
         of the system's pile at the gauges).
     system_path : system file (pile, gauge depth, soil model and starting SRD, gravity, and
         the hammer and anvil resting on the pile).
-    out_dir : result folder DIR: ``match.json``, ``match.csv``, ``match.png``,
-        ``static_load_test.csv``, ``static_load_test.png``.
     shaft_zones : number of shaft resistance zones [-].
     imposed : ``"velocity"`` or ``"wave_down"``.
     segment_length : segment length of the matching model [m] (default: the system's).
     fit_quakes, fit_dampings : fit them, or keep the system's.
     preload : force on the gauges at rest [N] (default from the system file).
 
-    Returns the match.json content (``rut [N]``, ``rut_shaft [N]``, ``rut_toe [N]``,
-    ``match_quality [-]``, the fitted parameters ...).
+    Returns a :class:`MatchResult`; its ``content`` is match.json (``rut [N]``,
+    ``rut_shaft [N]``, ``rut_toe [N]``, ``match_quality [-]``, the fitted parameters ...).
     """
-    from anvilwave.analyses.match import MatchSettings, match_record
-    from anvilwave.config.system import load_system
-    from anvilwave.output.pda_plots import plot_match, plot_static_load_test
-    from anvilwave.output.tables import write_csv
-    from anvilwave.pile.pda.signal_matching import IMPOSED
 
     if imposed not in IMPOSED:
         raise InputError(system_path, "imposed", f"must be one of {', '.join(IMPOSED)}, got "
@@ -272,7 +291,7 @@ def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | P
         raise InputError(system_path, "shaft_zones", f"must be an integer >= 1, got "
                                                      f"{shaft_zones!r}")
     cfg = load_system(system_path)
-    section = _gauge_section(cfg)
+    section = gauge_section(cfg)
     record, notes, kind = load_record(record_path, area=section.area,
                                       elastic_modulus=section.youngs_modulus)
     settings = MatchSettings(shaft_zones=shaft_zones, imposed=imposed,
@@ -287,15 +306,16 @@ def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | P
     content["record_kind"] = kind
     content["system"] = str(system_path)
     content["record_notes"] = notes
-    with ResultWriter(out_dir) as out:
-        out.part("match.json").write_text(json.dumps(content, indent=2) + "\n")
-        write_csv(result.columns, out.part("match.csv"))
-        write_csv(result.static_load_test, out.part("static_load_test.csv"))
-        plot_match(result.columns, out.part("match.png"),
-                   title=f"{Path(record_path).name}: signal matching, MQ = "
-                         f"{result.match_quality:.3f}, Rut = {result.soil.rut / 1e6:.2f} MN")
-        plot_static_load_test(result, cfg, out.part("static_load_test.png"))
-    return content
+    return MatchResult(record=str(record_path), content=content, match=result, config=cfg)
+
+
+def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | Path,
+              **options) -> dict:
+    """:func:`match` written to ``out_dir`` (``match.json``, ``match.csv``, ``match.png``,
+    ``static_load_test.csv``, ``static_load_test.png``); returns the match.json content."""
+    result = match(record_path, system_path, **options)
+    result.write(out_dir)
+    return result.content
 
 
 # ---------------------------------------------------------------------------------- Fig. 4, 5
@@ -306,8 +326,42 @@ def onset_time(time, force) -> float:
     return float(np.asarray(time)[above[0]]) if above.size else math.nan
 
 
-def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: str | Path, *,
-                    align: str = "rom", modal_data=None) -> dict:
+@dataclass
+class ComparePdaResult:
+    """The paper's Fig. 4 and 5 for one record (``anvilwave compare-pda``).
+
+    Attributes
+    ----------
+    record : str
+        The record file.
+    content : dict
+        ``compare_pda.json``: the measured and each model's peak force [N], peak velocity
+        [m/s], their errors [-], normalised RMS errors [-], arrival times [s], the alignment
+        and the record's time shift [s].
+    columns : dict
+        ``compare_pda.csv``: time [s], measured and each model's force [N] and velocity
+        [m/s] on the record's samples.
+    """
+
+    record: str
+    content: dict
+    columns: dict
+
+    def write(self, out_dir: str | Path) -> None:
+        """The json, csv and the two figures into the result folder ``out_dir``."""
+        name = Path(self.record).name
+        with ResultWriter(out_dir) as out:
+            out.part("compare_pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
+            write_csv(self.columns, out.part("compare_pda.csv"))
+            plot_compare_pda(self.columns, "force [N]", out.part("fig4_pile_top_force.png"),
+                             f"Fig. 4: pile-top force at the gauges, {name}")
+            plot_compare_pda(self.columns, "velocity [m/s]",
+                             out.part("fig5_pile_top_velocity.png"),
+                             f"Fig. 5: pile-top velocity at the gauges, {name}")
+
+
+def compare_pda(record_path: str | Path, system_path: str | Path, *,
+                align: str = "rom", modal_data=None) -> ComparePdaResult:
     """The paper's Fig. 4 (pile-top force) and Fig. 5 (pile-top velocity) for a record.
 
     The system is simulated with the ROM anvil and with the lumped (rigid) anvil of its anvil
@@ -319,14 +373,10 @@ def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: s
     arrival of the aligned model then says nothing; the other's difference to it is the
     anvil's wave travel the lumped model lacks.
 
-    Writes ``fig4_pile_top_force.png``, ``fig5_pile_top_velocity.png``,
-    ``compare_pda.json`` and ``compare_pda.csv`` (record and models on the record's samples
-    within the simulated window). Returns the compare_pda.json content.
+    Returns a :class:`ComparePdaResult`: ``content`` (compare_pda.json) and ``columns``
+    (compare_pda.csv: record and models on the record's samples within the simulated
+    window).
     """
-    from anvilwave.api import compute_anvil_modes, simulate
-    from anvilwave.config.system import load_system
-    from anvilwave.output.pda_plots import plot_compare_pda
-    from anvilwave.output.tables import write_csv
 
     if align not in ALIGNMENTS:
         raise InputError(system_path, "align", f"must be one of {', '.join(ALIGNMENTS)}, got "
@@ -335,7 +385,7 @@ def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: s
     if cfg.anvil.spec is None:
         raise InputError(system_path, "anvil.file", "compare-pda runs the ROM and the lumped "
                                                     "anvil: the system needs an anvil file")
-    section = _gauge_section(cfg)
+    section = gauge_section(cfg)
     record, notes, kind = load_record(record_path, area=section.area,
                                       elastic_modulus=section.youngs_modulus)
     if modal_data is None:
@@ -387,16 +437,19 @@ def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: s
                                                - content["lumped"]["force_arrival_time [s]"])
     content.update({"record": str(record_path), "record_kind": kind,
                     "system": str(system_path), "record_notes": notes})
-    name = Path(record_path).name
-    with ResultWriter(out_dir) as out:
-        out.part("compare_pda.json").write_text(json.dumps(content, indent=2) + "\n")
-        write_csv(columns, out.part("compare_pda.csv"))
-        plot_compare_pda(columns, "force [N]", out.part("fig4_pile_top_force.png"),
-                         f"Fig. 4: pile-top force at the gauges, {name}")
-        plot_compare_pda(columns, "velocity [m/s]", out.part("fig5_pile_top_velocity.png"),
-                         f"Fig. 5: pile-top velocity at the gauges, {name}")
-    return content
+    return ComparePdaResult(record=str(record_path), content=content, columns=columns)
 
 
-__all__ = ["ALIGNMENTS", "STEEL_WAVE_SPEED", "case_damping_of_soil", "load_record",
-           "onset_time", "pda_summary", "run_compare_pda", "run_match", "run_pda"]
+def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: str | Path,
+                    **options) -> dict:
+    """:func:`compare_pda` written to ``out_dir`` (``fig4_pile_top_force.png``,
+    ``fig5_pile_top_velocity.png``, ``compare_pda.json``, ``compare_pda.csv``); returns the
+    compare_pda.json content."""
+    result = compare_pda(record_path, system_path, **options)
+    result.write(out_dir)
+    return result.content
+
+
+__all__ = ["ALIGNMENTS", "STEEL_WAVE_SPEED", "ComparePdaResult", "MatchResult", "PdaResult",
+           "compare_pda", "load_record", "match", "onset_time", "pda", "run_compare_pda",
+           "run_match", "run_pda"]

@@ -36,6 +36,14 @@ from pathlib import Path
 
 import numpy as np
 
+import anvilwave.anvil_rom as anvil_rom
+from anvilwave.anvil_rom.chain import chain_from_modes
+from anvilwave.anvil_rom.fem.modalfile import VERSION, load_modal_data, write_modal_data
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.inputs import InputError
+from anvilwave.pile import head_kernel
+from anvilwave.pile.head_kernel import ring_kernel
+
 ENVIRONMENT_VARIABLE = "ANVILWAVE_CACHE_DIR"
 """Environment variable that overrides the cache directory."""
 CACHE_VERSION = 1
@@ -63,8 +71,6 @@ def code_version() -> str:
     and a hash of the modal analysis's source files."""
     from importlib import metadata
 
-    import anvilwave.anvil_rom as anvil_rom
-    from anvilwave.anvil_rom.fem.modalfile import VERSION
 
     def version(name: str) -> str:
         try:
@@ -104,8 +110,6 @@ def cached_modal_data(spec, fmax: float | None = None):
     spec's), from the cache or computed
     (:func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`) and
     stored. The spec needs its interfaces (the ROM is projected on them)."""
-    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
-    from anvilwave.inputs import InputError
 
     fmax = float(spec.fmax if fmax is None else fmax)
     path = cache_dir() / (modal_key(spec, fmax) + SUFFIX)
@@ -114,7 +118,6 @@ def cached_modal_data(spec, fmax: float | None = None):
             return load_modal_data(path)
         except InputError:
             pass  # unreadable: computed again and replaced below
-    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
     data = compute_anvil_modes(spec, fmax=fmax).modal_data
     if data is not None:
@@ -143,7 +146,6 @@ def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
                 return mass, stiffness
         except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
             pass  # unreadable: realised again and replaced below
-    from anvilwave.anvil_rom.chain import chain_from_modes
 
     mass, stiffness = chain_from_modes(omega, participation)
     _write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
@@ -157,8 +159,6 @@ def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step:
                        steps: int, rings: int) -> np.ndarray:
     """:func:`anvilwave.pile.head_kernel.ring_kernel` of a tube (its arguments), from the cache or
     computed and stored (it takes tens of seconds for a long tube)."""
-    from anvilwave.pile import head_kernel
-    from anvilwave.pile.head_kernel import ring_kernel
 
     description = [material.youngs_modulus, material.poisson_ratio, material.density, r_in,
                    r_out, length, step, int(steps), int(rings), code_version(),
@@ -198,7 +198,6 @@ def _write_atomic(path: Path, write) -> None:
 def _store(data, path: Path) -> None:
     """Write modal data atomically (:func:`_write_atomic` of
     :func:`anvilwave.anvil_rom.fem.modalfile.write_modal_data`)."""
-    from anvilwave.anvil_rom.fem.modalfile import write_modal_data
 
     _write_atomic(path, lambda fh: write_modal_data(data, fh))
 
@@ -223,7 +222,6 @@ def cache_info() -> dict:
                     row.update({"head_kernel_steps": int(npz["kernel"].shape[0]),
                                 "rings": int(npz["kernel"].shape[1])})
             else:
-                from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
                 data = load_modal_data(path)
                 row.update({"modes": data.n_modes, "fmax [Hz]": data.fmax, "n_dof": data.n_dof,

@@ -51,6 +51,8 @@ import numpy as np
 from anvilwave.anvil_rom.fem.geometry import DEFAULT_FMAX, AnvilSpec, load_anvil
 from anvilwave.config.budget import check_run_budget
 from anvilwave.config.cache import cached_modal_data
+from anvilwave.config.drive import load_drive_settings, load_srd_source, pile_soil_at
+from anvilwave.config.install import load_install_settings
 from anvilwave.hammer.database import Hammer, available_hammers, load_hammer
 from anvilwave.hammer.driving_system import DrivingSystem
 from anvilwave.hammer.modal_ram import modal_ram
@@ -154,12 +156,10 @@ def load_system(path: str | Path) -> SystemConfig:
     anvil = _anvil(root.table("anvil"), hammer, source)
     drive = srd = None
     if root.has("driveability"):
-        from anvilwave.analyses.drive import load_drive_settings
 
         drive = load_drive_settings(root.table("driveability"), source)
     install = None
     if root.has("installation"):
-        from anvilwave.analyses.install import load_install_settings
 
         install = load_install_settings(root.table("installation"))
     srd_table = root.table("srd", required=False)
@@ -168,7 +168,6 @@ def load_system(path: str | Path) -> SystemConfig:
         srd_optional=srd_table is not None,
         default_penetration=float(drive.depths[-1]) if drive is not None else None)
     if srd_table is not None:
-        from anvilwave.analyses.drive import load_srd_source, pile_soil_at
 
         if pile_soil.soil is None:
             raise root.error("soil", "an [srd] table needs a [soil] table (soil model, quakes "

@@ -1127,7 +1127,7 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
 
     modal : precomputed ModalData of the anvil; default: the ROM anvil's from the modal-data
     cache (computed on a miss), the lumped anvil's mass from its geometry without modes
-    (:func:`anvilwave.anvil_rom.fem.geometry.solid_mass`).
+    (:func:`anvilwave.anvil_rom.fem.pipeline.solid_mass`).
     ram_modes : :class:`anvilwave.hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
     (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`, exact per mode, its residual flexibility the
     ram's
@@ -1160,7 +1160,7 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
         elif modal is not None:
             mass = modal.total_mass
         else:
-            from anvilwave.anvil_rom.fem.geometry import solid_mass
+            from anvilwave.anvil_rom.fem.pipeline import solid_mass
 
             mass = solid_mass(cfg.anvil.spec)
     anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass, ram_modes)

@@ -34,6 +34,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from anvilwave.anvil_rom.contact import contact_force
 from anvilwave.anvil_rom.fem.elasticity import max_eigenvalue
+from anvilwave.engine.compilation import announce_compilation
 from anvilwave.fea.bodies import ContactSet, contact_matrix
 
 
@@ -324,7 +325,6 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                  mw_vmass, mw_vold, u, v, f_lower, f_contact, pair_force, pair_vold, v_record,
                  record)
 
-    from anvilwave.engine.compilation import announce_compilation
 
     announce_compilation()
     advance(0)  # compile (or load from numba's cache) outside the timed stepping

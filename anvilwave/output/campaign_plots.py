@@ -22,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.output.tables import read_csv
+
 BOUND_STYLE = {"lower": ":", "best": "-", "upper": "--"}
 
 
@@ -58,7 +60,6 @@ def _summary(out: Path, case: str) -> dict:
 
 def _blows(out: Path, case: str) -> tuple[np.ndarray, np.ndarray] | None:
     """Tip depth [m] and blows per 0.25 m of a finished case."""
-    from anvilwave.output.tables import read_csv
 
     try:
         c = read_csv(out / "cases" / case / "driveability.csv")

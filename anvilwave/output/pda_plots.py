@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.pile.pda.signal_matching import davisson_1972_offset_limit
+
 
 def _pyplot():
     import matplotlib
@@ -76,7 +78,6 @@ def plot_match(columns: dict, path: str | Path, title: str = "") -> Path:
 
 def plot_static_load_test(result, cfg, path: str | Path) -> Path:
     """Simulated static load test: load against head settlement, with Davisson's line."""
-    from anvilwave.pile.pda.signal_matching import davisson_1972_offset_limit
 
     plt = _pyplot()
     curve = result.static_load_test

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.output.tables import blow_count_profile
+
 
 def _pyplot():
     import matplotlib
@@ -156,7 +158,6 @@ def plot_installation(result: dict, path: str | Path, title: str = "",
                       driveability: dict | None = None) -> Path:
     """Blow count and stresses against the tip depth, fatigue damage against the position
     along the pile, pile-head force band levels of the chosen depths."""
-    from anvilwave.analyses.install import blow_count_profile
 
     plt = _pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(15, 6))

@@ -248,18 +248,6 @@ def revolved_volume(points: np.ndarray) -> float:
     return float(abs(2.0 * np.pi * first_moment_r)) if area != 0 else 0.0
 
 
-def solid_mass(spec: AnvilSpec) -> float:
-    """Mass of the anvil [kg] without its modes: density times the revolved volume of the
-    outline (:func:`revolved_volume`), which is the FE model's total mass e_z^T M e_z (its
-    straight-edged elements tile the outline exactly; they agree to round-off); for an anvil
-    given as a mesh file, the assembled mass matrix's total."""
-    if spec.outline is not None:
-        return float(spec.material.density * revolved_volume(np.asarray(spec.outline, float)))
-    from anvilwave.anvil_rom.fem.elasticity import assemble
-    from anvilwave.anvil_rom.fem.mesh import read_mesh, to_skfem
-
-    mesh = read_mesh(spec.mesh_file, spec.source, "mesh")
-    return assemble(to_skfem(mesh), spec.material).total_mass()
 
 
 def validate_outline(points: np.ndarray, source: str, key: str) -> None:

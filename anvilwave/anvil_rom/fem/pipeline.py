@@ -9,6 +9,7 @@ from pathlib import Path
 import meshio
 import numpy as np
 
+from anvilwave.anvil_rom.fem.calculix import modes_from_calculix
 from anvilwave.anvil_rom.fem.elasticity import (
     AxisymmetricModel,
     assemble,
@@ -16,8 +17,8 @@ from anvilwave.anvil_rom.fem.elasticity import (
     ram_annulus_vectors,
     ring_vectors,
 )
-from anvilwave.anvil_rom.fem.geometry import AnvilSpec
-from anvilwave.anvil_rom.fem.mesh import build_mesh, to_skfem
+from anvilwave.anvil_rom.fem.geometry import AnvilSpec, revolved_volume
+from anvilwave.anvil_rom.fem.mesh import build_mesh, read_mesh, to_skfem
 from anvilwave.anvil_rom.fem.modalfile import ModalData
 from anvilwave.anvil_rom.fem.modes import (
     ModeSet,
@@ -141,7 +142,6 @@ def anvil_modes_from_calculix(spec: AnvilSpec, job: str | Path, fmax: float | No
     modes up to ``fmax`` [Hz] (default: the spec's) are kept, and a Sturm count of the FE model
     on that mesh proves CalculiX found all of them.
     """
-    from anvilwave.anvil_rom.fem.calculix import modes_from_calculix
 
     start = time.perf_counter()
     job = Path(job)
@@ -167,3 +167,14 @@ def _finish(spec, mesh, model, modes, source, start) -> AnvilModes:
         data = modal_data_from_modes(spec, model, modes, b_ram, b_pile, (a_ram, a_pile),
                                      source=source)
     return AnvilModes(spec, mesh, model, modes, data, b_ram, b_pile, time.perf_counter() - start)
+
+
+def solid_mass(spec: AnvilSpec) -> float:
+    """Mass of the anvil [kg] without its modes: density times the revolved volume of the
+    outline (:func:`revolved_volume`), which is the FE model's total mass e_z^T M e_z (its
+    straight-edged elements tile the outline exactly; they agree to round-off); for an anvil
+    given as a mesh file, the assembled mass matrix's total."""
+    if spec.outline is not None:
+        return float(spec.material.density * revolved_volume(np.asarray(spec.outline, float)))
+    mesh = read_mesh(spec.mesh_file, spec.source, "mesh")
+    return assemble(to_skfem(mesh), spec.material).total_mass()

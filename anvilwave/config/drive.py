@@ -1,0 +1,341 @@
+"""The ``[driveability]`` and ``[srd]`` tables of a system file, and the pile and soil they
+give at a tip depth.
+
+:class:`DriveSettings` holds the depths, blow schedules, set rule and refusal criterion;
+:class:`SrdSource` says where the SRD of each tip depth comes from. :func:`pile_soil_at`
+embeds the system's pile to a tip depth with that tip's SRD, which every analysis that drives
+the pile (drive, install, batch) starts from.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from anvilwave.hammer.impact import impact_velocity_from_energy
+from anvilwave.inputs import InputError, Table
+from anvilwave.pile.soil.cpt import read_cpt_csv
+from anvilwave.pile.soil.models import soil_capacities
+from anvilwave.pile.soil.profile import (
+    AlmHamre2001,
+    SoilLayer,
+    SoilProfile,
+    Stevens1982,
+    TipDepthTables,
+    srd_distribution,
+)
+
+SET_RULES = ("permanent", "grlweap")
+
+ENTHRU_LOCATIONS = ("gauge", "head")
+
+BOUNDS = ("lower", "best", "upper")
+
+SRD_METHODS = ("table", "tip-table", "alm-hamre-2001", "stevens-1982")
+
+DEFAULT_REFUSAL = 250.0
+"""Refusal blow count [blows / 0.25 m] (common offshore practice)."""
+
+DEFAULT_BLOW_RATE = 30.0
+"""Blow rate of a hydraulic hammer [blows/min]."""
+
+@dataclass(frozen=True)
+class DriveSettings:
+    """The ``[driveability]`` table of a system file.
+
+    depths : tip depths below the mudline to analyse [m], increasing.
+    blows_per_depth : blows per depth; > 1 is the residual-stress analysis [-].
+    refusal : refusal blow count [blows / 0.25 m].
+    blow_rate : hammer blow rate [blows/min].
+    set_rule : "permanent" or "grlweap" (module docstring).
+    enthru_location : "gauge" or "head".
+    energy_schedule : (n, 2) rows [tip depth [m], blow energy [J]], linear between rows and
+        constant beyond; None = the hammer's energy of the system file.
+    stroke_schedule : (n, 2) rows [tip depth [m], stroke [m]] instead of energies (the
+        energy is m g stroke).
+    efficiency_schedule : (n, 2) rows [tip depth [m], efficiency [-]]; None = the hammer's.
+    bound : "lower", "best" or "upper"; multipliers : SRD factor of each bound [-].
+    time_series_depths : depths whose blow time series are written [m].
+    duration : blow window [s] (default: the system's duration).
+    """
+
+    depths: np.ndarray
+    blows_per_depth: int = 1
+    refusal: float = DEFAULT_REFUSAL
+    blow_rate: float = DEFAULT_BLOW_RATE
+    set_rule: str = "permanent"
+    enthru_location: str = "gauge"
+    energy_schedule: np.ndarray | None = None
+    bound: str = "best"
+    multipliers: dict = field(default_factory=lambda: {"lower": 0.8, "best": 1.0,
+                                                       "upper": 1.25})
+    time_series_depths: tuple = ()
+    duration: float | None = None
+    stroke_schedule: np.ndarray | None = None
+    efficiency_schedule: np.ndarray | None = None
+
+    @property
+    def multiplier(self) -> float:
+        return float(self.multipliers[self.bound])
+
+@dataclass(frozen=True)
+class SrdSource:
+    """Where the SRD of each tip depth comes from (the ``[srd]`` table).
+
+    method : one of :data:`SRD_METHODS`: "table" (the ``[soil] srd`` rows against depth,
+        no friction fatigue), "tip-table" (a table per tip depth, as GRLWEAP takes them),
+        "alm-hamre-2001" (CPT and layers), "stevens-1982" (layers).
+    profile : the soil profile (layers and CPT) of the CPT/layer methods.
+    method_object : the method with its options (:mod:`anvilwave.pile.soil.profile`).
+    pile_mode : "coring" or "plugged"; faces : friction faces override (None: the mode's).
+    """
+
+    method: str
+    profile: object = None
+    method_object: object = None
+    pile_mode: str = "coring"
+    faces: str | None = None
+
+def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
+    """Read and validate the ``[driveability]`` table."""
+    if table is None:
+        raise InputError(source, "driveability", "the drive analysis needs a [driveability] "
+                                                 "table (depths, refusal, energy schedule ...)")
+    if table.has("depths") and any(table.has(k) for k in ("start", "stop", "step")):
+        raise table.error("depths", "give either depths = [...] or start, stop and step")
+    if table.has("depths"):
+        depths = table.array("depths", min_rows=1)
+    else:
+        start = table.number("start", ge=0.0, unit="m")
+        stop = table.number("stop", gt=start, unit="m")
+        step = table.number("step", gt=0.0, unit="m")
+        if (stop - start) / step > 10_000:
+            raise table.error("step", f"gives {(stop - start) / step:.3g} depths (at most "
+                                      "10000)")
+        depths = start + step * np.arange(int(math.floor((stop - start) / step + 1e-9)) + 1)
+    if np.any(depths <= 0.0) or np.any(np.diff(depths) <= 0.0):
+        raise table.error("depths" if table.has("depths") else "start",
+                          "tip depths must be positive and strictly increasing")
+    blows = table.integer("blows_per_depth", 1, ge=1)
+    if blows > 50:
+        raise table.error("blows_per_depth", f"must be at most 50, got {blows}")
+    refusal = table.number("refusal", DEFAULT_REFUSAL, gt=0.0, unit="blows/0.25m")
+    rate = table.number("blow_rate", DEFAULT_BLOW_RATE, gt=0.0, le=300.0, unit="blows/min")
+    set_rule = table.string("set_rule", "permanent", choices=SET_RULES)
+    enthru = table.string("enthru_location", "gauge", choices=ENTHRU_LOCATIONS)
+    schedule = table.array("energy", None, columns=2)
+    if schedule is not None:
+        if np.any(np.diff(schedule[:, 0]) <= 0.0) or np.any(schedule[:, 0] < 0.0):
+            raise table.error("energy", "rows [tip depth [m], energy [J]] need strictly "
+                                        "increasing, non-negative depths")
+        if np.any(schedule[:, 1] <= 0.0):
+            raise table.error("energy", "energies must be positive [J]")
+    stroke = _schedule(table, "stroke", "stroke [m]", upper=10.0)
+    efficiency = _schedule(table, "efficiency", "efficiency [-]", upper=1.0)
+    if stroke is not None and schedule is not None:
+        raise table.error("stroke", "give an energy or a stroke schedule, not both")
+    bound = table.string("bound", "best", choices=BOUNDS)
+    multipliers = {"lower": table.number("lower_multiplier", 0.8, gt=0.0, le=1.0),
+                   "best": 1.0,
+                   "upper": table.number("upper_multiplier", 1.25, ge=1.0, le=5.0)}
+    series = table.array("time_series_depths", None)
+    duration = table.number("duration", None, gt=0.0, le=1.0, unit="s")
+    table.finish()
+    return DriveSettings(depths=depths, blows_per_depth=blows, refusal=refusal,
+                         blow_rate=rate, set_rule=set_rule, enthru_location=enthru,
+                         energy_schedule=schedule, bound=bound, multipliers=multipliers,
+                         time_series_depths=tuple(series) if series is not None else (),
+                         duration=duration, stroke_schedule=stroke,
+                         efficiency_schedule=efficiency)
+
+def _schedule(table: Table, key: str, what: str, upper: float):
+    """A per-depth schedule: rows [tip depth [m], value], depths strictly increasing."""
+    rows = table.array(key, None, columns=2)
+    if rows is None:
+        return None
+    if np.any(np.diff(rows[:, 0]) <= 0.0) or np.any(rows[:, 0] < 0.0):
+        raise table.error(key, f"rows [tip depth [m], {what}] need strictly increasing, "
+                               "non-negative depths")
+    if np.any(rows[:, 1] <= 0.0) or np.any(rows[:, 1] > upper):
+        raise table.error(key, f"values must be in (0, {upper:g}]")
+    return rows
+
+def impact_at(settings: DriveSettings, depth: float, cfg) -> tuple[float, float]:
+    """(blow energy [J], impact velocity [m/s]) of the schedules at a tip depth: energy or
+    stroke, and efficiency, each linear between rows and constant beyond; the system's blow
+    energy and the hammer's efficiency where no schedule is given."""
+
+    mass = float(np.sum(cfg.hammer.ram.mass))
+    eff = cfg.hammer.efficiency
+    if settings.efficiency_schedule is not None:
+        e = settings.efficiency_schedule
+        eff = float(np.interp(depth, e[:, 0], e[:, 1]))
+    if settings.stroke_schedule is not None:
+        s = settings.stroke_schedule
+        energy = mass * cfg.gravity * float(np.interp(depth, s[:, 0], s[:, 1]))
+    else:
+        energy = energy_at(settings, depth, cfg.blow_energy)
+    if not eff == eff:  # a hammer given by its impact velocity: no efficiency
+        eff = 1.0
+    return energy, impact_velocity_from_energy(energy, mass, eff)
+
+def energy_at(settings: DriveSettings, depth: float, default: float) -> float:
+    """Blow energy of the schedule at a tip depth [J] (linear between rows, constant
+    beyond); ``default`` [J] without a schedule."""
+    s = settings.energy_schedule
+    if s is None:
+        return float(default)
+    return float(np.interp(depth, s[:, 0], s[:, 1]))
+
+def segment_capacities(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float):
+    """Shaft resistance per segment [N], toe resistance [N] for the tip at ``tip_depth`` [m]
+    below the mudline (the pile head ``L - tip_depth`` above it)."""
+
+    pile = pile_soil.pile
+    seg = pile.discretise()
+    if srd.method == "table":
+        soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=None)
+        shaft, toe = soil_capacities(soil, pile, seg)
+        return multiplier * shaft, multiplier * toe
+    mudline = pile.length - tip_depth
+    dist = srd_distribution(srd.profile, srd.method_object, float(tip_depth),
+                            seg.top - mudline, seg.length, seg.outer_diameter,
+                            seg.wall_thickness, pile_mode=srd.pile_mode, faces=srd.faces,
+                            bound_multiplier=multiplier)
+    return np.asarray(dist.shaft, dtype=float), float(dist.toe)
+
+def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float):
+    """The system's PileSoil embedded to ``tip_depth`` [m] with the SRD of that tip."""
+    shaft, toe = segment_capacities(pile_soil, srd, tip_depth, multiplier)
+    soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=(shaft, toe))
+    return replace(pile_soil, soil=soil), float(shaft.sum()), float(toe)
+
+def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
+    """Read the ``[srd]`` table (default: the ``[soil] srd`` rows, method "table")."""
+
+    if table is None:
+        if pile_soil.soil is None or pile_soil.soil.srd is None:
+            raise InputError(source, "srd", "the drive analysis needs an SRD: a [srd] table "
+                                            "or [soil] srd rows")
+        return SrdSource("table")
+    method = table.string("method", choices=SRD_METHODS)
+    pile_mode = table.string("pile_mode", "coring", choices=("coring", "plugged"))
+    faces = table.string("faces", None, choices=("outside", "outside+inside"))
+    if method == "table":
+        table.finish()
+        if pile_soil.soil is None or pile_soil.soil.srd is None:
+            raise table.error("method", "'table' uses the [soil] srd rows, which are missing")
+        return SrdSource("table", pile_mode=pile_mode, faces=faces)
+    if method == "tip-table":
+        obj = _tip_tables(table, pile_soil)
+        table.finish()
+        return SrdSource("tip-table", None, obj, pile_mode, faces)
+    layers = []
+    for lt in table.tables("layers"):
+        kind = lt.string("soil", choices=("sand", "clay"))
+        try:
+            layers.append(SoilLayer(
+                top=lt.number("top", ge=0.0, unit="m"),
+                bottom=lt.number("bottom", unit="m"),
+                soil_type=kind,
+                submerged_unit_weight=lt.number("submerged_unit_weight", gt=0.0,
+                                                unit="N/m^3"),
+                interface_friction_angle=lt.number("interface_friction_angle", None, gt=0.0,
+                                                   lt=45.0, unit="deg"),
+                friction_angle=lt.number("friction_angle", None, gt=0.0, lt=50.0, unit="deg"),
+                undrained_shear_strength=lt.number("undrained_shear_strength", None, ge=0.0,
+                                                   unit="Pa"),
+                undrained_shear_strength_gradient=lt.number(
+                    "undrained_shear_strength_gradient", 0.0, ge=0.0, unit="Pa/m"),
+                plasticity_index=lt.number("plasticity_index", None, ge=0.0, le=2.0),
+            ))
+        except ValueError as exc:
+            raise lt.error("soil", str(exc)) from None
+        lt.finish()
+    cpt = None
+    if table.has("cpt"):
+
+        path = table.path("cpt")
+        cpt = read_cpt_csv(path, qc_unit=table.string("cpt_qc_unit", None),
+                           fs_unit=table.string("cpt_fs_unit", None),
+                           u2_unit=table.string("cpt_u2_unit", None),
+                           depth_reference=table.string("cpt_depth_reference", "mudline",
+                                                        choices=("mudline", "sea-level")),
+                           water_depth=table.number("water_depth", None, ge=0.0, unit="m"))
+    try:
+        profile = SoilProfile(layers, cpt=cpt,
+                              net_area_ratio=table.number("net_area_ratio", 0.8, gt=0.0,
+                                                          le=1.0))
+    except ValueError as exc:
+        raise table.error("layers", str(exc)) from None
+    if method == "alm-hamre-2001":
+        if cpt is None:
+            raise table.error("cpt", "the Alm & Hamre (2001) method needs a CPT file")
+        obj = AlmHamre2001(
+            sand_toe_factor=table.number("sand_toe_factor", 0.15, gt=0.0, le=1.0),
+            clay_residual_floor=table.string("clay_residual_floor", "zero",
+                                             choices=("zero", "0.002qt", "clamp")))
+    else:
+        obj = Stevens1982(bound=table.string("stevens_bound", "lower",
+                                             choices=("lower", "upper")))
+    table.finish()
+    return SrdSource(method, profile, obj, pile_mode, faces)
+
+def _tip_tables(table: Table, pile_soil):
+    """Per-tip-depth tables: inline ``[[srd.tables]]`` (tip_depth, rows [depth [m], unit shaft
+    [Pa], unit toe [Pa]]) or ``file`` = a GRLWEAP-style model.json (``format``)."""
+    if table.has("file"):
+        path = table.path("file")
+        fmt = table.string("format", "grlweap-model-json", choices=("grlweap-model-json",))
+        if not path.exists():
+            raise table.error("file", f"{path} not found (the GRLWEAP benchmark input lies in "
+                                      "../shared/reference/grlweap-s4000/ beside the "
+                                      "repository; it is never copied into it)")
+        tips, tables = read_grlweap_tip_tables(path, pile_soil, table.source, fmt)
+    else:
+        tips, tables = [], []
+        for t in table.tables("tables"):
+            tips.append(t.number("tip_depth", ge=0.0, unit="m"))
+            tables.append(t.array("rows", columns=3))
+            t.finish()
+    try:
+        return TipDepthTables(np.array(tips), tuple(tables))
+    except ValueError as exc:
+        raise table.error("tables", str(exc)) from None
+
+def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
+    """The SRD tables by tip depth of a GRLWEAP input decoded to JSON (``soil_model.
+    srd_tables_by_run``: rows soil depth [m], unit shaft [kPa], toe resistance [kN]).
+
+    The toe force is turned into a unit resistance on the pile's toe annulus, so the
+    distribution gives it back on the same area.
+    """
+    try:
+        data = json.loads(Path(path).read_text())
+        runs = data["soil_model"]["srd_tables_by_run"]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise InputError(path, "soil_model.srd_tables_by_run", f"cannot be read ({exc})") \
+            from None
+    seg = pile_soil.pile.discretise()
+    d, t = float(seg.outer_diameter[-1]), float(seg.wall_thickness[-1])
+    area = math.pi * (d - t) * t
+    items = []
+    for key, run in runs.items():
+        try:
+            tip = float(run["tip_depth_the_table_was_built_for [m]"])
+            cols = run["columns"]
+            rows = np.array(run["rows"], dtype=float)
+            iz, ish, ito = (cols.index(c) for c in ("soil_depth [m]",
+                                                     "unit_shaft_resistance [kPa]",
+                                                     "toe_resistance [kN]"))
+        except (KeyError, ValueError, TypeError) as exc:
+            raise InputError(path, f"soil_model.srd_tables_by_run.{key}",
+                             f"is not a GRLWEAP table ({exc})") from None
+        table = np.column_stack([rows[:, iz], 1e3 * rows[:, ish], 1e3 * rows[:, ito] / area])
+        items.append((tip, table))
+    items.sort(key=lambda x: x[0])
+    return [x[0] for x in items], [x[1] for x in items]
