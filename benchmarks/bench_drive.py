@@ -37,7 +37,7 @@ def measure(path: Path, workers: int | None) -> dict:
     out = {}
     for label, w in (("1 worker", 1), ("parallel", workers)):
         result = run_driveability(cfg, cfg.srd, cfg.drive, engine, workers=w)
-        out[label] = result["summary"]
+        out[label] = result.summary
     s = out["parallel"]
     depths = s["depths_analysed [-]"]
     blows = depths * cfg.drive.blows_per_depth

@@ -59,7 +59,7 @@ def test_computed_once_then_read(cache_dir, disc_modes, monkeypatch):
         calls.append(fmax)
         return type("Result", (), {"modal_data": disc_modes})
 
-    monkeypatch.setattr(pipeline, "compute_anvil_modes", compute)
+    monkeypatch.setattr(cache, "compute_anvil_modes", compute)
     first = cache.cached_modal_data(disc())
     second = cache.cached_modal_data(disc())
     assert calls == [10000.0]
@@ -86,7 +86,7 @@ def test_key_covers_what_the_modes_depend_on(monkeypatch):
 
 
 def test_a_broken_entry_is_computed_again(cache_dir, disc_modes, monkeypatch):
-    monkeypatch.setattr(pipeline, "compute_anvil_modes",
+    monkeypatch.setattr(cache, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     cache.cached_modal_data(disc())
     (entry,) = cache_dir.glob("*.npz")
@@ -99,7 +99,7 @@ def test_a_broken_entry_is_computed_again(cache_dir, disc_modes, monkeypatch):
 def test_concurrent_writers_leave_one_complete_file(cache_dir, disc_modes, monkeypatch):
     """Workers computing the same entry at once (dask on one node) each write a temporary
     file and rename it: the entry is always complete and no temporary file remains."""
-    monkeypatch.setattr(pipeline, "compute_anvil_modes",
+    monkeypatch.setattr(cache, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     errors = []
 
@@ -128,7 +128,7 @@ def test_the_modal_ram_chain_is_cached(cache_dir, monkeypatch):
     p = np.array([1 / np.sqrt(1000.0), 0.02, 0.015])
     mass, stiffness = cache.cached_chain(omega, p)
     assert mass.sum() == pytest.approx(1000.0, rel=1e-9)
-    monkeypatch.setattr("anvilwave.anvil_rom.chain.chain_from_modes",
+    monkeypatch.setattr("anvilwave.config.cache.chain_from_modes",
                         lambda *a: (_ for _ in ()).throw(AssertionError("realised again")))
     again = cache.cached_chain(omega, p)
     np.testing.assert_array_equal(again[0], mass)
@@ -142,7 +142,7 @@ def test_the_tube_head_kernel_is_cached_and_listed(cache_dir, monkeypatch, capsy
     args = (STEEL, 0.95, 1.0, 2.0, 2e-5, 50, 2)
     kernel = cache.cached_ring_kernel(*args)
     assert kernel.shape == (50, 2, 2)
-    monkeypatch.setattr("anvilwave.pile.head_kernel.ring_kernel",
+    monkeypatch.setattr("anvilwave.config.cache.ring_kernel",
                         lambda *a: (_ for _ in ()).throw(AssertionError("computed again")))
     np.testing.assert_array_equal(cache.cached_ring_kernel(*args), kernel)
     assert main(["cache", "info"]) == 0
@@ -150,7 +150,7 @@ def test_the_tube_head_kernel_is_cached_and_listed(cache_dir, monkeypatch, capsy
 
 
 def test_cli_cache_info_and_clear(cache_dir, disc_modes, monkeypatch, capsys):
-    monkeypatch.setattr(pipeline, "compute_anvil_modes",
+    monkeypatch.setattr(cache, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     cache.cached_modal_data(disc())
     assert main(["cache", "info"]) == 0
@@ -170,7 +170,7 @@ def test_lumped_anvil_needs_no_modes(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the lumped anvil must not compute modes")
 
-    monkeypatch.setattr(pipeline, "compute_anvil_modes", refuse)
+    monkeypatch.setattr(cache, "compute_anvil_modes", refuse)
     engine = build_engine(cfg)
     mass = engine.anvil.unit.anvil.total_mass
     # the FE mass of examples/anvils/xl8.toml (its modal data, computed elsewhere)

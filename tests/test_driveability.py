@@ -130,13 +130,13 @@ def test_energy_balance_of_every_blow(table1_drive):
 def test_blow_count_rises_with_depth_and_refusal_is_detected(table1_drive):
     cfg, engine = table1_drive
     result = run_driveability(cfg, _table_srd(cfg), cfg.drive, engine, workers=1)
-    counts = [r["blow_count [1/m]"] for r in result["rows"]]
+    counts = [r["blow_count [1/m]"] for r in result.rows]
     assert counts[0] < counts[1] < counts[2]
-    assert result["summary"]["refusal_depth [m]"] is None
+    assert result.summary["refusal_depth [m]"] is None
     # a refusal criterion below the blow count at 30 m flags 30 m (or earlier)
     strict = replace(cfg.drive, refusal=0.25 * counts[1] * 0.999)
     result = run_driveability(cfg, _table_srd(cfg), strict, engine, workers=1)
-    assert result["summary"]["refusal_depth [m]"] == pytest.approx(20.0)
+    assert result.summary["refusal_depth [m]"] == pytest.approx(20.0)
 
 
 def test_pile_run_through_a_soft_layer(table1_drive, tmp_path):

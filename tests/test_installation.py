@@ -63,5 +63,5 @@ def test_installation_total_blows_follow_the_driveability(short_install):
     out, cfg = short_install
     summary = json.loads((out / "summary.json").read_text())
     drive = run_driveability(cfg, cfg.srd, cfg.drive, build_engine(cfg), workers=1)
-    total = drive["summary"]["total_blows [-]"]
+    total = drive.summary["total_blows [-]"]
     assert summary["total_blows [-]"] == pytest.approx(total, rel=0.15)

@@ -111,7 +111,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave.analyses.drive import COLUMNS, run_driveability
+from anvilwave.analyses.drive import COLUMNS, DriveResult, run_driveability
 from anvilwave.config.drive import load_srd_source
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import anvil_modal_data
@@ -614,7 +614,7 @@ def run_case(spec: dict) -> dict:
 
         cfg = load_system(system)
         result = run_driveability(cfg, cfg.srd, cfg.drive, None, workers=1)
-        summary = dict(result["summary"])
+        summary = dict(result.summary)
         summary["driveability_wall_time [s]"] = summary.pop("wall_time [s]")
         summary.update(_identity(spec))
         summary["system"] = str(system)
@@ -662,14 +662,14 @@ def _worker_info() -> dict:
             "worker_max_rss [B]": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}
 
 
-def _write_case(folder: Path, result: dict, summary: dict, cfg, spec: dict,
+def _write_case(folder: Path, result: DriveResult, summary: dict, cfg, spec: dict,
                 start: float) -> None:
     """driveability.csv (and .png), then summary.json atomically and last (with the case's
     wall time since ``start`` [s] (perf_counter) and its worker's peak memory)."""
 
     staging = Path(tempfile.mkdtemp(prefix=".partial-", dir=folder))
     try:
-        rows = result["rows"]
+        rows = result.rows
         columns = {n: np.array([r[n] for r in rows], dtype=float) for n in COLUMNS}
         write_csv(columns, staging / "driveability.csv")
         if spec.get("plots", True):
