@@ -50,9 +50,31 @@ SAFETY = 0.9
 
 def tube_model(material: Material, r_in: float, r_out: float, length: float, rings: int,
                axial_size: float) -> AxisymmetricModel:
-    """An axisymmetric tube r_in..r_out [m], z = 0 (its top) to ``length`` [m]: one quadratic
-    9-node element across each of ``rings`` equal-width rings, elements of at most
-    ``axial_size`` [m] along."""
+    """An axisymmetric tube r_in..r_out [m], z = 0 (its top) to ``length`` [m].
+
+    One quadratic 9-node element across each of ``rings`` equal-width rings, elements of at most
+    ``axial_size`` [m] along.
+
+    Parameters
+    ----------
+    material : Material
+        The tube's material.
+    r_in : float
+        Inner radius [m].
+    r_out : float
+        Outer radius [m].
+    length : float
+        Tube length [m].
+    rings : int
+        Number of equal-width rings (elements) across the wall [-].
+    axial_size : float
+        Largest element size along the axis [m].
+
+    Returns
+    -------
+    AxisymmetricModel
+        The assembled model.
+    """
     axial = max(1, int(np.ceil(length / axial_size - 1e-9)))
     mesh = skfem.MeshQuad.init_tensor(np.linspace(r_in, r_out, rings + 1),
                                       np.linspace(0.0, length, axial + 1))
@@ -61,9 +83,35 @@ def tube_model(material: Material, r_in: float, r_out: float, length: float, rin
 
 @njit(cache=True)
 def hat_responses(indptr, indices, data, inverse_mass, loads, steps, substeps, dt):
-    """Central differences of M u'' = -K u + loads f(t) for every load column at once (K in
-    CSR, M lumped; f the hat of unit peak at t = h = ``substeps`` dt, 0 at 0 and at 2 h): the
-    loads' own displacements loads^T u at t = h, 2 h, ... (``steps``, loads, loads)."""
+    """Central differences of M u'' = -K u + loads f(t) for every load column at once.
+
+    K in CSR, M lumped; f the hat of unit peak at t = h = ``substeps`` dt, 0 at 0 and at 2 h.
+
+    Parameters
+    ----------
+    indptr : numpy.ndarray
+        CSR row pointers of K.
+    indices : numpy.ndarray
+        CSR column indices of K.
+    data : numpy.ndarray
+        CSR values of K [N/m].
+    inverse_mass : numpy.ndarray
+        Inverse lumped mass per degree of freedom, shape (n,) [1/kg].
+    loads : numpy.ndarray
+        Load vectors, one column per load, shape (n, loads) [-].
+    steps : int
+        Number of output steps h [-].
+    substeps : int
+        Central-difference substeps per step h [-].
+    dt : float
+        Substep [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The loads' own displacements loads^T u at t = h, 2 h, ..., shape
+        (``steps``, loads, loads) [m/N].
+    """
     n, m = loads.shape
     u = np.zeros((n, m))
     v = np.zeros((n, m))
@@ -91,8 +139,34 @@ def hat_responses(indptr, indices, data, inverse_mass, loads, steps, substeps, d
 
 def ring_kernel(material: Material, r_in: float, r_out: float, length: float, step: float,
                 steps: int, rings: int = 3, axial_size: float = 0.1) -> np.ndarray:
-    """The ring kernel G (``steps``, ``rings``, ``rings``) [m/N] (module docstring) of a tube
-    of the pile's section r_in..r_out [m] and ``length`` [m] at the time ``step`` [s]."""
+    """The ring kernel G (``steps``, ``rings``, ``rings``) [m/N] (module docstring).
+
+    Of a tube of the pile's section r_in..r_out [m] and ``length`` [m] at the time ``step`` [s].
+
+    Parameters
+    ----------
+    material : Material
+        The tube's material.
+    r_in : float
+        Inner radius [m].
+    r_out : float
+        Outer radius [m].
+    length : float
+        Tube length [m].
+    step : float
+        Time step of the kernel [s].
+    steps : int
+        Number of kernel steps [-].
+    rings : int, default 3
+        Number of equal-width rings across the wall [-].
+    axial_size : float, default 0.1
+        Largest element size along the axis [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        G, shape (``steps``, ``rings``, ``rings``) [m/N].
+    """
     model = tube_model(material, r_in, r_out, length, rings, axial_size)
     mass = model.lumped_mass()
     K = model.stiffness.tocsr()
@@ -103,30 +177,81 @@ def ring_kernel(material: Material, r_in: float, r_out: float, length: float, st
 
 
 def echo_free_length(wave_speed: float, duration: float) -> float:
-    """A pile length [m] whose toe echo comes back after ``duration`` [s]: ceil(0.6 c T + 1 m)
-    with c [m/s] the bar speed, so that even the tube's plate waves (c / sqrt(1 - nu^2), 5 %
-    faster) take longer than T for the 2 L there and back; what :func:`rod_head_response` and
-    the engine's tube take for a semi-infinite pile over a blow."""
+    """A pile length [m] whose toe echo comes back after ``duration`` [s].
+
+    ceil(0.6 c T + 1 m) with c [m/s] the bar speed, so that even the tube's plate waves
+    (c / sqrt(1 - nu^2), 5 % faster) take longer than T for the 2 L there and back; what
+    :func:`rod_head_response` and the engine's tube take for a semi-infinite pile over a blow.
+
+    Parameters
+    ----------
+    wave_speed : float
+        Bar wave speed c [m/s].
+    duration : float
+        Duration T that must be echo free [s].
+
+    Returns
+    -------
+    float
+        The pile length [m].
+    """
     return float(np.ceil(0.6 * wave_speed * duration + 1.0))
 
 
 def tube_contact_stiffness(youngs_modulus: float, wall_thickness: float,
                            ring_areas: np.ndarray) -> np.ndarray:
-    """The rings' contact springs on the tube head [N/m]: E / h per unit area with h the
-    element size across the wall (the wall over the number of rings), summed over each ring;
-    the reference FEA's penalty (one element layer of compliance)."""
+    """The rings' contact springs on the tube head [N/m].
+
+    E / h per unit area with h the element size across the wall (the wall over the number of
+    rings), summed over each ring; the reference FEA's penalty (one element layer of compliance).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E [Pa].
+    wall_thickness : float
+        Wall thickness [m].
+    ring_areas : numpy.ndarray
+        Area of each ring [m^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Contact stiffness of each ring [N/m].
+    """
     ring_areas = np.asarray(ring_areas, float)
     return youngs_modulus / (wall_thickness / ring_areas.size) * ring_areas
 
 
 def rod_head_response(pile, step: float, steps: int, substeps: int,
                       extrapolation: float) -> np.ndarray:
-    """The 1D pile's head output (:func:`anvilwave.pile.kernels.head_displacement` with the head
-    ``extrapolation`` ratio of the pile's probes: 0 for the top mass, the system's default) at
-    the steps t_k = k ``step`` [s], k = 0 .. ``steps`` - 1, under a unit force [N] held over
-    the first step: the pile's top section, continued so that no reflection returns within the
-    steps (its segments and damping as the pile's, no soil, no gravity, ``substeps`` sub-steps
-    a step as the pile's), so the semi-infinite 1D head as the kernels discretise it [m/N]."""
+    """The 1D pile's head output under a unit force held over the first step [m/N].
+
+    The head output is :func:`anvilwave.pile.kernels.head_displacement` with the head
+    ``extrapolation`` ratio of the pile's probes (0 for the top mass, the system's default), at the
+    steps t_k = k ``step`` [s], k = 0 .. ``steps`` - 1, under a unit force [N] held over the first
+    step: the pile's top section, continued so that no reflection returns within the steps (its
+    segments and damping as the pile's, no soil, no gravity, ``substeps`` sub-steps a step as the
+    pile's), so the semi-infinite 1D head as the kernels discretise it [m/N].
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile; its top section is used.
+    step : float
+        Time step [s].
+    steps : int
+        Number of steps [-].
+    substeps : int
+        Sub-steps a step [-].
+    extrapolation : float
+        Head extrapolation ratio [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Head displacement per unit force at the steps, shape (``steps``,) [m/N].
+    """
     top = pile.sections[0]
     pieces = max(1, int(np.ceil(top.length / pile.segment_length - 1e-9)))
     dx = top.length / pieces
@@ -146,11 +271,25 @@ def rod_head_response(pile, step: float, steps: int, substeps: int,
 
 
 def head_correction(tube: np.ndarray, rod: np.ndarray) -> np.ndarray:
-    """What the tube head adds to the 1D head under K rings, D (steps, K, K) [m/N]:
+    """What the tube head adds to the 1D head under K rings, D (steps, K, K) [m/N].
+
     D[k] = G[k] - g[k] 1 1^T, with G the tube's ring kernel (:func:`ring_kernel`) and g the
     1D head's response (:func:`rod_head_response`) at the same step. The 1D pile's head face
     plus sum_k D[k] (F_(n-k) - F_rest) moves the rings as the tube head would, with the 1D
     pile's own reflections (its soil, its toe); the rings' contact springs are the tube's
-    (:func:`tube_contact_stiffness`) instead of the 1D head's."""
+    (:func:`tube_contact_stiffness`) instead of the 1D head's.
+
+    Parameters
+    ----------
+    tube : numpy.ndarray
+        The tube's ring kernel G, shape (steps, K, K) [m/N].
+    rod : numpy.ndarray
+        The 1D head's response g, shape (steps,) [m/N].
+
+    Returns
+    -------
+    numpy.ndarray
+        D, shape (min of the two step counts, K, K) [m/N].
+    """
     steps = min(tube.shape[0], rod.size)
     return tube[:steps] - rod[:steps, None, None] * np.ones((1,) + tube.shape[1:])

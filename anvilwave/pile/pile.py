@@ -90,11 +90,18 @@ DEFAULT_MATERIAL_DAMPING = 0.01
 class Section:
     """A uniform length of tube (or solid bar).
 
-    length : section length [m].
-    outer_diameter : outer diameter [m].
-    wall_thickness : wall thickness [m]; outer_diameter / 2 for a solid section.
-    youngs_modulus : Young's modulus [Pa].
-    density : mass density [kg/m^3].
+    Parameters
+    ----------
+    length : float
+        Section length [m].
+    outer_diameter : float
+        Outer diameter [m].
+    wall_thickness : float
+        Wall thickness [m]; ``outer_diameter / 2`` for a solid section.
+    youngs_modulus : float, default STEEL_YOUNGS_MODULUS
+        Young's modulus [Pa].
+    density : float, default STEEL_DENSITY
+        Mass density [kg/m^3].
     """
 
     length: float
@@ -123,11 +130,18 @@ class Section:
 class PileSpec:
     """A non-uniform pile from its sections (head first).
 
-    sections : the sections from the head down.
-    segment_length : target segment length [m] (an upper bound per section).
-    gauge_depth : depth of the gauges below the pile head [m].
-    material_damping : pile damping, fraction of critical of one segment [-].
-    material_damping_model : "segment" (each spring's own 2 zeta sqrt(k m*)) or "uniform"
+    Parameters
+    ----------
+    sections : tuple of Section
+        The sections from the head down.
+    segment_length : float, default DEFAULT_SEGMENT_LENGTH
+        Target segment length [m] (an upper bound per section).
+    gauge_depth : float, default DEFAULT_GAUGE_DEPTH
+        Depth of the gauges below the pile head [m].
+    material_damping : float, default DEFAULT_MATERIAL_DAMPING
+        Pile damping, fraction of critical of one segment [-].
+    material_damping_model : {"segment", "uniform"}
+        ``"segment"`` (each spring's own 2 zeta sqrt(k m*)) or ``"uniform"``
         (GRLWEAP: 2 zeta EA/c at mid-length for every spring).
     """
 
@@ -143,7 +157,13 @@ class PileSpec:
         return float(sum(s.length for s in self.sections))
 
     def discretise(self) -> Segments:
-        """The segments of this pile (see the module docstring)."""
+        """The segments of this pile (see the module docstring).
+
+        Returns
+        -------
+        Segments
+            The per-segment properties, head first.
+        """
         return discretise(self)
 
 
@@ -151,11 +171,33 @@ class PileSpec:
 class Segments:
     """Per-segment properties of a discretised pile, head first (arrays of length N).
 
-    top, bottom : segment ends, depth below the pile head [m].
-    length : segment length [m].
-    area : steel area [m^2].
-    youngs_modulus : [Pa].  density : [kg/m^3].
-    outer_diameter, wall_thickness : [m].
+    Parameters
+    ----------
+    top : numpy.ndarray
+        Upper segment ends, depth below the pile head [m].
+    bottom : numpy.ndarray
+        Lower segment ends, depth below the pile head [m].
+    area : numpy.ndarray
+        Steel area [m^2].
+    youngs_modulus : numpy.ndarray
+        Young's modulus [Pa].
+    density : numpy.ndarray
+        Mass density [kg/m^3].
+    outer_diameter : numpy.ndarray
+        Outer diameter [m].
+    wall_thickness : numpy.ndarray
+        Wall thickness [m].
+
+    Attributes
+    ----------
+    count : int
+        Number of segments N [-].
+    length : numpy.ndarray
+        Segment length [m].
+    centre : numpy.ndarray
+        Depth of the lumped masses below the head [m].
+    wave_speed : numpy.ndarray
+        Bar wave speed sqrt(E / rho) [m/s].
     """
 
     top: np.ndarray
@@ -168,10 +210,12 @@ class Segments:
 
     @property
     def count(self) -> int:
+        """Number of segments N [-]."""
         return int(self.top.size)
 
     @property
     def length(self) -> np.ndarray:
+        """Segment length, bottom - top [m]."""
         return self.bottom - self.top
 
     @property
@@ -181,17 +225,51 @@ class Segments:
 
     @property
     def wave_speed(self) -> np.ndarray:
+        """Bar wave speed c = sqrt(E / rho) per segment [m/s]."""
         return np.sqrt(self.youngs_modulus / self.density)
 
 
 def section_area(outer_diameter, wall_thickness):
-    """Area of a tube, pi/4 (D^2 - (D - 2t)^2) [m^2] (outer diameter D [m], wall t [m])."""
+    """Area of a tube, pi/4 (D^2 - (D - 2t)^2) [m^2].
+
+    Parameters
+    ----------
+    outer_diameter : float or array_like
+        Outer diameter D [m].
+    wall_thickness : float or array_like
+        Wall thickness t [m].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Steel cross-section area [m^2].
+    """
     inner = np.maximum(np.asarray(outer_diameter) - 2.0 * np.asarray(wall_thickness), 0.0)
     return 0.25 * np.pi * (np.asarray(outer_diameter) ** 2 - inner**2)
 
 
 def segment_masses(density, area, length) -> np.ndarray:
-    """Lumped segment masses m_i = rho_i A_i dx_i [kg] (Smith 1960)."""
+    """Lumped segment masses m_i = rho_i A_i dx_i [kg] (Smith 1960).
+
+    Parameters
+    ----------
+    density : array_like
+        Mass density rho_i [kg/m^3].
+    area : array_like
+        Steel area A_i [m^2].
+    length : array_like
+        Segment length dx_i [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Segment masses [kg].
+
+    References
+    ----------
+    Smith, E.A.L. (1960). Pile driving analysis by the wave equation. ASCE J. Soil Mech.
+    Found. Div. 86(4), 35-61.
+    """
     return np.asarray(density) * np.asarray(area) * np.asarray(length)
 
 
@@ -199,6 +277,20 @@ def spring_stiffnesses(youngs_modulus, area, length) -> np.ndarray:
     """Stiffness of the springs joining consecutive segment centres [N/m], N - 1 values.
 
     1 / k_i = dx_i / (2 E_i A_i) + dx_{i+1} / (2 E_{i+1} A_{i+1}) (two half-segments in series).
+
+    Parameters
+    ----------
+    youngs_modulus : array_like
+        Young's modulus E_i per segment, shape (N,) [Pa].
+    area : array_like
+        Steel area A_i per segment, shape (N,) [m^2].
+    length : array_like
+        Segment length dx_i, shape (N,) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Spring stiffnesses k_i, shape (N-1,) [N/m].
     """
     half_flex = 0.5 * np.asarray(length) / (np.asarray(youngs_modulus) * np.asarray(area))
     return 1.0 / (half_flex[:-1] + half_flex[1:])
@@ -207,15 +299,37 @@ def spring_stiffnesses(youngs_modulus, area, length) -> np.ndarray:
 def spring_dashpots(stiffness, mass, damping_ratio: float) -> np.ndarray:
     """Pile material dashpots c_i = 2 zeta sqrt(k_i (m_i + m_{i+1}) / 2) [N s/m].
 
-    stiffness : (N-1,) spring stiffness [N/m]; mass : (N,) segment masses [kg];
-    damping_ratio : fraction of critical zeta [-].
+    Parameters
+    ----------
+    stiffness : array_like
+        Spring stiffness, shape (N-1,) [N/m].
+    mass : array_like
+        Segment masses, shape (N,) [kg].
+    damping_ratio : float
+        Fraction of critical zeta [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Dashpot constants c_i, shape (N-1,) [N s/m].
     """
     mean_mass = 0.5 * (np.asarray(mass)[:-1] + np.asarray(mass)[1:])
     return 2.0 * damping_ratio * np.sqrt(np.asarray(stiffness) * mean_mass)
 
 
 def discretise(pile: PileSpec) -> Segments:
-    """Cut every section into ceil(length / segment_length) equal segments."""
+    """Cut every section into ceil(length / segment_length) equal segments.
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile to discretise.
+
+    Returns
+    -------
+    Segments
+        The per-segment properties, head first.
+    """
     rows = []
     top = 0.0
     for s in pile.sections:
@@ -235,6 +349,23 @@ def pile_parameters(pile: PileSpec, segments: Segments | None = None) -> np.ndar
 
     Row PILE_MASS: segment masses [kg]; row PILE_STIFFNESS: the spring below each mass [N/m]
     (0 below the toe mass); row PILE_DASHPOT: the material dashpot below each mass [N s/m].
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile.
+    segments : Segments, optional
+        Its segments; discretised from `pile` when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        The parameter array, shape (PILE_ROWS, N).
+
+    Raises
+    ------
+    ValueError
+        If the pile has fewer than 2 segments (reduce segment_length).
     """
     seg = segments if segments is not None else discretise(pile)
     if seg.count < 2:
@@ -252,9 +383,27 @@ def pile_parameters(pile: PileSpec, segments: Segments | None = None) -> np.ndar
 
 
 def grlweap_uniform_pile_damping(pile: PileSpec, segments: Segments) -> float:
-    """GRLWEAP's pile damping: 2 zeta E A / c of the section at mid-length [N s/m] for every
-    spring (zeta = ``material_damping``; GRLWEAP's "1 %" is zeta = 0.01). Rausche, Likins,
-    Liang & Hussein, GRLWEAP background report (Pile Dynamics Inc.)."""
+    """GRLWEAP's pile damping: 2 zeta E A / c of the section at mid-length for every spring.
+
+    zeta = ``material_damping``; GRLWEAP's "1 %" is zeta = 0.01.
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile (its ``material_damping`` and length are used).
+    segments : Segments
+        Its segments.
+
+    Returns
+    -------
+    float
+        The dashpot constant of every spring [N s/m].
+
+    References
+    ----------
+    Rausche, F., Likins, G.E., Liang, L., Hussein, M.H. GRLWEAP background report (Pile
+    Dynamics Inc.).
+    """
     mid = int(np.searchsorted(segments.bottom, 0.5 * pile.length))
     mid = min(mid, segments.count - 1)
     e, a, rho = (segments.youngs_modulus[mid], segments.area[mid], segments.density[mid])
@@ -272,8 +421,21 @@ def _bracket(positions: np.ndarray, depth: float) -> tuple[int, float]:
 
 
 def head_extrapolation(segments: Segments) -> float:
-    """Ratio e [-] with u_head = u_0 + e (u_0 - u_1): the flexibility of the top half-segment,
-    dx_0 / (2 E_0 A_0), over that of the first spring (1/2 for a uniform top)."""
+    """Ratio e [-] with u_head = u_0 + e (u_0 - u_1).
+
+    The flexibility of the top half-segment, dx_0 / (2 E_0 A_0), over that of the first spring
+    (1/2 for a uniform top).
+
+    Parameters
+    ----------
+    segments : Segments
+        The pile segments (at least 2).
+
+    Returns
+    -------
+    float
+        The head extrapolation ratio e [-].
+    """
     half = 0.5 * segments.length[:2] / (segments.youngs_modulus[:2] * segments.area[:2])
     return float(half[0] / (half[0] + half[1]))
 
@@ -283,6 +445,18 @@ def probe_parameters(pile: PileSpec, segments: Segments | None = None) -> np.nda
 
     [gauge spring index, its weight, gauge mass index, its weight, head extrapolation ratio];
     indices are stored as floats.
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile (its ``gauge_depth`` is used).
+    segments : Segments, optional
+        Its segments; discretised from `pile` when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        The probe array, shape (PROBE_SIZE,).
     """
     seg = segments if segments is not None else discretise(pile)
     springs = seg.bottom[:-1]
@@ -297,7 +471,23 @@ def probe_parameters(pile: PileSpec, segments: Segments | None = None) -> np.nda
 
 # ---------------------------------------------------------------------------- input
 def section_from_table(table: Table) -> Section:
-    """One ``[[pile.sections]]`` entry."""
+    """One ``[[pile.sections]]`` entry.
+
+    Parameters
+    ----------
+    table : Table
+        The section table.
+
+    Returns
+    -------
+    Section
+        The validated section.
+
+    Raises
+    ------
+    InputError
+        If an entry is missing or invalid (e.g. a wall thicker than half the diameter).
+    """
     length = table.number("length", gt=0.0, unit="m")
     diameter = table.number("outer_diameter", gt=0.0, unit="m")
     wall = table.number("wall_thickness", gt=0.0, unit="m")
@@ -319,7 +509,24 @@ wave equation needs, and still small for this machine."""
 
 
 def pile_from_table(table: Table) -> PileSpec:
-    """Read and validate the ``[pile]`` table (see the module docstring)."""
+    """Read and validate the ``[pile]`` table (see the module docstring).
+
+    Parameters
+    ----------
+    table : Table
+        The ``[pile]`` table.
+
+    Returns
+    -------
+    PileSpec
+        The validated pile.
+
+    Raises
+    ------
+    InputError
+        If an entry is missing or invalid, or the segmentation gives fewer than 2 or more than
+        MAX_SEGMENTS segments.
+    """
     segment_length = table.number("segment_length", DEFAULT_SEGMENT_LENGTH, gt=0.0, unit="m")
     damping = table.number("material_damping", DEFAULT_MATERIAL_DAMPING, ge=0.0, lt=1.0)
     damping_model = table.string("material_damping_model", "segment",
@@ -349,7 +556,18 @@ def pile_from_table(table: Table) -> PileSpec:
 
 
 def load_pile(path) -> PileSpec:
-    """Read a file whose only table is ``[pile]``."""
+    """Read a file whose only table is ``[pile]``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The TOML file.
+
+    Returns
+    -------
+    PileSpec
+        The validated pile.
+    """
     root = Table.from_file(path)
     pile = pile_from_table(root.table("pile"))
     root.finish()

@@ -30,7 +30,22 @@ from anvilwave.pile.kernels import (
 
 
 def static_loads(pile: np.ndarray, head_force: float, gravity: float) -> np.ndarray:
-    """Static load on each mass [N]: m_i g, plus the head force W [N] on the top mass."""
+    """Static load on each mass [N]: m_i g, plus the head force W [N] on the top mass.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        Pile parameter array of the kernels (:mod:`anvilwave.pile.kernels`).
+    head_force : float
+        Head force W [N].
+    gravity : float
+        Gravitational acceleration g [m/s^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        The load on each mass, shape (N,) [N].
+    """
     loads = pile[PILE_MASS] * gravity
     loads[0] += head_force
     return loads
@@ -40,9 +55,31 @@ def static_equilibrium(pile: np.ndarray, soil: np.ndarray, head_force: float, gr
                        max_iterations: int = 200) -> tuple[np.ndarray, np.ndarray]:
     """Displacements u (N,) [m] and soil offsets (N+1,) [m] in equilibrium with the loads.
 
-    pile, soil : kernel parameter arrays (:mod:`anvilwave.pile.kernels`).
-    head_force : weight resting on the head [N] (compression +).
-    gravity : gravitational acceleration on the pile masses [m/s^2] (0: none).
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        Pile parameter array of the kernels (:mod:`anvilwave.pile.kernels`).
+    soil : numpy.ndarray
+        Soil parameter array of the kernels (:mod:`anvilwave.pile.kernels`).
+    head_force : float
+        Weight resting on the head [N] (compression +).
+    gravity : float
+        Gravitational acceleration on the pile masses [m/s^2] (0: none).
+    max_iterations : int, default 200
+        Most active-set iterations [-].
+
+    Returns
+    -------
+    u : numpy.ndarray
+        Displacements, shape (N,) [m].
+    offset : numpy.ndarray
+        Soil plastic offsets, shape (N+1,) [m].
+
+    Raises
+    ------
+    ValueError
+        If the loads exceed the soil capacity (no static equilibrium), or the iteration does not
+        converge.
     """
     n = pile.shape[1]
     loads = static_loads(pile, head_force, gravity)
