@@ -73,14 +73,29 @@ _MPA = 1.0e6  # [Pa] per MPa: the tables are in MPa
 class SNCurve:
     """One S-N curve of a DNV-RP-C203 table (stress ranges in MPa inside the formula).
 
-    name : curve name, e.g. ``"D"``.
-    m1 : negative inverse slope of the first segment [-].
-    log_a1_air : log10 a1 in air, for N <= 1e7 [-] (a in cycles MPa^m).
-    log_a2 : log10 a2 of the m = 5 segment (air for N > 1e7, seawater with CP for N > 1e6) [-].
-    fatigue_limit_air : stress range at N = 1e7 in air, as tabulated [MPa] (a check on the data).
-    log_a1_seawater_cp : log10 a1 in seawater with cathodic protection, N <= 1e6 [-].
-    log_a_free_corrosion : log10 a of the m = 3 curve for free corrosion [-].
-    thickness_exponent : k of the thickness correction [-].
+    Parameters
+    ----------
+    name : str
+        Curve name, e.g. ``"D"``.
+    m1 : float
+        Negative inverse slope of the first segment [-].
+    log_a1_air : float
+        log10 a1 in air, for N <= 1e7 [-] (a in cycles MPa^m).
+    log_a2 : float
+        log10 a2 of the m = 5 segment (air for N > 1e7, seawater with CP for N > 1e6) [-].
+    fatigue_limit_air : float
+        Stress range at N = 1e7 in air, as tabulated [MPa] (a check on the data).
+    log_a1_seawater_cp : float
+        log10 a1 in seawater with cathodic protection, N <= 1e6 [-].
+    log_a_free_corrosion : float
+        log10 a of the m = 3 curve for free corrosion [-].
+    thickness_exponent : float
+        k of the thickness correction [-].
+
+    References
+    ----------
+    DNV (2016). DNV-RP-C203 Fatigue design of offshore steel structures. April 2016 edition,
+    section 2.4.
     """
 
     name: str
@@ -136,7 +151,25 @@ EDITIONS = tuple(DNV_RP_C203_TABLES)
 
 # ---------------------------------------------------------------------------------- S-N curves
 def dnv_rp_c203_curve(curve: str, edition: str = "2016") -> SNCurve:
-    """The S-N curve ``curve`` (e.g. ``"D"``) of a DNV-RP-C203 ``edition`` (e.g. ``"2016"``)."""
+    """The S-N curve ``curve`` (e.g. ``"D"``) of a DNV-RP-C203 ``edition`` (e.g. ``"2016"``).
+
+    Parameters
+    ----------
+    curve : str
+        S-N curve name, e.g. ``"D"`` (see :data:`DNV_RP_C203_TABLES`).
+    edition : str, default "2016"
+        DNV-RP-C203 edition, one of :data:`EDITIONS`.
+
+    Returns
+    -------
+    SNCurve
+        The tabulated curve.
+
+    Raises
+    ------
+    ValueError
+        If the edition or the curve is unknown.
+    """
     if edition not in DNV_RP_C203_TABLES:
         raise ValueError(f"unknown DNV-RP-C203 edition {edition!r}; choose one of {EDITIONS}")
     table = DNV_RP_C203_TABLES[edition]
@@ -150,13 +183,27 @@ def dnv_rp_c203_2016_thickness_factor(thickness, thickness_exponent: float,
                                       reference_thickness: float = REFERENCE_THICKNESS):
     """Thickness correction (t / t_ref)^k of DNV-RP-C203 (2016) [-].
 
-    thickness : t, plate or wall thickness through which a crack grows [m] (or t_eff, see
+    Parameters
+    ----------
+    thickness : float or array_like
+        t, plate or wall thickness through which a crack grows [m] (or t_eff, see
         :func:`dnv_rp_c203_2016_effective_thickness`).
-    thickness_exponent : k of the S-N curve [-].
-    reference_thickness : t_ref [m]: 0.025 for welded connections other than tubular joints,
-        0.032 for tubular joints.
+    thickness_exponent : float
+        k of the S-N curve [-].
+    reference_thickness : float, default REFERENCE_THICKNESS
+        t_ref [m]: 0.025 for welded connections other than tubular joints, 0.032 for tubular
+        joints.
 
-    Returns 1 for t <= t_ref (the correction applies to thicker sections only).
+    Returns
+    -------
+    numpy.ndarray
+        The factor (t / t_ref)^k [-]; 1 for t <= t_ref (the correction applies to thicker
+        sections only).
+
+    References
+    ----------
+    DNV (2016). DNV-RP-C203 Fatigue design of offshore steel structures. April 2016 edition,
+    section 2.4 (thickness effect).
     """
     t = np.asarray(thickness, dtype=float)
     return (np.maximum(t, reference_thickness) / reference_thickness) ** thickness_exponent
@@ -168,7 +215,22 @@ def dnv_rp_c203_2016_effective_thickness(thickness, weld_length):
     For transverse butt welds, cruciform joints and transverse fillet-welded attachments, the
     thickness in the thickness correction is replaced by t_eff.
 
-    thickness : t [m]. weld_length : L, the attachment length of the weld detail [m].
+    Parameters
+    ----------
+    thickness : float or array_like
+        t [m].
+    weld_length : float or array_like
+        L, the attachment length of the weld detail [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        t_eff [m].
+
+    References
+    ----------
+    DNV (2016). DNV-RP-C203 Fatigue design of offshore steel structures. April 2016 edition,
+    section 2.4 (thickness effect).
     """
     return np.minimum(0.014 + 0.66 * np.asarray(weld_length, dtype=float),
                       np.asarray(thickness, dtype=float))
@@ -186,12 +248,37 @@ def dnv_rp_c203_2016_cycles_to_failure(stress_range, curve: str, environment: st
     chosen from N of the first segment, as the tables state it (so the rounding of the
     tabulated log a leaves a step of at most 2.5e-3 in log N at the slope change).
 
-    stress_range : Δσ, nominal (hot-spot with ``scf``) stress range(s) [Pa]; 0 gives N = inf.
-    curve : S-N curve name, e.g. ``"D"`` (see :data:`DNV_RP_C203_TABLES`).
-    environment : ``"air"``, ``"seawater-cp"`` or ``"free-corrosion"``.
-    thickness : t (or t_eff) [m].
-    scf : stress concentration factor [-].
-    reference_thickness : t_ref [m] (0.025; 0.032 for tubular joints).
+    Parameters
+    ----------
+    stress_range : float or array_like
+        Δσ, nominal (hot-spot with ``scf``) stress range(s) [Pa]; 0 gives N = inf.
+    curve : str
+        S-N curve name, e.g. ``"D"`` (see :data:`DNV_RP_C203_TABLES`).
+    environment : {"air", "seawater-cp", "free-corrosion"}
+        The environment.
+    thickness : float or array_like
+        t (or t_eff) [m].
+    scf : float, default 1.0
+        Stress concentration factor [-].
+    reference_thickness : float, default REFERENCE_THICKNESS
+        t_ref [m] (0.025; 0.032 for tubular joints).
+
+    Returns
+    -------
+    numpy.ndarray
+        Cycles to failure N [-].
+
+    Raises
+    ------
+    ValueError
+        If the curve or environment is unknown, ``scf`` or a thickness is not positive, or a
+        stress range is negative or not finite.
+
+    References
+    ----------
+    DNV (2016). DNV-RP-C203 Fatigue design of offshore steel structures. April 2016 edition,
+    section 2.4 (S-N curves in air, in seawater with cathodic protection, for free corrosion;
+    thickness effect).
     """
     return _cycles_to_failure(dnv_rp_c203_curve(curve, "2016"), stress_range, environment,
                               thickness, scf, reference_thickness)
@@ -200,12 +287,37 @@ def dnv_rp_c203_2016_cycles_to_failure(stress_range, curve: str, environment: st
 def dnv_rp_c203_cycles_to_failure(stress_range, curve: str, environment: str, thickness,
                                   scf: float = 1.0, *, edition: str = "2016",
                                   reference_thickness: float = REFERENCE_THICKNESS):
-    """N of DNV-RP-C203 for a named ``edition`` [-] (parameters as
-    :func:`dnv_rp_c203_2016_cycles_to_failure`; ``edition`` one of :data:`EDITIONS`).
+    """N of DNV-RP-C203 for a named ``edition`` [-].
 
     Every edition in :data:`DNV_RP_C203_TABLES` is evaluated with the 2016 form of the S-N
     relation (two slopes, thickness correction, SCF); an edition that changes the form itself
     needs its own ``dnv_rp_c203_<edition>_cycles_to_failure`` dispatched here.
+
+    Parameters
+    ----------
+    stress_range : float or array_like
+        Δσ, nominal (hot-spot with ``scf``) stress range(s) [Pa]; 0 gives N = inf.
+    curve : str
+        S-N curve name, e.g. ``"D"`` (see :data:`DNV_RP_C203_TABLES`).
+    environment : {"air", "seawater-cp", "free-corrosion"}
+        The environment.
+    thickness : float or array_like
+        t (or t_eff) [m].
+    scf : float, default 1.0
+        Stress concentration factor [-].
+    edition : str, default "2016"
+        One of :data:`EDITIONS`.
+    reference_thickness : float, default REFERENCE_THICKNESS
+        t_ref [m] (0.025; 0.032 for tubular joints).
+
+    Returns
+    -------
+    numpy.ndarray
+        Cycles to failure N [-].
+
+    See Also
+    --------
+    dnv_rp_c203_2016_cycles_to_failure : The same parameters.
     """
     return _cycles_to_failure(dnv_rp_c203_curve(curve, edition), stress_range, environment,
                               thickness, scf, reference_thickness)
@@ -241,7 +353,31 @@ def sn_curve(curve: str, environment: str, thickness: float, scf: float = 1.0, *
              ) -> Callable[[np.ndarray], np.ndarray]:
     """A function stress range [Pa] -> cycles to failure [-] with the detail data bound.
 
-    Parameters as :func:`dnv_rp_c203_cycles_to_failure`; checked here, once.
+    The parameters are checked here, once.
+
+    Parameters
+    ----------
+    curve : str
+        S-N curve name, e.g. ``"D"`` (see :data:`DNV_RP_C203_TABLES`).
+    environment : {"air", "seawater-cp", "free-corrosion"}
+        The environment.
+    thickness : float
+        t (or t_eff) [m].
+    scf : float, default 1.0
+        Stress concentration factor [-].
+    edition : str, default "2016"
+        One of :data:`EDITIONS`.
+    reference_thickness : float, default REFERENCE_THICKNESS
+        t_ref [m] (0.025; 0.032 for tubular joints).
+
+    Returns
+    -------
+    callable
+        ``cycles_to_failure(stress_range)``, stress range [Pa] -> N [-].
+
+    See Also
+    --------
+    dnv_rp_c203_cycles_to_failure : The function bound.
     """
     dnv_rp_c203_cycles_to_failure(1.0e6, curve, environment, thickness, scf, edition=edition,
                                   reference_thickness=reference_thickness)
@@ -258,8 +394,23 @@ def sn_curve(curve: str, environment: str, thickness: float, scf: float = 1.0, *
 def miner_1945_damage(cycle_counts, cycles_to_failure) -> float:
     """Miner's sum D = sum_i n_i / N_i [-] (Palmgren 1924; Miner 1945).
 
-    cycle_counts : n_i, counted cycles (0.5 for half cycles) [-].
-    cycles_to_failure : N_i, cycles to failure at the same stress ranges [-] (inf -> no damage).
+    Parameters
+    ----------
+    cycle_counts : array_like
+        n_i, counted cycles (0.5 for half cycles) [-].
+    cycles_to_failure : array_like
+        N_i, cycles to failure at the same stress ranges [-] (inf -> no damage).
+
+    Returns
+    -------
+    float
+        The damage D [-].
+
+    References
+    ----------
+    Miner, M.A. (1945). Cumulative damage in fatigue. J. Appl. Mech. 12(3), A159-A164.
+    https://doi.org/10.1115/1.4009458
+    Palmgren, A. (1924). Die Lebensdauer von Kugellagern. VDI-Zeitschrift 68, 339-341.
     """
     n = np.asarray(cycle_counts, dtype=float)
     big_n = np.asarray(cycles_to_failure, dtype=float)
@@ -272,6 +423,23 @@ def rainflow_cycles(stress_history) -> tuple[np.ndarray, np.ndarray]:
     Uses ``rainflow.extract_cycles``; the last sample is passed twice, which changes nothing
     for the package except that a history of exactly two distinct samples gives its half cycle
     (the package reports no cycle for a two-sample series).
+
+    Parameters
+    ----------
+    stress_history : array_like
+        The history [any unit]; must be finite.
+
+    Returns
+    -------
+    ranges : numpy.ndarray
+        Cycle ranges [unit of the history].
+    counts : numpy.ndarray
+        Cycle counts, 0.5 or 1 [-].
+
+    References
+    ----------
+    ASTM E1049-85 (reapproved 2011). Standard practices for cycle counting in fatigue analysis,
+    section 5.4.4 Rainflow counting.
     """
     x = _as_history(stress_history)
     if x.size < 2:
@@ -283,8 +451,17 @@ def rainflow_cycles(stress_history) -> tuple[np.ndarray, np.ndarray]:
 def rainflow_damage(stress_history, cycles_to_failure: Callable) -> float:
     """Miner's sum of a whole stress history counted by rainflow [-].
 
-    stress_history : stress at one section against time [Pa].
-    cycles_to_failure : function stress range [Pa] -> N [-] (e.g. from :func:`sn_curve`).
+    Parameters
+    ----------
+    stress_history : array_like
+        Stress at one section against time [Pa].
+    cycles_to_failure : callable
+        Function stress range [Pa] -> N [-] (e.g. from :func:`sn_curve`).
+
+    Returns
+    -------
+    float
+        The damage D [-].
     """
     ranges, counts = rainflow_cycles(stress_history)
     if ranges.size == 0:
@@ -309,13 +486,27 @@ def _as_arrays(cycles) -> tuple[np.ndarray, np.ndarray]:
 def turning_points(last_value: float, direction: float, block: np.ndarray):
     """Confirmed reversals of a block continuing a history (the rule of ``rainflow.reversals``).
 
-    last_value : the last sample of the history so far [any unit].
-    direction : sign of the last non-zero change of the history so far (+1, -1; 0 if none) [-].
-    block : the new samples [same unit].
+    Repeated values are dropped; a point is a reversal where the sign of the change flips. The
+    last sample is never confirmed here (the next block decides), exactly as
+    ``rainflow.reversals`` treats the interior of one series.
 
-    Returns (reversals, new last value, new direction). Repeated values are dropped; a point is
-    a reversal where the sign of the change flips. The last sample is never confirmed here (the
-    next block decides), exactly as ``rainflow.reversals`` treats the interior of one series.
+    Parameters
+    ----------
+    last_value : float
+        The last sample of the history so far [any unit].
+    direction : float
+        Sign of the last non-zero change of the history so far (+1, -1; 0 if none) [-].
+    block : numpy.ndarray
+        The new samples [same unit].
+
+    Returns
+    -------
+    reversals : numpy.ndarray
+        The confirmed reversals [same unit].
+    last_value : float
+        The new last value [same unit].
+    direction : float
+        The new direction [-].
     """
     s = np.concatenate(([last_value], np.asarray(block, dtype=float)))
     s = s[np.r_[True, s[1:] != s[:-1]]]
@@ -333,6 +524,20 @@ class RainflowStream:
     cycles (and the cycles the last sample closes) if the history ended now, without changing
     the state. The union equals ``rainflow_cycles`` of the concatenated blocks. Memory: the
     residue (a few reversals) and the last sample.
+
+    Attributes
+    ----------
+    residue : list of float
+        The ASTM residue, the reversals not yet closed [unit of the history].
+    last_value : float or None
+        The last sample so far (None before the first block) [unit of the history].
+    direction : float
+        Sign of the last non-zero change so far (0 if none) [-].
+
+    References
+    ----------
+    ASTM E1049-85 (reapproved 2011). Standard practices for cycle counting in fatigue analysis,
+    section 5.4.4 Rainflow counting.
     """
 
     def __init__(self):
@@ -341,7 +546,20 @@ class RainflowStream:
         self.direction = 0.0
 
     def add(self, block) -> tuple[np.ndarray, np.ndarray]:
-        """Count a new block [unit of the history]; returns (ranges, counts) of closed cycles."""
+        """Count a new block [unit of the history].
+
+        Parameters
+        ----------
+        block : array_like
+            The new samples [unit of the history].
+
+        Returns
+        -------
+        ranges : numpy.ndarray
+            Ranges of the cycles the block closes [unit of the history].
+        counts : numpy.ndarray
+            Their counts [-].
+        """
         x = _as_history(block)
         if x.size == 0:
             return _as_arrays([])
@@ -373,7 +591,15 @@ class RainflowStream:
         return _as_arrays(cycles)
 
     def residue_cycles(self) -> tuple[np.ndarray, np.ndarray]:
-        """Cycles of the residue if the history ended now (ASTM: half cycles); state unchanged."""
+        """Cycles of the residue if the history ended now (ASTM: half cycles); state unchanged.
+
+        Returns
+        -------
+        ranges : numpy.ndarray
+            Ranges [unit of the history].
+        counts : numpy.ndarray
+            Counts [-].
+        """
         if self.last_value is None:
             return _as_arrays([])
         series = list(self.residue)
@@ -386,14 +612,35 @@ class RainflowStream:
 class StreamingMinerDamage:
     """Miner damage of several sections whose stress histories arrive blow by blow.
 
-    cycles_to_failure : one function stress range [Pa] -> N [-] for all sections, or one per
-        section (e.g. :func:`sn_curve` with each section's curve, thickness and SCF).
-    n_sections : number of sections [-] (taken from ``cycles_to_failure`` if it is a sequence).
-
     ``add_blow(stress)`` takes the stress of one blow, shape (n_samples, n_sections) [Pa]
     (a 1D array for a single section). :meth:`damage` is the damage of the whole sequence so far
     with the open residue closed as half cycles (ASTM), :attr:`closed_damage` without it;
     :attr:`closed_cycles` counts the closed cycles [-] and :attr:`blows` the blows added [-].
+
+    Parameters
+    ----------
+    cycles_to_failure : callable or sequence of callable
+        One function stress range [Pa] -> N [-] for all sections, or one per section (e.g.
+        :func:`sn_curve` with each section's curve, thickness and SCF).
+    n_sections : int, optional
+        Number of sections [-] (taken from ``cycles_to_failure`` if it is a sequence).
+
+    Attributes
+    ----------
+    closed_damage : numpy.ndarray
+        Miner's sum of the closed cycles per section [-].
+    closed_cycles : numpy.ndarray
+        Number of closed cycles per section [-].
+    blows : int
+        Number of blows added [-].
+    n_sections : int
+        Number of sections [-].
+
+    Raises
+    ------
+    ValueError
+        If ``n_sections`` is missing (or < 1) with a single function, or differs from the number
+        of functions.
     """
 
     def __init__(self, cycles_to_failure: Callable | Sequence[Callable],
@@ -414,10 +661,22 @@ class StreamingMinerDamage:
 
     @property
     def n_sections(self) -> int:
+        """Number of sections [-]."""
         return len(self.streams)
 
     def add_blow(self, stress) -> None:
-        """Count one blow: stress [Pa], shape (n_samples, n_sections) or (n_samples,)."""
+        """Count one blow: stress [Pa], shape (n_samples, n_sections) or (n_samples,).
+
+        Parameters
+        ----------
+        stress : array_like
+            The stress of the blow at each section [Pa].
+
+        Raises
+        ------
+        ValueError
+            If the shape does not match the number of sections.
+        """
         s = np.asarray(stress, dtype=float)
         if s.ndim == 1:
             s = s[:, None]
@@ -433,7 +692,13 @@ class StreamingMinerDamage:
         self.blows += 1
 
     def damage(self) -> np.ndarray:
-        """Miner's sum per section [-], the residue counted as half cycles (history ends now)."""
+        """Miner's sum per section [-], the residue counted as half cycles (history ends now).
+
+        Returns
+        -------
+        numpy.ndarray
+            Damage per section [-].
+        """
         total = self.closed_damage.copy()
         for j, stream in enumerate(self.streams):
             ranges, counts = stream.residue_cycles()

@@ -58,26 +58,74 @@ THIRD_OCTAVE_HALF_WIDTH = 10.0 ** (1.0 / 20.0)
 
 # ---------------------------------------------------------------------------------- bands
 def iec_61260_1_2014_band_centre(band_number):
-    """Exact mid-band frequency f_m = 1000 x 10^(n/10) of one-third-octave band n [Hz]
-    (IEC 61260-1:2014, base-ten system, b = 3; n = 0 is 1 kHz).
+    """Exact mid-band frequency f_m = 1000 x 10^(n/10) of one-third-octave band n [Hz].
 
-    band_number : n, integer band index [-] (scalar or array).
+    IEC 61260-1:2014, base-ten system, b = 3; n = 0 is 1 kHz.
+
+    Parameters
+    ----------
+    band_number : int or array_like
+        n, integer band index [-] (scalar or array).
+
+    Returns
+    -------
+    numpy.ndarray
+        Mid-band frequency f_m [Hz].
+
+    References
+    ----------
+    IEC 61260-1:2014. Electroacoustics - Octave-band and fractional-octave-band filters - Part 1:
+    Specifications.
     """
     return 1000.0 * 10.0 ** (np.asarray(band_number, dtype=float) / 10.0)
 
 
 def iec_61260_1_2014_band_edges(band_number):
-    """Lower and upper edge frequencies f_m x 10^(-1/20), f_m x 10^(+1/20) of band n [Hz]
-    (IEC 61260-1:2014, base-ten system, b = 3).
+    """Lower and upper edge frequencies f_m x 10^(-1/20), f_m x 10^(+1/20) of band n [Hz].
 
-    band_number : n, integer band index [-] (scalar or array).
+    IEC 61260-1:2014, base-ten system, b = 3.
+
+    Parameters
+    ----------
+    band_number : int or array_like
+        n, integer band index [-] (scalar or array).
+
+    Returns
+    -------
+    lower : numpy.ndarray
+        Lower edge frequency [Hz].
+    upper : numpy.ndarray
+        Upper edge frequency [Hz].
+
+    References
+    ----------
+    IEC 61260-1:2014. Electroacoustics - Octave-band and fractional-octave-band filters - Part 1:
+    Specifications.
     """
     centre = iec_61260_1_2014_band_centre(band_number)
     return centre / THIRD_OCTAVE_HALF_WIDTH, centre * THIRD_OCTAVE_HALF_WIDTH
 
 
 def band_numbers_between(lowest_frequency: float, highest_frequency: float) -> np.ndarray:
-    """Numbers of the one-third-octave bands lying wholly within [lowest, highest] [Hz]."""
+    """Numbers of the one-third-octave bands lying wholly within [lowest, highest] [Hz].
+
+    Parameters
+    ----------
+    lowest_frequency : float
+        Lowest frequency [Hz].
+    highest_frequency : float
+        Highest frequency [Hz].
+
+    Returns
+    -------
+    numpy.ndarray
+        The band numbers n [-].
+
+    Raises
+    ------
+    ValueError
+        Unless 0 < lowest_frequency < highest_frequency.
+    """
     if not 0.0 < lowest_frequency < highest_frequency:
         raise ValueError("need 0 < lowest_frequency < highest_frequency [Hz]")
     first = math.ceil(10.0 * math.log10(lowest_frequency * THIRD_OCTAVE_HALF_WIDTH / 1000.0)
@@ -91,13 +139,29 @@ def valid_band(time_step: float, duration: float, *, upper_fraction: float = 0.1
                min_periods: float = 1.0) -> tuple[float, float]:
     """Frequency range in which the spectrum of a sampled record is trustworthy [Hz].
 
-    time_step : sampling interval dt [s].
-    duration : record duration T [s] (before any zero padding).
-    upper_fraction : upper limit as a fraction of the sampling rate 1/dt [-] (aliasing of the
-        pulse onset; default a tenth, see the module notes).
-    min_periods : periods of the lowest frequency that must fit in the record [-] (default 1).
+    Parameters
+    ----------
+    time_step : float
+        Sampling interval dt [s].
+    duration : float
+        Record duration T [s] (before any zero padding).
+    upper_fraction : float, default 0.1
+        Upper limit as a fraction of the sampling rate 1/dt [-] (aliasing of the pulse onset;
+        default a tenth, see the module notes).
+    min_periods : float, default 1.0
+        Periods of the lowest frequency that must fit in the record [-].
 
-    Returns (lowest, highest) = (min_periods / T, upper_fraction / dt).
+    Returns
+    -------
+    lowest : float
+        ``min_periods / T`` [Hz].
+    highest : float
+        ``upper_fraction / dt`` [Hz].
+
+    Raises
+    ------
+    ValueError
+        If ``time_step`` or ``duration`` is not positive.
     """
     if time_step <= 0.0 or duration <= 0.0:
         raise ValueError("time_step and duration must be positive [s]")
@@ -132,12 +196,22 @@ def _fft_size(n_samples: int, n_fft: int | None) -> int:
 def fourier_amplitude_spectrum(force, time_step: float, n_fft: int | None = None):
     """|F(f)| of a sampled force pulse, f >= 0 [N s].
 
-    force : F_n, samples at t_n = n dt [N].
-    time_step : dt [s].
-    n_fft : zero-padded FFT length [-] (default: the record length); rounded up to the next
-        even length with small prime factors (``scipy.fft.next_fast_len``).
+    Parameters
+    ----------
+    force : array_like
+        F_n, samples at t_n = n dt [N].
+    time_step : float
+        dt [s].
+    n_fft : int, optional
+        Zero-padded FFT length [-] (default: the record length); rounded up to the next even
+        length with small prime factors (``scipy.fft.next_fast_len``).
 
-    Returns (frequency [Hz], amplitude [N s]) with frequency k / (n_fft dt), k = 0..n_fft/2.
+    Returns
+    -------
+    frequency : numpy.ndarray
+        k / (n_fft dt), k = 0..n_fft/2 [Hz].
+    amplitude : numpy.ndarray
+        |F(f)| [N s].
     """
     f = _check_force(force, time_step)
     n = _fft_size(f.size, n_fft)
@@ -147,8 +221,24 @@ def fourier_amplitude_spectrum(force, time_step: float, n_fft: int | None = None
 def energy_spectral_density(force, time_step: float, n_fft: int | None = None):
     """One-sided energy spectral density ESD(f) = 2 |F(f)|^2, f >= 0 [N^2 s/Hz].
 
-    Parameters as :func:`fourier_amplitude_spectrum`. The trapezoidal integral of the result
-    over [0, f_Nyquist] equals sum F_n^2 dt (discrete Parseval, see the module notes).
+    The trapezoidal integral of the result over [0, f_Nyquist] equals sum F_n^2 dt (discrete
+    Parseval, see the module notes).
+
+    Parameters
+    ----------
+    force : array_like
+        F_n, samples at t_n = n dt [N].
+    time_step : float
+        dt [s].
+    n_fft : int, optional
+        Zero-padded FFT length [-], as in :func:`fourier_amplitude_spectrum`.
+
+    Returns
+    -------
+    frequency : numpy.ndarray
+        Frequency points [Hz].
+    esd : numpy.ndarray
+        ESD(f) [N^2 s/Hz].
     """
     frequency, amplitude = fourier_amplitude_spectrum(force, time_step, n_fft)
     return frequency, 2.0 * amplitude ** 2
@@ -157,7 +247,17 @@ def energy_spectral_density(force, time_step: float, n_fft: int | None = None):
 def signal_energy(force, time_step: float) -> float:
     """Energy of a sampled force, sum F_n^2 dt [N^2 s] (rectangle rule; equals the ESD total).
 
-    force : F_n [N]. time_step : dt [s].
+    Parameters
+    ----------
+    force : array_like
+        F_n [N].
+    time_step : float
+        dt [s].
+
+    Returns
+    -------
+    float
+        The energy [N^2 s].
     """
     f = _check_force(force, time_step)
     return float(np.dot(f, f) * time_step)
@@ -167,11 +267,30 @@ def integrate_piecewise_linear(frequency_step: float, density, lower: float,
                                upper: float) -> float:
     """Exact integral over [lower, upper] of a density sampled at k df, linear between [N^2 s].
 
-    frequency_step : df [Hz]. density : values at f = k df, k = 0..K [N^2 s/Hz].
-    lower, upper : integration limits, 0 <= lower <= upper <= K df [Hz]. Partial intervals at
-    both ends are integrated as trapezoids on the interpolated end values; whole intervals are
-    summed separately (no difference of cumulative sums, so a weak band is not lost in the
-    round-off of a strong total).
+    Partial intervals at both ends are integrated as trapezoids on the interpolated end values;
+    whole intervals are summed separately (no difference of cumulative sums, so a weak band is
+    not lost in the round-off of a strong total).
+
+    Parameters
+    ----------
+    frequency_step : float
+        df [Hz].
+    density : array_like
+        Values at f = k df, k = 0..K [N^2 s/Hz].
+    lower : float
+        Lower integration limit, 0 <= lower <= upper [Hz].
+    upper : float
+        Upper integration limit, upper <= K df [Hz].
+
+    Returns
+    -------
+    float
+        The integral [N^2 s].
+
+    Raises
+    ------
+    ValueError
+        If the limits lie outside the spectrum.
     """
     e = np.asarray(density, dtype=float)
     top = (e.size - 1) * frequency_step
@@ -197,7 +316,15 @@ def integrate_piecewise_linear(frequency_step: float, density, lower: float,
 def energy_level(energy):
     """Level 10 log10(E / 1 N^2 s) [dB re 1 N^2 s]; -inf for a zero energy.
 
-    energy : E [N^2 s].
+    Parameters
+    ----------
+    energy : float or array_like
+        E [N^2 s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The level [dB re 1 N^2 s].
     """
     with np.errstate(divide="ignore"):
         return 10.0 * np.log10(np.asarray(energy, dtype=float) / REFERENCE_ENERGY)
@@ -207,14 +334,28 @@ def energy_level(energy):
 class BandEnergies:
     """One-third-octave band energies of a force record.
 
-    band_number : IEC 61260-1 band index n [-].
-    centre_frequency, lower_frequency, upper_frequency : f_m and edges [Hz].
-    energy : band energy, both sides of the spectrum [N^2 s].
-    level : 10 log10(energy / 1 N^2 s) [dB re 1 N^2 s].
-    valid : band wholly inside :func:`valid_band` [-].
-    valid_range : (lowest, highest) trustworthy frequency [Hz].
-    frequency_step : spacing of the zero-padded spectrum [Hz].
-    total_energy : sum F_n^2 dt of the record [N^2 s].
+    Parameters
+    ----------
+    band_number : numpy.ndarray
+        IEC 61260-1 band index n [-].
+    centre_frequency : numpy.ndarray
+        Mid-band frequency f_m [Hz].
+    lower_frequency : numpy.ndarray
+        Lower band edge [Hz].
+    upper_frequency : numpy.ndarray
+        Upper band edge [Hz].
+    energy : numpy.ndarray
+        Band energy, both sides of the spectrum [N^2 s].
+    level : numpy.ndarray
+        10 log10(energy / 1 N^2 s) [dB re 1 N^2 s].
+    valid : numpy.ndarray
+        Band wholly inside :func:`valid_band` [-].
+    valid_range : tuple of float
+        (lowest, highest) trustworthy frequency [Hz].
+    frequency_step : float
+        Spacing of the zero-padded spectrum [Hz].
+    total_energy : float
+        sum F_n^2 dt of the record [N^2 s].
     """
 
     band_number: np.ndarray
@@ -229,7 +370,13 @@ class BandEnergies:
     total_energy: float
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Columns for a CSV, named ``name [unit]``."""
+        """Columns for a CSV, named ``name [unit]``.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            The band columns.
+        """
         return {
             "band_centre_frequency [Hz]": self.centre_frequency,
             "band_lower_frequency [Hz]": self.lower_frequency,
@@ -245,14 +392,37 @@ def third_octave_band_energies(force, time_step: float, band_numbers=None, *,
                                upper_fraction: float = 0.1) -> BandEnergies:
     """One-third-octave band energies and levels of a sampled force pulse.
 
-    force : F_n, samples at t_n = n dt, the pulse and its decay [N].
-    time_step : dt [s].
-    band_numbers : IEC 61260-1 band indices n [-]; default: every band from the one at
+    Parameters
+    ----------
+    force : array_like
+        F_n, samples at t_n = n dt, the pulse and its decay [N].
+    time_step : float
+        dt [s].
+    band_numbers : array_like of int, optional
+        IEC 61260-1 band indices n [-]; default: every band from the one at
         ``lowest_frequency`` up to the last one below the Nyquist frequency (invalid ones are
         computed and flagged, see ``valid``).
-    bins_per_band : frequency steps of the zero-padded spectrum across the lowest band [-].
-    lowest_frequency : nominal lowest band for the default band list [Hz] (10 Hz: n = -20).
-    upper_fraction : upper limit of the valid band as a fraction of 1/dt [-].
+    bins_per_band : int, default 16
+        Frequency steps of the zero-padded spectrum across the lowest band [-].
+    lowest_frequency : float, default 10.0
+        Nominal lowest band for the default band list [Hz] (10 Hz: n = -20).
+    upper_fraction : float, default 0.1
+        Upper limit of the valid band as a fraction of 1/dt [-].
+
+    Returns
+    -------
+    BandEnergies
+        The band energies, levels and validity.
+
+    Raises
+    ------
+    ValueError
+        If the band numbers are not integers or reach above the Nyquist frequency.
+
+    References
+    ----------
+    IEC 61260-1:2014. Electroacoustics - Octave-band and fractional-octave-band filters - Part 1:
+    Specifications.
     """
     f = _check_force(force, time_step)
     nyquist = 0.5 / time_step
