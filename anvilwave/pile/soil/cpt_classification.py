@@ -57,8 +57,24 @@ CHART_F_RANGE = (0.1, 10.0)
 def robertson_1990_normalised_cone_resistance(qt, sigma_v0, sigma_v0_effective):
     """Q = (qt - sigma_v0) / sigma'v0 [-] (Robertson 1990).
 
-    qt : corrected cone resistance [Pa]; sigma_v0 : total vertical stress [Pa];
-    sigma_v0_effective : effective vertical stress [Pa] (> 0).
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    sigma_v0 : float or array_like
+        Total vertical stress [Pa].
+    sigma_v0_effective : float or array_like
+        Effective vertical stress [Pa] (> 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        Normalised cone resistance Q [-].
+
+    References
+    ----------
+    Robertson, P.K. (1990). Soil classification using the cone penetration test. Canadian
+    Geotechnical Journal 27(1), 151-158. https://doi.org/10.1139/t90-014
     """
     qt, sv, se = (np.asarray(a, dtype=float) for a in (qt, sigma_v0, sigma_v0_effective))
     return (qt - sv) / se
@@ -67,8 +83,24 @@ def robertson_1990_normalised_cone_resistance(qt, sigma_v0, sigma_v0_effective):
 def robertson_1990_normalised_friction_ratio(fs, qt, sigma_v0):
     """F = 100 fs / (qt - sigma_v0) [%] (Robertson 1990).
 
-    fs : sleeve friction [Pa]; qt : corrected cone resistance [Pa];
-    sigma_v0 : total vertical stress [Pa].
+    Parameters
+    ----------
+    fs : float or array_like
+        Sleeve friction [Pa].
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    sigma_v0 : float or array_like
+        Total vertical stress [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        Normalised friction ratio F [%].
+
+    References
+    ----------
+    Robertson, P.K. (1990). Soil classification using the cone penetration test. Canadian
+    Geotechnical Journal 27(1), 151-158. https://doi.org/10.1139/t90-014
     """
     fs, qt, sv = (np.asarray(a, dtype=float) for a in (fs, qt, sigma_v0))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -78,8 +110,26 @@ def robertson_1990_normalised_friction_ratio(fs, qt, sigma_v0):
 def robertson_wride_1998_soil_behaviour_type_index(q, f):
     """Ic = sqrt((3.47 - log10 Q)^2 + (log10 F + 1.22)^2) [-] (Robertson & Wride 1998).
 
-    q : normalised cone resistance Q or Qtn [-]; f : normalised friction ratio F [%].
-    Both are clipped to the chart's extent (:data:`CHART_Q_RANGE`, :data:`CHART_F_RANGE`).
+    Both inputs are clipped to the chart's extent (:data:`CHART_Q_RANGE`,
+    :data:`CHART_F_RANGE`).
+
+    Parameters
+    ----------
+    q : float or array_like
+        Normalised cone resistance Q or Qtn [-].
+    f : float or array_like
+        Normalised friction ratio F [%].
+
+    Returns
+    -------
+    numpy.ndarray
+        Soil behaviour type index Ic [-].
+
+    References
+    ----------
+    Robertson, P.K., Wride, C.E. (1998). Evaluating cyclic liquefaction potential using the cone
+    penetration test. Canadian Geotechnical Journal 35(3), 442-459.
+    https://doi.org/10.1139/t98-017
     """
     q = np.clip(np.nan_to_num(np.asarray(q, dtype=float), nan=CHART_Q_RANGE[0],
                               posinf=CHART_Q_RANGE[1], neginf=CHART_Q_RANGE[0]), *CHART_Q_RANGE)
@@ -91,8 +141,26 @@ def robertson_wride_1998_soil_behaviour_type_index(q, f):
 def robertson_1990_soil_behaviour_type_index(qt, fs, sigma_v0, sigma_v0_effective):
     """Ic from Robertson's (1990) Q and F (stress exponent n = 1) [-].
 
-    qt, fs : corrected cone resistance and sleeve friction [Pa]; sigma_v0,
-    sigma_v0_effective : total and effective vertical stress [Pa].
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    fs : float or array_like
+        Sleeve friction [Pa].
+    sigma_v0 : float or array_like
+        Total vertical stress [Pa].
+    sigma_v0_effective : float or array_like
+        Effective vertical stress [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        Soil behaviour type index Ic [-].
+
+    References
+    ----------
+    Robertson, P.K. (1990). Soil classification using the cone penetration test. Canadian
+    Geotechnical Journal 27(1), 151-158. https://doi.org/10.1139/t90-014
     """
     q = robertson_1990_normalised_cone_resistance(qt, sigma_v0, sigma_v0_effective)
     f = robertson_1990_normalised_friction_ratio(fs, qt, sigma_v0)
@@ -103,8 +171,24 @@ def robertson_2009_stress_exponent(ic, sigma_v0_effective, atmospheric_pressure=
                                    ATMOSPHERIC_PRESSURE):
     """n = 0.381 Ic + 0.05 sigma'v0 / pa - 0.15, at most 1 [-] (Robertson 2009, eq. 7).
 
-    ic : soil behaviour type index [-]; sigma_v0_effective : [Pa]; atmospheric_pressure : pa
-    [Pa].
+    Parameters
+    ----------
+    ic : float or array_like
+        Soil behaviour type index [-].
+    sigma_v0_effective : float or array_like
+        Effective vertical stress [Pa].
+    atmospheric_pressure : float, default ATMOSPHERIC_PRESSURE
+        pa [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        Stress exponent n [-].
+
+    References
+    ----------
+    Robertson, P.K. (2009). Interpretation of cone penetration tests - a unified approach.
+    Canadian Geotechnical Journal 46(11), 1337-1355. https://doi.org/10.1139/T09-065
     """
     ic, se = np.asarray(ic, dtype=float), np.asarray(sigma_v0_effective, dtype=float)
     return np.minimum(0.381 * ic + 0.05 * se / atmospheric_pressure - 0.15, 1.0)
@@ -114,8 +198,28 @@ def robertson_2009_normalised_cone_resistance(qt, sigma_v0, sigma_v0_effective, 
                                               atmospheric_pressure=ATMOSPHERIC_PRESSURE):
     """Qtn = ((qt - sigma_v0) / pa) (pa / sigma'v0)^n [-] (Robertson 2009).
 
-    qt : [Pa]; sigma_v0, sigma_v0_effective : total and effective vertical stress [Pa];
-    n : stress exponent [-]; atmospheric_pressure : pa [Pa].
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    sigma_v0 : float or array_like
+        Total vertical stress [Pa].
+    sigma_v0_effective : float or array_like
+        Effective vertical stress [Pa].
+    n : float or array_like
+        Stress exponent [-].
+    atmospheric_pressure : float, default ATMOSPHERIC_PRESSURE
+        pa [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        Normalised cone resistance Qtn [-].
+
+    References
+    ----------
+    Robertson, P.K. (2009). Interpretation of cone penetration tests - a unified approach.
+    Canadian Geotechnical Journal 46(11), 1337-1355. https://doi.org/10.1139/T09-065
     """
     qt, sv, se, n = (np.asarray(a, dtype=float) for a in (qt, sigma_v0, sigma_v0_effective, n))
     return (qt - sv) / atmospheric_pressure * (atmospheric_pressure / se) ** n
@@ -131,9 +235,34 @@ def robertson_2009_soil_behaviour_type_index(qt, fs, sigma_v0, sigma_v0_effectiv
     pile's depth: dn/dIc = 0.381 and |dIc/dn| <= |log10(pa / sigma'v0)|, so the loop
     converges while sigma'v0 lies within about pa / 400 and 400 pa).
 
-    qt, fs : corrected cone resistance and sleeve friction [Pa]; sigma_v0,
-    sigma_v0_effective : total and effective vertical stress [Pa]; atmospheric_pressure : pa
-    [Pa]. Returns (Ic [-], n [-]).
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    fs : float or array_like
+        Sleeve friction [Pa].
+    sigma_v0 : float or array_like
+        Total vertical stress [Pa].
+    sigma_v0_effective : float or array_like
+        Effective vertical stress [Pa].
+    atmospheric_pressure : float, default ATMOSPHERIC_PRESSURE
+        pa [Pa].
+    tolerance : float, default 1e-6
+        Convergence tolerance on n [-].
+    max_iterations : int, default 100
+        Most iterations [-].
+
+    Returns
+    -------
+    ic : numpy.ndarray
+        Soil behaviour type index Ic [-].
+    n : numpy.ndarray
+        Stress exponent n [-].
+
+    References
+    ----------
+    Robertson, P.K. (2009). Interpretation of cone penetration tests - a unified approach.
+    Canadian Geotechnical Journal 46(11), 1337-1355. https://doi.org/10.1139/T09-065
     """
     qt, fs, sv, se = np.broadcast_arrays(*(np.asarray(a, dtype=float)
                                            for a in (qt, fs, sigma_v0, sigma_v0_effective)))
@@ -154,7 +283,25 @@ def robertson_2009_soil_behaviour_type_index(qt, fs, sigma_v0, sigma_v0_effectiv
 
 
 def robertson_2009_is_sand(ic, boundary=ROBERTSON_2009_SAND_CLAY_BOUNDARY):
-    """True where the soil is sand-like, Ic < ``boundary`` [-] (Robertson 2009: 2.6)."""
+    """True where the soil is sand-like, Ic < ``boundary`` [-] (Robertson 2009: 2.6).
+
+    Parameters
+    ----------
+    ic : float or array_like
+        Soil behaviour type index Ic [-].
+    boundary : float, default ROBERTSON_2009_SAND_CLAY_BOUNDARY
+        Ic boundary between sand and clay [-].
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        True where sand-like.
+
+    References
+    ----------
+    Robertson, P.K. (2009). Interpretation of cone penetration tests - a unified approach.
+    Canadian Geotechnical Journal 46(11), 1337-1355. https://doi.org/10.1139/T09-065
+    """
     return np.asarray(ic, dtype=float) < boundary
 
 
@@ -170,9 +317,24 @@ def _runs(is_sand: np.ndarray) -> list[tuple[int, int, bool]]:
 def merge_thin_layers(is_sand, tops, bottoms, min_thickness: float) -> np.ndarray:
     """Types with every run thinner than ``min_thickness`` [m] absorbed by its neighbours.
 
-    is_sand : (n,) type of each interval [bool]; tops, bottoms : (n,) interval limits [m].
     The thinnest run is flipped first (it joins its neighbours, which are of the other type),
     until every run is at least ``min_thickness`` thick or one run is left.
+
+    Parameters
+    ----------
+    is_sand : array_like of bool
+        Type of each interval, shape (n,).
+    tops : array_like
+        Interval tops, shape (n,) [m].
+    bottoms : array_like
+        Interval bottoms, shape (n,) [m].
+    min_thickness : float
+        Thinnest run kept [m] (<= 0: none merged).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        The merged types, shape (n,).
     """
     kind = np.asarray(is_sand, dtype=bool).copy()
     tops, bottoms = np.asarray(tops, dtype=float), np.asarray(bottoms, dtype=float)
@@ -207,16 +369,47 @@ def soil_layers_from_cpt(cpt: Cpt, *, sand_unit_weight: float, clay_unit_weight:
     of one type form one layer; runs thinner than ``min_layer_thickness`` are merged into
     their neighbours first (:func:`merge_thin_layers`).
 
-    cpt : the CPT (depth below the mudline).
-    sand_unit_weight, clay_unit_weight : submerged unit weights gamma' [N/m^3].
-    sand_interface_friction_angle : delta of the sand layers [deg].
-    water_unit_weight : gamma_w [N/m^3] (u0 = gamma_w z below the mudline).
-    net_area_ratio : cone net area ratio a [-] (qt = qc + (1 - a) u2).
-    boundary : Ic boundary between sand and clay [-].
-    min_layer_thickness : thinnest layer kept [m] (0: none merged).
-    bottom : bottom of the last layer [m] (default: the last reading).
-    atmospheric_pressure : pa [Pa].
-    Returns (layers: tuple of SoilLayer, ic: (n,) Ic at the readings [-]).
+    Parameters
+    ----------
+    cpt : Cpt
+        The CPT (depth below the mudline).
+    sand_unit_weight : float
+        Submerged unit weight gamma' of sand [N/m^3].
+    clay_unit_weight : float
+        Submerged unit weight gamma' of clay [N/m^3].
+    sand_interface_friction_angle : float
+        delta of the sand layers [deg].
+    water_unit_weight : float, default SEAWATER_UNIT_WEIGHT
+        gamma_w [N/m^3] (u0 = gamma_w z below the mudline).
+    net_area_ratio : float, default DEFAULT_NET_AREA_RATIO
+        Cone net area ratio a [-] (qt = qc + (1 - a) u2).
+    boundary : float, default ROBERTSON_2009_SAND_CLAY_BOUNDARY
+        Ic boundary between sand and clay [-].
+    min_layer_thickness : float, default 0.0
+        Thinnest layer kept [m] (0: none merged).
+    bottom : float, optional
+        Bottom of the last layer [m] (default: the last reading).
+    atmospheric_pressure : float, default ATMOSPHERIC_PRESSURE
+        pa [Pa].
+    max_iterations : int, default 10
+        Most classification iterations [-].
+
+    Returns
+    -------
+    layers : tuple of SoilLayer
+        The layers, from the mudline down.
+    ic : numpy.ndarray
+        Ic at the readings, shape (n,) [-].
+
+    Raises
+    ------
+    ValueError
+        If ``bottom`` does not lie below the midpoint of the last two readings.
+
+    References
+    ----------
+    Robertson, P.K. (2009). Interpretation of cone penetration tests - a unified approach.
+    Canadian Geotechnical Journal 46(11), 1337-1355. https://doi.org/10.1139/T09-065
     """
     z = cpt.depth
     bottom = float(z[-1]) if bottom is None else float(bottom)

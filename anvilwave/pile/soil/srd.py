@@ -44,9 +44,14 @@ TOE_AREAS = ("annulus", "plugged")
 class SoilResistanceTable:
     """Unit soil resistance to driving against depth below the mudline.
 
-    depth : (n,) depth below the mudline [m], non-decreasing, starting at 0.
-    unit_shaft_friction : (n,) unit shaft friction [Pa].
-    unit_toe_resistance : (n,) unit toe resistance [Pa].
+    Parameters
+    ----------
+    depth : numpy.ndarray
+        Depth below the mudline, shape (n,) [m], non-decreasing, starting at 0.
+    unit_shaft_friction : numpy.ndarray
+        Unit shaft friction, shape (n,) [Pa].
+    unit_toe_resistance : numpy.ndarray
+        Unit toe resistance, shape (n,) [Pa].
     """
 
     depth: np.ndarray
@@ -55,12 +60,29 @@ class SoilResistanceTable:
 
     @classmethod
     def from_rows(cls, rows: np.ndarray) -> SoilResistanceTable:
-        """Build from an (n, 3) array of rows [depth [m], shaft [Pa], toe [Pa]] (not validated)."""
+        """Build from an (n, 3) array of rows [depth [m], shaft [Pa], toe [Pa]] (not validated).
+
+        Parameters
+        ----------
+        rows : numpy.ndarray
+            The rows, shape (n, 3).
+
+        Returns
+        -------
+        SoilResistanceTable
+            The table.
+        """
         rows = np.asarray(rows, dtype=float)
         return cls(rows[:, 0].copy(), rows[:, 1].copy(), rows[:, 2].copy())
 
     def check(self) -> str | None:
-        """The first broken rule as a sentence, or None when the table is valid."""
+        """The first broken rule as a sentence, or None when the table is valid.
+
+        Returns
+        -------
+        str or None
+            The broken rule, or None.
+        """
         if self.depth.size < 1:
             return "needs at least one row"
         if self.depth[0] != 0.0:
@@ -75,6 +97,16 @@ class SoilResistanceTable:
         """Integral of the unit shaft friction from the mudline to ``depth`` [Pa m = N/m].
 
         Exact for the piecewise-linear table; held constant beyond the last row.
+
+        Parameters
+        ----------
+        depth : numpy.ndarray
+            Depth below the mudline [m] (negative depths count as 0).
+
+        Returns
+        -------
+        numpy.ndarray
+            The integral [N/m].
         """
         z = np.clip(np.asarray(depth, dtype=float), 0.0, None)
         zt, ft = self.depth, self.unit_shaft_friction
@@ -92,7 +124,18 @@ class SoilResistanceTable:
         return nodes[k] + 0.5 * (z - z0) * (f0 + f1)
 
     def toe_resistance(self, depth: float) -> float:
-        """Unit toe resistance at ``depth`` below the mudline [Pa] (deeper side of a step)."""
+        """Unit toe resistance at ``depth`` below the mudline [Pa] (deeper side of a step).
+
+        Parameters
+        ----------
+        depth : float
+            Depth below the mudline [m].
+
+        Returns
+        -------
+        float
+            Unit toe resistance [Pa].
+        """
         zt, qt = self.depth, self.unit_toe_resistance
         k = int(np.searchsorted(zt, depth, side="right")) - 1
         if k >= zt.size - 1:
@@ -106,10 +149,30 @@ class SoilResistanceTable:
 def shaft_perimeter(outer_diameter, wall_thickness, perimeter: str = "outside+inside"):
     """Friction perimeter of a tubular section [m].
 
-    outer_diameter : outer diameter D [m].
-    wall_thickness : wall thickness t [m].
-    perimeter : ``"outside+inside"`` -> pi D + pi (D - 2t) (coring pile, Stevens et al. 1982);
+    Parameters
+    ----------
+    outer_diameter : float or array_like
+        Outer diameter D [m].
+    wall_thickness : float or array_like
+        Wall thickness t [m].
+    perimeter : {"outside+inside", "outside"}
+        ``"outside+inside"`` -> pi D + pi (D - 2t) (coring pile, Stevens et al. 1982);
         ``"outside"`` -> pi D (plugged or closed-ended pile, or inner friction neglected).
+
+    Returns
+    -------
+    numpy.ndarray
+        The friction perimeter [m].
+
+    Raises
+    ------
+    ValueError
+        If ``perimeter`` is unknown.
+
+    References
+    ----------
+    Stevens, R.S., Wiltsie, E.A., Turton, T.H. (1982). Evaluating pile drivability for hard clay,
+    very dense sand and rock. OTC 4205.
     """
     if perimeter == "outside":
         return np.pi * np.asarray(outer_diameter)
@@ -122,8 +185,25 @@ def shaft_perimeter(outer_diameter, wall_thickness, perimeter: str = "outside+in
 def toe_area(outer_diameter: float, wall_thickness: float, area: str = "annulus") -> float:
     """Toe bearing area [m^2].
 
-    ``"annulus"`` -> pi/4 (D^2 - (D - 2t)^2) (steel only, coring pile);
-    ``"plugged"`` -> pi/4 D^2 (soil plug bears with the steel).
+    Parameters
+    ----------
+    outer_diameter : float
+        Outer diameter D [m].
+    wall_thickness : float
+        Wall thickness t [m].
+    area : {"annulus", "plugged"}
+        ``"annulus"`` -> pi/4 (D^2 - (D - 2t)^2) (steel only, coring pile);
+        ``"plugged"`` -> pi/4 D^2 (soil plug bears with the steel).
+
+    Returns
+    -------
+    float
+        The toe area [m^2].
+
+    Raises
+    ------
+    ValueError
+        If ``area`` is unknown.
     """
     d = outer_diameter
     if area == "plugged":
@@ -137,7 +217,19 @@ def toe_area(outer_diameter: float, wall_thickness: float, area: str = "annulus"
 def embedded_lengths(top_depth, bottom_depth, mudline_depth: float) -> np.ndarray:
     """Length of each segment below the mudline [m].
 
-    top_depth, bottom_depth : segment ends below the pile head [m]; mudline_depth : [m].
+    Parameters
+    ----------
+    top_depth : array_like
+        Upper segment ends below the pile head [m].
+    bottom_depth : array_like
+        Lower segment ends below the pile head [m].
+    mudline_depth : float
+        Depth of the mudline below the pile head [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Embedded length per segment [m].
     """
     top = np.maximum(np.asarray(top_depth, dtype=float), mudline_depth)
     return np.maximum(np.asarray(bottom_depth, dtype=float) - top, 0.0)
@@ -147,8 +239,21 @@ def mean_unit_friction(table: SoilResistanceTable, top_depth, bottom_depth,
                        mudline_depth: float) -> np.ndarray:
     """Mean unit shaft friction over the embedded part of each segment [Pa] (0 when none).
 
-    top_depth, bottom_depth : segment ends, depth below the pile head [m].
-    mudline_depth : depth of the mudline below the pile head, L - penetration [m].
+    Parameters
+    ----------
+    table : SoilResistanceTable
+        The SRD table.
+    top_depth : array_like
+        Upper segment ends, depth below the pile head [m].
+    bottom_depth : array_like
+        Lower segment ends, depth below the pile head [m].
+    mudline_depth : float
+        Depth of the mudline below the pile head, L - penetration [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Mean unit friction per segment [Pa].
     """
     length = embedded_lengths(top_depth, bottom_depth, mudline_depth)
     z_top = np.maximum(np.asarray(top_depth, dtype=float), mudline_depth) - mudline_depth
@@ -163,7 +268,27 @@ def shaft_capacities(table: SoilResistanceTable, top_depth, bottom_depth, mudlin
                      perimeter: str = "outside+inside") -> np.ndarray:
     """Static shaft resistance per segment [N]: mean unit friction x perimeter x embedded length.
 
-    Arrays are per segment: ends below the pile head [m], outer diameter [m], wall [m].
+    Parameters
+    ----------
+    table : SoilResistanceTable
+        The SRD table.
+    top_depth : array_like
+        Upper segment ends below the pile head [m].
+    bottom_depth : array_like
+        Lower segment ends below the pile head [m].
+    mudline_depth : float
+        Depth of the mudline below the pile head [m].
+    outer_diameter : array_like
+        Outer diameter per segment [m].
+    wall_thickness : array_like
+        Wall thickness per segment [m].
+    perimeter : {"outside+inside", "outside"}
+        Friction perimeter (:func:`shaft_perimeter`).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shaft resistance per segment [N].
     """
     length = embedded_lengths(top_depth, bottom_depth, mudline_depth)
     unit = mean_unit_friction(table, top_depth, bottom_depth, mudline_depth)
@@ -172,5 +297,24 @@ def shaft_capacities(table: SoilResistanceTable, top_depth, bottom_depth, mudlin
 
 def toe_capacity(table: SoilResistanceTable, penetration: float, outer_diameter: float,
                  wall_thickness: float, area: str = "annulus") -> float:
-    """Static toe resistance [N]: unit toe resistance at the toe (``penetration`` [m]) x area."""
+    """Static toe resistance [N]: unit toe resistance at the toe (``penetration`` [m]) x area.
+
+    Parameters
+    ----------
+    table : SoilResistanceTable
+        The SRD table.
+    penetration : float
+        Toe depth below the mudline [m].
+    outer_diameter : float
+        Outer diameter [m].
+    wall_thickness : float
+        Wall thickness [m].
+    area : {"annulus", "plugged"}
+        Toe bearing area (:func:`toe_area`).
+
+    Returns
+    -------
+    float
+        Toe resistance [N].
+    """
     return table.toe_resistance(penetration) * toe_area(outer_diameter, wall_thickness, area)
