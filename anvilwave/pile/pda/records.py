@@ -75,8 +75,16 @@ CLIP_RUN = 8
 class GaugeRecord:
     """Force and velocity at the gauges against time.
 
-    time : t [s], strictly increasing. force : F [N], compression positive.
-    velocity : v [m/s], downward positive. source : where the record came from.
+    Parameters
+    ----------
+    time : numpy.ndarray
+        t [s], strictly increasing.
+    force : numpy.ndarray
+        F [N], compression positive.
+    velocity : numpy.ndarray
+        v [m/s], downward positive.
+    source : str, default "<arrays>"
+        Where the record came from.
     """
 
     time: np.ndarray
@@ -89,8 +97,25 @@ class GaugeRecord:
 def strain_to_force(strain_1, strain_2, area: float, elastic_modulus: float):
     """Gauge force F = E A (eps_1 + eps_2)/2 [N] (ASTM D4945).
 
-    strain_1, strain_2 : axial strains of two opposite gauges [-], shortening positive.
-    area : A, steel cross-section at the gauges [m^2]. elastic_modulus : E [Pa].
+    Parameters
+    ----------
+    strain_1 : array_like
+        Axial strain of the first gauge [-], shortening positive.
+    strain_2 : array_like
+        Axial strain of the opposite gauge [-], shortening positive.
+    area : float
+        A, steel cross-section at the gauges [m^2].
+    elastic_modulus : float
+        E [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        Gauge force F [N].
+
+    References
+    ----------
+    ASTM D4945-17. Standard test method for high-strain dynamic testing of deep foundations.
     """
     return elastic_modulus * area * 0.5 * (np.asarray(strain_1) + np.asarray(strain_2))
 
@@ -98,7 +123,17 @@ def strain_to_force(strain_1, strain_2, area: float, elastic_modulus: float):
 def impact_index(force, onset_fraction: float = 0.02) -> int:
     """Index of the foot of the force rise (see the module notes).
 
-    force : F [N]. onset_fraction : threshold as a fraction of max |F| [-].
+    Parameters
+    ----------
+    force : array_like
+        F [N].
+    onset_fraction : float, default 0.02
+        Threshold as a fraction of max |F| [-].
+
+    Returns
+    -------
+    int
+        Index of the impact sample [-].
     """
     a = np.abs(np.asarray(force, dtype=float))
     i = int(np.argmax(a >= onset_fraction * a.max()))
@@ -110,9 +145,21 @@ def impact_index(force, onset_fraction: float = 0.02) -> int:
 def acceleration_to_velocity(time, acceleration, impact: int, final_velocity: float = 0.0):
     """Velocity from acceleration with the drift correction of the module notes [m/s].
 
-    time : t [s], strictly increasing. acceleration : a [m/s^2], downward positive.
-    impact : index of the impact sample [-]; samples before it are the rest period.
-    final_velocity : velocity at the end of the record [m/s] (0: at rest).
+    Parameters
+    ----------
+    time : array_like
+        t [s], strictly increasing.
+    acceleration : array_like
+        a [m/s^2], downward positive.
+    impact : int
+        Index of the impact sample [-]; samples before it are the rest period.
+    final_velocity : float, default 0.0
+        Velocity at the end of the record [m/s] (0: at rest).
+
+    Returns
+    -------
+    numpy.ndarray
+        Velocity v [m/s].
     """
     t = np.asarray(time, dtype=float)
     a = np.asarray(acceleration, dtype=float)
@@ -127,7 +174,29 @@ def acceleration_to_velocity(time, acceleration, impact: int, final_velocity: fl
 
 # ---------------------------------------------------------------------------------- checks
 def check_channel(values, source: str, column: str, clip_run: int = CLIP_RUN) -> np.ndarray:
-    """A channel as a float array, or the InputError of its first broken rule."""
+    """A channel as a float array, or the InputError of its first broken rule.
+
+    Parameters
+    ----------
+    values : array_like
+        The channel samples.
+    source : str
+        The file (or other source) named in the error.
+    column : str
+        The column named in the error.
+    clip_run : int, default CLIP_RUN
+        Shortest run of samples pinned at an extreme that marks the channel as clipped [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The channel as floats.
+
+    Raises
+    ------
+    InputError
+        If a sample is not finite, or the channel is constant or clipped.
+    """
     x = np.asarray(values, dtype=float)
     bad = np.nonzero(~np.isfinite(x))[0]
     if bad.size:
@@ -147,7 +216,31 @@ def check_channel(values, source: str, column: str, clip_run: int = CLIP_RUN) ->
 
 def check_gauge_record(time, force, velocity, source: str = "<arrays>",
                        clip_run: int = CLIP_RUN) -> GaugeRecord:
-    """Validate arrays as a gauge record (rules of the module notes)."""
+    """Validate arrays as a gauge record (rules of the module notes).
+
+    Parameters
+    ----------
+    time : array_like
+        t [s], strictly increasing.
+    force : array_like
+        F [N].
+    velocity : array_like
+        v [m/s].
+    source : str, default "<arrays>"
+        Where the record came from.
+    clip_run : int, default CLIP_RUN
+        See the module notes [-].
+
+    Returns
+    -------
+    GaugeRecord
+        The validated record.
+
+    Raises
+    ------
+    InputError
+        At the first broken rule.
+    """
     columns = {TIME_COLUMN: time, FORCE_COLUMNS[0]: force, VELOCITY_COLUMNS[0]: velocity}
     checked = _check_columns(columns, source, clip_run)
     return GaugeRecord(checked[TIME_COLUMN], checked[FORCE_COLUMNS[0]],
@@ -193,7 +286,22 @@ def _longest_run(mask: np.ndarray) -> int:
 def read_gauge_record(path: str | Path, clip_run: int = CLIP_RUN) -> GaugeRecord:
     """Read and validate a gauge record CSV (``time [s]``, ``force [N]``, ``velocity [m/s]``).
 
-    path : the CSV file. clip_run : see the module notes [-].
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    clip_run : int, default CLIP_RUN
+        See the module notes [-].
+
+    Returns
+    -------
+    GaugeRecord
+        The validated record.
+
+    Raises
+    ------
+    InputError
+        At the first broken rule.
     """
     header, columns = _read_csv(path)
     names = {TIME_COLUMN: TIME_COLUMN,
@@ -209,9 +317,18 @@ def read_gauge_record(path: str | Path, clip_run: int = CLIP_RUN) -> GaugeRecord
 class RawChannels:
     """Raw gauge channels in SI units (before calibration factors).
 
-    time : t [s]. strain : (n, 2) strains of the two gauges [-].
-    acceleration : (n, 2) accelerations of the two accelerometers [m/s^2].
-    columns : the four channel column names as in the file. source : the file.
+    Parameters
+    ----------
+    time : numpy.ndarray
+        t [s].
+    strain : numpy.ndarray
+        Strains of the two gauges, shape (n, 2) [-].
+    acceleration : numpy.ndarray
+        Accelerations of the two accelerometers, shape (n, 2) [m/s^2].
+    columns : tuple of str
+        The four channel column names as in the file.
+    source : str
+        The file.
     """
 
     time: np.ndarray
@@ -222,7 +339,25 @@ class RawChannels:
 
 
 def read_raw_channels(path: str | Path, clip_run: int = CLIP_RUN) -> RawChannels:
-    """Read and validate a raw channels CSV (module notes), converted to [-] and [m/s^2]."""
+    """Read and validate a raw channels CSV (module notes), converted to [-] and [m/s^2].
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    clip_run : int, default CLIP_RUN
+        See the module notes [-].
+
+    Returns
+    -------
+    RawChannels
+        The channels in SI units.
+
+    Raises
+    ------
+    InputError
+        At the first broken rule.
+    """
     header, columns = _read_csv(path)
     picked, factors = [], []
     for base, units in (("strain_1", STRAIN_UNITS), ("strain_2", STRAIN_UNITS),
@@ -246,15 +381,42 @@ def gauge_record_from_raw(path: str | Path, *, area: float, elastic_modulus: flo
                           clip_run: int = CLIP_RUN) -> GaugeRecord:
     """Force and velocity at the gauges from a raw channels CSV (module notes).
 
-    path : the CSV file.
-    area : steel cross-section A at the gauges [m^2].
-    elastic_modulus : E [Pa].
-    strain_calibration : factors on strain_1, strain_2 [-].
-    acceleration_calibration : factors on acceleration_1, acceleration_2 [-].
-    impact_time : start of the impact [s] (default: detected from the force).
-    final_velocity : velocity at the end of the record [m/s].
-    onset_fraction : impact detection threshold, fraction of max |F| [-].
-    clip_run : see the module notes [-].
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file.
+    area : float
+        Steel cross-section A at the gauges [m^2].
+    elastic_modulus : float
+        E [Pa].
+    strain_calibration : tuple of float, default (1.0, 1.0)
+        Factors on strain_1, strain_2 [-].
+    acceleration_calibration : tuple of float, default (1.0, 1.0)
+        Factors on acceleration_1, acceleration_2 [-].
+    impact_time : float, optional
+        Start of the impact [s] (default: detected from the force).
+    final_velocity : float, default 0.0
+        Velocity at the end of the record [m/s].
+    onset_fraction : float, default 0.02
+        Impact detection threshold, fraction of max |F| [-].
+    clip_run : int, default CLIP_RUN
+        See the module notes [-].
+
+    Returns
+    -------
+    GaugeRecord
+        Force and velocity at the gauges.
+
+    Raises
+    ------
+    ValueError
+        If ``area`` or ``elastic_modulus`` is not positive.
+    InputError
+        At the first broken rule of the file, or an impact time outside the record.
+
+    References
+    ----------
+    ASTM D4945-17. Standard test method for high-strain dynamic testing of deep foundations.
     """
     if not (area > 0.0 and elastic_modulus > 0.0):
         raise ValueError("area and elastic_modulus must be positive")

@@ -96,8 +96,22 @@ DAVISSON_OFFSET = 0.00381
 def pile_below_gauges(pile: PileSpec, segment_length: float | None = None) -> PileSpec:
     """The pile from the gauge depth down (sections cut at the gauges), gauges at its head.
 
-    pile : the whole pile. segment_length : segment length of the cut pile [m] (default: the
-    pile's own).
+    Parameters
+    ----------
+    pile : PileSpec
+        The whole pile.
+    segment_length : float, optional
+        Segment length of the cut pile [m] (default: the pile's own).
+
+    Returns
+    -------
+    PileSpec
+        The pile below the gauges (gauge depth 0).
+
+    Raises
+    ------
+    ValueError
+        If the gauges are at or below the pile toe.
     """
     sections, top = [], 0.0
     for s in pile.sections:
@@ -113,7 +127,18 @@ def pile_below_gauges(pile: PileSpec, segment_length: float | None = None) -> Pi
 
 
 def sections_above_gauges(pile: PileSpec) -> tuple[Section, ...]:
-    """The pile's sections (cut) between the head and the gauges, head first."""
+    """The pile's sections (cut) between the head and the gauges, head first.
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The whole pile.
+
+    Returns
+    -------
+    tuple of Section
+        The sections above the gauges.
+    """
     out, top = [], 0.0
     for s in pile.sections:
         if top >= pile.gauge_depth - 1e-12:
@@ -124,15 +149,43 @@ def sections_above_gauges(pile: PileSpec) -> tuple[Section, ...]:
 
 
 def face_stiffness(pile: PileSpec) -> float:
-    """Stiffness of the top half segment of a pile, k_h = 2 E A / dx [N/m]."""
+    """Stiffness of the top half segment of a pile, k_h = 2 E A / dx [N/m].
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile (its first segment is used).
+
+    Returns
+    -------
+    float
+        k_h [N/m].
+    """
     seg = pile.discretise()
     return float(2.0 * seg.youngs_modulus[0] * seg.area[0] / seg.length[0])
 
 
 def forward_time_step(pile_arrays: np.ndarray, soil_arrays: np.ndarray,
                       head_stiffness: float) -> float:
-    """Largest stable sub-step of :func:`run_prescribed_head` [s]: the pile's stable step
-    with the face spring k_h [N/m] on the top mass (the face taken as fixed)."""
+    """Largest stable sub-step of :func:`run_prescribed_head` [s].
+
+    The pile's stable step with the face spring k_h [N/m] on the top mass (the face taken as
+    fixed).
+
+    Parameters
+    ----------
+    pile_arrays : numpy.ndarray
+        Pile parameter array of the kernels.
+    soil_arrays : numpy.ndarray
+        Soil parameter array of the kernels.
+    head_stiffness : float
+        k_h [N/m].
+
+    Returns
+    -------
+    float
+        The stable sub-step [s].
+    """
     soil = soil_arrays.copy()
     soil[SOIL_STIFFNESS, 0] += head_stiffness
     return float(stable_time_step(pile_arrays, soil))
@@ -141,7 +194,19 @@ def forward_time_step(pile_arrays: np.ndarray, soil_arrays: np.ndarray,
 def face_displacement(time, velocity, start: float = 0.0) -> np.ndarray:
     """Displacement from a velocity record by the trapezoidal rule [m], ``start`` at t[0].
 
-    time : t [s]. velocity : v [m/s]. start : displacement at the first sample [m].
+    Parameters
+    ----------
+    time : array_like
+        t [s].
+    velocity : array_like
+        v [m/s].
+    start : float, default 0.0
+        Displacement at the first sample [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Displacement at the samples [m].
     """
     t = np.asarray(time, dtype=float)
     v = np.asarray(velocity, dtype=float)
@@ -155,18 +220,48 @@ def run_prescribed_head(pile, soil, u, v, soil_offset, imposed, time, signal, fa
                         velocity_out):
     """Drive the pile below the gauges with a measured signal (module notes).
 
-    pile, soil : kernel parameter arrays of the pile below the gauges.
-    u, v, soil_offset : initial state (static equilibrium), advanced in place [m], [m/s], [m].
-    imposed : IMPOSED_VELOCITY or IMPOSED_WAVE_DOWN.
-    time : sample times t_k [s], increasing.
-    signal : face displacement at t_k [m] (imposed velocity: face_start plus the integral of
-        the velocity) or the measured wave down at t_k [N] (imposed wave down).
-    face_start : face displacement at t_0 [m].
-    head_stiffness : k_h [N/m]. impedance : Z of the pile at the gauges [N s/m].
-    preload : force on the face at rest P [N]. gravity : [m/s^2].
-    dt_max : largest sub-step [s] (:func:`forward_time_step`).
-    force_out : (n,) computed face force at t_k [N] (compression +), includes P.
-    velocity_out : (n,) face velocity at t_k [m/s] (the mean over the sub-step before t_k).
+    The state arrays and the output arrays are written in place.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        Kernel pile parameter array of the pile below the gauges.
+    soil : numpy.ndarray
+        Kernel soil parameter array of the pile below the gauges.
+    u : numpy.ndarray
+        Initial displacements (static equilibrium), advanced in place [m].
+    v : numpy.ndarray
+        Initial velocities, advanced in place [m/s].
+    soil_offset : numpy.ndarray
+        Initial soil plastic offsets, advanced in place [m].
+    imposed : int
+        IMPOSED_VELOCITY or IMPOSED_WAVE_DOWN.
+    time : numpy.ndarray
+        Sample times t_k [s], increasing.
+    signal : numpy.ndarray
+        Face displacement at t_k [m] (imposed velocity: face_start plus the integral of the
+        velocity) or the measured wave down at t_k [N] (imposed wave down).
+    face_start : float
+        Face displacement at t_0 [m].
+    head_stiffness : float
+        k_h [N/m].
+    impedance : float
+        Z of the pile at the gauges [N s/m].
+    preload : float
+        Force on the face at rest P [N].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    dt_max : float
+        Largest sub-step [s] (:func:`forward_time_step`).
+    force_out : numpy.ndarray
+        Out: computed face force at t_k, shape (n,) [N] (compression +), includes P.
+    velocity_out : numpy.ndarray
+        Out: face velocity at t_k, shape (n,) [m/s] (the mean over the sub-step before t_k).
+
+    References
+    ----------
+    Rausche, F., Goble, G.G., Likins, G.E. (1985). Dynamic determination of pile capacity.
+    J. Geotech. Eng. 111(3), 367-383. https://doi.org/10.1061/(ASCE)0733-9410(1985)111:3(367)
     """
     n = time.size
     energy = np.zeros(ENERGY_SIZE)
@@ -197,11 +292,25 @@ def run_prescribed_head(pile, soil, u, v, soil_offset, imposed, time, signal, fa
 
 # ---------------------------------------------------------------------------------- quality
 def impact_foot(wave_down_signal, crossing: float = 0.1, foot: float = 0.02) -> int:
-    """Index of the impact t0 in a noisy record: the last sample at or below ``foot`` of the
-    peak before the signal first reaches ``crossing`` of its peak (fractions [-]); noise of a
-    few per cent before the impact does not trigger it.
+    """Index of the impact t0 in a noisy record.
 
-    wave_down_signal : the wave down WD [N] (or any signal that rises at the impact).
+    The last sample at or below ``foot`` of the peak before the signal first reaches
+    ``crossing`` of its peak (fractions [-]); noise of a few per cent before the impact does not
+    trigger it.
+
+    Parameters
+    ----------
+    wave_down_signal : array_like
+        The wave down WD [N] (or any signal that rises at the impact).
+    crossing : float, default 0.1
+        Fraction of the peak that marks the rise [-].
+    foot : float, default 0.02
+        Fraction of the peak that marks the foot [-].
+
+    Returns
+    -------
+    int
+        Index of t0 [-].
     """
     s = np.asarray(wave_down_signal, dtype=float)
     top = float(np.max(s))
@@ -214,8 +323,23 @@ def match_intervals(time, impact_time: float, round_trip: float, rise_time: floa
                     ) -> list[tuple[str, np.ndarray]]:
     """The four intervals of the match quality (module notes) as boolean masks over ``time``.
 
-    time : sample times [s]. impact_time : t0 [s]. round_trip : T = 2L/c [s].
-    rise_time : t_r = t1 - t0 [s]. Empty intervals are left out. Returns [(name, mask)].
+    Empty intervals are left out.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    impact_time : float
+        t0 [s].
+    round_trip : float
+        T = 2L/c [s].
+    rise_time : float
+        t_r = t1 - t0 [s].
+
+    Returns
+    -------
+    list of tuple of (str, numpy.ndarray)
+        ``[(name, mask)]`` for I1 .. I4.
     """
     t = np.asarray(time, dtype=float)
     toe_end = min(impact_time + round_trip + 2.0 * max(rise_time, 0.0),
@@ -237,8 +361,28 @@ def match_quality(computed_wave_up, measured_wave_up, intervals, peak_wave_down:
                   ) -> tuple[float, dict[str, float]]:
     """Match quality MQ [-] (module notes) and its term per interval.
 
-    computed_wave_up, measured_wave_up : WU_c, WU_m at the samples [N].
-    intervals : from :func:`match_intervals`. peak_wave_down : max WD_m [N] (> 0).
+    Parameters
+    ----------
+    computed_wave_up : array_like
+        WU_c at the samples [N].
+    measured_wave_up : array_like
+        WU_m at the samples [N].
+    intervals : list of tuple of (str, numpy.ndarray)
+        From :func:`match_intervals`.
+    peak_wave_down : float
+        max WD_m [N] (> 0).
+
+    Returns
+    -------
+    quality : float
+        MQ [-].
+    terms : dict of str to float
+        The term of each interval [-].
+
+    References
+    ----------
+    Rausche, F., Goble, G.G., Likins, G.E. (1985). Dynamic determination of pile capacity.
+    J. Geotech. Eng. 111(3), 367-383. https://doi.org/10.1061/(ASCE)0733-9410(1985)111:3(367)
     """
     error = np.abs(np.asarray(computed_wave_up) - np.asarray(measured_wave_up))
     terms = {name: float(np.mean(error[mask]) / peak_wave_down) for name, mask in intervals}
@@ -247,7 +391,24 @@ def match_quality(computed_wave_up, measured_wave_up, intervals, peak_wave_down:
 
 def match_residuals(computed_wave_up, measured_wave_up, intervals, peak_wave_down: float
                     ) -> np.ndarray:
-    """Least-squares residuals (WU_c - WU_m) / (max WD_m sqrt(n_k)) over the intervals [-]."""
+    """Least-squares residuals (WU_c - WU_m) / (max WD_m sqrt(n_k)) over the intervals [-].
+
+    Parameters
+    ----------
+    computed_wave_up : array_like
+        WU_c at the samples [N].
+    measured_wave_up : array_like
+        WU_m at the samples [N].
+    intervals : list of tuple of (str, numpy.ndarray)
+        From :func:`match_intervals`.
+    peak_wave_down : float
+        max WD_m [N] (> 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        The residuals of all intervals, concatenated [-].
+    """
     diff = np.asarray(computed_wave_up) - np.asarray(measured_wave_up)
     parts = [diff[mask] / (peak_wave_down * math.sqrt(np.count_nonzero(mask)))
              for _, mask in intervals]
@@ -259,9 +420,21 @@ def static_load_test(pile_arrays: np.ndarray, soil_arrays: np.ndarray, head_stif
                      settlements) -> np.ndarray:
     """Load on the face [N] at each face settlement of a quasi-static push (module notes).
 
-    pile_arrays, soil_arrays : kernel parameter arrays (capacity and stiffness rows used).
-    head_stiffness : k_h between the face and the top mass [N/m].
-    settlements : face settlements [m], increasing from 0.
+    Parameters
+    ----------
+    pile_arrays : numpy.ndarray
+        Kernel pile parameter array.
+    soil_arrays : numpy.ndarray
+        Kernel soil parameter array (capacity and stiffness rows used).
+    head_stiffness : float
+        k_h between the face and the top mass [N/m].
+    settlements : array_like
+        Face settlements [m], increasing from 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        Load on the face at each settlement [N].
     """
     n = pile_arrays.shape[1]
     k = pile_arrays[PILE_STIFFNESS, :-1]
@@ -300,8 +473,28 @@ def davisson_1972_offset_limit(load, length: float, area: float, elastic_modulus
                                diameter: float):
     """Davisson's (1972) failure line: settlement Q L / (A E) + 0.15 in + D / 120 [m].
 
-    load : Q [N]. length : pile length L [m]. area : A [m^2]. elastic_modulus : E [Pa].
-    diameter : pile toe diameter D [m].
+    Parameters
+    ----------
+    load : float or array_like
+        Q [N].
+    length : float
+        Pile length L [m].
+    area : float
+        A [m^2].
+    elastic_modulus : float
+        E [Pa].
+    diameter : float
+        Pile toe diameter D [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The settlement on the failure line [m].
+
+    References
+    ----------
+    Davisson, M.T. (1972). High capacity piles. Proc. Lecture Series on Innovations in
+    Foundation Construction, ASCE Illinois Section, Chicago, 81-112.
     """
     return (np.asarray(load) * length / (area * elastic_modulus) + DAVISSON_OFFSET
             + diameter / 120.0)
@@ -311,8 +504,32 @@ def davisson_capacity(settlements, loads, length: float, area: float, elastic_mo
                       diameter: float) -> float:
     """Load where a load-settlement curve first reaches Davisson's line [N] (NaN if never).
 
-    settlements [m], loads [N]: the curve; other parameters as
-    :func:`davisson_1972_offset_limit`. Linear interpolation between the points.
+    Linear interpolation between the points.
+
+    Parameters
+    ----------
+    settlements : array_like
+        Settlements of the curve [m].
+    loads : array_like
+        Loads of the curve [N].
+    length : float
+        Pile length L [m].
+    area : float
+        A [m^2].
+    elastic_modulus : float
+        E [Pa].
+    diameter : float
+        Pile toe diameter D [m].
+
+    Returns
+    -------
+    float
+        The Davisson capacity [N], NaN if the line is never reached.
+
+    References
+    ----------
+    Davisson, M.T. (1972). High capacity piles. Proc. Lecture Series on Innovations in
+    Foundation Construction, ASCE Illinois Section, Chicago, 81-112.
     """
     s = np.asarray(settlements, dtype=float)
     q = np.asarray(loads, dtype=float)
