@@ -39,10 +39,16 @@ _GAUSS3 = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0
 class Body:
     """One elastic body of the stack.
 
-    name : label used in messages and outputs.
-    model : assembled axisymmetric FE model (K, consistent M on the free DOFs).
-    lumped_mass : (n_dof,) HRZ lumped mass [kg].
-    offset : index of the body's first DOF in the global vector.
+    Parameters
+    ----------
+    name : str
+        Label used in messages and outputs.
+    model : AxisymmetricModel
+        Assembled axisymmetric FE model (K, consistent M on the free DOFs).
+    lumped_mass : numpy.ndarray
+        HRZ lumped mass, shape (n_dof,) [kg].
+    offset : int, default 0
+        Index of the body's first DOF in the global vector.
     """
 
     name: str
@@ -52,6 +58,7 @@ class Body:
 
     @property
     def n_dof(self) -> int:
+        """Number of free degrees of freedom of the body [-]."""
         return self.model.n_dof
 
     @property
@@ -60,22 +67,60 @@ class Body:
         return self.model.total_mass()
 
     def node_free_dofs(self) -> np.ndarray:
-        """(n_nodes, 2) local free-DOF index of (u_r, u_z) of every node, -1 where removed."""
+        """(n_nodes, 2) local free-DOF index of (u_r, u_z) of every node, -1 where removed.
+
+        Returns
+        -------
+        numpy.ndarray
+            The indices, shape (n_nodes, 2).
+        """
         inverse = np.full(self.model.basis.N, -1, dtype=np.int64)
         inverse[self.model.free_dofs] = np.arange(self.model.n_dof)
         return inverse[self.model.node_dofs]
 
     def axial_indicator(self) -> np.ndarray:
-        """(n_dof,) 1 on axial DOFs, 0 on radial ones."""
+        """(n_dof,) 1 on axial DOFs, 0 on radial ones.
+
+        Returns
+        -------
+        numpy.ndarray
+            The indicator, shape (n_dof,).
+        """
         return self.model.axial_free
 
     def gravity_force(self, gravity: float) -> np.ndarray:
-        """Nodal weight [N] from the LUMPED mass, so a free body falls without stress."""
+        """Nodal weight [N] from the LUMPED mass, so a free body falls without stress.
+
+        Parameters
+        ----------
+        gravity : float
+            Gravitational acceleration [m/s^2].
+
+        Returns
+        -------
+        numpy.ndarray
+            Nodal weight on the axial DOFs, shape (n_dof,) [N].
+        """
         return self.lumped_mass * self.axial_indicator() * gravity
 
 
 def make_body(name: str, mesh: skfem.Mesh, material: Material) -> Body:
-    """Assemble and HRZ-lump one body."""
+    """Assemble and HRZ-lump one body.
+
+    Parameters
+    ----------
+    name : str
+        Label of the body.
+    mesh : skfem.Mesh
+        Its axisymmetric (r, z) mesh [m].
+    material : Material
+        Its material.
+
+    Returns
+    -------
+    Body
+        The assembled body (offset 0).
+    """
     model = assemble(mesh, material)
     return Body(name, model, model.lumped_mass())
 
@@ -84,8 +129,22 @@ def tensor_body(name: str, r_vertices: np.ndarray, z_vertices: np.ndarray,
                 material: Material) -> Body:
     """A solid cylinder or tube as a structured mesh of 9-node quadrilaterals.
 
-    r_vertices, z_vertices : increasing vertex coordinates [m]; r_vertices[0] = 0 for a solid
-        cylinder (its axis nodes get u_r = 0).
+    Parameters
+    ----------
+    name : str
+        Label of the body.
+    r_vertices : numpy.ndarray
+        Increasing radial vertex coordinates [m]; r_vertices[0] = 0 for a solid cylinder (its
+        axis nodes get u_r = 0).
+    z_vertices : numpy.ndarray
+        Increasing axial vertex coordinates [m].
+    material : Material
+        Its material.
+
+    Returns
+    -------
+    Body
+        The assembled body.
     """
     mesh = skfem.MeshQuad.init_tensor(np.asarray(r_vertices, float),
                                       np.asarray(z_vertices, float))
@@ -93,7 +152,24 @@ def tensor_body(name: str, r_vertices: np.ndarray, z_vertices: np.ndarray,
 
 
 def graded_vertices(start: float, stop: float, size: float, fixed=()) -> np.ndarray:
-    """Vertex coordinates from start to stop [m] with spacing <= size, through ``fixed`` points."""
+    """Vertex coordinates from start to stop [m] with spacing <= size, through ``fixed`` points.
+
+    Parameters
+    ----------
+    start : float
+        First coordinate [m].
+    stop : float
+        Last coordinate [m].
+    size : float
+        Largest spacing [m].
+    fixed : sequence of float, default ()
+        Coordinates that must be vertices [m] (those outside (start, stop) are ignored).
+
+    Returns
+    -------
+    numpy.ndarray
+        The increasing vertex coordinates [m].
+    """
     knots = np.unique(np.concatenate([[start, stop], [x for x in fixed if start < x < stop]]))
     parts = [np.linspace(a, b, max(1, int(np.ceil((b - a) / size - 1e-9))) + 1)[:-1]
              for a, b in zip(knots[:-1], knots[1:], strict=True)]
@@ -107,11 +183,22 @@ def graded_vertices(start: float, stop: float, size: float, fixed=()) -> np.ndar
 class Face:
     """The nodes of one body on a horizontal line z = const, r_min <= r <= r_max, sorted by r.
 
-    radii : (n,) node radii [m] (vertices and edge mid-nodes alternate).
-    axial_dofs, radial_dofs : (n,) GLOBAL DOF indices (radial -1 on the axis).
-    weights : (n,) integral of 2 pi r N_i dr over the line [m^2]; sum = the face area. A uniform
-        pressure p gives the nodal forces p * weights; the area-weighted mean of a nodal field is
-        weights @ x / weights.sum().
+    Parameters
+    ----------
+    body : str
+        Name of the body.
+    z : float
+        Position of the line [m].
+    radii : numpy.ndarray
+        Node radii, shape (n,) [m] (vertices and edge mid-nodes alternate).
+    axial_dofs : numpy.ndarray
+        GLOBAL axial DOF indices, shape (n,).
+    radial_dofs : numpy.ndarray
+        GLOBAL radial DOF indices, shape (n,) (-1 on the axis).
+    weights : numpy.ndarray
+        Integral of 2 pi r N_i dr over the line, shape (n,) [m^2]; sum = the face area. A
+        uniform pressure p gives the nodal forces p * weights; the area-weighted mean of a nodal
+        field is weights @ x / weights.sum().
     """
 
     body: str
@@ -130,8 +217,23 @@ class Face:
 def line_weights(radii: np.ndarray) -> np.ndarray:
     """Integral of 2 pi r N_i dr for the quadratic shape functions of a line of nodes [m^2].
 
-    ``radii`` holds 2m + 1 sorted node radii: vertex, mid-node, vertex, ... (exact midpoints).
     The integrand is cubic, so 3-point Gauss is exact.
+
+    Parameters
+    ----------
+    radii : numpy.ndarray
+        2m + 1 sorted node radii: vertex, mid-node, vertex, ... (exact midpoints) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The weight of each node [m^2].
+
+    Raises
+    ------
+    ValueError
+        If the number of nodes is not 2m + 1 (m >= 1) or the mid-nodes are not at the edge
+        midpoints.
     """
     radii = np.asarray(radii, float)
     if len(radii) < 3 or len(radii) % 2 == 0:
@@ -153,7 +255,29 @@ def line_weights(radii: np.ndarray) -> np.ndarray:
 
 
 def face(body: Body, z: float, r_min: float = 0.0, r_max: float = np.inf) -> Face:
-    """The nodes of ``body`` on the line z [m] with r_min <= r <= r_max, as a :class:`Face`."""
+    """The nodes of ``body`` on the line z [m] with r_min <= r <= r_max, as a :class:`Face`.
+
+    Parameters
+    ----------
+    body : Body
+        The body.
+    z : float
+        Position of the line [m].
+    r_min : float, default 0.0
+        Smallest radius [m].
+    r_max : float, default numpy.inf
+        Largest radius [m].
+
+    Returns
+    -------
+    Face
+        The face, nodes sorted by radius.
+
+    Raises
+    ------
+    ValueError
+        If there are no element edges on the line.
+    """
     xy = body.model.node_coordinates
     scale = max(np.abs(xy).max(), 1.0)
     tol = 1e-7 * scale
@@ -170,7 +294,18 @@ def face(body: Body, z: float, r_min: float = 0.0, r_max: float = np.inf) -> Fac
 
 
 def vertex_radii(f: Face) -> np.ndarray:
-    """Vertex radii of a face (every other node) [m]: the radial grid of a matching body."""
+    """Vertex radii of a face (every other node) [m]: the radial grid of a matching body.
+
+    Parameters
+    ----------
+    f : Face
+        The face.
+
+    Returns
+    -------
+    numpy.ndarray
+        The vertex radii [m].
+    """
     return f.radii[::2]
 
 
@@ -183,10 +318,25 @@ class ContactSet:
 
     The overlap of pair i is d_i = u_upper_i - u_lower_i - gap_i (z down, u the axial
     displacement from the undeformed stack); the pair force follows
-    :func:`anvilwave.anvil_rom.contact.contact_force` and pushes the upper node up, the lower down.
+    :func:`anvilwave.anvil_rom.contact.contact_force` and pushes the upper node up, the lower
+    down.
 
-    stiffness : (n,) pair stiffness [N/m]; damping : (n,) pair dashpot [N s/m].
-    gap : (n,) initial geometric gap [m] (0: the faces touch in the undeformed stack).
+    Parameters
+    ----------
+    name : str
+        Label of the contact.
+    upper_dofs : numpy.ndarray
+        Global axial DOFs of the upper face's nodes, shape (n,).
+    lower_dofs : numpy.ndarray
+        Global axial DOFs of the lower face's nodes, shape (n,).
+    stiffness : numpy.ndarray
+        Pair stiffness, shape (n,) [N/m].
+    damping : numpy.ndarray
+        Pair dashpot, shape (n,) [N s/m].
+    gap : numpy.ndarray
+        Initial geometric gap, shape (n,) [m] (0: the faces touch in the undeformed stack).
+    radii : numpy.ndarray
+        Radius of each pair, shape (n,) [m].
     """
 
     name: str
@@ -202,8 +352,28 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
                     damping_per_area: float = 0.0) -> ContactSet:
     """Pair the nodes of two conforming faces; pair stiffness = stiffness_per_area * weight.
 
-    stiffness_per_area : penalty stiffness per unit contact area [N/m^3] (e.g. alpha E / h).
-    damping_per_area : contact dashpot per unit area [N s/m^3] (0: elastic contact).
+    Parameters
+    ----------
+    name : str
+        Label of the contact.
+    upper : Face
+        The upper face.
+    lower : Face
+        The lower face (same node radii).
+    stiffness_per_area : float
+        Penalty stiffness per unit contact area [N/m^3] (e.g. alpha E / h).
+    damping_per_area : float, default 0.0
+        Contact dashpot per unit area [N s/m^3] (0: elastic contact).
+
+    Returns
+    -------
+    ContactSet
+        The node pairs, gap 0.
+
+    Raises
+    ------
+    ValueError
+        If the faces are not conforming (node radii differ).
     """
     if len(upper.radii) != len(lower.radii) or not np.allclose(
             upper.radii, lower.radii, rtol=0.0, atol=1e-7 * max(upper.radii.max(), 1.0)):
@@ -216,7 +386,22 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
 
 
 def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None) -> sp.csr_matrix:
-    """Stiffness matrix of the closed (or ``active``) pairs of a contact set (n x n)."""
+    """Stiffness matrix of the closed (or ``active``) pairs of a contact set (n x n).
+
+    Parameters
+    ----------
+    contact : ContactSet
+        The contact set.
+    n : int
+        Number of global DOFs.
+    active : numpy.ndarray, optional
+        Factor (1 closed, 0 open) per pair; all closed when None.
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix
+        The contact stiffness matrix, shape (n, n) [N/m].
+    """
     k = contact.stiffness if active is None else contact.stiffness * active
     i, j = contact.upper_dofs, contact.lower_dofs
     rows = np.concatenate([i, j, i, j])
@@ -234,6 +419,24 @@ def dashpot_damping(f: Face, material: Material, n: int, axial_speed: float,
 
     c_i = rho * speed * weight_i on the axial (and radial) DOF of each face node: a traction
     -rho c v, which absorbs a plane wave travelling at ``speed`` [m/s] normal to the face.
+
+    Parameters
+    ----------
+    f : Face
+        The boundary face.
+    material : Material
+        Material of the body (its density is used).
+    n : int
+        Number of global DOFs.
+    axial_speed : float
+        Wave speed absorbed on the axial DOFs [m/s].
+    radial_speed : float
+        Wave speed absorbed on the radial DOFs [m/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Dashpot coefficient per global DOF, shape (n,) [N s/m].
     """
     c = np.zeros(n)
     c[f.axial_dofs] += material.density * axial_speed * f.weights
@@ -250,6 +453,25 @@ def section_force_row(body: Body, z: float, n: int) -> np.ndarray:
     N = 1/2 sum_i [(K_below u)_zi - (K_above u)_zi], cancels the inertia of the section nodes to
     first order; statically both equal the section resultant. (Nodal-force recovery is exact
     for the resultant, unlike averaging element stresses.)
+
+    Parameters
+    ----------
+    body : Body
+        The body cut by the section.
+    z : float
+        Position of the section [m].
+    n : int
+        Number of global DOFs.
+
+    Returns
+    -------
+    numpy.ndarray
+        g, shape (n,) [N/m].
+
+    Raises
+    ------
+    ValueError
+        If the section is not inside the body.
     """
     model = body.model
     mesh, basis = model.mesh, model.basis
@@ -283,8 +505,31 @@ def static_preload(stiffness: sp.spmatrix, force: np.ndarray, contacts: list[Con
     Solves (K + K_contact(active)) u = f with u = 0 on ``supported`` DOFs; pairs in tension are
     released and separated pairs that overlap are closed until the active set is stable.
 
-    Returns u [m] and the support reaction r [N] (nonzero only on ``supported``): the force
-    the supports exert, K u + contact - f = r there.
+    Parameters
+    ----------
+    stiffness : scipy.sparse.spmatrix
+        Global stiffness K [N/m].
+    force : numpy.ndarray
+        Load f [N].
+    contacts : list of ContactSet
+        The contacts.
+    supported : numpy.ndarray
+        Indices of the fixed DOFs.
+    max_iterations : int, default 20
+        Most active-set iterations.
+
+    Returns
+    -------
+    u : numpy.ndarray
+        Displacements [m].
+    reaction : numpy.ndarray
+        Support reaction r [N] (nonzero only on ``supported``): the force the supports exert,
+        K u + contact - f = r there.
+
+    Raises
+    ------
+    RuntimeError
+        If the contact active set does not converge.
     """
     n = stiffness.shape[0]
     free = np.setdiff1d(np.arange(n), supported)

@@ -93,6 +93,30 @@ def absorbing_speeds(material: Material, kind: str = "bar") -> tuple[float, floa
     changes the anvil-pile force by at most 2.6 % of its peak (RMS 1.3 %) against the full
     80 m pile.
     ``kind`` = "p": Lysmer & Kuhlemeyer (1969), axial rho c_p, radial rho c_s.
+
+    Parameters
+    ----------
+    material : Material
+        Material of the cut body.
+    kind : {"bar", "plate", "shell", "p"}
+        The boundary kind (see above).
+
+    Returns
+    -------
+    axial : float
+        Wave speed on the axial DOFs [m/s].
+    radial : float
+        Wave speed on the radial DOFs [m/s].
+
+    Raises
+    ------
+    ValueError
+        If ``kind`` is unknown.
+
+    References
+    ----------
+    Lysmer, J., Kuhlemeyer, R.L. (1969). Finite dynamic model for infinite media. J. Eng. Mech.
+    Div. 95(4), 859-877. https://doi.org/10.1061/JMCEA3.0001144
     """
     c_s = material.shear_wave_speed
     if kind in ("bar", "shell"):
@@ -109,13 +133,35 @@ def absorbing_boundary(f: Face, material: Material, n: int, kind: str = "bar"
                        ) -> tuple[np.ndarray, HighPassDashpots | None]:
     """Dashpots (and for "shell" high-pass dashpots) of the absorbing pile cut on face ``f``.
 
-    Returns the (n,) diagonal damping [N s/m] and the high-pass dashpots or None.
     "shell": the axial impedance of a thin tube of mid-radius R rises from rho c0 A below the
     ring frequency omega_r = c0 / R (hoop strain free, bar wave) to rho c_pl A above it (hoop
     strain held by the radial inertia, plate wave); a dashpot rho (c_pl - c0) a_i to a free
     mass, corner rate omega_r, added to the rho c0 a_i dashpot follows that rise (the membrane
     shell's stop band near omega_r, where the true impedance swings from 0 to infinity, is not
     represented).
+
+    Parameters
+    ----------
+    f : Face
+        The cut face.
+    material : Material
+        Material of the pile.
+    n : int
+        Number of global DOFs.
+    kind : {"bar", "plate", "shell", "p"}
+        The boundary kind, see :func:`absorbing_speeds`.
+
+    Returns
+    -------
+    damping : numpy.ndarray
+        Diagonal damping, shape (n,) [N s/m].
+    high_pass : HighPassDashpots or None
+        The high-pass dashpots ("shell"), else None.
+
+    Raises
+    ------
+    ValueError
+        If "shell" is asked for a face on the axis (not a tube).
     """
     c_ax, c_rad = absorbing_speeds(material, kind)
     damping = dashpot_damping(f, material, n, c_ax, c_rad)
@@ -137,29 +183,62 @@ def absorbing_boundary(f: Face, material: Material, n: int, kind: str = "bar"
 class FeaConfig:
     """Ram + anvil + pile impact configuration.
 
-    ram_radius : radius of the solid cylindrical ram [m].
-    ram_length : ram length [m].
-    impact_velocity : ram velocity at first contact, downward [m/s].
-    anvil : the anvil (its outline; its own ``interfaces`` are not used: the ram radius and the
+    Parameters
+    ----------
+    ram_radius : float
+        Radius of the solid cylindrical ram [m].
+    ram_length : float
+        Ram length [m].
+    impact_velocity : float
+        Ram velocity at first contact, downward [m/s].
+    anvil : AnvilSpec
+        The anvil (its outline; its own ``interfaces`` are not used: the ram radius and the
         pile section define the contact faces).
-    pile_outer_diameter : pile top outer diameter [m].
-    pile_wall_thickness : pile wall thickness [m].
-    pile_length : pile length [m].
-    truncate_length : modelled pile length with an absorbing bottom [m]; None: full length.
-    gauge_depth : depth of the strain-gauge section below the pile top [m].
-    duration : simulated time [s].
-    mesh_size : element size in the anvil and the ram [m] (quadratic elements).
-    pile_wall_elements : quadratic elements through the pile wall [-] (also on the anvil's
-        bearing ring, whose nodes the pile shares).
-    pile_axial_size : axial element size of the pile [m]; None: ``mesh_size``.
-    ram_axial_size : axial element size of the ram [m]; None: ``mesh_size``.
-    gravity : gravitational acceleration [m/s^2] (0 switches the preload off).
-    material : steel of the ram and the pile (the anvil has its own).
-    output_interval : output time step [s].
-    contact_stiffness_factor : alpha of the penalty stiffness alpha E / h per area [-].
-    absorbing_boundary : "shell" (default), "bar", "plate" or "p", see :func:`absorbing_speeds`
-        and :func:`absorbing_boundary`.
-    time_step_safety : fraction of the critical step used [-].
+    pile_outer_diameter : float
+        Pile top outer diameter [m].
+    pile_wall_thickness : float
+        Pile wall thickness [m].
+    pile_length : float
+        Pile length [m].
+    truncate_length : float, optional
+        Modelled pile length with an absorbing bottom [m]; None: full length.
+    gauge_depth : float, default 1.0
+        Depth of the strain-gauge section below the pile top [m].
+    duration : float, default 0.025
+        Simulated time [s].
+    mesh_size : float, default 0.1
+        Element size in the anvil and the ram [m] (quadratic elements).
+    pile_wall_elements : int, default 3
+        Quadratic elements through the pile wall [-] (also on the anvil's bearing ring, whose
+        nodes the pile shares).
+    pile_axial_size : float, optional
+        Axial element size of the pile [m]; None: ``mesh_size``.
+    ram_axial_size : float, optional
+        Axial element size of the ram [m]; None: ``mesh_size``.
+    gravity : float, default 9.81
+        Gravitational acceleration [m/s^2] (0 switches the preload off).
+    material : Material, default STEEL
+        Steel of the ram and the pile (the anvil has its own).
+    output_interval : float, default 1e-5
+        Output time step [s].
+    contact_stiffness_factor : float, default DEFAULT_CONTACT_STIFFNESS_FACTOR
+        alpha of the penalty stiffness alpha E / h per area [-].
+    absorbing_boundary : {"shell", "bar", "plate", "p"}
+        See :func:`absorbing_speeds` and :func:`absorbing_boundary`.
+    time_step_safety : float, default 0.9
+        Fraction of the critical step used [-].
+
+    Attributes
+    ----------
+    modelled_pile_length : float
+        Length of pile in the model [m].
+    pile_ring : tuple of float
+        Inner and outer radius of the pile wall [m].
+
+    Raises
+    ------
+    InputError
+        If a value breaks its rule (checked on construction).
     """
 
     ram_radius: float
@@ -241,14 +320,38 @@ class FeaConfig:
 class FeaResult:
     """Time histories on the output grid (DESIGN.md conventions) and run statistics.
 
-    time [s]; ram_anvil_force, anvil_pile_force : contact resultants [N], compression positive;
-    pile_head_velocity : area-weighted mean axial velocity of the pile top face [m/s];
-    gauge_force : axial force across the pile section at ``gauge_depth`` [N];
-    gauge_velocity : mean axial velocity on that section [m/s];
-    ram_velocity : mean (momentum / mass) ram velocity [m/s];
-    energies : name -> [J], see :class:`anvilwave.fea.solver.Transient`;
-    n_dof, n_steps, time_step [s], critical_time_step [s], wall_time [s] (stepping alone),
-    setup_time [s] (meshing, assembly, statics, stable step); info : masses, preload, ...
+    Parameters
+    ----------
+    time : numpy.ndarray
+        Output times [s].
+    ram_anvil_force : numpy.ndarray
+        Ram-anvil contact resultant [N], compression positive.
+    anvil_pile_force : numpy.ndarray
+        Anvil-pile contact resultant [N], compression positive.
+    pile_head_velocity : numpy.ndarray
+        Area-weighted mean axial velocity of the pile top face [m/s].
+    gauge_force : numpy.ndarray
+        Axial force across the pile section at ``gauge_depth`` [N].
+    gauge_velocity : numpy.ndarray
+        Mean axial velocity on that section [m/s].
+    ram_velocity : numpy.ndarray
+        Mean (momentum / mass) ram velocity [m/s].
+    energies : dict of str to numpy.ndarray
+        Name -> energy history [J], see :class:`anvilwave.fea.solver.Transient`.
+    n_dof : int
+        Number of DOFs [-].
+    n_steps : int
+        Number of time steps [-].
+    time_step : float
+        Time step [s].
+    critical_time_step : float
+        Critical (stable) time step [s].
+    wall_time : float
+        Wall time of the stepping alone [s].
+    setup_time : float
+        Wall time of meshing, assembly, statics and stable step [s].
+    info : dict
+        Masses, preload, ...
     """
 
     time: np.ndarray
@@ -268,7 +371,13 @@ class FeaResult:
     info: dict = field(default_factory=dict)
 
     def to_columns(self) -> dict[str, np.ndarray]:
-        """CSV columns named ``name [unit]`` (DESIGN.md), energies included."""
+        """CSV columns named ``name [unit]`` (DESIGN.md), energies included.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            The columns.
+        """
         cols = {
             "time [s]": self.time,
             "ram_anvil_force [N]": self.ram_anvil_force,
@@ -288,7 +397,19 @@ class FeaResult:
 
 @dataclass
 class ImpactModel:
-    """The assembled stack before time stepping (inspect it, or pass it to :func:`integrate`)."""
+    """The assembled stack before time stepping (inspect it, or pass it to :func:`integrate`).
+
+    Parameters
+    ----------
+    system : ExplicitSystem
+        The assembled system with its initial state.
+    bodies : dict of str to Body
+        The bodies by name.
+    faces : dict of str to Face
+        The named faces (contacts, boundaries, probes).
+    info : dict
+        Masses, preload, element counts, ...
+    """
 
     system: ExplicitSystem
     bodies: dict[str, Body]
@@ -311,14 +432,40 @@ def _global(bodies: list[Body]) -> tuple[sp.csr_matrix, np.ndarray]:
 
 
 def mean_velocity_weights(f: Face, n: int) -> np.ndarray:
-    """Weights w with w @ v = area-weighted mean axial velocity of a face [-]."""
+    """Weights w with w @ v = area-weighted mean axial velocity of a face [-].
+
+    Parameters
+    ----------
+    f : Face
+        The face.
+    n : int
+        Number of global DOFs.
+
+    Returns
+    -------
+    numpy.ndarray
+        w, shape (n,) [-].
+    """
     w = np.zeros(n)
     w[f.axial_dofs] = f.weights / f.area
     return w
 
 
 def body_velocity_weights(body: Body, n: int) -> np.ndarray:
-    """Weights w with w @ v = momentum / mass, the mean axial velocity of a body [-]."""
+    """Weights w with w @ v = momentum / mass, the mean axial velocity of a body [-].
+
+    Parameters
+    ----------
+    body : Body
+        The body.
+    n : int
+        Number of global DOFs.
+
+    Returns
+    -------
+    numpy.ndarray
+        w, shape (n,) [-].
+    """
     w = np.zeros(n)
     ez = body.axial_indicator()
     w[body.offset:body.offset + body.n_dof] = body.lumped_mass * ez / body.mass
@@ -326,7 +473,23 @@ def body_velocity_weights(body: Body, n: int) -> np.ndarray:
 
 
 def build_impact_model(config: FeaConfig) -> ImpactModel:
-    """Mesh, assemble and preload the ram + anvil + pile stack of ``config``."""
+    """Mesh, assemble and preload the ram + anvil + pile stack of ``config``.
+
+    Parameters
+    ----------
+    config : FeaConfig
+        The configuration.
+
+    Returns
+    -------
+    ImpactModel
+        The assembled stack.
+
+    Raises
+    ------
+    InputError
+        If the ram face or the pile ring does not lie on the anvil's flat faces.
+    """
     src = "FeaConfig"
     spec = config.anvil
     outline = np.asarray(spec.outline, float).copy()
@@ -450,7 +613,17 @@ def run_impact_fea(config: FeaConfig, progress: Callable[[float], None] | None =
                    ) -> FeaResult:
     """Build and integrate the ram + anvil + pile impact of ``config``.
 
-    progress : optional callable(fraction in [0, 1]) called during the time stepping.
+    Parameters
+    ----------
+    config : FeaConfig
+        The configuration.
+    progress : callable, optional
+        Called with the fraction in [0, 1] during the time stepping.
+
+    Returns
+    -------
+    FeaResult
+        Time histories and run statistics.
     """
     start = time.perf_counter()
     model = build_impact_model(config)
@@ -493,16 +666,49 @@ def run_bar_impact(striker_length: float, rod_length: float, outer_radius: float
 
     The closed-form check of the machinery (reference/closed-form-impacts.md, case 3): a
     rectangular force pulse Z v / 2 lasting 2 L_striker / c0 with 1D theory.
-    striker_length, rod_length [m]; outer_radius, inner_radius [m] (0: solid bars);
-    impact_velocity [m/s]; radial_elements : quadratic elements across the section;
-    axial_size : axial element size [m] (None: the radial one); truncated : dashpot (absorbing)
-    boundary at the rod's far end, else free; gauge_depth : gauge section below the rod top [m]
-    (None: mid-rod); duration [s] (None: 2 L_striker / c0 + the travel to the gauge, x 1.5).
-    contact_stiffness_per_area : penalty [N/m^3]; None: contact_stiffness_factor * E / axial
-    size (a mesh-independent value makes the contact problem itself fixed under refinement).
 
-    The result's ``ram_anvil_force`` is the striker-rod contact force; ``pile_head_velocity``
-    the rod top velocity; ``ram_velocity`` the striker's mean velocity.
+    Parameters
+    ----------
+    striker_length : float
+        Striker length [m].
+    rod_length : float
+        Rod length [m].
+    outer_radius : float
+        Outer radius [m].
+    impact_velocity : float
+        Striker velocity at contact [m/s].
+    inner_radius : float, default 0.0
+        Inner radius [m] (0: solid bars).
+    radial_elements : int, default 4
+        Quadratic elements across the section [-].
+    axial_size : float, optional
+        Axial element size [m] (None: the radial one).
+    truncated : bool, default False
+        Dashpot (absorbing) boundary at the rod's far end, else free.
+    gauge_depth : float, optional
+        Gauge section below the rod top [m] (None: mid-rod).
+    duration : float, optional
+        Simulated time [s] (None: 2 L_striker / c0 + the travel to the gauge, x 1.5).
+    output_interval : float, default 2e-6
+        Output time step [s].
+    material : Material, default STEEL
+        Material of both bars.
+    contact_stiffness_factor : float, default DEFAULT_CONTACT_STIFFNESS_FACTOR
+        alpha of the penalty alpha E / axial size [-], used when
+        ``contact_stiffness_per_area`` is None.
+    contact_stiffness_per_area : float, optional
+        Penalty [N/m^3]; None: contact_stiffness_factor * E / axial size (a mesh-independent
+        value makes the contact problem itself fixed under refinement).
+    absorbing_boundary_kind : {"bar", "plate", "shell", "p"}
+        Kind of the absorbing boundary, see :func:`absorbing_speeds`.
+    time_step_safety : float, default 0.9
+        Fraction of the critical step used [-].
+
+    Returns
+    -------
+    FeaResult
+        ``ram_anvil_force`` is the striker-rod contact force; ``pile_head_velocity`` the rod top
+        velocity; ``ram_velocity`` the striker's mean velocity.
     """
     c0 = material.bar_wave_speed
     dr = (outer_radius - inner_radius) / radial_elements
