@@ -44,7 +44,15 @@ class HighPassDashpots:
 
     Impedance c i omega / (i omega + rate): 0 at low frequency (the mass follows the DOF), c
     above ``rate`` (the mass stands still). Force on the DOF q = c (v_mass - v).
-    dofs : (m,) DOF indices; damping : (m,) dashpot c [N s/m]; rate : c / m [1/s].
+
+    Parameters
+    ----------
+    dofs : numpy.ndarray
+        DOF indices, shape (m,).
+    damping : numpy.ndarray
+        Dashpot c, shape (m,) [N s/m].
+    rate : float
+        c / m [1/s].
     """
 
     dofs: np.ndarray
@@ -56,14 +64,33 @@ class HighPassDashpots:
 class ExplicitSystem:
     """Everything the time stepping needs, on the global DOF vector.
 
-    stiffness : (n, n) CSR stiffness of the bodies (no contacts) [N/m].
-    mass : (n,) lumped mass [kg]; damping : (n,) dashpot coefficients [N s/m].
-    force : (n,) constant external force [N].
-    contacts : contact sets (node pairs).
-    displacement, velocity : (n,) initial state at t = 0 [m], [m/s].
-    force_probes : name -> (n,) row g, output g @ u [N].
-    velocity_probes : name -> (n,) weights w, output w @ v [m/s].
-    high_pass : optional dashpot-to-free-mass elements in parallel with ``damping``.
+    Parameters
+    ----------
+    stiffness : scipy.sparse.csr_matrix
+        Stiffness of the bodies (no contacts), shape (n, n) [N/m].
+    mass : numpy.ndarray
+        Lumped mass, shape (n,) [kg].
+    damping : numpy.ndarray
+        Dashpot coefficients, shape (n,) [N s/m].
+    force : numpy.ndarray
+        Constant external force, shape (n,) [N].
+    contacts : list of ContactSet
+        Contact sets (node pairs).
+    displacement : numpy.ndarray
+        Initial displacement at t = 0, shape (n,) [m].
+    velocity : numpy.ndarray
+        Initial velocity at t = 0, shape (n,) [m/s].
+    force_probes : dict of str to numpy.ndarray
+        Name -> row g, shape (n,), output g @ u [N].
+    velocity_probes : dict of str to numpy.ndarray
+        Name -> weights w, shape (n,), output w @ v [m/s].
+    high_pass : HighPassDashpots, optional
+        Dashpot-to-free-mass elements in parallel with ``damping``.
+
+    Attributes
+    ----------
+    n_dof : int
+        Number of DOFs n [-].
     """
 
     stiffness: sp.csr_matrix
@@ -79,6 +106,7 @@ class ExplicitSystem:
 
     @property
     def n_dof(self) -> int:
+        """Number of DOFs n [-]."""
         return len(self.mass)
 
 
@@ -86,12 +114,28 @@ class ExplicitSystem:
 class Transient:
     """Output of :func:`integrate` on the uniform output grid.
 
-    time : (m,) [s]; contact_force : (m, n_contacts) resultant per contact set [N] (compression
-    positive); probes : name -> (m,) outputs; energies : name -> (m,) [J]:
-    ``kinetic``, ``strain`` (1/2 u K u, includes the preload), ``contact`` (penalty springs),
-    ``absorbed`` (cumulative dashpot dissipation), ``external_work`` (f . (u - u0)),
-    ``contact_work`` (cumulative work of the contact forces on the bodies), ``total``
-    (kinetic + strain + contact + absorbed - external_work: constant for an exact scheme).
+    Parameters
+    ----------
+    time : numpy.ndarray
+        Output times, shape (m,) [s].
+    contact_force : numpy.ndarray
+        Resultant per contact set, shape (m, n_contacts) [N] (compression positive).
+    probes : dict of str to numpy.ndarray
+        Name -> probe output, shape (m,).
+    energies : dict of str to numpy.ndarray
+        Name -> energy, shape (m,) [J]: ``kinetic``, ``strain`` (1/2 u K u, includes the
+        preload), ``contact`` (penalty springs), ``absorbed`` (cumulative dashpot dissipation),
+        ``external_work`` (f . (u - u0)), ``contact_work`` (cumulative work of the contact forces
+        on the bodies), ``total`` (kinetic + strain + contact + absorbed - external_work: constant
+        for an exact scheme).
+    time_step : float
+        Time step h [s].
+    n_steps : int
+        Number of steps [-].
+    wall_time : float
+        Wall time of the stepping [s].
+    omega_max : float
+        Highest angular frequency of the system, contacts closed [rad/s].
     """
 
     time: np.ndarray
@@ -105,7 +149,20 @@ class Transient:
 
 
 def stable_time_step(system: ExplicitSystem) -> tuple[float, float]:
-    """Critical step 2 / omega_max [s] with every contact closed, and omega_max [rad/s]."""
+    """Critical step 2 / omega_max [s] with every contact closed, and omega_max [rad/s].
+
+    Parameters
+    ----------
+    system : ExplicitSystem
+        The system.
+
+    Returns
+    -------
+    time_step : float
+        The critical step 2 / omega_max [s].
+    omega_max : float
+        The highest angular frequency [rad/s].
+    """
     n = system.n_dof
     K = system.stiffness
     for c in system.contacts:
@@ -213,7 +270,18 @@ h omega_pair = 0.5 / 0.73 / 1.03 / 1.46 gives energy errors 1e-4 / 2e-4 / 6e-4 /
 
 
 def contact_pair_frequency(system: ExplicitSystem) -> float:
-    """Largest pair frequency sqrt(k (1/m_upper + 1/m_lower)) over all contacts [rad/s]."""
+    """Largest pair frequency sqrt(k (1/m_upper + 1/m_lower)) over all contacts [rad/s].
+
+    Parameters
+    ----------
+    system : ExplicitSystem
+        The system.
+
+    Returns
+    -------
+    float
+        omega_pair [rad/s] (0 without contact pairs).
+    """
     out = 0.0
     m = system.mass
     for c in system.contacts:
@@ -231,8 +299,32 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
     The step is min(safety * 2 / omega_max, CONTACT_PHASE_LIMIT / omega_pair), lowered so that
     ``output_interval`` [s] is an integer number of steps: outputs are exact step states on the
     grid t_j = j * output_interval (time from the step count, never accumulated).
-    ``progress(fraction)`` is called after each output.
-    ``time_step`` [s] overrides the step (it must not exceed the stable limit).
+
+    Parameters
+    ----------
+    system : ExplicitSystem
+        The system and its initial state.
+    duration : float
+        End time [s], a whole number of ``output_interval``.
+    output_interval : float
+        Output time step [s].
+    safety : float, default 0.9
+        Fraction of the critical step used [-].
+    progress : callable, optional
+        ``progress(fraction)`` is called after each output.
+    time_step : float, optional
+        Overrides the step [s] (it must not exceed the stable limit).
+
+    Returns
+    -------
+    Transient
+        The outputs on the grid.
+
+    Raises
+    ------
+    ValueError
+        If ``time_step`` exceeds the stable limit, or ``duration`` is not a whole number of
+        output intervals.
     """
     h_crit, omega = stable_time_step(system)
     omega_pair = contact_pair_frequency(system)
