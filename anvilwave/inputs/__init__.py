@@ -25,6 +25,15 @@ class InputError(Exception):
 
     ``str(error)`` is a single line ``<file>: <key>: <rule>`` meant to be shown to the user as it
     is, without a traceback.
+
+    Parameters
+    ----------
+    source : str or Path
+        The input file (stored as a string).
+    key : str
+        The dotted key that broke the rule ("" for the file as a whole).
+    rule : str
+        The rule that was broken, as a sentence fragment.
     """
 
     def __init__(self, source: str, key: str, rule: str):
@@ -36,12 +45,31 @@ class InputError(Exception):
 
     def __reduce__(self):
         """Pickled with its three fields, so an error raised in a worker process reaches the
-        parent as itself (process pools, dask)."""
+        parent as itself (process pools, dask).
+        """
         return (InputError, (self.source, self.key, self.rule))
 
 
 def read_text(path: str | Path, encoding: str = "utf-8") -> str:
-    """The text of an input file; a missing or unreadable file is an :class:`InputError`."""
+    """The text of an input file; a missing or unreadable file is an :class:`InputError`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    encoding : str, default "utf-8"
+        Its text encoding.
+
+    Returns
+    -------
+    str
+        The file's text.
+
+    Raises
+    ------
+    InputError
+        If the file is missing or cannot be read.
+    """
     path = Path(path)
     try:
         return path.read_text(encoding=encoding)
@@ -52,7 +80,23 @@ def read_text(path: str | Path, encoding: str = "utf-8") -> str:
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML file, turning I/O and syntax problems into :class:`InputError`."""
+    """Read a TOML file, turning I/O and syntax problems into :class:`InputError`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML file.
+
+    Returns
+    -------
+    dict
+        The parsed root table.
+
+    Raises
+    ------
+    InputError
+        If the file is missing, unreadable or not valid TOML.
+    """
     path = Path(path)
     text = read_text(path)
     try:
@@ -84,16 +128,66 @@ class Table:
 
     @classmethod
     def from_file(cls, path: str | Path) -> Table:
+        """The root table of a TOML file.
+
+        Parameters
+        ----------
+        path : str or Path
+            The TOML file.
+
+        Returns
+        -------
+        Table
+            Its root table.
+        """
         return cls(read_toml(path), path)
 
     # ------------------------------------------------------------------ helpers
     def key(self, name: str) -> str:
+        """The dotted key of ``name`` inside the file.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+
+        Returns
+        -------
+        str
+            ``prefix.name`` (or ``name`` in the root table).
+        """
         return f"{self.prefix}.{name}" if self.prefix else name
 
     def error(self, name: str, rule: str) -> InputError:
+        """An :class:`InputError` for key ``name`` of this table.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        rule : str
+            The rule that was broken.
+
+        Returns
+        -------
+        InputError
+            The error (not raised).
+        """
         return InputError(self.source, self.key(name), rule)
 
     def has(self, name: str) -> bool:
+        """Whether the table has key ``name``.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+
+        Returns
+        -------
+        bool
+            True if present.
+        """
         return name in self.data
 
     record: list[tuple[str, str]] | None = None
@@ -123,7 +217,35 @@ class Table:
         le: float | None = None,
         unit: str = "",
     ) -> float:
-        """A finite real number, with optional bounds."""
+        """A finite real number, with optional bounds.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : float, optional
+            Value when the key is absent; the key is required when omitted.
+        gt : float, optional
+            Exclusive lower bound [unit].
+        ge : float, optional
+            Inclusive lower bound [unit].
+        lt : float, optional
+            Exclusive upper bound [unit].
+        le : float, optional
+            Inclusive upper bound [unit].
+        unit : str, default ""
+            Unit named in error messages.
+
+        Returns
+        -------
+        float
+            The value (None only through an explicit default of None).
+
+        Raises
+        ------
+        InputError
+            If the key is missing, not a finite number, or out of bounds.
+        """
         value = self._get(name, default)
         if value is None:
             return None  # only reachable through an explicit default of None
@@ -143,6 +265,27 @@ class Table:
         return value
 
     def integer(self, name: str, default: Any = _MISSING, *, ge: int | None = None) -> int:
+        """An integer, with an optional lower bound.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : int, optional
+            Value when the key is absent; the key is required when omitted.
+        ge : int, optional
+            Inclusive lower bound.
+
+        Returns
+        -------
+        int
+            The value.
+
+        Raises
+        ------
+        InputError
+            If the key is missing, not an integer, or below ``ge``.
+        """
         value = self._get(name, default)
         if isinstance(value, bool) or not isinstance(value, int):
             raise self.error(name, f"must be an integer, got {value!r}")
@@ -151,12 +294,52 @@ class Table:
         return int(value)
 
     def boolean(self, name: str, default: Any = _MISSING) -> bool:
+        """A boolean.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : bool, optional
+            Value when the key is absent; the key is required when omitted.
+
+        Returns
+        -------
+        bool
+            The value.
+
+        Raises
+        ------
+        InputError
+            If the key is missing or not true/false.
+        """
         value = self._get(name, default)
         if not isinstance(value, bool):
             raise self.error(name, f"must be true or false, got {value!r}")
         return value
 
     def string(self, name: str, default: Any = _MISSING, *, choices=None) -> str:
+        """A string, optionally one of ``choices``.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : str, optional
+            Value when the key is absent; the key is required when omitted.
+        choices : sequence of str, optional
+            The allowed values.
+
+        Returns
+        -------
+        str
+            The value (None only through an explicit default of None).
+
+        Raises
+        ------
+        InputError
+            If the key is missing, not a string, or not one of ``choices``.
+        """
         value = self._get(name, default)
         if value is None:
             return None
@@ -167,7 +350,20 @@ class Table:
         return value
 
     def path(self, name: str, default: Any = _MISSING) -> Path | None:
-        """A file path, relative to the directory of the input file."""
+        """A file path, relative to the directory of the input file.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : str, optional
+            Value when the key is absent; the key is required when omitted.
+
+        Returns
+        -------
+        Path or None
+            The path (None through a default of None).
+        """
         value = self.string(name, default)
         if value is None:
             return None
@@ -179,7 +375,29 @@ class Table:
     def array(
         self, name: str, default: Any = _MISSING, *, columns: int | None = None, min_rows: int = 1
     ) -> np.ndarray:
-        """A list of numbers, or with ``columns`` a list of rows of that many numbers."""
+        """A list of numbers, or with ``columns`` a list of rows of that many numbers.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        default : array_like, optional
+            Value when the key is absent; the key is required when omitted.
+        columns : int, optional
+            Number of numbers in each row; a flat list when None.
+        min_rows : int, default 1
+            Fewest entries (rows).
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, 1D, or 2D with ``columns`` columns (None through a default of None).
+
+        Raises
+        ------
+        InputError
+            If the value is missing, of the wrong shape, or not finite numbers.
+        """
         value = self._get(name, default)
         if value is None:
             return None
@@ -199,6 +417,25 @@ class Table:
         return arr
 
     def table(self, name: str, required: bool = True) -> Table | None:
+        """A sub-table.
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        required : bool, default True
+            Whether the sub-table must be present.
+
+        Returns
+        -------
+        Table or None
+            The sub-table (None when absent and not required).
+
+        Raises
+        ------
+        InputError
+            If the key is missing (and required) or not a table.
+        """
         value = self._get(name, _MISSING if required else None)
         if value is None:
             return None
@@ -207,14 +444,38 @@ class Table:
         return Table(value, self.source, self.key(name))
 
     def tables(self, name: str, required: bool = True) -> list[Table]:
-        """An array of tables (``[[name]]``)."""
+        """An array of tables (``[[name]]``).
+
+        Parameters
+        ----------
+        name : str
+            Key in this table.
+        required : bool, default True
+            Whether the array must be present (absent and not required: empty).
+
+        Returns
+        -------
+        list of Table
+            The tables.
+
+        Raises
+        ------
+        InputError
+            If the key is missing (and required) or not an array of tables.
+        """
         value = self._get(name, _MISSING if required else [])
         if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
             raise self.error(name, "must be an array of tables ([[...]])")
         return [Table(v, self.source, f"{self.key(name)}[{i}]") for i, v in enumerate(value)]
 
     def finish(self) -> None:
-        """Reject the keys nobody asked for (typos, unsupported options)."""
+        """Reject the keys nobody asked for (typos, unsupported options).
+
+        Raises
+        ------
+        InputError
+            Naming the first unknown key and the allowed ones.
+        """
         unknown = sorted(set(self.data) - self._used)
         if unknown:
             allowed = ", ".join(sorted(self._used)) or "none"
@@ -230,6 +491,21 @@ def toml_dumps(root: dict[str, Any]) -> str:
     """TOML text of a nested dict of strings, booleans, numbers, lists and tables.
 
     Floats are written with ``repr`` so they read back bit for bit.
+
+    Parameters
+    ----------
+    root : dict
+        The root table.
+
+    Returns
+    -------
+    str
+        The TOML text.
+
+    Raises
+    ------
+    TypeError
+        If a value cannot be written to TOML.
     """
     lines: list[str] = []
     _toml_table(root, [], lines)
