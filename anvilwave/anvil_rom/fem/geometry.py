@@ -43,16 +43,44 @@ sparse factorisation for the eigenvalue count needs some tens of GB."""
 
 
 def estimated_triangles(outline: np.ndarray, size: float) -> float:
-    """Number of triangles of a mesh of the polygon at the target size [-]: its area over the
-    area of an equilateral triangle of side ``size`` [m]."""
+    """Number of triangles of a mesh of the polygon at the target size [-].
+
+    Its area over the area of an equilateral triangle of side ``size`` [m].
+
+    Parameters
+    ----------
+    outline : numpy.ndarray
+        Closed polygon, rows (r, z) [m].
+    size : float
+        Target element size [m].
+
+    Returns
+    -------
+    float
+        The estimated number of triangles [-].
+    """
     r, z = np.asarray(outline, dtype=float).T
     area = 0.5 * abs(np.dot(r, np.roll(z, -1)) - np.dot(z, np.roll(r, -1)))
     return float(area / (math.sqrt(3.0) / 4.0 * size**2))
 
 
 def mesh_budget_rule(elements: float, size: float) -> str | None:
-    """The rule broken by a mesh of ``elements`` triangles at ``size`` [m], or None if it fits:
-    the estimated size (elements, DOF, memory) and the smallest size that fits."""
+    """The rule broken by a mesh of ``elements`` triangles at ``size`` [m], or None if it fits.
+
+    The rule states the estimated size (elements, DOF, memory) and the smallest size that fits.
+
+    Parameters
+    ----------
+    elements : float
+        Estimated number of triangles [-].
+    size : float
+        Target element size [m].
+
+    Returns
+    -------
+    str or None
+        The broken rule, or None within :data:`MAX_ELEMENTS`.
+    """
     if elements <= MAX_ELEMENTS:
         return None
     dof = 4.0 * elements
@@ -67,9 +95,14 @@ def mesh_budget_rule(elements: float, size: float) -> str | None:
 class Material:
     """Linear elastic isotropic material.
 
-    youngs_modulus : Young's modulus [Pa].
-    poisson_ratio : Poisson's ratio [-].
-    density : mass density [kg/m^3].
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus [Pa].
+    poisson_ratio : float
+        Poisson's ratio [-].
+    density : float
+        Mass density [kg/m^3].
     """
 
     youngs_modulus: float
@@ -95,13 +128,19 @@ STEEL = Material(210e9, 0.3, 7850.0)
 class Interfaces:
     """Where the ram and the pile touch the anvil.
 
-    ram_contact_radius : radius of the top face region r <= R that carries the ram [m].
-    pile_contact_radius : mid-radius of the pile wall bearing on the bottom face [m].
-    pile_contact_width : radial width of the pile wall bearing ring [m].
-    pile_rings : the pile port split into this many equal-width rings across the wall, each
-        its own uniform pressure and contact [-] (1: one port; see
-        :mod:`anvilwave.anvil_rom.rings`).
-    ram_annuli : the ram port split into this many equal-width annuli from the axis to
+    Parameters
+    ----------
+    ram_contact_radius : float
+        Radius of the top face region r <= R that carries the ram [m].
+    pile_contact_radius : float
+        Mid-radius of the pile wall bearing on the bottom face [m].
+    pile_contact_width : float
+        Radial width of the pile wall bearing ring [m].
+    pile_rings : int, default 1
+        The pile port split into this many equal-width rings across the wall, each its own
+        uniform pressure and contact [-] (1: one port; see :mod:`anvilwave.anvil_rom.rings`).
+    ram_annuli : int, default 1
+        The ram port split into this many equal-width annuli from the axis to
         ``ram_contact_radius``, each its own uniform pressure and contact [-] (1: one port;
         with pile rings only, :mod:`anvilwave.anvil_rom.rings`).
     """
@@ -128,11 +167,28 @@ class Interfaces:
 class AnvilSpec:
     """Everything needed to build the FE model of an anvil.
 
-    outline : closed polygon of the half-section, rows (r, z) [m]; None with ``mesh_file``.
-    mesh_file : existing 2D axisymmetric mesh read with meshio; None with ``outline``.
-    mesh_size : target element size for gmsh [m].
-    fmax : frequency content of the modal ROM [Hz].
-    damping_ratio : modal damping ratio [-].
+    Parameters
+    ----------
+    name : str
+        Name of the anvil (the file stem when read from a file).
+    material : Material
+        Its material.
+    outline : numpy.ndarray, optional
+        Closed polygon of the half-section, rows (r, z) [m]; None with ``mesh_file``.
+    mesh_file : Path, optional
+        Existing 2D axisymmetric mesh read with meshio; None with ``outline``.
+    interfaces : Interfaces, optional
+        Where the ram and the pile touch the anvil.
+    mesh_size : float, default 0.05
+        Target element size for gmsh [m].
+    fmax : float, default DEFAULT_FMAX
+        Frequency content of the modal ROM [Hz].
+    damping_ratio : float, default 0.0
+        Modal damping ratio [-].
+    source : str, default "<memory>"
+        Where the spec came from.
+    extra : dict
+        Further entries (empty by default).
     """
 
     name: str
@@ -147,7 +203,13 @@ class AnvilSpec:
     extra: dict = field(default_factory=dict)
 
     def geometry_hash(self) -> str:
-        """SHA-256 of what defines the FE model (outline or mesh file, material, mesh size)."""
+        """SHA-256 of what defines the FE model (outline or mesh file, material, mesh size).
+
+        Returns
+        -------
+        str
+            The hex digest.
+        """
         h = hashlib.sha256()
         if self.outline is not None:
             h.update(np.ascontiguousarray(self.outline, dtype=float).tobytes())
@@ -159,7 +221,23 @@ class AnvilSpec:
 
 
 def load_anvil(path: str | Path) -> AnvilSpec:
-    """Read and validate an anvil file (see the module docstring for the format)."""
+    """Read and validate an anvil file (see the module docstring for the format).
+
+    Parameters
+    ----------
+    path : str or Path
+        The anvil TOML file.
+
+    Returns
+    -------
+    AnvilSpec
+        The validated anvil.
+
+    Raises
+    ------
+    InputError
+        If an entry is missing or breaks its rule.
+    """
     root = Table.from_file(path)
     mat = root.table("material")
     material = Material(
@@ -229,7 +307,18 @@ def load_anvil(path: str | Path) -> AnvilSpec:
 
 
 def polygon_area(points: np.ndarray) -> float:
-    """Signed area of a closed polygon (shoelace) [m^2]; positive counter-clockwise in (r, z)."""
+    """Signed area of a closed polygon (shoelace) [m^2]; positive counter-clockwise in (r, z).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+
+    Returns
+    -------
+    float
+        Signed area [m^2].
+    """
     r, z = points[:, 0], points[:, 1]
     return 0.5 * float(np.sum(r * np.roll(z, -1) - np.roll(r, -1) * z))
 
@@ -239,6 +328,16 @@ def revolved_volume(points: np.ndarray) -> float:
 
     Pappus: V = 2 pi * A * r_centroid, with the centroid from the shoelace formula; exact for
     polygons.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+
+    Returns
+    -------
+    float
+        Volume [m^3].
     """
     r, z = points[:, 0], points[:, 1]
     r1, z1 = np.roll(r, -1), np.roll(z, -1)
@@ -251,7 +350,23 @@ def revolved_volume(points: np.ndarray) -> float:
 
 
 def validate_outline(points: np.ndarray, source: str, key: str) -> None:
-    """Check that an (r, z) outline is a simple polygon in r >= 0 with a non-zero area."""
+    """Check that an (r, z) outline is a simple polygon in r >= 0 with a non-zero area.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+    source : str
+        The file named in errors.
+    key : str
+        The key named in errors.
+
+    Raises
+    ------
+    InputError
+        If a radius is negative, two consecutive points coincide, the area is zero, or two edges
+        cross.
+    """
     if np.any(points[:, 0] < 0.0):
         raise InputError(source, key, "all radii r must be >= 0 (the z axis is r = 0)")
     n = len(points)

@@ -31,6 +31,18 @@ def split_outline_at_interfaces(outline: np.ndarray, interfaces: Interfaces | No
     annuli, at their edges) and the pile ring spans ``pile_ring`` on the bottom (maximum z)
     face; putting vertices there makes element edges coincide with the interface limits, so
     the interface load vectors are exact.
+
+    Parameters
+    ----------
+    outline : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+    interfaces : Interfaces or None
+        The interfaces; None returns ``outline`` unchanged.
+
+    Returns
+    -------
+    numpy.ndarray
+        The outline with the inserted vertices [m].
     """
     if interfaces is None:
         return outline
@@ -40,8 +52,24 @@ def split_outline_at_interfaces(outline: np.ndarray, interfaces: Interfaces | No
 
 
 def split_outline_at_radii(outline: np.ndarray, z: float, radii) -> np.ndarray:
-    """``outline`` with a vertex inserted at each of ``radii`` [m] on its horizontal edges at
-    height ``z`` [m] (where an edge spans that radius)."""
+    """``outline`` with a vertex inserted at each of ``radii`` [m] on its horizontal edges.
+
+    The edges are those at height ``z`` [m] (where an edge spans that radius).
+
+    Parameters
+    ----------
+    outline : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+    z : float
+        Height of the horizontal edges [m].
+    radii : sequence of float
+        Radii of the new vertices [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The outline with the inserted vertices [m].
+    """
     tol = 1e-9 * max(np.ptp(outline, axis=0).max(), 1.0)
     points = [tuple(p) for p in outline]
     for rcut in radii:
@@ -71,6 +99,16 @@ def mesh_outline(outline: np.ndarray, size: float | None, *, point_sizes=None,
         Target size at each vertex [m]; gmsh interpolates between them (local refinement).
     edge_divisions : {i: m}, optional
         Split edge i (vertex i to i + 1) into exactly m equal elements.
+
+    Returns
+    -------
+    meshio.Mesh
+        The ``triangle6`` mesh, unreferenced points dropped.
+
+    Raises
+    ------
+    ValueError
+        If the mesh at ``size`` would exceed the mesh budget (:func:`mesh_budget_rule`).
     """
     import gmsh
 
@@ -114,7 +152,28 @@ def mesh_outline(outline: np.ndarray, size: float | None, *, point_sizes=None,
 
 
 def read_mesh(path: str | Path, source: str = "", key: str = "mesh") -> meshio.Mesh:
-    """Read an existing 2D axisymmetric mesh (x = r, y = z) with meshio; keep its 2D cells."""
+    """Read an existing 2D axisymmetric mesh (x = r, y = z) with meshio; keep its 2D cells.
+
+    Parameters
+    ----------
+    path : str or Path
+        The mesh file (anything meshio reads).
+    source : str, default ""
+        The input file named in errors (default: ``path``).
+    key : str, default "mesh"
+        The key named in errors.
+
+    Returns
+    -------
+    meshio.Mesh
+        The mesh of one 2D cell type, unreferenced points dropped.
+
+    Raises
+    ------
+    InputError
+        If meshio cannot read the file, it has no or mixed 2D cells, it is not in the (r, z)
+        plane, or a radius is negative.
+    """
     try:
         mesh = meshio.read(path)
     except Exception as exc:  # meshio raises many kinds of errors for unreadable files
@@ -151,6 +210,16 @@ def to_skfem(mesh: meshio.Mesh) -> skfem.Mesh:
 
     Linear meshes keep their straight-edged geometry; the FE model always puts quadratic
     Lagrange elements on them (see :func:`anvilwave.anvil_rom.fem.elasticity.element_for`).
+
+    Parameters
+    ----------
+    mesh : meshio.Mesh
+        The 2D mesh.
+
+    Returns
+    -------
+    skfem.Mesh
+        The scikit-fem mesh.
     """
     from skfem.io.meshio import from_meshio
 
@@ -159,7 +228,18 @@ def to_skfem(mesh: meshio.Mesh) -> skfem.Mesh:
 
 
 def build_mesh(spec: AnvilSpec) -> meshio.Mesh:
-    """The mesh of an anvil spec: gmsh for an outline, meshio for a mesh file."""
+    """The mesh of an anvil spec: gmsh for an outline, meshio for a mesh file.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil.
+
+    Returns
+    -------
+    meshio.Mesh
+        Its mesh.
+    """
     if spec.outline is not None:
         outline = split_outline_at_interfaces(spec.outline, spec.interfaces)
         return mesh_outline(outline, spec.mesh_size)
