@@ -23,7 +23,20 @@ from anvilwave.anvil_rom.fem.geometry import Interfaces, Material
 
 
 def lame_parameters(material: Material) -> tuple[float, float]:
-    """Lamé parameters (lambda, mu) [Pa] of an isotropic material."""
+    """Lamé parameters (lambda, mu) [Pa] of an isotropic material.
+
+    Parameters
+    ----------
+    material : Material
+        The material.
+
+    Returns
+    -------
+    lam : float
+        First Lamé parameter lambda [Pa].
+    mu : float
+        Shear modulus mu [Pa].
+    """
     E, nu = material.youngs_modulus, material.poisson_ratio
     return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
 
@@ -59,9 +72,31 @@ def _axial_pressure_form(v, w):
 class AxisymmetricModel:
     """Assembled FE model of an axisymmetric solid.
 
-    stiffness, mass : (n, n) sparse matrices on the free DOFs (axis u_r removed) [N/m], [kg].
-    free_dofs : indices of the free DOFs in the full scikit-fem DOF numbering.
-    basis : the scikit-fem basis (full DOF numbering).
+    Parameters
+    ----------
+    mesh : skfem.Mesh
+        The (r, z) mesh [m].
+    basis : skfem.Basis
+        The scikit-fem basis (full DOF numbering).
+    material : Material
+        The material.
+    stiffness : scipy.sparse.csr_matrix
+        Stiffness on the free DOFs (axis u_r removed), shape (n, n) [N/m].
+    mass : scipy.sparse.csr_matrix
+        Consistent mass on the free DOFs, shape (n, n) [kg].
+    free_dofs : numpy.ndarray
+        Indices of the free DOFs in the full scikit-fem DOF numbering.
+
+    Attributes
+    ----------
+    n_dof : int
+        Number of free degrees of freedom.
+    axial_free : numpy.ndarray
+        Unit axial translation on the free DOFs.
+    node_dofs : numpy.ndarray
+        (n_nodes, 2) DOF indices (u_r, u_z) of every mesh node.
+    node_coordinates : numpy.ndarray
+        (n_nodes, 2) coordinates (r, z) of the mesh nodes [m].
     """
 
     mesh: skfem.Mesh
@@ -88,19 +123,47 @@ class AxisymmetricModel:
         return e[self.free_dofs]
 
     def total_mass(self) -> float:
-        """Total mass from the mass matrix, e_z^T M e_z [kg]."""
+        """Total mass from the mass matrix, e_z^T M e_z [kg].
+
+        Returns
+        -------
+        float
+            The total mass [kg].
+        """
         e = self.axial_free
         return float(e @ (self.mass @ e))
 
     def expand(self, x_free: np.ndarray) -> np.ndarray:
-        """Free-DOF vector(s) -> full DOF vector(s) with zeros on the axis."""
+        """Free-DOF vector(s) -> full DOF vector(s) with zeros on the axis.
+
+        Parameters
+        ----------
+        x_free : numpy.ndarray
+            Vector(s) on the free DOFs, shape (n,) or (n, k).
+
+        Returns
+        -------
+        numpy.ndarray
+            Vector(s) on the full DOF numbering, shape (N,) or (N, k).
+        """
         x_free = np.asarray(x_free)
         out = np.zeros((self.basis.N,) + x_free.shape[1:])
         out[self.free_dofs] = x_free
         return out
 
     def nodal(self, x_free: np.ndarray) -> np.ndarray:
-        """(n_nodes, 2) displacement (u_r, u_z) at the mesh nodes from a free-DOF vector."""
+        """(n_nodes, 2) displacement (u_r, u_z) at the mesh nodes from a free-DOF vector.
+
+        Parameters
+        ----------
+        x_free : numpy.ndarray
+            Displacement on the free DOFs [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            Nodal displacements, shape (n_nodes, 2) [m].
+        """
         full = self.expand(x_free)
         return full[self.node_dofs]
 
@@ -126,6 +189,17 @@ class AxisymmetricModel:
         Hinton, Rock & Zienkiewicz (1976): diagonal of the consistent mass scaled so that each
         direction keeps the total mass. Row-sum lumping gives zero or negative corner masses
         for quadratic triangles; HRZ keeps every entry positive.
+
+        Returns
+        -------
+        numpy.ndarray
+            The lumped mass per free DOF [kg].
+
+        References
+        ----------
+        Hinton, E., Rock, T., Zienkiewicz, O.C. (1976). A note on mass lumping and related
+        processes in the finite element method. Earthquake Eng. Struct. Dyn. 4(3), 245-249.
+        https://doi.org/10.1002/eqe.4290040305
         """
         diag = self.mass.diagonal()
         e = self.axial_free
@@ -147,7 +221,23 @@ def _axis_radial_diag(model: AxisymmetricModel) -> float:
 
 
 def element_for(mesh: skfem.Mesh) -> skfem.Element:
-    """Quadratic Lagrange vector element matching the mesh type."""
+    """Quadratic Lagrange vector element matching the mesh type.
+
+    Parameters
+    ----------
+    mesh : skfem.Mesh
+        A triangle or quadrilateral mesh.
+
+    Returns
+    -------
+    skfem.Element
+        ``ElementVector(ElementTriP2())`` or ``ElementVector(ElementQuad2())``.
+
+    Raises
+    ------
+    TypeError
+        For an unsupported mesh type.
+    """
     if isinstance(mesh, skfem.MeshTri2 | skfem.MeshTri1):
         return skfem.ElementVector(skfem.ElementTriP2())
     if isinstance(mesh, skfem.MeshQuad2 | skfem.MeshQuad1):
@@ -160,10 +250,23 @@ def assemble(mesh: skfem.Mesh, material: Material, intorder: int = 4) -> Axisymm
 
     Parameters
     ----------
-    mesh : skfem mesh in (r, z) [m].
-    material : linear elastic material.
-    intorder : quadrature order (4 integrates the P2 mass exactly on straight triangles
-        except for the 1/r hoop term, which is smooth away from the axis).
+    mesh : skfem.Mesh
+        Mesh in (r, z) [m].
+    material : Material
+        Linear elastic material.
+    intorder : int, default 4
+        Quadrature order (4 integrates the P2 mass exactly on straight triangles except for
+        the 1/r hoop term, which is smooth away from the axis).
+
+    Returns
+    -------
+    AxisymmetricModel
+        The assembled model.
+
+    References
+    ----------
+    Timoshenko, S.P., Goodier, J.N. Theory of Elasticity, sec. 114 (strains of a solid of
+    revolution).
     """
     basis = skfem.Basis(mesh, element_for(mesh), intorder=intorder)
     lam, mu = lame_parameters(material)
@@ -190,13 +293,17 @@ def face_load_vector(model: AxisymmetricModel, select) -> tuple[np.ndarray, floa
 
     Parameters
     ----------
-    model : the assembled model.
-    select : callable (r, z) -> bool on facet midpoints, choosing the loaded facets.
+    model : AxisymmetricModel
+        The assembled model.
+    select : callable
+        (r, z) -> bool on facet midpoints, choosing the loaded facets.
 
     Returns
     -------
-    b : (n_free,) vector with sum over axial DOFs equal to 1 (a pressure 1/A [Pa] on area A).
-    area : loaded area A = integral of 2 pi r ds [m^2].
+    b : numpy.ndarray
+        (n_free,) vector with sum over axial DOFs equal to 1 (a pressure 1/A [Pa] on area A).
+    area : float
+        Loaded area A = integral of 2 pi r ds [m^2].
     """
     mesh = model.mesh
     facets = mesh.facets_satisfying(lambda x: select(x[0], x[1]), boundaries_only=True)
@@ -212,8 +319,26 @@ def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
                       ) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Load/output vectors of the ram face (top) and the pile ring (bottom).
 
-    Returns b_ram, b_pile (unit resultant, uniform pressure) and their areas [m^2]. The same
-    vector gives the force-weighted mean axial displacement, u = b^T x (collocated, passive).
+    The same vector gives the force-weighted mean axial displacement, u = b^T x (collocated,
+    passive).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    interfaces : Interfaces
+        Where the ram and the pile touch.
+
+    Returns
+    -------
+    b_ram : numpy.ndarray
+        Unit-resultant uniform pressure on the ram face, shape (n_free,).
+    b_pile : numpy.ndarray
+        Unit-resultant uniform pressure on the pile ring, shape (n_free,).
+    a_ram : float
+        Ram face area [m^2].
+    a_pile : float
+        Pile ring area [m^2].
     """
     z = model.mesh.p[1]
     scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
@@ -229,12 +354,25 @@ def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
 
 def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
                  ) -> tuple[np.ndarray, np.ndarray]:
-    """Load/output vectors of the pile ring split into ``interfaces.pile_rings`` equal-width
-    rings across the wall (:func:`annulus_vectors` on the bottom face).
+    """Load/output vectors of the pile ring split into ``interfaces.pile_rings`` rings.
 
-    Returns B (n_free, K), unit-resultant uniform pressures, and the ring areas (K,) [m^2].
+    The rings are equal-width across the wall (:func:`annulus_vectors` on the bottom face).
     Their area-weighted sum is the whole ring's vector (:func:`interface_vectors`). A ring
     with no facet (a mesh coarser than the rings) has area 0.
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    interfaces : Interfaces
+        Where the pile touches, and ``pile_rings``.
+
+    Returns
+    -------
+    B : numpy.ndarray
+        Unit-resultant uniform pressures, shape (n_free, K).
+    areas : numpy.ndarray
+        The ring areas, shape (K,) [m^2].
     """
     r_in, r_out = interfaces.pile_ring
     return annulus_vectors(model, model.mesh.p[1].max(), r_in, r_out, interfaces.pile_rings)
@@ -242,18 +380,54 @@ def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces
 
 def ram_annulus_vectors(model: AxisymmetricModel, interfaces: Interfaces
                         ) -> tuple[np.ndarray, np.ndarray]:
-    """Load/output vectors of the ram face split into ``interfaces.ram_annuli`` equal-width
-    annuli from the axis to the ram contact radius (:func:`annulus_vectors` on the top face):
-    B (n_free, J) and the annuli's areas (J,) [m^2]."""
+    """Load/output vectors of the ram face split into ``interfaces.ram_annuli`` annuli.
+
+    Equal-width annuli from the axis to the ram contact radius (:func:`annulus_vectors` on the
+    top face).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    interfaces : Interfaces
+        Where the ram touches, and ``ram_annuli``.
+
+    Returns
+    -------
+    B : numpy.ndarray
+        Unit-resultant uniform pressures, shape (n_free, J).
+    areas : numpy.ndarray
+        The annuli's areas, shape (J,) [m^2].
+    """
     return annulus_vectors(model, model.mesh.p[1].min(), 0.0, interfaces.ram_contact_radius,
                            interfaces.ram_annuli)
 
 
 def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int
                     ) -> tuple[np.ndarray, np.ndarray]:
-    """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m]
-    of the boundary face at height z [m] (each facet to the annulus holding its midpoint):
-    B (n_free, count) and the annuli's areas (count,) [m^2] (0 for an annulus without facet).
+    """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m].
+
+    On the boundary face at height z [m] (each facet to the annulus holding its midpoint).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    z : float
+        Height of the boundary face [m].
+    r_lo : float
+        Inner radius [m].
+    r_hi : float
+        Outer radius [m].
+    count : int
+        Number of annuli.
+
+    Returns
+    -------
+    B : numpy.ndarray
+        Unit-resultant uniform pressures, shape (n_free, count).
+    areas : numpy.ndarray
+        The annuli's areas, shape (count,) [m^2] (0 for an annulus without facet).
     """
     scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
     tol = 1e-7 * scale
@@ -274,6 +448,20 @@ def max_eigenvalue(stiffness: sp.spmatrix, mass: np.ndarray, tol: float = 1e-4) 
 
     Lanczos (ARPACK, which="LA") on the symmetric M^-1/2 K M^-1/2; if it does not converge,
     the Gershgorin bound max_i sum_j |A_ij| (never below the true value) is used instead.
+
+    Parameters
+    ----------
+    stiffness : scipy.sparse.spmatrix
+        K [N/m].
+    mass : numpy.ndarray
+        Diagonal of M [kg].
+    tol : float, default 1e-4
+        Relative tolerance of the Lanczos iteration (the result is raised by 10 tol).
+
+    Returns
+    -------
+    float
+        omega_max^2 [rad^2/s^2].
     """
     s = 1.0 / np.sqrt(mass)
     A = (sp.diags(s) @ stiffness @ sp.diags(s)).tocsr()
