@@ -62,7 +62,64 @@ VERSION = 1
 
 @dataclass(frozen=True)
 class ModalData:
-    """Modal description of an anvil between its two interfaces (see the module docstring)."""
+    """Modal description of an anvil between its two interfaces (see the module docstring).
+
+    Checked on construction (:func:`check_modal_data`).
+
+    Parameters
+    ----------
+    frequencies : numpy.ndarray
+        Natural frequencies, shape (n,) [Hz], ascending; index 0 is the axial rigid-body mode
+        (0 Hz).
+    participation_ram : numpy.ndarray
+        b_ram^T phi_j, mass-normalised modes, shape (n,) [kg^-1/2].
+    participation_pile : numpy.ndarray
+        b_pile^T phi_j, shape (n,) [kg^-1/2].
+    participation_gravity : numpy.ndarray
+        phi_j^T M e_z, shape (n,) [kg^1/2] (only the rigid mode is non-zero).
+    elastic_flexibility : numpy.ndarray
+        Inertia-relief flexibility between the ram face and the pile ring, all flexible modes,
+        shape (2, 2) [m/N] (for the static correction).
+    total_mass : float
+        Total mass [kg].
+    fmax : float
+        Frequency content the modes were computed for [Hz].
+    damping_ratio : float
+        Default modal damping ratio [-].
+    material : numpy.ndarray
+        Young's modulus [Pa], Poisson's ratio [-], density [kg/m^3], shape (3,).
+    interfaces : numpy.ndarray
+        Ram contact radius, pile contact radius, pile contact width, shape (3,) [m].
+    interface_areas : numpy.ndarray
+        Ram face area, pile ring area, shape (2,) [m^2].
+    n_dof : int
+        DOFs of the FE model the modes came from.
+    geometry_hash : str
+        SHA-256 of the geometry / mesh and material.
+    source : str
+        Who computed the modes ("anvilwave", "calculix", ...).
+    participation_rings : numpy.ndarray, optional
+        b_ring,k^T phi_j, uniform pressure on each of K pile rings, shape (K, n) [kg^-1/2].
+    ring_flexibility : numpy.ndarray, optional
+        Inertia-relief flexibility between the ram face (or annuli) and the rings, all flexible
+        modes, shape (K+1, K+1) or (J+K, J+K) [m/N].
+    ring_areas : numpy.ndarray, optional
+        Ring areas, inner ring first, shape (K,) [m^2].
+    participation_ram_annuli : numpy.ndarray, optional
+        b_annulus,j^T phi_j, uniform pressure on each of J ram annuli, shape (J, n) [kg^-1/2].
+    ram_annulus_areas : numpy.ndarray, optional
+        Ram annulus areas, the innermost (a disc) first, shape (J,) [m^2].
+
+    Attributes
+    ----------
+    n_modes : int
+        Number of modes n.
+
+    Raises
+    ------
+    InputError
+        If the data break a rule of :func:`check_modal_data`.
+    """
 
     frequencies: np.ndarray
     participation_ram: np.ndarray
@@ -86,6 +143,7 @@ class ModalData:
 
     @property
     def n_modes(self) -> int:
+        """Number of modes n (rigid-body mode included)."""
         return len(self.frequencies)
 
     def __post_init__(self):
@@ -107,7 +165,20 @@ ANNULUS_KEYS = ("participation_ram_annuli", "ram_annulus_areas")
 
 
 def check_modal_data(data: ModalData, source: str) -> None:
-    """Physical sanity of modal data; raises :class:`InputError` naming the key."""
+    """Physical sanity of modal data; raises :class:`InputError` naming the key.
+
+    Parameters
+    ----------
+    data : ModalData
+        The modal data.
+    source : str
+        The file named in errors.
+
+    Raises
+    ------
+    InputError
+        At the first broken rule.
+    """
     f = np.asarray(data.frequencies)
     n = len(f)
 
@@ -199,7 +270,15 @@ def _check_annuli(data: ModalData, n: int, bad) -> int:
 
 
 def write_modal_data(data: ModalData, fh) -> None:
-    """Write modal data as the .npz modal-data file into the binary file object ``fh``."""
+    """Write modal data as the .npz modal-data file into the binary file object ``fh``.
+
+    Parameters
+    ----------
+    data : ModalData
+        The modal data.
+    fh : file-like
+        Binary file object open for writing.
+    """
     arrays = {"format": np.array(FORMAT), "version": np.array(VERSION)}
     for fld in fields(ModalData):
         value = getattr(data, fld.name)
@@ -209,7 +288,20 @@ def write_modal_data(data: ModalData, fh) -> None:
 
 
 def save_modal_data(data: ModalData, path: str | Path) -> Path:
-    """Write modal data to ``path`` (.npz), atomically (no half-written file on failure)."""
+    """Write modal data to ``path`` (.npz), atomically (no half-written file on failure).
+
+    Parameters
+    ----------
+    data : ModalData
+        The modal data.
+    path : str or Path
+        The target file (its directory is created).
+
+    Returns
+    -------
+    Path
+        The written file.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".part")
@@ -220,7 +312,24 @@ def save_modal_data(data: ModalData, path: str | Path) -> Path:
 
 
 def load_modal_data(path: str | Path) -> ModalData:
-    """Read and validate a modal-data file; a corrupt or foreign file raises :class:`InputError`."""
+    """Read and validate a modal-data file; a corrupt or foreign file raises :class:`InputError`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The .npz modal-data file.
+
+    Returns
+    -------
+    ModalData
+        The validated modal data.
+
+    Raises
+    ------
+    InputError
+        If the file is missing, unreadable, of another format or version, or a key is missing,
+        misshapen or breaks a rule.
+    """
     path = Path(path)
     src = str(path)
     if not path.exists():

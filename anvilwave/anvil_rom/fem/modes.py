@@ -26,11 +26,24 @@ class ModeSolveError(RuntimeError):
 class ModeSet:
     """Mass-normalised free-free modes.
 
-    frequencies : (n,) natural frequencies [Hz]; index 0 is the axial rigid-body mode, set to
+    Parameters
+    ----------
+    frequencies : numpy.ndarray
+        Natural frequencies, shape (n,) [Hz]; index 0 is the axial rigid-body mode, set to
         exactly 0 (its computed value is kept in ``rigid_frequency_computed``).
-    shapes : (n_free, n) mode shapes, phi^T M phi = I.
-    fmax : the frequency content requested [Hz].
-    sturm_count : number of eigenvalues below (2 pi fmax)^2 from the inertia of K - sigma M.
+    shapes : numpy.ndarray
+        Mode shapes, shape (n_free, n), phi^T M phi = I.
+    fmax : float
+        The frequency content requested [Hz].
+    sturm_count : int
+        Number of eigenvalues below (2 pi fmax)^2 from the inertia of K - sigma M.
+    rigid_frequency_computed : float
+        The computed frequency of the rigid-body mode before it was set to 0 [Hz].
+
+    Attributes
+    ----------
+    n_modes : int
+        Number of modes n.
     """
 
     frequencies: np.ndarray
@@ -41,6 +54,7 @@ class ModeSet:
 
     @property
     def n_modes(self) -> int:
+        """Number of modes n (rigid-body mode included)."""
         return len(self.frequencies)
 
 
@@ -51,6 +65,25 @@ def sturm_count(stiffness: sp.spmatrix, mass: sp.spmatrix, sigma: float) -> int:
     K - sigma M = L D L^T. SuperLU with symmetric ordering and diagonal pivoting gives U = D L^T,
     so the signs of diag(U) are the inertia; a factorisation that had to pivot off the diagonal
     is detected and the shift nudged.
+
+    Parameters
+    ----------
+    stiffness : scipy.sparse.spmatrix
+        K [N/m].
+    mass : scipy.sparse.spmatrix
+        M [kg].
+    sigma : float
+        The shift [rad^2/s^2].
+
+    Returns
+    -------
+    int
+        The number of eigenvalues below ``sigma``.
+
+    Raises
+    ------
+    ModeSolveError
+        If no factorisation keeps symmetric pivots.
     """
     for nudge in (0.0, 1e-9, -1e-9, 1e-7):
         shifted = sigma * (1.0 + nudge)
@@ -68,6 +101,18 @@ def mesh_resolvable_frequency(model: AxisymmetricModel,
 
     With quadratic elements, four elements per shear wavelength keep the frequency error of the
     corresponding mode near 0.2 % (P2 dispersion error ~ (k h)^4 / 2880).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    elements_per_wavelength : float, default 4.0
+        Elements per shear wavelength required [-].
+
+    Returns
+    -------
+    float
+        The frequency [Hz].
     """
     mesh = model.mesh
     edges = mesh.facets
@@ -80,8 +125,21 @@ def free_free_modes(model: AxisymmetricModel, fmax: float) -> ModeSet:
 
     Parameters
     ----------
-    model : assembled axisymmetric FE model.
-    fmax : frequency content [Hz].
+    model : AxisymmetricModel
+        Assembled axisymmetric FE model.
+    fmax : float
+        Frequency content [Hz].
+
+    Returns
+    -------
+    ModeSet
+        The modes, complete up to ``fmax`` (proved by the Sturm count).
+
+    Raises
+    ------
+    ModeSolveError
+        If the rigid-body mode is missing, ``fmax`` asks for all DOFs, Lanczos misses modes, or
+        the modes are not M-orthonormal.
     """
     K, M = model.stiffness, model.mass
     lam_max = (2.0 * np.pi * fmax) ** 2
@@ -130,7 +188,20 @@ def elastic_flexibility(model: AxisymmetricModel, loads: np.ndarray) -> np.ndarr
 
     Parameters
     ----------
-    loads : (n_free, k) load vectors.
+    model : AxisymmetricModel
+        The assembled model.
+    loads : numpy.ndarray
+        Load vectors, shape (n_free, k).
+
+    Returns
+    -------
+    numpy.ndarray
+        G, shape (k, k) [m/N].
+
+    References
+    ----------
+    Craig, R.R., Kurdila, A.J. (2006). Fundamentals of Structural Dynamics, 2nd ed., Wiley,
+    sec. 14.6.
     """
     K, M = model.stiffness.tocsc(), model.mass
     e = model.axial_free
