@@ -79,10 +79,16 @@ class CalculixError(RuntimeError):
 class FrdResult(NamedTuple):
     """Mesh and mode shapes read from a CalculiX ``.frd`` file (anvilwave conventions).
 
-    points : (n, 2) node coordinates (r, z) [m], z down.
-    cells : (n_cells, k) connectivity in meshio node order, counter-clockwise in (r, z).
-    cell_type : meshio cell type ("triangle6", "quad8", ...).
-    displacements : (n_modes, n, 2) nodal (u_r, u_z) of each mode [-] (ccx normalisation).
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Node coordinates (r, z), shape (n, 2) [m], z down.
+    cells : numpy.ndarray
+        Connectivity in meshio node order, counter-clockwise in (r, z), shape (n_cells, k).
+    cell_type : str
+        meshio cell type ("triangle6", "quad8", ...).
+    displacements : numpy.ndarray
+        Nodal (u_r, u_z) of each mode, shape (n_modes, n, 2) [-] (ccx normalisation).
     """
 
     points: np.ndarray
@@ -94,9 +100,14 @@ class FrdResult(NamedTuple):
 class CalculixModes(NamedTuple):
     """Result of :func:`modes_from_calculix`.
 
-    mesh : the 2D mesh the model is built on, (r, z) [m].
-    model : anvilwave's assembled FE model of that mesh.
-    modes : CalculiX frequencies [Hz] with shapes mass-normalised by ``model.mass``.
+    Parameters
+    ----------
+    mesh : meshio.Mesh
+        The 2D mesh the model is built on, (r, z) [m].
+    model : AxisymmetricModel
+        anvilwave's assembled FE model of that mesh.
+    modes : ModeSet
+        CalculiX frequencies [Hz] with shapes mass-normalised by ``model.mass``.
     """
 
     mesh: meshio.Mesh
@@ -110,21 +121,40 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
                    expanded_output: bool = False) -> Path:
     """Write a CalculiX deck for the free-free axisymmetric modes of a 2D (r, z) mesh.
 
-    Parameters
-    ----------
-    path : output ``.inp`` file.
-    points : (n, 2) node coordinates (r, z) [m], z down, r >= 0.
-    cells : (n_cells, k) connectivity in meshio node order (0-based).
-    cell_type : "triangle6" (-> CAX6), "quad8" or "quad9" (-> CAX8, centre node dropped).
-    material : linear elastic material (E [Pa], nu [-], rho [kg/m^3]).
-    n_modes : number of eigenmodes to extract, the axial rigid-body mode included [-].
-    title : one-line heading written into the deck.
-    expanded_output : write the results on the expanded 3D sector (``OUTPUT=3D``) instead of the
-        2D mesh; see the module docstring.
-
     Node i of ``points`` becomes CalculiX node i + 1 and cell j element j + 1. Only nodes used
     by the elements are written. Nodes on the axis get u_r = 0 (see the module docstring); no
     other boundary condition is applied.
+
+    Parameters
+    ----------
+    path : str or Path
+        Output ``.inp`` file.
+    points : numpy.ndarray
+        Node coordinates (r, z), shape (n, 2) [m], z down, r >= 0.
+    cells : numpy.ndarray
+        Connectivity in meshio node order (0-based), shape (n_cells, k).
+    cell_type : {"triangle6", "quad8", "quad9"}
+        "triangle6" (-> CAX6), "quad8" or "quad9" (-> CAX8, centre node dropped).
+    material : Material
+        Linear elastic material (E [Pa], nu [-], rho [kg/m^3]).
+    n_modes : int
+        Number of eigenmodes to extract, the axial rigid-body mode included [-].
+    title : str, default ""
+        One-line heading written into the deck.
+    expanded_output : bool, default False
+        Write the results on the expanded 3D sector (``OUTPUT=3D``) instead of the 2D mesh;
+        see the module docstring.
+
+    Returns
+    -------
+    Path
+        The written deck.
+
+    Raises
+    ------
+    ValueError
+        If the cell type is not supported, or the points, cells, radii or ``n_modes``
+        are invalid.
     """
     if cell_type not in CCX_ELEMENTS:
         raise ValueError(f"cell type {cell_type!r} not supported; use one of "
@@ -183,7 +213,28 @@ def write_ccx_deck(path: str | Path, points: np.ndarray, cells: np.ndarray, cell
 def write_ccx_deck_from_mesh(path: str | Path, mesh: meshio.Mesh, material: Material,
                              n_modes: int, title: str = "", *,
                              expanded_output: bool = False) -> Path:
-    """:func:`write_ccx_deck` for a 2D meshio mesh in (r, z) [m] (its first cell block)."""
+    """:func:`write_ccx_deck` for a 2D meshio mesh in (r, z) [m] (its first cell block).
+
+    Parameters
+    ----------
+    path : str or Path
+        Output ``.inp`` file.
+    mesh : meshio.Mesh
+        The 2D mesh, (r, z) [m].
+    material : Material
+        Linear elastic material.
+    n_modes : int
+        Number of eigenmodes to extract, the rigid-body mode included [-].
+    title : str, default ""
+        One-line heading written into the deck.
+    expanded_output : bool, default False
+        Write the results on the expanded 3D sector (``OUTPUT=3D``).
+
+    Returns
+    -------
+    Path
+        The written deck.
+    """
     block = mesh.cells[0]
     return write_ccx_deck(path, np.asarray(mesh.points)[:, :2], block.data, block.type,
                           material, n_modes, title, expanded_output=expanded_output)
@@ -213,14 +264,31 @@ def run_ccx(inp_path: str | Path, workdir: str | Path | None = None,
             timeout: float = 3600.0) -> tuple[Path, Path]:
     """Run CalculiX on a deck and return the paths of its ``.frd`` and ``.dat`` results.
 
-    Parameters
-    ----------
-    inp_path : the ``.inp`` deck; the job name is its stem.
-    workdir : directory to run in (the deck is copied there); default: the deck's directory.
-    timeout : wall-clock limit [s].
-
     ccx's screen output is kept in ``<job>.log`` in the work directory. Old ``.frd``/``.dat``
     files of the job are removed first, so stale results are never returned.
+
+    Parameters
+    ----------
+    inp_path : str or Path
+        The ``.inp`` deck; the job name is its stem.
+    workdir : str or Path, optional
+        Directory to run in (the deck is copied there); default: the deck's directory.
+    timeout : float, default 3600.0
+        Wall-clock limit [s].
+
+    Returns
+    -------
+    frd : Path
+        The ``.frd`` result file.
+    dat : Path
+        The ``.dat`` result file.
+
+    Raises
+    ------
+    CalculixError
+        If ccx is missing or the run fails.
+    InputError
+        If the deck is missing or is not an ``.inp`` file.
     """
     exe = shutil.which("ccx")
     if exe is None:
@@ -268,6 +336,16 @@ def read_dat_frequencies(path: str | Path) -> np.ndarray:
     The table of a ``*FREQUENCY`` step lists, per mode, the eigenvalue [rad^2/s^2], the real
     part of omega [rad/s] and of f [Hz] (CYCLES/TIME), and the imaginary part of omega; the
     real part of f is returned (0 for the slightly negative eigenvalue of a rigid-body mode).
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.dat`` file.
+
+    Returns
+    -------
+    numpy.ndarray
+        Frequency of each mode [Hz].
     """
     path = Path(path)
     lines = _read_lines(path)
@@ -545,20 +623,24 @@ def _read_frd(path: str | Path) -> tuple[FrdResult, np.ndarray]:
 def read_frd(path: str | Path) -> FrdResult:
     """Mesh and mode shapes from a CalculiX ``.frd`` result file, in anvilwave conventions.
 
+    Only nodes used by the elements are returned, in the file's order.
+
     Parameters
     ----------
-    path : ASCII ``.frd`` file of a run with axisymmetric elements and ``*NODE FILE`` U output,
+    path : str or Path
+        ASCII ``.frd`` file of a run with axisymmetric elements and ``*NODE FILE`` U output,
         on the 2D mesh (ccx default) or the expanded 3D sector (``OUTPUT=3D``, mapped back).
 
     Returns
     -------
-    FrdResult (points (n, 2) as (r, z) [m] with z down; cells (counter-clockwise in (r, z));
-    cell_type; displacements (n_modes, n, 2) as (u_r, u_z), one entry per DISP block).
-    Only nodes used by the elements are returned, in the file's order.
+    FrdResult
+        points (n, 2) as (r, z) [m] with z down; cells (counter-clockwise in (r, z));
+        cell_type; displacements (n_modes, n, 2) as (u_r, u_z), one entry per DISP block.
 
     Raises
     ------
-    InputError : the file is missing, truncated or not a CalculiX result file.
+    InputError
+        If the file is missing, truncated or not a CalculiX result file.
     """
     return _read_frd(path)[0]
 
@@ -582,28 +664,39 @@ def modes_from_calculix(frd_path: str | Path, dat_path: str | Path, material: Ma
                         fmax: float | None = None) -> CalculixModes:
     """CalculiX modes as a :class:`ModeSet` on anvilwave's FE model of the same mesh.
 
-    Parameters
-    ----------
-    frd_path : ``.frd`` of a free-free axisymmetric ``*FREQUENCY`` run (mesh and shapes).
-    dat_path : ``.dat`` of the same run (frequencies).
-    material : the material of the run (E [Pa], nu [-], rho [kg/m^3]).
-    fmax : keep the modes with f <= fmax [Hz] and prove with a Sturm count of anvilwave's model
-        that CalculiX found all of them; None keeps every mode of the run (``sturm_count`` is
-        then just their number, not a proof).
-
     The model is built on the mesh of the ``.frd`` (8-node quads become 9-node quads whose
     centre carries the interpolated serendipity field). Shapes are mapped node by node onto the
     free DOFs (CalculiX's u_r on the axis is dropped; it is fixed to 0 in decks from
     :func:`write_ccx_deck`), normalised with anvilwave's consistent mass matrix, the first mode
     is replaced by the exact axial translation and the others made M-orthogonal to it, as in
-    :func:`~anvilwave.anvil_rom.fem.modes.free_free_modes`. Frequencies are CalculiX's (rigid mode:
-    exactly 0).
+    :func:`~anvilwave.anvil_rom.fem.modes.free_free_modes`. Frequencies are CalculiX's (rigid
+    mode: exactly 0).
+
+    Parameters
+    ----------
+    frd_path : str or Path
+        ``.frd`` of a free-free axisymmetric ``*FREQUENCY`` run (mesh and shapes).
+    dat_path : str or Path
+        ``.dat`` of the same run (frequencies).
+    material : Material
+        The material of the run (E [Pa], nu [-], rho [kg/m^3]).
+    fmax : float, optional
+        Keep the modes with f <= fmax [Hz] and prove with a Sturm count of anvilwave's model
+        that CalculiX found all of them; None keeps every mode of the run (``sturm_count`` is
+        then just their number, not a proof).
+
+    Returns
+    -------
+    CalculixModes
+        The mesh, anvilwave's model of it and the modes.
 
     Raises
     ------
-    InputError : unreadable or mismatched files.
-    ModeSolveError : the modes do not fit the model (wrong material or mesh, no rigid mode,
-        not M-orthogonal, a mode below fmax missing).
+    InputError
+        Unreadable or mismatched files.
+    ModeSolveError
+        The modes do not fit the model (wrong material or mesh, no rigid mode, not
+        M-orthogonal, a mode below fmax missing).
     """
     frd_path, dat_path = Path(frd_path), Path(dat_path)
     result, frd_freqs = _read_frd(frd_path)

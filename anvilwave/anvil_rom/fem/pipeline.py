@@ -31,7 +31,27 @@ from anvilwave.inputs import InputError
 
 @dataclass
 class AnvilModes:
-    """Result of the modal analysis of an anvil."""
+    """Result of the modal analysis of an anvil.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil.
+    mesh : meshio.Mesh
+        Its mesh.
+    model : AxisymmetricModel
+        The assembled FE model.
+    modes : ModeSet
+        The free-free modes.
+    modal_data : ModalData or None
+        The modal data (ROM); None without interfaces.
+    b_ram : numpy.ndarray or None
+        Unit-resultant load vector of the ram face; None without interfaces.
+    b_pile : numpy.ndarray or None
+        Unit-resultant load vector of the pile ring; None without interfaces.
+    wall_time : float
+        Wall time of the analysis [s].
+    """
 
     spec: AnvilSpec
     mesh: meshio.Mesh
@@ -44,7 +64,24 @@ class AnvilModes:
 
 
 def check_fmax(model: AxisymmetricModel, fmax: float, source: str, key: str = "fmax") -> None:
-    """Refuse an fmax the mesh cannot resolve (see :func:`mesh_resolvable_frequency`)."""
+    """Refuse an fmax the mesh cannot resolve (see :func:`mesh_resolvable_frequency`).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    fmax : float
+        Requested frequency content [Hz].
+    source : str
+        The file named in errors.
+    key : str, default "fmax"
+        The key named in errors.
+
+    Raises
+    ------
+    InputError
+        If ``fmax`` is above what the mesh resolves.
+    """
     limit = mesh_resolvable_frequency(model)
     if fmax > limit:
         raise InputError(source, key, f"{fmax:g} Hz is above what the mesh resolves ({limit:.0f} "
@@ -55,13 +92,42 @@ def check_fmax(model: AxisymmetricModel, fmax: float, source: str, key: str = "f
 def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: ModeSet,
                           b_ram: np.ndarray, b_pile: np.ndarray, areas: tuple[float, float],
                           source: str = "anvilwave") -> ModalData:
-    """Project modes on the interfaces and pack them with the static flexibility; with
-    ``spec.interfaces.pile_rings`` > 1 also on the pile's rings
-    (:func:`anvilwave.anvil_rom.fem.elasticity.
-    ring_vectors`), with the flexibility between the ram face and the rings; with
-    ``ram_annuli`` > 1 also on the ram face's annuli
-    (:func:`anvilwave.anvil_rom.fem.elasticity.ram_annulus_vectors`),
-    the flexibility then between the annuli and the rings."""
+    """Project modes on the interfaces and pack them with the static flexibility.
+
+    With ``spec.interfaces.pile_rings`` > 1 also on the pile's rings
+    (:func:`anvilwave.anvil_rom.fem.elasticity.ring_vectors`), with the flexibility between the
+    ram face and the rings; with ``ram_annuli`` > 1 also on the ram face's annuli
+    (:func:`anvilwave.anvil_rom.fem.elasticity.ram_annulus_vectors`), the flexibility then
+    between the annuli and the rings.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil (with interfaces).
+    model : AxisymmetricModel
+        The assembled model.
+    modes : ModeSet
+        Its modes.
+    b_ram : numpy.ndarray
+        Unit-resultant load vector of the ram face.
+    b_pile : numpy.ndarray
+        Unit-resultant load vector of the pile ring.
+    areas : tuple of float
+        Ram face and pile ring areas [m^2].
+    source : str, default "anvilwave"
+        Who computed the modes.
+
+    Returns
+    -------
+    ModalData
+        The modal data.
+
+    Raises
+    ------
+    InputError
+        If the ram port is split into annuli without pile rings, or a ring or annulus has no
+        element edge.
+    """
     itf = spec.interfaces
     B = np.column_stack([b_ram, b_pile])
     rings = {}
@@ -124,6 +190,18 @@ def compute_anvil_modes(spec: AnvilSpec, fmax: float | None = None) -> AnvilMode
     """Mesh, assemble and solve the free-free modes of an anvil up to ``fmax`` [Hz].
 
     The modal data (ROM) is built when the spec has interfaces.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil.
+    fmax : float, optional
+        Frequency content [Hz] (default: the spec's).
+
+    Returns
+    -------
+    AnvilModes
+        Mesh, model, modes and modal data.
     """
     start = time.perf_counter()
     fmax = spec.fmax if fmax is None else fmax
@@ -141,6 +219,25 @@ def anvil_modes_from_calculix(spec: AnvilSpec, job: str | Path, fmax: float | No
     The mesh is the one in the .frd; material and interfaces come from the anvil spec; only
     modes up to ``fmax`` [Hz] (default: the spec's) are kept, and a Sturm count of the FE model
     on that mesh proves CalculiX found all of them.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil.
+    job : str or Path
+        The CalculiX job name (without extension).
+    fmax : float, optional
+        Frequency content [Hz] (default: the spec's).
+
+    Returns
+    -------
+    AnvilModes
+        Mesh, model, modes and modal data.
+
+    Raises
+    ------
+    InputError
+        If a result file is missing.
     """
 
     start = time.perf_counter()
@@ -170,10 +267,22 @@ def _finish(spec, mesh, model, modes, source, start) -> AnvilModes:
 
 
 def solid_mass(spec: AnvilSpec) -> float:
-    """Mass of the anvil [kg] without its modes: density times the revolved volume of the
-    outline (:func:`revolved_volume`), which is the FE model's total mass e_z^T M e_z (its
-    straight-edged elements tile the outline exactly; they agree to round-off); for an anvil
-    given as a mesh file, the assembled mass matrix's total."""
+    """Mass of the anvil [kg] without its modes.
+
+    Density times the revolved volume of the outline (:func:`revolved_volume`), which is the FE
+    model's total mass e_z^T M e_z (its straight-edged elements tile the outline exactly; they
+    agree to round-off); for an anvil given as a mesh file, the assembled mass matrix's total.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil.
+
+    Returns
+    -------
+    float
+        The mass [kg].
+    """
     if spec.outline is not None:
         return float(spec.material.density * revolved_volume(np.asarray(spec.outline, float)))
     mesh = read_mesh(spec.mesh_file, spec.source, "mesh")
