@@ -11,7 +11,20 @@ ALIGNMENT = 64
 
 
 def aligned_zeros(shape, dtype=np.float64) -> np.ndarray:
-    """A zero-filled C-contiguous array of ``shape`` whose first element is ALIGNMENT-aligned."""
+    """A zero-filled C-contiguous array of ``shape`` whose first element is ALIGNMENT-aligned.
+
+    Parameters
+    ----------
+    shape : int or tuple of int
+        Shape of the array.
+    dtype : data-type, default numpy.float64
+        Element type.
+
+    Returns
+    -------
+    numpy.ndarray
+        The aligned zero array (a view into a slightly larger buffer).
+    """
     dtype = np.dtype(dtype)
     count = int(np.prod(shape, dtype=np.int64))
     buffer = np.zeros(count * dtype.itemsize + ALIGNMENT, dtype=np.uint8)
@@ -20,7 +33,18 @@ def aligned_zeros(shape, dtype=np.float64) -> np.ndarray:
 
 
 def aligned_copy(array) -> np.ndarray:
-    """An ALIGNMENT-aligned C-contiguous copy of ``array``."""
+    """An ALIGNMENT-aligned C-contiguous copy of ``array``.
+
+    Parameters
+    ----------
+    array : array_like
+        The values to copy.
+
+    Returns
+    -------
+    numpy.ndarray
+        The aligned copy, same shape and dtype.
+    """
     array = np.asarray(array)
     out = aligned_zeros(array.shape, array.dtype)
     out[...] = array

@@ -53,16 +53,34 @@ def chain_from_modes(omega, participation, digits: int | None = None
 
     Parameters
     ----------
-    omega : (n,) circular frequencies [rad/s]; exactly one must be 0 (the rigid-body mode).
-    participation : (n,) participations at the face [kg^-1/2], b^T phi_j of mass-normalised
-        modes (the rigid mode's is 1 / sqrt(total mass)).
-    digits : decimal digits of the multiple-precision arithmetic to start from (default
-        40 + n); doubled until the rounded chain reproduces the modes within TOLERANCE.
+    omega : (n,) array_like
+        Circular frequencies [rad/s]; exactly one must be 0 (the rigid-body mode).
+    participation : (n,) array_like
+        Participations at the face [kg^-1/2], b^T phi_j of mass-normalised modes (the rigid
+        mode's is 1 / sqrt(total mass)).
+    digits : int, optional
+        Decimal digits of the multiple-precision arithmetic to start from (default 40 + n);
+        doubled until the rounded chain reproduces the modes within TOLERANCE.
 
     Returns
     -------
-    mass : (k,) masses, mass[0] at the face; k <= n (modes invisible at the face dropped).
-    stiffness : (k - 1,) springs, stiffness[i] between mass[i] and mass[i + 1].
+    mass : (k,) numpy.ndarray
+        Masses [kg], mass[0] at the face; k <= n (modes invisible at the face dropped).
+    stiffness : (k - 1,) numpy.ndarray
+        Springs [N/m], stiffness[i] between mass[i] and mass[i + 1].
+
+    Raises
+    ------
+    InputError
+        If the modes are malformed (no single rigid-body mode, mismatched shapes, a rigid mode
+        that does not act at the face, equal frequencies), need masses beyond double precision,
+        or no chain reproduces them within MAX_DIGITS digits.
+
+    References
+    ----------
+    Golub, G.H. (1973). Some modified matrix eigenvalue problems. SIAM Review 15(2), 318-334.
+    https://doi.org/10.1137/1015032
+    Gladwell, G.M.L. (2004). Inverse Problems in Vibration, 2nd ed., Kluwer, ch. 4.
     """
     omega = np.asarray(omega, float)
     p = np.asarray(participation, float)
@@ -165,6 +183,20 @@ def chain_modes(mass, stiffness) -> tuple[np.ndarray, np.ndarray]:
 
     Solved on the symmetric tridiagonal form M^-1/2 K M^-1/2, whose entries (k_i-1 + k_i) / m_i
     and -k_i / sqrt(m_i m_i+1) stay well scaled however small the masses are.
+
+    Parameters
+    ----------
+    mass : array_like
+        Chain masses, shape (k,) [kg].
+    stiffness : array_like
+        Springs between consecutive masses, shape (k - 1,) [N/m].
+
+    Returns
+    -------
+    omega : numpy.ndarray
+        Circular frequencies, ascending [rad/s].
+    participation : numpy.ndarray
+        Participation of each mode at mass[0] [kg^-1/2].
     """
     from scipy.linalg import eigh_tridiagonal
 

@@ -14,10 +14,19 @@ def contact_force(penetration, penetration_rate, stiffness, damping):
 
     Parameters
     ----------
-    penetration : overlap d = u_upper - u_lower of the two faces [m] (z down).
-    penetration_rate : d' [m/s].
-    stiffness : contact stiffness k [N/m].
-    damping : contact dashpot c [N s/m].
+    penetration : float
+        Overlap d = u_upper - u_lower of the two faces [m] (z down).
+    penetration_rate : float
+        d' [m/s].
+    stiffness : float
+        Contact stiffness k [N/m].
+    damping : float
+        Contact dashpot c [N s/m].
+
+    Returns
+    -------
+    float
+        The contact force F [N].
     """
     if penetration <= 0.0:
         return 0.0
