@@ -39,6 +39,11 @@ def loading_force(compression, stiffness, round_out):
         Cushion stiffness k [N/m] (E A / t of the cushion material).
     round_out : float
         Round-out compression r [m]; 0 for a linear spring.
+
+    Returns
+    -------
+    float
+        The loading-curve force [N].
     """
     if compression <= 0.0:
         return 0.0
@@ -69,6 +74,16 @@ def cushion_force(compression, max_compression, stiffness, restitution, round_ou
         Coefficient of restitution e [-], 0 < e <= 1 (1: elastic).
     round_out : float
         Round-out compression r [m].
+
+    Returns
+    -------
+    float
+        The cushion force [N].
+
+    References
+    ----------
+    Smith, E.A.L. (1960). Pile driving analysis by the wave equation. ASCE J. Soil Mech.
+    Found. Div. 86(4), 35-61.
     """
     if compression <= 0.0:
         return 0.0
@@ -93,6 +108,11 @@ def recoverable_energy(force, stiffness, restitution):
         Loading stiffness k [N/m].
     restitution : float
         Coefficient of restitution e [-].
+
+    Returns
+    -------
+    float
+        The recoverable strain energy [J].
     """
     return 0.5 * force * force * restitution * restitution / stiffness
 
@@ -109,6 +129,11 @@ def loading_compression(force, stiffness, round_out):
         Loading stiffness k [N/m].
     round_out : float
         Round-out compression r [m].
+
+    Returns
+    -------
+    float
+        The compression [m].
     """
     if force <= 0.0:
         return 0.0
@@ -132,6 +157,11 @@ def loading_work(compression, stiffness, round_out):
         Loading stiffness k [N/m].
     round_out : float
         Round-out compression r [m].
+
+    Returns
+    -------
+    float
+        The work done on the cushion [J].
     """
     if compression <= 0.0:
         return 0.0
@@ -163,6 +193,11 @@ def hysteresis_loss(max_compression, stiffness, restitution, round_out):
         Coefficient of restitution e [-].
     round_out : float
         Round-out compression r [m].
+
+    Returns
+    -------
+    float
+        The dissipated energy [J].
     """
     if max_compression <= 0.0:
         return 0.0

@@ -39,17 +39,17 @@ DATA_DIR = Path(__file__).with_name("data")
 class HammerSource:
     """Where a hammer's figures come from.
 
-    Attributes
+    Parameters
     ----------
     document : str
         Title and publisher of the brochure, datasheet or report.
     year : int
         Year of the document (0 if unknown).
-    url : str
+    url : str, default ""
         Where it was published ("" if none).
-    estimates : str
+    estimates : str, default ""
         Which values are estimates and how they were derived.
-    checked : str
+    checked : str, default ""
         Which figures were checked against which other source.
     """
 
@@ -61,6 +61,23 @@ class HammerSource:
 
     @classmethod
     def from_table(cls, table: Table) -> HammerSource:
+        """Read a ``[source]`` table.
+
+        Parameters
+        ----------
+        table : Table
+            The table.
+
+        Returns
+        -------
+        HammerSource
+            The source.
+
+        Raises
+        ------
+        InputError
+            If ``document`` is blank or a key is missing or invalid.
+        """
         document = table.string("document")
         if not document.strip():
             raise table.error("document", "must name the source document")
@@ -76,7 +93,7 @@ class HammerSource:
 class Hammer:
     """An impact hammer: its ram and how fast the ram strikes.
 
-    Attributes
+    Parameters
     ----------
     name : str
         Hammer name.
@@ -86,16 +103,21 @@ class Hammer:
         The ram model.
     impact_velocity : float
         Ram velocity just before impact at the rated energy [m/s].
-    rated_energy : float
+    rated_energy : float, default nan
         Rated (maximum) blow energy [J]; nan if the file gives a velocity only.
-    efficiency : float
+    efficiency : float, default nan
         Hammer efficiency [-] (nan when the impact velocity is given directly).
-    stroke : float
+    stroke : float, default nan
         Ram stroke [m]: as given, else the equivalent stroke E / (m g) (nan if unknown).
     source : HammerSource or None
         The cited source (None for a configuration without one).
-    description : str
+    description : str, default ""
         Free text.
+
+    Attributes
+    ----------
+    ram_mass : float
+        Ram mass [kg].
     """
 
     name: str
@@ -114,7 +136,23 @@ class Hammer:
         return self.ram.total_mass
 
     def impact_velocity_at(self, energy: float) -> float:
-        """Impact velocity [m/s] when the hammer is run at a blow energy [J] below its rating."""
+        """Impact velocity [m/s] when the hammer is run at a blow energy [J] below its rating.
+
+        Parameters
+        ----------
+        energy : float
+            Blow energy [J].
+
+        Returns
+        -------
+        float
+            Impact velocity [m/s].
+
+        Raises
+        ------
+        ValueError
+            If the hammer has no efficiency (impact velocity given directly).
+        """
         if math.isnan(self.efficiency):
             raise ValueError(f"{self.name}: no efficiency (impact velocity was given directly)")
         return impact_velocity_from_energy(energy, self.ram_mass, self.efficiency)
@@ -122,7 +160,27 @@ class Hammer:
     @classmethod
     def from_table(cls, table: Table, gravity: float = GRAVITY,
                    require_source: bool = False) -> Hammer:
-        """Read a hammer from a TOML table; gravity [m/s^2] for stroke conversions."""
+        """Read a hammer from a TOML table; gravity [m/s^2] for stroke conversions.
+
+        Parameters
+        ----------
+        table : Table
+            The hammer table.
+        gravity : float, default GRAVITY
+            Gravitational acceleration for stroke conversions [m/s^2].
+        require_source : bool, default False
+            Whether a ``[source]`` table is required.
+
+        Returns
+        -------
+        Hammer
+            The validated hammer.
+
+        Raises
+        ------
+        InputError
+            If an entry is missing, invalid or contradictory.
+        """
         name = table.string("name")
         manufacturer = table.string("manufacturer", "")
         description = table.string("description", "")
@@ -155,12 +213,34 @@ class Hammer:
 
 
 def available_hammers() -> list[str]:
-    """Names (file stems) of the hammers in the shipped database, sorted."""
+    """Names (file stems) of the hammers in the shipped database, sorted.
+
+    Returns
+    -------
+    list of str
+        The hammer names.
+    """
     return sorted(path.stem for path in DATA_DIR.glob("*.toml"))
 
 
 def hammer_path(name: str | Path) -> Path:
-    """The file of a database hammer (by name) or the given path to a hammer file."""
+    """The file of a database hammer (by name) or the given path to a hammer file.
+
+    Parameters
+    ----------
+    name : str or Path
+        Database name, or a path to a hammer file.
+
+    Returns
+    -------
+    Path
+        The hammer file.
+
+    Raises
+    ------
+    InputError
+        If the name is neither a file nor a database hammer.
+    """
     path = Path(name)
     if path.suffix == ".toml" or path.exists():
         return path
@@ -175,6 +255,18 @@ def load_hammer(name: str | Path, gravity: float = GRAVITY) -> Hammer:
     """Load a hammer by database name (e.g. "ihc_s4000") or from a TOML file path.
 
     Files of the shipped database must cite a ``[source]``.
+
+    Parameters
+    ----------
+    name : str or Path
+        Database name or TOML file path.
+    gravity : float, default GRAVITY
+        Gravitational acceleration for stroke conversions [m/s^2].
+
+    Returns
+    -------
+    Hammer
+        The validated hammer.
     """
     path = hammer_path(name)
     shipped = path.resolve().parent == DATA_DIR.resolve()

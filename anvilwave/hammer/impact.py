@@ -29,6 +29,11 @@ def impact_velocity_from_energy(rated_energy: float, ram_mass: float,
         Ram mass m [kg].
     efficiency : float
         Hammer efficiency eta [-], the part of E that is kinetic energy at impact.
+
+    Returns
+    -------
+    float
+        Impact velocity v [m/s].
     """
     return math.sqrt(2.0 * efficiency * rated_energy / ram_mass)
 
@@ -45,6 +50,11 @@ def impact_velocity_from_stroke(stroke: float, efficiency: float = 1.0,
         Hammer efficiency eta [-].
     gravity : float
         Gravitational acceleration g [m/s^2].
+
+    Returns
+    -------
+    float
+        Impact velocity v [m/s].
     """
     return math.sqrt(2.0 * efficiency * gravity * stroke)
 
@@ -64,5 +74,10 @@ def equivalent_stroke(rated_energy: float, ram_mass: float, gravity: float = GRA
         Ram mass m [kg].
     gravity : float
         Gravitational acceleration g [m/s^2].
+
+    Returns
+    -------
+    float
+        Equivalent stroke h [m].
     """
     return rated_energy / (ram_mass * gravity)
