@@ -69,7 +69,22 @@ def _blows(out: Path, case: str) -> tuple[np.ndarray, np.ndarray] | None:
 
 
 def plot_campaign(campaign, rows: list[dict], out_dir: str | Path) -> list[Path]:
-    """Every campaign figure and table into ``out_dir/plots`` (module docstring)."""
+    """Every campaign figure and table into ``out_dir/plots`` (module docstring).
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign.
+    rows : list of dict
+        One row per case (status, position, bound, ...).
+    out_dir : str or Path
+        The campaign result folder.
+
+    Returns
+    -------
+    list of Path
+        The written figures and tables.
+    """
     out = Path(out_dir)
     folder = out / "plots"
     folder.mkdir(parents=True, exist_ok=True)
@@ -88,8 +103,28 @@ def plot_campaign(campaign, rows: list[dict], out_dir: str | Path) -> list[Path]
 
 
 def plot_envelopes(campaign, rows: list[dict], out: Path, refusal: dict, path: Path) -> Path:
-    """Blow count envelopes (lower / best / upper) against depth of one position: a panel
-    per hammer (x energy schedule), a colour per anvil model."""
+    """Blow count envelopes (lower / best / upper) against depth of one position.
+
+    A panel per hammer (x energy schedule), a colour per anvil model.
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign.
+    rows : list of dict
+        The finished cases of the position.
+    out : Path
+        The campaign result folder.
+    refusal : dict
+        Refusal criterion [blows/0.25m] per case.
+    path : Path
+        The PNG file.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     plt = _pyplot()
     panel_axes = [a for a in _combo_axes(campaign) if a != "anvil_model"]
     panels = list(dict.fromkeys(_combo_label(r, panel_axes) for r in rows))
@@ -140,9 +175,25 @@ def plot_envelopes(campaign, rows: list[dict], out: Path, refusal: dict, path: P
 
 
 def refusal_risk_table(campaign, rows: list[dict], refusal: dict) -> list[dict]:
-    """One row per position x hammer x anvil model (x energy schedule): max blows per
-    0.25 m and refusal depth of each bound, the refusal criterion and the risk (the largest
-    max blow count over the bounds / the criterion)."""
+    """One row per position x hammer x anvil model (x energy schedule).
+
+    Max blows per 0.25 m and refusal depth of each bound, the refusal criterion and the risk
+    (the largest max blow count over the bounds / the criterion).
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign.
+    rows : list of dict
+        One row per case.
+    refusal : dict
+        Refusal criterion [blows/0.25m] per case.
+
+    Returns
+    -------
+    list of dict
+        The table rows.
+    """
     names = _combo_axes(campaign)
     table: dict[tuple, dict] = {}
     for r in rows:
@@ -168,7 +219,24 @@ def refusal_risk_table(campaign, rows: list[dict], refusal: dict) -> list[dict]:
 
 
 def plot_refusal_risk(campaign, rows: list[dict], refusal: dict, path: Path) -> list[Path]:
-    """The refusal-risk matrix (PNG) and its table (CSV beside it)."""
+    """The refusal-risk matrix (PNG) and its table (CSV beside it).
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign.
+    rows : list of dict
+        One row per case.
+    refusal : dict
+        Refusal criterion [blows/0.25m] per case.
+    path : Path
+        The PNG file; the CSV takes its name with ``.csv``.
+
+    Returns
+    -------
+    list of Path
+        The PNG and the CSV.
+    """
     plt = _pyplot()
     names = _combo_axes(campaign)
     table = refusal_risk_table(campaign, rows, refusal)

@@ -22,8 +22,21 @@ def _pyplot():
 def plot_pda(columns: dict, result, path: str | Path, title: str = "") -> Path:
     """F and Z v, wave down and up, and the transferred energy of a record, with t1 and t2.
 
-    columns : pda.csv columns. result : the
-    :class:`anvilwave.pile.pda.case_method.CaseMethodResult`.
+    Parameters
+    ----------
+    columns : dict
+        pda.csv columns.
+    result : CaseMethodResult
+        The :class:`anvilwave.pile.pda.case_method.CaseMethodResult`.
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The written figure.
     """
     plt = _pyplot()
     t = columns["time [s]"] * 1e3
@@ -57,7 +70,22 @@ def plot_pda(columns: dict, result, path: str | Path, title: str = "") -> Path:
 
 
 def plot_match(columns: dict, path: str | Path, title: str = "") -> Path:
-    """Measured against computed force (top) and wave up (bottom) of a signal match."""
+    """Measured against computed force (top) and wave up (bottom) of a signal match.
+
+    Parameters
+    ----------
+    columns : dict
+        match.csv columns (measured and computed force and wave up).
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     plt = _pyplot()
     t = columns["time [s]"] * 1e3
     fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
@@ -77,7 +105,22 @@ def plot_match(columns: dict, path: str | Path, title: str = "") -> Path:
 
 
 def plot_static_load_test(result, cfg, path: str | Path) -> Path:
-    """Simulated static load test: load against head settlement, with Davisson's line."""
+    """Simulated static load test: load against head settlement, with Davisson's line.
+
+    Parameters
+    ----------
+    result : MatchResult
+        The signal match (its static load test and fitted soil).
+    cfg : SystemConfig
+        The system configuration (its pile).
+    path : str or Path
+        The PNG file.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
 
     plt = _pyplot()
     curve = result.static_load_test
@@ -106,8 +149,26 @@ def plot_static_load_test(result, cfg, path: str | Path) -> Path:
 
 
 def plot_compare_pda(columns: dict, quantity: str, path: str | Path, title: str) -> Path:
-    """Measured (solid), lumped anvil (dashed) and ROM anvil (dash-dotted), as in the paper's
-    Fig. 4 and 5. quantity : ``"force [N]"`` or ``"velocity [m/s]"``."""
+    """Measured (solid), lumped anvil (dashed) and ROM anvil (dash-dotted).
+
+    As in the paper's Fig. 4 and 5.
+
+    Parameters
+    ----------
+    columns : dict
+        Comparison columns (``measured_``, ``lumped_`` and ``rom_`` of the quantity).
+    quantity : {"force [N]", "velocity [m/s]"}
+        The quantity shown.
+    path : str or Path
+        The PNG file.
+    title : str
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     plt = _pyplot()
     name, unit = quantity.split(" ")
     scale, label = (1e-6, "force [MN]") if name == "force" else (1.0, "velocity [m/s]")

@@ -19,7 +19,22 @@ def _pyplot():
 
 
 def plot_modes(result, path: str | Path, n_shapes: int = 5) -> Path:
-    """Mesh and the first flexible mode shapes of an anvil (``AnvilModes``) as PNG."""
+    """Mesh and the first flexible mode shapes of an anvil (``AnvilModes``) as PNG.
+
+    Parameters
+    ----------
+    result : AnvilModes
+        The modal analysis of the anvil.
+    path : str or Path
+        The PNG file.
+    n_shapes : int, default 5
+        Number of flexible mode shapes shown (at most those available).
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     import matplotlib.tri as mtri
 
     plt = _pyplot()
@@ -67,7 +82,22 @@ def plot_modes(result, path: str | Path, n_shapes: int = 5) -> Path:
 
 
 def plot_impact_blows(blows, path: str | Path, title: str = "") -> Path:
-    """Forces and pile-head velocity of one or more blows against time (ms) as PNG."""
+    """Forces and pile-head velocity of one or more blows against time (ms) as PNG.
+
+    Parameters
+    ----------
+    blows : sequence
+        Blows, each with ``columns`` (CSV columns named ``name [unit]``).
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     plt = _pyplot()
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True, constrained_layout=True)
     for i, blow in enumerate(blows):
@@ -95,7 +125,22 @@ def plot_impact_blows(blows, path: str | Path, title: str = "") -> Path:
 
 
 def plot_columns(columns: dict, path: str | Path, title: str = "") -> Path:
-    """Forces and pile-head velocity of one set of time series (CSV columns) as PNG."""
+    """Forces and pile-head velocity of one set of time series (CSV columns) as PNG.
+
+    Parameters
+    ----------
+    columns : dict
+        CSV columns named ``name [unit]``.
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     from types import SimpleNamespace
 
     return plot_impact_blows([SimpleNamespace(columns=columns)], path, title=title)
@@ -103,8 +148,26 @@ def plot_columns(columns: dict, path: str | Path, title: str = "") -> Path:
 
 def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str = "",
                       others: dict | None = None) -> Path:
-    """SRD, blow count, stresses and ENTHRU against the tip depth (depth down), refusal
-    marked; ``others`` = {label: columns} overlays further runs (other anvil models)."""
+    """SRD, blow count, stresses and ENTHRU against the tip depth (depth down), refusal marked.
+
+    Parameters
+    ----------
+    columns : dict
+        Driveability CSV columns named ``name [unit]``.
+    summary : dict
+        The run's summary (anvil model, refusal criterion).
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+    others : dict, optional
+        ``{label: columns}`` overlays further runs (other anvil models).
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
     plt = _pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(14, 6), sharey=True)
     runs = {summary.get("anvil_model", "run"): columns, **(others or {})}
@@ -156,8 +219,27 @@ def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str
 
 def plot_installation(result: dict, path: str | Path, title: str = "",
                       driveability: dict | None = None) -> Path:
-    """Blow count and stresses against the tip depth, fatigue damage against the position
-    along the pile, pile-head force band levels of the chosen depths."""
+    """Blow count and stresses against the tip depth, fatigue and force band levels.
+
+    Fatigue damage against the position along the pile, pile-head force band levels of the
+    chosen depths.
+
+    Parameters
+    ----------
+    result : dict
+        The installation result: ``blows``, ``fatigue``, ``spectra`` and ``summary``.
+    path : str or Path
+        The PNG file.
+    title : str, default ""
+        Figure title.
+    driveability : dict, optional
+        Driveability CSV columns overlaid on the blow count (one blow per depth).
+
+    Returns
+    -------
+    Path
+        The written figure.
+    """
 
     plt = _pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(15, 6))

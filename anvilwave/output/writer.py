@@ -10,6 +10,18 @@ from pathlib import Path
 class ResultWriter:
     """Collect output files in a temporary folder; move them into place only on success.
 
+    Parameters
+    ----------
+    directory : str or Path
+        The result folder filled on success.
+
+    Attributes
+    ----------
+    staging : Path
+        The folder being filled.
+
+    Examples
+    --------
     >>> with ResultWriter("results/run") as out:
     ...     out.part("summary.json").write_text("{}")
     """
@@ -25,7 +37,18 @@ class ResultWriter:
         return self
 
     def part(self, name: str) -> Path:
-        """Path of an output file being written (``name`` may name a sub-folder)."""
+        """Path of an output file being written (``name`` may name a sub-folder).
+
+        Parameters
+        ----------
+        name : str
+            File name relative to the result folder.
+
+        Returns
+        -------
+        Path
+            Where to write it in the staging folder.
+        """
         self._names.append(name)
         path = self._tmp / name
         path.parent.mkdir(parents=True, exist_ok=True)
