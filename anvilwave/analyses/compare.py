@@ -32,8 +32,20 @@ preload): a threshold clear of the preload (1 % of the peak) and of the lift-off
 
 
 def without_soil(cfg: SystemConfig) -> SystemConfig:
-    """The same system on a pile without shaft resistance, standing on an elastic toe bearing
-    (unit toe resistance 1 GPa, no damping): the comparison's common ground with the FEA."""
+    """The same system on a pile without shaft resistance, standing on an elastic toe bearing.
+
+    Unit toe resistance 1 GPa, no damping: the comparison's common ground with the FEA.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    SystemConfig
+        A copy with the toe-only soil.
+    """
 
     toe_only = SoilSpec(model="smith-viscous", penetration=0.0,
                         srd=SoilResistanceTable.from_rows(np.array([[0.0, 0.0, 1.0e9]])),
@@ -45,7 +57,26 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
                truncate_length: float | None = None, output_interval: float = 1e-5):
     """The reference FEA configuration of a system (uniform cylindrical ram, first pile section).
 
-    truncate_length : modelled pile length with an absorbing cut [m] (None: full length).
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    mesh_size : float, optional
+        Element size of the FEA [m] (None: the :class:`FeaConfig` default).
+    truncate_length : float, optional
+        Modelled pile length with an absorbing cut [m] (None: full length).
+    output_interval : float, default 1e-5
+        Output time step [s].
+
+    Returns
+    -------
+    FeaConfig
+        The FEA configuration.
+
+    Raises
+    ------
+    InputError
+        If the ram is not given as a cylinder (diameter and length).
     """
 
     ram = cfg.hammer.ram
@@ -70,7 +101,19 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
 
 @dataclass
 class ModelRun:
-    """One model's time series (CSV columns) and its wall time of the stepping [s]."""
+    """One model's time series (CSV columns) and its wall time of the stepping [s].
+
+    Parameters
+    ----------
+    name : str
+        Model name ("rom", "lumped", "fea").
+    columns : dict of str to numpy.ndarray
+        Time series named ``name [unit]``.
+    wall_time : float
+        Wall time of the stepping [s].
+    info : dict
+        Run statistics (time step, setup time, engine, ...).
+    """
 
     name: str
     columns: dict[str, np.ndarray]
@@ -79,10 +122,23 @@ class ModelRun:
 
 
 def comparison_bandwidth(cfg: SystemConfig) -> float:
-    """The frequency band [Hz] in which the models are compared: the cut-off c / (pi dx) of the
-    pile's lumped chain (the highest frequency a Smith pile of this segment length carries; the
-    ROM's fmax when lower). Above it the 1D models represent nothing by construction, and the
-    FEA's contact faces ring at 25-50 kHz with an amplitude set by its penalty stiffness."""
+    """The frequency band [Hz] in which the models are compared.
+
+    The cut-off c / (pi dx) of the pile's lumped chain (the highest frequency a Smith pile of
+    this segment length carries; the ROM's fmax when lower). Above it the 1D models represent
+    nothing by construction, and the FEA's contact faces ring at 25-50 kHz with an amplitude set
+    by its penalty stiffness.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    float
+        The comparison bandwidth [Hz].
+    """
     seg = cfg.pile_soil.pile.discretise()
     cutoff = float(np.min(seg.wave_speed / (np.pi * seg.length)))
     if cfg.anvil.fmax is not None:
@@ -91,8 +147,24 @@ def comparison_bandwidth(cfg: SystemConfig) -> float:
 
 
 def lowpass(time_s: np.ndarray, signal: np.ndarray, cutoff: float) -> np.ndarray:
-    """Zero-phase 4th-order Butterworth low-pass at ``cutoff`` [Hz] of a uniformly sampled
-    signal (scipy sosfiltfilt: no time shift, so arrival times are kept)."""
+    """Zero-phase 4th-order Butterworth low-pass at ``cutoff`` [Hz] of a uniformly sampled signal.
+
+    scipy sosfiltfilt: no time shift, so arrival times are kept.
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Uniform sample times [s].
+    signal : numpy.ndarray
+        The signal.
+    cutoff : float
+        Cut-off frequency [Hz]; at or above the Nyquist frequency the signal is returned as is.
+
+    Returns
+    -------
+    numpy.ndarray
+        The filtered signal.
+    """
     from scipy.signal import butter, sosfiltfilt
 
     fs = 1.0 / float(time_s[1] - time_s[0])
@@ -103,16 +175,50 @@ def lowpass(time_s: np.ndarray, signal: np.ndarray, cutoff: float) -> np.ndarray
 
 def band_limited(columns: dict[str, np.ndarray], key: str, grid: np.ndarray,
                  cutoff: float) -> np.ndarray:
-    """Column ``key`` interpolated onto the uniform ``grid`` [s] and low-passed at ``cutoff``
-    [Hz] (:func:`lowpass`)."""
+    """Column ``key`` interpolated onto the uniform ``grid`` [s] and low-passed at ``cutoff`` [Hz].
+
+    See :func:`lowpass`.
+
+    Parameters
+    ----------
+    columns : dict of str to numpy.ndarray
+        Time series with a ``time [s]`` column.
+    key : str
+        The column.
+    grid : numpy.ndarray
+        Uniform time grid [s].
+    cutoff : float
+        Cut-off frequency [Hz].
+
+    Returns
+    -------
+    numpy.ndarray
+        The band-limited column on ``grid``.
+    """
     return lowpass(grid, np.interp(grid, columns["time [s]"], columns[key]), cutoff)
 
 
 def lift_off_intervals(time_s: np.ndarray, force: np.ndarray, min_duration: float = 5e-5
                        ) -> list[list[float]]:
-    """Intervals [start, end] [s] in which the anvil-pile contact is open (force zero) after it
-    first carried load, lasting at least ``min_duration`` [s]: the anvil lifting off the pile
-    and re-impacting."""
+    """Intervals [start, end] [s] in which the anvil-pile contact is open (force zero).
+
+    Only after it first carried load, lasting at least ``min_duration`` [s]: the anvil lifting
+    off the pile and re-impacting.
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    force : numpy.ndarray
+        Anvil-pile contact force [N].
+    min_duration : float, default 5e-5
+        Shortest interval reported [s].
+
+    Returns
+    -------
+    list of list of float
+        The [start, end] intervals [s].
+    """
     open_ = force <= 0.0
     intervals = []
     start = None
@@ -127,7 +233,22 @@ def lift_off_intervals(time_s: np.ndarray, force: np.ndarray, min_duration: floa
 
 
 def arrival_time(time_s: np.ndarray, force: np.ndarray, preload: float = 0.0) -> float:
-    """First time [s] the force exceeds preload + ARRIVAL_FRACTION (peak - preload)."""
+    """First time [s] the force exceeds preload + ARRIVAL_FRACTION (peak - preload).
+
+    Parameters
+    ----------
+    time_s : numpy.ndarray
+        Sample times [s].
+    force : numpy.ndarray
+        The force [N].
+    preload : float, default 0.0
+        Static preload [N].
+
+    Returns
+    -------
+    float
+        The arrival time [s], NaN if never.
+    """
     level = preload + ARRIVAL_FRACTION * (force.max() - preload)
     above = np.flatnonzero(force > level)
     return float(time_s[above[0]]) if above.size else math.nan
@@ -139,6 +260,22 @@ def metrics(run: ModelRun, reference: ModelRun | None, preload: float,
 
     All band-limited measures use the reference's uniform time grid: the model is interpolated
     onto it and both are low-passed at ``bandwidth`` [Hz].
+
+    Parameters
+    ----------
+    run : ModelRun
+        The model run.
+    reference : ModelRun or None
+        The reference (FEA) run; None gives no errors.
+    preload : float
+        Static anvil-pile preload [N].
+    bandwidth : float
+        Comparison bandwidth [Hz].
+
+    Returns
+    -------
+    dict
+        Metrics named ``name [unit]``.
     """
     grid = (reference or run).columns["time [s]"]
     grid = np.linspace(grid[0], grid[-1], len(grid))
@@ -181,7 +318,28 @@ def metrics(run: ModelRun, reference: ModelRun | None, preload: float,
 
 def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True,
                fea_mesh_size: float | None = None, progress=None) -> dict[str, ModelRun]:
-    """Run the ROM, the lumped anvil and (optionally) the FEA on a free-pile copy of ``cfg``."""
+    """Run the ROM, the lumped anvil and (optionally) the FEA on a free-pile copy of ``cfg``.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (its soil is replaced, :func:`without_soil`).
+    work_dir : Path
+        Working folder (the FMUs are built in ``work_dir / "fmus"``).
+    rom_engine : {"fmi", "direct"}
+        Engine of the ROM run ("fmi": through the FMUs).
+    fea : bool, default True
+        Whether to run the reference FEA.
+    fea_mesh_size : float, optional
+        Element size of the FEA [m].
+    progress : callable, optional
+        Progress callback of the FEA (fraction in [0, 1]).
+
+    Returns
+    -------
+    dict of str to ModelRun
+        The runs by model name ("rom", "lumped", "fea").
+    """
 
     cfg = without_soil(cfg)
     runs = {}
@@ -208,7 +366,22 @@ def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True
 
 
 def compare(runs: dict[str, ModelRun], preload: float, bandwidth: float) -> dict:
-    """comparison.json content: per model the metrics, the errors against the FEA."""
+    """comparison.json content: per model the metrics, the errors against the FEA.
+
+    Parameters
+    ----------
+    runs : dict of str to ModelRun
+        The runs by model name.
+    preload : float
+        Static anvil-pile preload [N].
+    bandwidth : float
+        Comparison bandwidth [Hz].
+
+    Returns
+    -------
+    dict
+        The comparison content.
+    """
     reference = runs.get("fea")
     out = {name: metrics(run, reference if name != "fea" else None, preload, bandwidth)
            for name, run in runs.items()}
@@ -228,18 +401,31 @@ SPECTRUM_KEY = "anvil_pile_force [N]"
 
 def band_levels(runs: dict[str, ModelRun], bandwidth: float,
                 key: str = SPECTRUM_KEY) -> dict:
-    """One-third-octave band levels of ``key`` of every model and their deviations from the
-    FEA's [dB], for comparison.json
-    (:func:`anvilwave.pile.post.spectra.third_octave_band_energies`).
+    """One-third-octave band levels of ``key`` of every model and their deviations from the FEA's.
 
-    Each model's own samples are used (no resampling, which would filter its top bands); the
-    force is taken relative to its value at the first sample (the static weight on the pile
-    carries no sound). The bands run from 10 Hz to the lowest Nyquist frequency of the
-    models. The valid band is where every model's spectrum is trustworthy
+    For comparison.json (:func:`anvilwave.pile.post.spectra.third_octave_band_energies`), in
+    [dB]. Each model's own samples are used (no resampling, which would filter its top bands);
+    the force is taken relative to its value at the first sample (the static weight on the pile
+    carries no sound). The bands run from 10 Hz to the lowest Nyquist frequency of the models.
+    The valid band is where every model's spectrum is trustworthy
     (:func:`anvilwave.pile.post.spectra.valid_band`: from 1 / T of the shortest record up to a
-    tenth of the
-    lowest sampling rate) and no higher than ``bandwidth`` [Hz], the comparison band of the
-    1D models (:func:`comparison_bandwidth`).
+    tenth of the lowest sampling rate) and no higher than ``bandwidth`` [Hz], the comparison
+    band of the 1D models (:func:`comparison_bandwidth`).
+
+    Parameters
+    ----------
+    runs : dict of str to ModelRun
+        The runs by model name.
+    bandwidth : float
+        Comparison bandwidth [Hz].
+    key : str, default SPECTRUM_KEY
+        The force column.
+
+    Returns
+    -------
+    dict
+        Band centres [Hz], valid band [Hz], levels [dB re 1 N^2 s] and deviations from the
+        FEA [dB].
     """
 
     def step(run):
@@ -278,8 +464,19 @@ def band_levels(runs: dict[str, ModelRun], bandwidth: float,
 
 
 def plot_spectra(spectra: dict, path, title: str = "Pile-head force, one-third-octave bands"):
-    """Band levels of every model (:func:`band_levels` output) with the valid band shaded
-    out of it; the lower panel the deviations from the FEA [dB]."""
+    """Band levels of every model (:func:`band_levels` output) with the valid band shaded out.
+
+    The lower panel shows the deviations from the FEA [dB].
+
+    Parameters
+    ----------
+    spectra : dict
+        Output of :func:`band_levels`.
+    path : str or Path
+        The PNG file.
+    title : str, default "Pile-head force, one-third-octave bands"
+        Figure title.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -323,11 +520,22 @@ def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
                     bandwidth: float | None = None):
     """Fig. 2 (ram impact force) or Fig. 3 (pile-top force): FEA vs ROM vs lumped.
 
-    bandwidth : low-pass every curve at this frequency [Hz] (:func:`lowpass`), the band in
-        which the models are compared; None plots the raw series. Above it no model is
-        meaningful: the 1D chains end at their cut-off, and the contacts ring at modes set by
-        the truncation (a modal ram's face, 5.6 t on its residual spring, at 5.2 kHz for Table
-        1) or by a penalty (the FEA's faces at 25-50 kHz).
+    Parameters
+    ----------
+    runs : dict of str to ModelRun
+        The runs by model name.
+    key : str
+        The force column shown.
+    path : str or Path
+        The PNG file.
+    title : str
+        Figure title.
+    bandwidth : float, optional
+        Low-pass every curve at this frequency [Hz] (:func:`lowpass`), the band in which the
+        models are compared; None plots the raw series. Above it no model is meaningful: the
+        1D chains end at their cut-off, and the contacts ring at modes set by the truncation (a
+        modal ram's face, 5.6 t on its residual spring, at 5.2 kHz for Table 1) or by a penalty
+        (the FEA's faces at 25-50 kHz).
     """
     import matplotlib
 

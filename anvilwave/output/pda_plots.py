@@ -110,7 +110,8 @@ def plot_static_load_test(result, cfg, path: str | Path) -> Path:
     Parameters
     ----------
     result : MatchResult
-        The signal match (its static load test and fitted soil).
+        The signal match (its static load test and fitted soil),
+        :class:`anvilwave.analyses.match.MatchResult`.
     cfg : SystemConfig
         The system configuration (its pile).
     path : str or Path
