@@ -85,12 +85,22 @@ DIFF_STEP = 1e-3
 class MatchSettings:
     """Options of :func:`match_record`.
 
-    shaft_zones : number of shaft resistance zones between the mudline and the toe [-].
-    imposed : ``"velocity"`` (compute the force) or ``"wave_down"`` (compute the wave up).
-    segment_length : segment length of the matching model [m] (default: the system file's).
-    fit_quakes, fit_dampings : fit the quakes and the Smith dampings (else keep the start).
-    preload : force on the gauges at rest [N] (default: :func:`rest_force_at_gauges`).
-    max_evaluations : most forward runs of the least-squares search [-].
+    Parameters
+    ----------
+    shaft_zones : int, default 3
+        Number of shaft resistance zones between the mudline and the toe [-].
+    imposed : {"velocity", "wave_down"}
+        ``"velocity"`` (compute the force) or ``"wave_down"`` (compute the wave up).
+    segment_length : float, optional
+        Segment length of the matching model [m] (default: the system file's).
+    fit_quakes : bool, default True
+        Fit the quakes (else keep the start).
+    fit_dampings : bool, default True
+        Fit the Smith dampings (else keep the start).
+    preload : float, optional
+        Force on the gauges at rest [N] (default: :func:`rest_force_at_gauges`).
+    max_evaluations : int, default 2000
+        Most forward runs of the least-squares search [-].
     """
 
     shaft_zones: int = 3
@@ -106,8 +116,27 @@ class MatchSettings:
 class SoilParameters:
     """Soil of the matching model.
 
-    zone_resistance : static shaft resistance of each zone [N]. toe_resistance : [N].
-    quake_shaft, quake_toe : [m]. damping_shaft, damping_toe : Smith J [s/m].
+    Parameters
+    ----------
+    zone_resistance : numpy.ndarray
+        Static shaft resistance of each zone [N].
+    toe_resistance : float
+        Static toe resistance [N].
+    quake_shaft : float
+        Shaft quake [m].
+    quake_toe : float
+        Toe quake [m].
+    damping_shaft : float
+        Shaft Smith damping J [s/m].
+    damping_toe : float
+        Toe Smith damping J [s/m].
+
+    Attributes
+    ----------
+    rut_shaft : float
+        Total static shaft resistance [N].
+    rut : float
+        Total static resistance, shaft and toe [N].
     """
 
     zone_resistance: np.ndarray
@@ -119,16 +148,42 @@ class SoilParameters:
 
     @property
     def rut_shaft(self) -> float:
+        """Total static shaft resistance, the sum over the zones [N]."""
         return float(np.sum(self.zone_resistance))
 
     @property
     def rut(self) -> float:
+        """Total static resistance, shaft plus toe [N]."""
         return self.rut_shaft + float(self.toe_resistance)
 
 
 @dataclass
 class MatchResult:
-    """The fitted soil, the match and the simulated static load test (SI)."""
+    """The fitted soil, the match and the simulated static load test (SI).
+
+    Parameters
+    ----------
+    soil : SoilParameters
+        The fitted soil.
+    start : SoilParameters
+        The starting guess.
+    match_quality : float
+        MQ of the fit [-].
+    match_quality_terms : dict of str to float
+        MQ term per interval [-].
+    start_match_quality : float
+        MQ of the starting guess [-].
+    zones : list of dict
+        Depths [m] and resistances [N] of the shaft zones.
+    columns : dict of str to numpy.ndarray
+        Measured and computed signals, named ``name [unit]``.
+    static_load_test : dict of str to numpy.ndarray
+        ``settlement [m]`` and ``load [N]`` of the head.
+    davisson_capacity : float
+        Davisson's capacity of the load-settlement curve [N] (NaN if not reached).
+    info : dict
+        Settings and statistics of the match.
+    """
 
     soil: SoilParameters
     start: SoilParameters
@@ -142,7 +197,13 @@ class MatchResult:
     info: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
-        """match.json content, named ``name [unit]``."""
+        """match.json content, named ``name [unit]``.
+
+        Returns
+        -------
+        dict
+            The summary.
+        """
         s = self.soil
         out = {
             "rut [N]": s.rut, "rut_shaft [N]": s.rut_shaft, "rut_toe [N]": s.toe_resistance,
@@ -166,9 +227,22 @@ class MatchResult:
 
 
 def rest_force_at_gauges(cfg) -> float:
-    """Force on the gauges with the hammer at rest on the pile [N]: what rests on the head
-    (the anvil's weight; the classic system's helmet and assembly; nothing for ``"none"``)
-    plus the weight of the pile above the gauges (gravity of the system file)."""
+    """Force on the gauges with the hammer at rest on the pile [N].
+
+    What rests on the head (the anvil's weight; the classic system's helmet and assembly;
+    nothing for ``"none"``) plus the weight of the pile above the gauges (gravity of the system
+    file).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    float
+        The force at rest [N].
+    """
     g = cfg.gravity
     pile = cfg.pile_soil.pile
     above = sum(s.density * s.area * s.length for s in sections_above_gauges(pile))
@@ -176,8 +250,26 @@ def rest_force_at_gauges(cfg) -> float:
 
 
 def head_rest_force(cfg) -> float:
-    """Force on the pile head at rest [N] (:func:`rest_force_at_gauges`); the FE anvil's mass
-    is the volume of revolution of its outline times its density (exact for the polygon)."""
+    """Force on the pile head at rest [N] (:func:`rest_force_at_gauges`).
+
+    The FE anvil's mass is the volume of revolution of its outline times its density (exact for
+    the polygon).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    float
+        The force at rest on the head [N].
+
+    Raises
+    ------
+    InputError
+        If the anvil's mass is unknown (no ``anvil.mass`` and no outline).
+    """
     g = cfg.gravity
     anvil = cfg.anvil
     if anvil.model == "none":
@@ -194,8 +286,20 @@ def head_rest_force(cfg) -> float:
 
 
 def revolution_volume(outline) -> float:
-    """Volume of the solid of revolution of a closed (r, z) polygon about r = 0 [m^3]
-    (Pappus: 2 pi times the first moment of the polygon's area about the axis)."""
+    """Volume of the solid of revolution of a closed (r, z) polygon about r = 0 [m^3].
+
+    Pappus: 2 pi times the first moment of the polygon's area about the axis.
+
+    Parameters
+    ----------
+    outline : array_like
+        Polygon vertices, rows (r, z) [m].
+
+    Returns
+    -------
+    float
+        The volume [m^3].
+    """
     r, z = np.asarray(outline, dtype=float).T
     r1, z1 = np.roll(r, -1), np.roll(z, -1)
     cross = r * z1 - r1 * z
@@ -203,8 +307,28 @@ def revolution_volume(outline) -> float:
 
 
 def redistribute(values, old_top, old_bottom, new_top, new_bottom) -> np.ndarray:
-    """Per-segment totals moved onto other segments by overlap length (each old total spread
-    uniformly over its segment) [same unit as ``values``]; depths [m]."""
+    """Per-segment totals moved onto other segments by overlap length [same unit as ``values``].
+
+    Each old total is spread uniformly over its segment.
+
+    Parameters
+    ----------
+    values : array_like
+        Totals per old segment.
+    old_top : numpy.ndarray
+        Upper ends of the old segments [m].
+    old_bottom : numpy.ndarray
+        Lower ends of the old segments [m].
+    new_top : numpy.ndarray
+        Upper ends of the new segments [m].
+    new_bottom : numpy.ndarray
+        Lower ends of the new segments [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Totals per new segment [same unit as ``values``].
+    """
     values = np.asarray(values, dtype=float)
     out = np.zeros(len(new_top))
     for j, (a, b) in enumerate(zip(new_top, new_bottom, strict=True)):
@@ -214,7 +338,37 @@ def redistribute(values, old_top, old_bottom, new_top, new_bottom) -> np.ndarray
 
 
 class ForwardModel:
-    """The pile below the gauges of a system, driven by a record (module notes)."""
+    """The pile below the gauges of a system, driven by a record (module notes).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (its pile, soil and gravity).
+    record : GaugeRecord
+        The measured record.
+    settings : MatchSettings
+        The match options.
+
+    Attributes
+    ----------
+    pile : PileSpec
+        The pile below the gauges.
+    start : SoilParameters
+        The starting guess from the system's soil.
+    impedance : float
+        Impedance Z of the pile at the gauges [N s/m].
+    round_trip : float
+        2L/c below the gauges [s].
+    preload : float
+        Force on the gauges at rest [N].
+
+    Raises
+    ------
+    InputError
+        If the system has no soil, or the record is too short to match.
+    ValueError
+        If ``settings.imposed`` is unknown or ``settings.shaft_zones`` < 1.
+    """
 
     def __init__(self, cfg, record: GaugeRecord, settings: MatchSettings):
         soil = cfg.pile_soil.soil
@@ -283,7 +437,18 @@ class ForwardModel:
                                     soil.damping_shaft, damping_toe)
 
     def soil_arrays(self, p: SoilParameters) -> np.ndarray:
-        """The kernel soil array (SOIL_ROWS, N + 1) of soil parameters."""
+        """The kernel soil array (SOIL_ROWS, N + 1) of soil parameters.
+
+        Parameters
+        ----------
+        p : SoilParameters
+            The soil.
+
+        Returns
+        -------
+        numpy.ndarray
+            The kernel soil array, shape (SOIL_ROWS, N + 1).
+        """
         shaft = p.zone_resistance @ self.zone_shape
         n = shaft.size
         arr = np.zeros((SOIL_ROWS, n + 1))
@@ -329,8 +494,24 @@ class ForwardModel:
     # -- forward run --------------------------------------------------------------------------
     def run(self, p: SoilParameters, dt_max: float | None = None
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(force [N] as the zeroed gauges read it, velocity [m/s], wave up [N]) at the
-        record samples of the match window."""
+        """Run the forward model at the record samples of the match window.
+
+        Parameters
+        ----------
+        p : SoilParameters
+            The soil.
+        dt_max : float, optional
+            Largest sub-step [s] (default: :func:`forward_time_step` of this soil).
+
+        Returns
+        -------
+        force : numpy.ndarray
+            Force as the zeroed gauges read it [N].
+        velocity : numpy.ndarray
+            Velocity at the gauges [m/s].
+        wave_up : numpy.ndarray
+            Computed wave up [N].
+        """
         soil = self.soil_arrays(p)
         try:
             u, offset = static_equilibrium(self.pile_arrays, soil, self.preload, self.gravity)
@@ -355,9 +536,35 @@ class ForwardModel:
         return force, velocity, wave_up(force, velocity, self.impedance)
 
     def quality(self, computed_wave_up) -> tuple[float, dict[str, float]]:
+        """Match quality of a computed wave up against the record's.
+
+        Parameters
+        ----------
+        computed_wave_up : numpy.ndarray
+            WU_c at the samples [N].
+
+        Returns
+        -------
+        quality : float
+            MQ [-].
+        terms : dict of str to float
+            The term of each interval [-].
+        """
         return match_quality(computed_wave_up, self.wave_up, self.intervals, self.peak_wave_down)
 
     def residuals(self, computed_wave_up) -> np.ndarray:
+        """Least-squares residuals of a computed wave up against the record's.
+
+        Parameters
+        ----------
+        computed_wave_up : numpy.ndarray
+            WU_c at the samples [N].
+
+        Returns
+        -------
+        numpy.ndarray
+            The residuals [-].
+        """
         return match_residuals(computed_wave_up, self.wave_up, self.intervals, self.peak_wave_down)
 
 
@@ -410,7 +617,22 @@ class _Packing:
 
 def match_record(record: GaugeRecord, cfg, settings: MatchSettings | None = None
                  ) -> MatchResult:
-    """Fit the soil of a system (``SystemConfig``) to a gauge record (module notes)."""
+    """Fit the soil of a system (``SystemConfig``) to a gauge record (module notes).
+
+    Parameters
+    ----------
+    record : GaugeRecord
+        The measured record.
+    cfg : SystemConfig
+        The system.
+    settings : MatchSettings, optional
+        The match options (default: ``MatchSettings()``).
+
+    Returns
+    -------
+    MatchResult
+        The fitted soil, the match and the simulated static load test.
+    """
     from scipy.optimize import least_squares
 
 
