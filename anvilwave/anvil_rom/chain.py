@@ -80,7 +80,7 @@ def chain_from_modes(omega, participation, digits: int | None = None
     ----------
     Golub, G.H. (1973). Some modified matrix eigenvalue problems. SIAM Review 15(2), 318-334.
     https://doi.org/10.1137/1015032
-    Gladwell, G.M.L. (2004). Inverse Problems in Vibration, 2nd ed., Kluwer, ch. 4.
+    Gladwell, G.M.L. (2004). Inverse Problems in Vibration, ch. 4.
     """
     omega = np.asarray(omega, float)
     p = np.asarray(participation, float)

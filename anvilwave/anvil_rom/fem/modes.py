@@ -200,8 +200,7 @@ def elastic_flexibility(model: AxisymmetricModel, loads: np.ndarray) -> np.ndarr
 
     References
     ----------
-    Craig, R.R., Kurdila, A.J. (2006). Fundamentals of Structural Dynamics, 2nd ed., Wiley,
-    sec. 14.6.
+    Craig, R.R., Kurdila, A.J. Fundamentals of Structural Dynamics, sec. 14.6.
     """
     K, M = model.stiffness.tocsc(), model.mass
     e = model.axial_free
