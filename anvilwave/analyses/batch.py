@@ -793,6 +793,18 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
                                         f"{workers!r}")
     campaign = load_campaign(campaign_path)
     out = Path(out_dir)
+    fresh = not out.exists()  # made by this run: removed again if it stops before any case
+    try:
+        return _run_campaign(campaign, out, workers, scheduler, progress, plots, start)
+    except BaseException:
+        if fresh and out.is_dir() and not any((out / "cases").glob("*/summary.json")):
+            shutil.rmtree(out, ignore_errors=True)
+        raise
+
+
+def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots: bool,
+                  start: float) -> BatchResult:
+    """The body of :func:`run_campaign` once the campaign file is read."""
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
     specs = {c.name: _spec(c, cases_dir, plots) for c in campaign.cases}
@@ -884,7 +896,7 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
         try:
             client = Client(scheduler, timeout=30)
         except (OSError, TimeoutError) as exc:
-            raise InputError("scheduler", "", f"no dask scheduler answers at {scheduler!r} "
+            raise InputError("--scheduler", "", f"no dask scheduler answers at {scheduler!r} "
                                               f"({exc})") from None
         try:
             yield client

@@ -44,6 +44,7 @@ import numpy as np
 from scipy.integrate import trapezoid
 
 from anvilwave.analyses.impact import energy_balance, pda_summary
+from anvilwave.config.system import depth_limit
 from anvilwave.config.drive import (
     DriveSettings,
     SrdSource,
@@ -256,7 +257,9 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
 
             _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings)
             try:
-                with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork")) as pool:
+                with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
+                                         initializer=die_with_parent,
+                                         initargs=(os.getpid(),)) as pool:
                     for row in pool.map(_work, depths, chunksize=max(1, len(depths)
                                                                      // (4 * workers))):
                         rows.append(row)
@@ -273,6 +276,34 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     summary["workers [-]"] = workers
     return DriveResult(model=cfg.anvil.model, source=str(cfg.source), rows=rows,
                        summary=summary)
+
+
+def die_with_parent(parent: int) -> None:
+    """Worker initializer: the worker is killed when its parent dies, even by SIGKILL (Linux
+    ``prctl(PR_SET_PDEATHSIG, SIGKILL)``; elsewhere a daemon thread polls the parent's pid),
+    so no orphan keeps running. A Ctrl-C reaches the parent only (the workers ignore SIGINT),
+    so it prints one line, not a traceback per worker."""
+    import signal
+    import threading
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        if libc.prctl(1, signal.SIGKILL, 0, 0, 0) == 0:  # PR_SET_PDEATHSIG = 1
+            if os.getppid() != parent:  # the parent died before the call
+                os._exit(1)
+            return
+    except (OSError, AttributeError):
+        pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
 
 
 def driving_weight(cfg, head_load: float) -> float:
@@ -443,6 +474,10 @@ def drive_bearing_graph(cfg, depth: float, *, anvil: str | None = None,
     """Blow count against the ultimate resistance at one tip depth [m] (the SRD of that
     depth scaled, :func:`bearing_graph`): a DriveResult whose rows are the multipliers'."""
     settings = _settings(cfg, bound)
+    limit, what = depth_limit(cfg.pile_soil, _srd(cfg))
+    if not (0.0 < depth <= limit + 1e-9):
+        raise InputError("--bearing-graph", "", f"tip depth {depth:g} m must be above 0 m and "
+                                                f"within {what}, {limit:g} m")
     run_cfg = cfg.with_anvil_model(anvil) if anvil is not None else cfg
     rows = bearing_graph(build_engine(run_cfg), run_cfg, _srd(cfg), settings, depth)
     return DriveResult(model=run_cfg.anvil.model, source=str(cfg.source), rows=rows,

@@ -147,7 +147,7 @@ class PdaResult:
 
     def write(self, out_dir: str | Path) -> None:
         """``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``."""
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="pda") as out:
             out.part("pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("pda.csv"))
             plot_pda(self.columns, self.case, out.part("pda.png"),
@@ -254,7 +254,7 @@ class MatchResult:
         """``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
         ``static_load_test.png`` into the result folder ``out_dir``."""
         result = self.match
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="match") as out:
             out.part("match.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(result.columns, out.part("match.csv"))
             write_csv(result.static_load_test, out.part("static_load_test.csv"))
@@ -350,7 +350,7 @@ class ComparePdaResult:
     def write(self, out_dir: str | Path) -> None:
         """The json, csv and the two figures into the result folder ``out_dir``."""
         name = Path(self.record).name
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="compare-pda") as out:
             out.part("compare_pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("compare_pda.csv"))
             plot_compare_pda(self.columns, "force [N]", out.part("fig4_pile_top_force.png"),
