@@ -388,6 +388,15 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
     section = gauge_section(cfg)
     record, notes, kind = load_record(record_path, area=section.area,
                                       elastic_modulus=section.youngs_modulus)
+    pile = cfg.pile_soil.pile
+    seg = pile.discretise()
+    below = np.asarray(seg.top) >= pile.gauge_depth - 1e-9
+    round_trip = 2.0 * float(np.sum(seg.length[below] / seg.wave_speed[below]))
+    span = float(record.time[-1] - record.time[0])
+    if span < round_trip:
+        raise InputError(record_path, "time [s]",
+                         f"the record spans {span:g} s, shorter than 2L/c = {round_trip:g} s "
+                         "of the pile below the gauges")
     if modal_data is None:
         modal_data = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
     runs = {}
