@@ -44,7 +44,6 @@ import numpy as np
 from scipy.integrate import trapezoid
 
 from anvilwave.analyses.impact import energy_balance, pda_summary
-from anvilwave.config.system import depth_limit
 from anvilwave.config.drive import (
     DriveSettings,
     SrdSource,
@@ -52,6 +51,7 @@ from anvilwave.config.drive import (
     load_srd_source,
     pile_soil_at,
 )
+from anvilwave.config.system import depth_limit
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
