@@ -196,7 +196,7 @@ BAD_INPUTS = [
 OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result"]
 """Bad output folders (test_bad_output_folder)."""
 
-FAULT_CASES = ["disk full while writing", "file too large while writing",
+FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass", "file too large while writing",
                "write refused (permission) while writing", "native build fails",
                "Ctrl-C", "killed drive: no orphan workers, staging removed by the rerun",
                "stale staging of a dead run removed", "match --zones too many",
@@ -233,7 +233,7 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 
 def test_the_count_is_stated():
-    assert COUNT == len(BAD_INPUTS) + 14 and COUNT >= 38
+    assert COUNT == len(BAD_INPUTS) + 15 and COUNT >= 40
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
 
 
@@ -429,3 +429,30 @@ def test_killed_drive_leaves_no_worker_and_the_rerun_no_staging(tmp_path):
     # the writer of the rerun removes a staging folder the killed run left
     remove_stale_staging(tmp_path)
     assert not list(tmp_path.glob(".partial-*"))
+
+
+# ---------------------------------------------------------------------- the modal cache
+def test_a_cache_entry_with_scaled_frequencies_is_computed_again(tmp_path, monkeypatch):
+    """An entry valid as a file but holding another anvil's frequencies (scaled by 0.8) or
+    mass is found by the checks on reading, warned about, computed again and replaced."""
+    import dataclasses
+
+    import anvilwave.config.cache as cache
+    from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces
+
+    monkeypatch.setenv(cache.ENVIRONMENT_VARIABLE, str(tmp_path / "cache"))
+    spec = AnvilSpec(name="disc", material=STEEL,
+                     outline=np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 0.3], [0.0, 0.3]]),
+                     interfaces=Interfaces(0.2, 0.4, 0.1), mesh_size=0.06, fmax=10000.0)
+    clean = cache.cached_modal_data(spec)
+    assert cache.modal_data_mismatch(clean, spec, 10000.0) is None
+    (entry,) = (tmp_path / "cache").glob("*.npz")
+    for bad in (dataclasses.replace(clean, frequencies=clean.frequencies * 0.8),
+                dataclasses.replace(clean, total_mass=clean.total_mass * 1.21,
+                                    participation_gravity=clean.participation_gravity * 1.1)):
+        cache._store(bad, entry)
+        with pytest.warns(UserWarning, match="does not match its anvil"):
+            again = cache.cached_modal_data(spec)
+        np.testing.assert_allclose(again.frequencies, clean.frequencies, rtol=1e-9)
+        assert again.total_mass == pytest.approx(clean.total_mass, rel=1e-12)
+        assert cache.modal_data_mismatch(cache.load_modal_data(entry), spec, 10000.0) is None
