@@ -196,7 +196,8 @@ BAD_INPUTS = [
 OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result"]
 """Bad output folders (test_bad_output_folder)."""
 
-FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass", "file too large while writing",
+FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass",
+               "file too large while writing",
                "write refused (permission) while writing", "native build fails",
                "Ctrl-C", "killed drive: no orphan workers, staging removed by the rerun",
                "stale staging of a dead run removed", "match --zones too many",
