@@ -201,7 +201,8 @@ FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies o
                "write refused (permission) while writing", "native build fails",
                "Ctrl-C", "killed drive: no orphan workers, staging removed by the rerun",
                "stale staging of a dead run removed", "match --zones too many",
-               "compare-pda record shorter than 2L/c"]
+               "compare-pda record shorter than 2L/c",
+               "batch with a missing hammer anvil file: no half-made folder"]
 """The faults and refusals tested one by one below."""
 
 PDA_CASES = ["BTA of an intact pile with 2 % noise", "impact peak on the first sample"]
@@ -234,7 +235,7 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 
 def test_the_count_is_stated():
-    assert COUNT == len(BAD_INPUTS) + 15 and COUNT >= 40
+    assert COUNT == len(BAD_INPUTS) + 16 and COUNT >= 41
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
 
 
@@ -457,3 +458,19 @@ def test_a_cache_entry_with_scaled_frequencies_is_computed_again(tmp_path, monke
         np.testing.assert_allclose(again.frequencies, clean.frequencies, rtol=1e-9)
         assert again.total_mass == pytest.approx(clean.total_mass, rel=1e-12)
         assert cache.modal_data_mismatch(cache.load_modal_data(entry), spec, 10000.0) is None
+
+
+# ------------------------------------------------------------------------------ batch
+def test_batch_with_a_missing_hammer_anvil_leaves_no_folder(tmp_path, capsys):
+    """The campaign's hammer anvil file is missing: one line, exit 2, and the campaign folder
+    this run would have made is not left half-made."""
+    from .test_campaign import write_campaign
+
+    path = write_campaign(tmp_path / "c")
+    text = path.read_text().replace(
+        "[axes]", '[axes]\n[[axes.hammers]]\nname = "H"\ndatabase = "illustrative_s2"\n'
+                  '[axes.hammers.anvil]\nfile = "missing_anvil.toml"\n', 1)
+    path.write_text(text)
+    out = tmp_path / "campaign_out"
+    code = cli.main(["batch", str(path), "--out", str(out), "--workers", "1"])
+    _assert_one_line_exit_2(code, capsys, ["missing_anvil.toml"], out)

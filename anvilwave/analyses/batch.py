@@ -815,6 +815,8 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
         if c.error is not None:  # its position failed its checks: recorded, not run
             record_error(cases_dir / c.name, specs[c.name], c.error, in_worker=False)
     runnable = [c for c in todo if c.error is None]
+    if runnable:  # a hammer x anvil problem stops the campaign before its progress bar
+        _prepare(campaign, runnable, out)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -827,7 +829,6 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     n_workers = 0
     try:
         if runnable:
-            _prepare(campaign, runnable, out)
             with _dask_client(workers, scheduler, len(runnable)) as client:
                 n_workers = len(client.scheduler_info().get("workers", {}))
                 _run_on(client, runnable, specs, bar)
