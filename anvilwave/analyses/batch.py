@@ -100,8 +100,10 @@ import math
 import os
 import re
 import shutil
+import signal
 import socket
 import tempfile
+import threading
 import time
 import traceback
 import uuid
@@ -614,7 +616,7 @@ def run_case(spec: dict) -> dict:
 
         cfg = load_system(system)
         result = run_driveability(cfg, cfg.srd, cfg.drive, None, workers=1)
-        summary = dict(result["summary"])
+        summary = dict(result.summary)
         summary["driveability_wall_time [s]"] = summary.pop("wall_time [s]")
         summary.update(_identity(spec))
         summary["system"] = str(system)
@@ -662,14 +664,14 @@ def _worker_info() -> dict:
             "worker_max_rss [B]": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}
 
 
-def _write_case(folder: Path, result: dict, summary: dict, cfg, spec: dict,
+def _write_case(folder: Path, result, summary: dict, cfg, spec: dict,
                 start: float) -> None:
     """driveability.csv (and .png), then summary.json atomically and last (with the case's
     wall time since ``start`` [s] (perf_counter) and its worker's peak memory)."""
 
     staging = Path(tempfile.mkdtemp(prefix=".partial-", dir=folder))
     try:
-        rows = result["rows"]
+        rows = result.rows
         columns = {n: np.array([r[n] for r in rows], dtype=float) for n in COLUMNS}
         write_csv(columns, staging / "driveability.csv")
         if spec.get("plots", True):
@@ -905,9 +907,18 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
             client.close()
         return
     n = max(1, min(workers or os.cpu_count() or 1, n_cases))
-    with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.ERROR)
+    # the worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches this
+    # process only, which prints one line and closes the cluster, instead of a traceback
+    # from every worker
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    try:
+        with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0", silence_logs=logging.ERROR)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
     try:
         client = Client(cluster)
         try:
