@@ -199,7 +199,8 @@ OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command'
 FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass",
                "file too large while writing",
                "write refused (permission) while writing", "native build fails",
-               "Ctrl-C", "killed drive: no orphan workers, staging removed by the rerun",
+               "Ctrl-C", "Ctrl-C on drive with workers",
+               "killed drive: no orphan workers, staging removed by the rerun",
                "stale staging of a dead run removed", "match --zones too many",
                "compare-pda record shorter than 2L/c",
                "batch with a missing hammer anvil file: no half-made folder"]
@@ -235,7 +236,7 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 
 def test_the_count_is_stated():
-    assert COUNT == len(BAD_INPUTS) + 16 and COUNT >= 41
+    assert COUNT == len(BAD_INPUTS) + 17 and COUNT >= 42
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
 
 
@@ -474,3 +475,30 @@ def test_batch_with_a_missing_hammer_anvil_leaves_no_folder(tmp_path, capsys):
     out = tmp_path / "campaign_out"
     code = cli.main(["batch", str(path), "--out", str(out), "--workers", "1"])
     _assert_one_line_exit_2(code, capsys, ["missing_anvil.toml"], out)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_ctrl_c_on_drive_is_one_line_and_leaves_no_worker(tmp_path):
+    system = _system(tmp_path, "[driveability]\nstart = 1.0\nstop = 10.0\nstep = 0.01\n"
+                               "blows_per_depth = 5\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "anvilwave", "drive", str(system), "--out", str(out),
+           "--workers", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            start_new_session=True, text=True)
+    workers: list[int] = []
+    for _ in range(1200):
+        workers = _children(proc.pid)
+        if len(workers) >= 2 or proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    assert proc.poll() is None and len(workers) >= 2
+    os.killpg(proc.pid, signal.SIGINT)  # as the terminal sends Ctrl-C: to the whole group
+    _, err = proc.communicate(timeout=120)
+    lines = [x for x in err.replace("\r", "\n").splitlines() if x.strip()]
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    assert lines[-1] == "anvilwave: interrupted"
+    assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"]
+    time.sleep(1.0)
+    assert not [w for w in workers if Path(f"/proc/{w}").exists()]
+    assert not out.exists() and not list(tmp_path.glob(".partial-*"))

@@ -260,11 +260,15 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
                 with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
                                          initializer=die_with_parent,
                                          initargs=(os.getpid(),)) as pool:
-                    for row in pool.map(_work, depths, chunksize=max(1, len(depths)
-                                                                     // (4 * workers))):
-                        rows.append(row)
-                        if bar is not None:
-                            bar.update(1)
+                    try:
+                        for row in pool.map(_work, depths, chunksize=max(1, len(depths)
+                                                                         // (4 * workers))):
+                            rows.append(row)
+                            if bar is not None:
+                                bar.update(1)
+                    except BaseException:  # Ctrl-C, an error: the depths not started are
+                        pool.shutdown(wait=False, cancel_futures=True)  # never started
+                        raise
             finally:
                 _WORK.clear()
     finally:
@@ -281,12 +285,12 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
 def die_with_parent(parent: int) -> None:
     """Worker initializer: the worker is killed when its parent dies, even by SIGKILL (Linux
     ``prctl(PR_SET_PDEATHSIG, SIGKILL)``; elsewhere a daemon thread polls the parent's pid),
-    so no orphan keeps running. A Ctrl-C reaches the parent only (the workers ignore SIGINT),
-    so it prints one line, not a traceback per worker."""
+    so no orphan keeps running. A Ctrl-C (SIGINT to the process group) ends a worker quietly,
+    so the parent prints one line, not a traceback per worker."""
     import signal
     import threading
 
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGINT, lambda *_: os._exit(130))  # quietly, no traceback
     try:
         import ctypes
 
