@@ -39,13 +39,15 @@ from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmus import build_system_fmus
 from anvilwave.fea.impact import run_impact_fea
+from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_columns, plot_modes
 from anvilwave.output.tables import write_csv
-from anvilwave.output.writer import ResultWriter
+from anvilwave.output.writer import ResultWriter, check_output
 
 
 def _modes(args: argparse.Namespace) -> int:
+    check_output(args.out, "modes")
 
     spec = load_anvil(args.anvil)
     if args.mesh_size is not None:
@@ -61,7 +63,7 @@ def _modes(args: argparse.Namespace) -> int:
         result = anvil_modes_from_calculix(spec, args.from_calculix, fmax=args.fmax)
     else:
         result = compute_anvil_modes(spec, fmax=args.fmax)
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="modes") as out:
         summary = {
             "anvil": str(args.anvil),
             "frequencies [Hz]": [float(f) for f in result.modes.frequencies],
@@ -90,10 +92,11 @@ def _modes(args: argparse.Namespace) -> int:
 
 
 def _impact(args: argparse.Namespace) -> int:
+    check_output(args.out, "impact")
     cfg = load_system(args.system)
     blows = api.simulate(cfg, engine=args.engine, anvil=args.anvil, progress=True)
     model = blows[0].summary["anvil_model"]
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="impact") as out:
         write_blows(blows, out, system=str(args.system),
                     title=f"{Path(args.system).name}: {model} anvil, {args.engine} engine")
     s = blows[0].summary
@@ -106,9 +109,15 @@ def _impact(args: argparse.Namespace) -> int:
 
 
 def _build_fmus(args: argparse.Namespace) -> int:
-    with ResultWriter(args.out) as out:
-        built = api.build_fmus(args.system, out.staging, anvil=args.anvil,
-                               native_anvil=not args.python_anvil)
+    check_output(args.out, "build-fmus")
+    try:
+        with ResultWriter(args.out, command="build-fmus") as out:
+            built = api.build_fmus(args.system, out.staging, anvil=args.anvil,
+                                   native_anvil=not args.python_anvil)
+    except NativeBuildError as exc:
+        raise InputError(str(args.system), "", f"the native anvil FMU cannot be built here "
+                                               f"({_one_line(exc)}); --python-anvil builds "
+                                               "the Python one") from None
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
     print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}; system.ssp uses "
@@ -119,6 +128,7 @@ def _build_fmus(args: argparse.Namespace) -> int:
 
 
 def _fea(args: argparse.Namespace) -> int:
+    check_output(args.out, "fea")
 
     cfg = without_soil(load_system(args.system))
     config = fea_config(cfg, mesh_size=args.mesh_size, truncate_length=args.truncate)
@@ -137,7 +147,7 @@ def _fea(args: argparse.Namespace) -> int:
         "pile_model": ("full length" if config.truncate_length is None else
                        f"{config.truncate_length:g} m with an absorbing cut"),
     }
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="fea") as out:
         write_csv(columns, out.part("impact.csv"))
         out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_columns(columns, out.part("impact.png"), title=f"{Path(args.system).name}: FEA")
@@ -149,9 +159,10 @@ def _fea(args: argparse.Namespace) -> int:
 
 
 def _compare(args: argparse.Namespace) -> int:
+    check_output(args.out, "compare")
 
     cfg = load_system(args.system)
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="compare") as out:
         comparison, _ = _run_comparison(cfg, out, args.rom_engine, args.fea_mesh_size)
     _print_comparison(comparison, args.out)
     return 0
@@ -261,6 +272,7 @@ class _progress:
 
 
 def _demo(args: argparse.Namespace) -> int:
+    check_output(args.out, "demo")
     """The Table 1 comparison end to end (the README's main job)."""
     import time
 
@@ -278,7 +290,7 @@ def _demo(args: argparse.Namespace) -> int:
     if interfaces is not None:
         steps.insert(3, f"ROM with the interfaces resolved ({INTERFACES}, in-process engine)")
     print(f"anvilwave demo: {system.name} -> {args.out}")
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="demo") as out:
         _say(1, steps)
         modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
         save_modal_data(modes.modal_data, out.part("modes/modes.npz"))
@@ -554,11 +566,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _drive(args: argparse.Namespace) -> int:
+    check_output(args.out, "drive")
+    if args.workers is not None and args.workers < 1:
+        raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
     cfg = load_system(args.system)
     name = Path(args.system).name
     if args.bearing_graph is not None:
         models = list(available_anvil_models(cfg)) if args.compare_anvils else [args.anvil]
-        with ResultWriter(args.out) as out:
+        with ResultWriter(args.out, command="drive") as out:
             for model in models:
                 graph = drive_bearing_graph(cfg, args.bearing_graph, anvil=model,
                                             bound=args.bound)
@@ -575,7 +590,7 @@ def _drive(args: argparse.Namespace) -> int:
         result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
                            progress=True)
         results = {result.model: result}
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="drive") as out:
         write_anvil_comparison(results, out, title=name)
     for model, result in results.items():
         for depth, blow in result.time_series.items():
@@ -595,9 +610,10 @@ def _drive(args: argparse.Namespace) -> int:
 
 
 def _install(args: argparse.Namespace) -> int:
+    check_output(args.out, "install")
     result = api.install(args.system, anvil=args.anvil, progress=True)
     model = result.summary["anvil_model"]
-    with ResultWriter(args.out) as out:
+    with ResultWriter(args.out, command="install") as out:
         result.write(out, title=f"{Path(args.system).name}: installation, {model} anvil")
     s = result.summary
     print(f"{Path(args.system).name} [{model}]: {s['total_blows [-]']} blows from "
@@ -615,6 +631,7 @@ def _batch(args: argparse.Namespace) -> int:
                                           "running one), not both")
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
+    check_output(args.out, "batch")
     r = api.batch(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler,
                   progress=True)
     print(f"{r.cases} cases: {r.ok} ok, {r.error} failed, {r.pending} pending ({r.ran} run, "
@@ -624,6 +641,7 @@ def _batch(args: argparse.Namespace) -> int:
 
 
 def _pda(args: argparse.Namespace) -> int:
+    check_output(args.out, "pda")
     result = api.pda(args.record, length=args.length, area=args.area,
                      elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed,
                      jc=args.jc)
@@ -635,6 +653,7 @@ def _pda(args: argparse.Namespace) -> int:
 
 
 def _match(args: argparse.Namespace) -> int:
+    check_output(args.out, "match")
     result = api.match(args.record, args.system, shaft_zones=args.zones, imposed=args.imposed)
     result.write(args.out)
     s = result.content
@@ -645,6 +664,7 @@ def _match(args: argparse.Namespace) -> int:
 
 
 def _compare_pda(args: argparse.Namespace) -> int:
+    check_output(args.out, "compare-pda")
     api.compare_pda(args.record, args.system).write(args.out)
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
     return 0
@@ -690,8 +710,9 @@ def _schema(args: argparse.Namespace) -> int:
 
 
 def _user_error(exc: Exception) -> bool:
-    """An input error, or a modal analysis that cannot be solved."""
-    return isinstance(exc, InputError | ModeSolveError)
+    """An input error, a modal analysis that cannot be solved, or a native build that
+    fails (the compiler's own message)."""
+    return isinstance(exc, InputError | ModeSolveError | NativeBuildError)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -699,16 +720,22 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
-    except Exception as exc:
-        if not _user_error(exc):
-            raise
-        print(f"anvilwave: error: {exc}", file=sys.stderr)
-        return 2
     except BrokenPipeError:  # output piped into head, less ...
         return 0
     except KeyboardInterrupt:
         print("anvilwave: interrupted", file=sys.stderr)
         return 130
+    except Exception as exc:
+        if not _user_error(exc):
+            raise
+        print(f"anvilwave: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+
+
+def _one_line(exc: Exception) -> str:
+    """The message of ``exc`` on one line (a compiler's output has several)."""
+    lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+    return "; ".join(lines[:3]) + (" ..." if len(lines) > 3 else "")
 
 
 if __name__ == "__main__":

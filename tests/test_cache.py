@@ -59,7 +59,7 @@ def test_computed_once_then_read(cache_dir, disc_modes, monkeypatch):
         calls.append(fmax)
         return type("Result", (), {"modal_data": disc_modes})
 
-    monkeypatch.setattr(cache, "compute_anvil_modes", compute)
+    monkeypatch.setattr(pipeline, "compute_anvil_modes", compute)
     first = cache.cached_modal_data(disc())
     second = cache.cached_modal_data(disc())
     assert calls == [10000.0]
@@ -86,7 +86,7 @@ def test_key_covers_what_the_modes_depend_on(monkeypatch):
 
 
 def test_a_broken_entry_is_computed_again(cache_dir, disc_modes, monkeypatch):
-    monkeypatch.setattr(cache, "compute_anvil_modes",
+    monkeypatch.setattr(pipeline, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     cache.cached_modal_data(disc())
     (entry,) = cache_dir.glob("*.npz")
@@ -99,7 +99,7 @@ def test_a_broken_entry_is_computed_again(cache_dir, disc_modes, monkeypatch):
 def test_concurrent_writers_leave_one_complete_file(cache_dir, disc_modes, monkeypatch):
     """Workers computing the same entry at once (dask on one node) each write a temporary
     file and rename it: the entry is always complete and no temporary file remains."""
-    monkeypatch.setattr(cache, "compute_anvil_modes",
+    monkeypatch.setattr(pipeline, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     errors = []
 
@@ -150,7 +150,7 @@ def test_the_tube_head_kernel_is_cached_and_listed(cache_dir, monkeypatch, capsy
 
 
 def test_cli_cache_info_and_clear(cache_dir, disc_modes, monkeypatch, capsys):
-    monkeypatch.setattr(cache, "compute_anvil_modes",
+    monkeypatch.setattr(pipeline, "compute_anvil_modes",
                         lambda spec, fmax=None: type("R", (), {"modal_data": disc_modes}))
     cache.cached_modal_data(disc())
     assert main(["cache", "info"]) == 0
@@ -170,7 +170,7 @@ def test_lumped_anvil_needs_no_modes(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the lumped anvil must not compute modes")
 
-    monkeypatch.setattr(cache, "compute_anvil_modes", refuse)
+    monkeypatch.setattr(pipeline, "compute_anvil_modes", refuse)
     engine = build_engine(cfg)
     mass = engine.anvil.unit.anvil.total_mass
     # the FE mass of examples/anvils/xl8.toml (its modal data, computed elsewhere)

@@ -192,9 +192,15 @@ def test_impedance_step_gives_bta(beta, depth):
     the impact peak, and below L - c (t1 - t0)/2 = 35 m the toe reflection is not reached."""
     cells_above = round(depth / (LENGTH / CELLS))
     impedances = np.where(np.arange(CELLS) < cells_above, Z, beta * Z)
-    result = analyse(characteristics_record(impedances, free_toe))
+    record = characteristics_record(impedances, free_toe)
+    result = analyse(record, bta_cutoff=None)  # the formula on the samples
     assert result.bta == pytest.approx(beta, rel=EXACT)
     assert result.bta_depth == pytest.approx(depth, abs=1e-9)  # x = c (tx - t1)/2, on the grid
+    # low-passed as by default (no overshoot): the same step within 1 %, its depth within the
+    # filter's reach
+    filtered = analyse(record)
+    assert filtered.bta == pytest.approx(beta, rel=0.01)
+    assert filtered.bta_depth == pytest.approx(depth, abs=2.0)
 
 
 def test_rmx_window_and_t1_choice():

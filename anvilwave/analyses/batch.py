@@ -100,8 +100,10 @@ import math
 import os
 import re
 import shutil
+import signal
 import socket
 import tempfile
+import threading
 import time
 import traceback
 import uuid
@@ -793,6 +795,18 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
                                         f"{workers!r}")
     campaign = load_campaign(campaign_path)
     out = Path(out_dir)
+    fresh = not out.exists()  # made by this run: removed again if it stops before any case
+    try:
+        return _run_campaign(campaign, out, workers, scheduler, progress, plots, start)
+    except BaseException:
+        if fresh and out.is_dir() and not any((out / "cases").glob("*/summary.json")):
+            shutil.rmtree(out, ignore_errors=True)
+        raise
+
+
+def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots: bool,
+                  start: float) -> BatchResult:
+    """The body of :func:`run_campaign` once the campaign file is read."""
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
     specs = {c.name: _spec(c, cases_dir, plots) for c in campaign.cases}
@@ -803,6 +817,8 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
         if c.error is not None:  # its position failed its checks: recorded, not run
             record_error(cases_dir / c.name, specs[c.name], c.error, in_worker=False)
     runnable = [c for c in todo if c.error is None]
+    if runnable:  # a hammer x anvil problem stops the campaign before its progress bar
+        _prepare(campaign, runnable, out)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -815,7 +831,6 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
     n_workers = 0
     try:
         if runnable:
-            _prepare(campaign, runnable, out)
             with _dask_client(workers, scheduler, len(runnable)) as client:
                 n_workers = len(client.scheduler_info().get("workers", {}))
                 _run_on(client, runnable, specs, bar)
@@ -884,7 +899,7 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
         try:
             client = Client(scheduler, timeout=30)
         except (OSError, TimeoutError) as exc:
-            raise InputError("scheduler", "", f"no dask scheduler answers at {scheduler!r} "
+            raise InputError("--scheduler", "", f"no dask scheduler answers at {scheduler!r} "
                                               f"({exc})") from None
         try:
             yield client
@@ -892,9 +907,18 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
             client.close()
         return
     n = max(1, min(workers or os.cpu_count() or 1, n_cases))
-    with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=logging.ERROR)
+    # the worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches this
+    # process only, which prints one line and closes the cluster, instead of a traceback
+    # from every worker
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    try:
+        with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0", silence_logs=logging.ERROR)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
     try:
         client = Client(cluster)
         try:

@@ -51,6 +51,7 @@ from anvilwave.config.drive import (
     load_srd_source,
     pile_soil_at,
 )
+from anvilwave.config.system import depth_limit
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
@@ -256,12 +257,18 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
 
             _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings)
             try:
-                with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork")) as pool:
-                    for row in pool.map(_work, depths, chunksize=max(1, len(depths)
-                                                                     // (4 * workers))):
-                        rows.append(row)
-                        if bar is not None:
-                            bar.update(1)
+                with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
+                                         initializer=die_with_parent,
+                                         initargs=(os.getpid(),)) as pool:
+                    try:
+                        for row in pool.map(_work, depths, chunksize=max(1, len(depths)
+                                                                         // (4 * workers))):
+                            rows.append(row)
+                            if bar is not None:
+                                bar.update(1)
+                    except BaseException:  # Ctrl-C, an error: the depths not started are
+                        pool.shutdown(wait=False, cancel_futures=True)  # never started
+                        raise
             finally:
                 _WORK.clear()
     finally:
@@ -273,6 +280,34 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     summary["workers [-]"] = workers
     return DriveResult(model=cfg.anvil.model, source=str(cfg.source), rows=rows,
                        summary=summary)
+
+
+def die_with_parent(parent: int) -> None:
+    """Worker initializer: the worker is killed when its parent dies, even by SIGKILL (Linux
+    ``prctl(PR_SET_PDEATHSIG, SIGKILL)``; elsewhere a daemon thread polls the parent's pid),
+    so no orphan keeps running. A Ctrl-C (SIGINT to the process group) ends a worker quietly,
+    so the parent prints one line, not a traceback per worker."""
+    import signal
+    import threading
+
+    signal.signal(signal.SIGINT, lambda *_: os._exit(130))  # quietly, no traceback
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6", use_errno=True)
+        if libc.prctl(1, signal.SIGKILL, 0, 0, 0) == 0:  # PR_SET_PDEATHSIG = 1
+            if os.getppid() != parent:  # the parent died before the call
+                os._exit(1)
+            return
+    except (OSError, AttributeError):
+        pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
 
 
 def driving_weight(cfg, head_load: float) -> float:
@@ -443,6 +478,10 @@ def drive_bearing_graph(cfg, depth: float, *, anvil: str | None = None,
     """Blow count against the ultimate resistance at one tip depth [m] (the SRD of that
     depth scaled, :func:`bearing_graph`): a DriveResult whose rows are the multipliers'."""
     settings = _settings(cfg, bound)
+    limit, what = depth_limit(cfg.pile_soil, _srd(cfg))
+    if not (0.0 < depth <= limit + 1e-9):
+        raise InputError("--bearing-graph", "", f"tip depth {depth:g} m must be above 0 m and "
+                                                f"within {what}, {limit:g} m")
     run_cfg = cfg.with_anvil_model(anvil) if anvil is not None else cfg
     rows = bearing_graph(build_engine(run_cfg), run_cfg, _srd(cfg), settings, depth)
     return DriveResult(model=run_cfg.anvil.model, source=str(cfg.source), rows=rows,

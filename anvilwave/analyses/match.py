@@ -33,6 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from anvilwave.config.budget import check_match_budget
 from anvilwave.engine.compilation import announce_compilation
 from anvilwave.inputs import InputError
 from anvilwave.pile.kernels import (
@@ -398,6 +399,9 @@ class ForwardModel:
         self.viscous = soil.model != "smith"
         self.model = soil.model
         self.mudline = whole.length - soil.penetration - whole.gauge_depth  # below the gauges
+        check_match_budget(settings.shaft_zones, seg.count, len(record.time),
+                           settings.max_evaluations,
+                           2 * int(settings.fit_quakes) + 2 * int(settings.fit_dampings))
         self._zones(cfg, soil)
         self._record(record)
 

@@ -147,7 +147,7 @@ class PdaResult:
 
     def write(self, out_dir: str | Path) -> None:
         """``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``."""
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="pda") as out:
             out.part("pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("pda.csv"))
             plot_pda(self.columns, self.case, out.part("pda.png"),
@@ -254,7 +254,7 @@ class MatchResult:
         """``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
         ``static_load_test.png`` into the result folder ``out_dir``."""
         result = self.match
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="match") as out:
             out.part("match.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(result.columns, out.part("match.csv"))
             write_csv(result.static_load_test, out.part("static_load_test.csv"))
@@ -350,7 +350,7 @@ class ComparePdaResult:
     def write(self, out_dir: str | Path) -> None:
         """The json, csv and the two figures into the result folder ``out_dir``."""
         name = Path(self.record).name
-        with ResultWriter(out_dir) as out:
+        with ResultWriter(out_dir, command="compare-pda") as out:
             out.part("compare_pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("compare_pda.csv"))
             plot_compare_pda(self.columns, "force [N]", out.part("fig4_pile_top_force.png"),
@@ -388,6 +388,15 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
     section = gauge_section(cfg)
     record, notes, kind = load_record(record_path, area=section.area,
                                       elastic_modulus=section.youngs_modulus)
+    pile = cfg.pile_soil.pile
+    seg = pile.discretise()
+    below = np.asarray(seg.top) >= pile.gauge_depth - 1e-9
+    round_trip = 2.0 * float(np.sum(seg.length[below] / seg.wave_speed[below]))
+    span = float(record.time[-1] - record.time[0])
+    if span < round_trip:
+        raise InputError(record_path, "time [s]",
+                         f"the record spans {span:g} s, shorter than 2L/c = {round_trip:g} s "
+                         "of the pile below the gauges")
     if modal_data is None:
         modal_data = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
     runs = {}

@@ -71,6 +71,48 @@ def check_run_budget(config) -> dict[str, float]:
         f"(limits {MAX_MEMORY / 2**30:.0f} GiB, {_duration(MAX_WALL_TIME)})")
 
 
+MAX_MATCH_TIME = 3600.0
+"""Estimated wall time one signal match may take [s]."""
+SECONDS_PER_MATCH_UPDATE = 2e-8
+"""Wall time of one segment update of the matching model (soil included) [s]."""
+MATCH_ITERATIONS = 30
+"""Trust-region iterations the estimate assumes (each a Jacobian by forward differences)."""
+
+
+def match_estimate(zones: int, segments: int, samples: int, max_evaluations: int,
+                   extra_parameters: int = 4) -> dict[str, float]:
+    """Estimated size of a signal match: ``parameters`` (the zones, the toe and
+    ``extra_parameters`` quakes and dampings), ``evaluations`` (forward runs: the
+    iterations' Jacobians by forward differences and their steps, at most
+    ``max_evaluations`` steps), ``run [s]`` (one forward run: ``segments`` x ``samples``
+    updates) and ``wall_time [s]``."""
+    parameters = zones + 1 + extra_parameters
+    iterations = min(MATCH_ITERATIONS, max_evaluations)
+    evaluations = iterations * (parameters + 1)
+    run = segments * samples * SECONDS_PER_MATCH_UPDATE
+    return {"parameters": float(parameters), "evaluations": float(evaluations),
+            "run [s]": run, "wall_time [s]": evaluations * run}
+
+
+def check_match_budget(zones: int, segments: int, samples: int, max_evaluations: int,
+                       extra_parameters: int = 4) -> dict[str, float]:
+    """Refuse ``--zones`` before any work: more zones than the matching model's segments
+    (``segments``), or an estimated wall time (:func:`match_estimate`) above
+    :data:`MAX_MATCH_TIME`; return the estimate otherwise."""
+    if zones < 1:
+        raise InputError("--zones", "", f"must be at least 1, got {zones}")
+    if zones > segments:
+        raise InputError("--zones", "", f"{zones} zones on a pile of {segments} segments "
+                                        "below the gauges: at most one zone per segment")
+    est = match_estimate(zones, segments, samples, max_evaluations, extra_parameters)
+    if est["wall_time [s]"] > MAX_MATCH_TIME:
+        raise InputError("--zones", "", f"{zones} zones need about {est['evaluations']:.3g} "
+                                        f"forward runs of {est['run [s]']:.3g} s, "
+                                        f"{_duration(est['wall_time [s]'])} (limit "
+                                        f"{_duration(MAX_MATCH_TIME)}): use fewer zones")
+    return est
+
+
 def _duration(seconds: float) -> str:
     if seconds < 3600:
         return f"{seconds:.3g} s"

@@ -28,8 +28,11 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import tempfile
+import threading
+import warnings
 import zipfile
 from functools import lru_cache
 from pathlib import Path
@@ -37,9 +40,13 @@ from pathlib import Path
 import numpy as np
 
 import anvilwave.anvil_rom as anvil_rom
+import anvilwave.anvil_rom.fem.pipeline as pipeline
 from anvilwave.anvil_rom.chain import chain_from_modes
+from anvilwave.anvil_rom.fem.elasticity import assemble
+from anvilwave.anvil_rom.fem.mesh import build_mesh, to_skfem
 from anvilwave.anvil_rom.fem.modalfile import VERSION, load_modal_data, write_modal_data
-from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+from anvilwave.anvil_rom.fem.modes import sturm_count
+from anvilwave.anvil_rom.fem.pipeline import solid_mass
 from anvilwave.inputs import InputError
 from anvilwave.pile import head_kernel
 from anvilwave.pile.head_kernel import ring_kernel
@@ -115,14 +122,69 @@ def cached_modal_data(spec, fmax: float | None = None):
     path = cache_dir() / (modal_key(spec, fmax) + SUFFIX)
     if path.is_file():
         try:
-            return load_modal_data(path)
+            data = load_modal_data(path)
         except InputError:
-            pass  # unreadable: computed again and replaced below
+            data = None  # unreadable: computed again and replaced below
+        if data is not None:
+            stamp = (str(path), path.stat().st_mtime_ns, path.stat().st_size)
+            with _CHECK_LOCK:  # gmsh (meshing for the Sturm count) is not thread-safe
+                reason = None if stamp in _VERIFIED else modal_data_mismatch(data, spec, fmax)
+                if reason is None:
+                    _VERIFIED.add(stamp)
+            if reason is None:
+                return data
+            warnings.warn(f"{path}: the cached modal data does not match its anvil "
+                          f"({reason}): computed again", stacklevel=2)
 
-    data = compute_anvil_modes(spec, fmax=fmax).modal_data
+    data = pipeline.compute_anvil_modes(spec, fmax=fmax).modal_data  # patchable in tests
     if data is not None:
         _store(data, path)
     return data
+
+
+_CHECK_LOCK = threading.Lock()
+_VERIFIED: set = set()
+"""Cache files (path, mtime, size) this process has checked: checked once per process."""
+
+MASS_TOLERANCE = 1e-6
+"""Relative difference of a cached total mass from the anvil's solid mass that is a mismatch."""
+
+
+def modal_data_mismatch(data, spec, fmax: float) -> str | None:
+    """Why cached modal data does not belong to ``spec`` at ``fmax`` [Hz], else None.
+
+    Checked: fmax, the damping ratio and the geometry hash against the key's; the frequencies
+    finite, increasing, within fmax; the total mass against the spec's solid mass
+    (:func:`~anvilwave.anvil_rom.fem.pipeline.solid_mass`); and the frequencies against the FE
+    eigenproblem: its Sturm count (:func:`~anvilwave.anvil_rom.fem.modes.sturm_count`, the
+    eigenvalues of (K, M) below a shift) at the middle of the middle gap of the cached
+    frequencies must equal the cached modes below it (one factorisation, no eigensolve). The
+    mode shapes are not kept in the modal data, so their orthonormality is not checked here.
+    """
+    f = np.asarray(data.frequencies, dtype=float)
+    if not math.isclose(float(data.fmax), float(fmax), rel_tol=1e-12):
+        return f"fmax {float(data.fmax):g} Hz, not {float(fmax):g} Hz"
+    if not math.isclose(float(data.damping_ratio), float(spec.damping_ratio), rel_tol=1e-12,
+                        abs_tol=1e-15):
+        return f"damping ratio {float(data.damping_ratio):g}, not {spec.damping_ratio:g}"
+    if str(data.geometry_hash) != str(spec.geometry_hash()):
+        return "another geometry"
+    if f.size < 1 or not np.all(np.isfinite(f)) or np.any(np.diff(f) < 0.0) or (
+            f[-1] > fmax * (1 + 1e-9)):
+        return "frequencies not finite, increasing and within fmax"
+    mass = solid_mass(spec)
+    if not math.isclose(float(data.total_mass), mass, rel_tol=MASS_TOLERANCE):
+        return f"total mass {float(data.total_mass):.6g} kg, not {mass:.6g} kg"
+    gaps = [k for k in range(f.size - 1) if f[k + 1] > f[k] * (1 + 1e-6) + 1e-9]
+    if not gaps:
+        return None
+    k = gaps[len(gaps) // 2]
+    shift = 0.5 * (f[k] + f[k + 1])
+    model = assemble(to_skfem(build_mesh(spec)), spec.material)
+    count = sturm_count(model.stiffness, model.mass, (2.0 * math.pi * shift) ** 2)
+    if count != k + 1:
+        return (f"{k + 1} cached modes below {shift:.6g} Hz, the FE model has {count}")
+    return None
 
 
 CHAIN_SUFFIX = ".chain.npz"

@@ -320,21 +320,46 @@ def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise InputError(path, "soil_model.srd_tables_by_run", f"cannot be read ({exc})") \
             from None
+    where = "soil_model.srd_tables_by_run"
+    if not isinstance(runs, dict) or not runs:
+        raise InputError(path, where, "must be a non-empty object of runs {\"1\": {...}, ...}, "
+                                      f"got {type(runs).__name__}")
     seg = pile_soil.pile.discretise()
     d, t = float(seg.outer_diameter[-1]), float(seg.wall_thickness[-1])
     area = math.pi * (d - t) * t
     items = []
     for key, run in runs.items():
+        at = f"{where}.{key}"
         try:
+            if not isinstance(run, dict):
+                raise TypeError(f"the run is a {type(run).__name__}, not an object")
             tip = float(run["tip_depth_the_table_was_built_for [m]"])
-            cols = run["columns"]
+            cols = list(run["columns"])
             rows = np.array(run["rows"], dtype=float)
             iz, ish, ito = (cols.index(c) for c in ("soil_depth [m]",
                                                      "unit_shaft_resistance [kPa]",
                                                      "toe_resistance [kN]"))
         except (KeyError, ValueError, TypeError) as exc:
-            raise InputError(path, f"soil_model.srd_tables_by_run.{key}",
-                             f"is not a GRLWEAP table ({exc})") from None
+            raise InputError(path, at, f"is not a GRLWEAP table ({exc})") from None
+        if rows.ndim != 2 or rows.shape[0] < 1 or rows.shape[1] != len(cols):
+            raise InputError(path, f"{at}.rows", f"must be at least one row of {len(cols)} "
+                                                 f"numbers (the columns), got shape "
+                                                 f"{rows.shape}")
+        if not math.isfinite(tip) or tip < 0.0:
+            raise InputError(path, f"{at}.tip_depth_the_table_was_built_for [m]",
+                             f"must be a finite depth >= 0 m, got {tip!r}")
+        for i, row in enumerate(rows):
+            if not np.all(np.isfinite(row)):
+                raise InputError(path, f"{at}.rows", f"row {i + 1}: {row.tolist()} is not "
+                                                     "finite")
+            if row[ish] < 0.0 or row[ito] < 0.0 or row[iz] < 0.0:
+                raise InputError(path, f"{at}.rows", f"row {i + 1}: {row.tolist()} has a "
+                                                     "negative depth or resistance")
+        if np.any(np.diff(rows[:, iz]) <= 0.0):
+            raise InputError(path, f"{at}.rows", "soil depths must be strictly increasing")
+        if any(abs(tip - other) < 1e-9 for other, _ in items):
+            raise InputError(path, f"{at}.tip_depth_the_table_was_built_for [m]",
+                             f"{tip:g} m is the tip depth of another run (duplicate)")
         table = np.column_stack([rows[:, iz], 1e3 * rows[:, ish], 1e3 * rows[:, ito] / area])
         items.append((tip, table))
     items.sort(key=lambda x: x[0])

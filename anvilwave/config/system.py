@@ -43,6 +43,7 @@ A system file is TOML (every key is checked; units in brackets)::
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -179,6 +180,7 @@ def load_system(path: str | Path) -> SystemConfig:
             except ValueError as exc:
                 raise InputError(source, "srd", str(exc)) from None
     root.finish()
+    check_depths(source, pile_soil, srd, drive, install, hammer)
     config = SystemConfig(source, duration, time_step, output_interval, gravity, blows, hammer,
                           velocity, anvil, pile_soil, drive, srd, install)
     check_run_budget(config)  # before the modal ram's modes: a bomb stops in milliseconds
@@ -191,6 +193,64 @@ def load_system(path: str | Path) -> SystemConfig:
         config = replace(config, hammer=_modal_hammer(hammer, anvil,
                                                       ram_options["ram_mesh_size"], source))
     return config
+
+
+def depth_limit(pile_soil, srd) -> tuple[float, str]:
+    """The deepest tip depth a drive can analyse [m] and what sets it: the pile's length,
+    or the bottom of the ``[srd]`` soil profile if shallower."""
+    limit, what = float(pile_soil.pile.length), "the pile's length"
+    profile = getattr(srd, "profile", None)
+    if profile is not None and getattr(profile, "layers", None) and profile.bottom < limit:
+        limit, what = float(profile.bottom), "the bottom of the [srd] soil profile"
+    return limit, what
+
+
+def check_depths(source: str, pile_soil, srd, drive, install, hammer) -> None:
+    """Refuse the depths of ``[driveability]`` and ``[installation]`` that lie below the pile
+    or the soil profile, beyond the drive, and blow energies above the hammer's rated energy:
+    one :class:`InputError` naming the key, the row and the value."""
+    limit, what = depth_limit(pile_soil, srd)
+    length = float(pile_soil.pile.length)
+
+    def below(key: str, values, bound: float, rule: str) -> None:
+        for i, v in enumerate(np.atleast_1d(np.asarray(values, dtype=float))):
+            if v < 0.0:
+                raise InputError(source, key, f"row {i + 1}: {v:g} m is negative (depths are "
+                                              "positive below the mudline or the head)")
+            if v > bound + 1e-9:
+                raise InputError(source, key, f"row {i + 1}: {v:g} m lies beyond {rule}")
+
+    last = None
+    if drive is not None:
+        below("driveability.depths", drive.depths, limit, f"{what}, {limit:g} m")
+        last = float(drive.depths[-1])
+        below("driveability.time_series_depths", drive.time_series_depths, last,
+              f"the last tip depth of [driveability], {last:g} m")
+        rated = getattr(hammer, "rated_energy", math.nan)
+        if drive.energy_schedule is not None and rated == rated:
+            for i, e in enumerate(drive.energy_schedule[:, 1]):
+                if e > rated * (1 + 1e-9):
+                    raise InputError(source, "driveability.energy",
+                                     f"row {i + 1}: {e:g} J is above the hammer's rated "
+                                     f"energy, {rated:g} J ([hammer] rated_energy)")
+    if install is not None:
+        for key, value in (("start_depth", install.start_depth),
+                           ("target_depth", install.target_depth)):
+            if value is not None and value > limit + 1e-9:
+                raise InputError(source, f"installation.{key}",
+                                 f"{value:g} m lies beyond {what}, {limit:g} m")
+        if (install.start_depth is not None and install.target_depth is not None
+                and install.start_depth >= install.target_depth):
+            raise InputError(source, "installation.start_depth",
+                             f"{install.start_depth:g} m must be shallower than the "
+                             f"target_depth, {install.target_depth:g} m")
+        if install.weld_depths is not None:
+            below("installation.weld_depths", install.weld_depths, length,
+                  f"the pile's toe, {length:g} m below the head")
+        target = install.target_depth if install.target_depth is not None else last
+        if target is not None:
+            below("installation.spectra_depths", install.spectra_depths, target,
+                  f"the target depth, {target:g} m")
 
 
 def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,

@@ -405,6 +405,13 @@ class Table:
         if not isinstance(value, list) or len(value) < min_rows:
             raise self.error(name, f"must be {shape_rule} of numbers with at least {min_rows} "
                                    "entries")
+        for i, item in enumerate(value):
+            for j, x in enumerate(item if isinstance(item, list) else [item]):
+                if isinstance(x, bool) or not isinstance(x, numbers.Real):
+                    where = f"row {i + 1}" + (f", column {j + 1}" if isinstance(item, list)
+                                              else "")
+                    raise self.error(name, f"{where}: {x!r} is not a number ({shape_rule} of "
+                                           "numbers)")
         try:
             arr = np.array(value, dtype=float)
         except (TypeError, ValueError):
@@ -413,7 +420,8 @@ class Table:
         if arr.ndim != expected_ndim or (columns and arr.shape[1] != columns):
             raise self.error(name, f"must be {shape_rule} of numbers")
         if not np.all(np.isfinite(arr)):
-            raise self.error(name, "must contain finite numbers only")
+            bad = np.argwhere(~np.isfinite(arr))[0]
+            raise self.error(name, f"row {int(bad[0]) + 1}: must contain finite numbers only")
         return arr
 
     def table(self, name: str, required: bool = True) -> Table | None:

@@ -196,7 +196,17 @@ def _read_rows(path: Path):
     text = read_text(path, encoding="utf-8-sig")
     header = None
     rows = []
-    for number, cells in enumerate(csv.reader(text.splitlines()), start=1):
+    reader = csv.reader(text.splitlines())
+    number = 0
+    while True:
+        try:
+            cells = next(reader)
+        except StopIteration:
+            break
+        except csv.Error as exc:
+            raise InputError(path, "", f"line {reader.line_num}: is not a CSV row ({exc})") \
+                from None
+        number = reader.line_num
         if not cells or all(not c.strip() for c in cells) or cells[0].lstrip().startswith("#"):
             continue
         if header is None:

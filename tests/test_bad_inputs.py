@@ -1,0 +1,504 @@
+"""Bad inputs of drive, install, pda, match, compare-pda, build-fmus and the output folder
+(issue 30): each case is a small file made in the test; each gives one line on stderr naming
+the file or option, the key, the row or table and the rule, exit status 2, no traceback, and
+no output folder (or the one there unchanged).
+
+:data:`BAD_INPUTS` lists the command-line cases by class (the docs state the count and the
+classes from it); the faults (a write that fails, a killed run, Ctrl-C) and the PDA fixes are
+tests of their own below.
+"""
+
+from __future__ import annotations
+
+import errno
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from anvilwave import cli
+from anvilwave.fmu.native_build import NativeBuildError
+from anvilwave.inputs import InputError
+from anvilwave.output.writer import MARKER, ResultWriter, remove_stale_staging
+from anvilwave.pile.pda.case_method import case_method, first_peak_index
+
+HAMMER = """
+name = "drop hammer"
+rated_energy = 9810.0     # [J] 1000 kg dropped 1 m
+efficiency = 1.0
+[ram]
+kind = "rigid"
+mass = 1000.0             # [kg]
+"""
+
+SYSTEM = """
+[simulation]
+duration = 0.01
+gravity = 9.81
+
+[hammer]
+file = "hammer.toml"
+
+[anvil]
+model = "none"
+ram_contact_stiffness = 2.0e10
+pile_contact_stiffness = 2.0e10
+
+[pile]
+segment_length = 0.5
+gauge_depth = 0.5
+[[pile.sections]]
+length = 10.0
+outer_diameter = 0.7
+wall_thickness = 0.03
+youngs_modulus = 2.1e11
+density = 7850.0
+
+[soil]
+model = "smith-viscous"
+penetration = 5.0
+quake_shaft = 0.0025
+quake_toe = 0.0025
+damping_shaft = 0.1
+damping_toe = 0.3
+toe_area = "plugged"
+{soil_extra}
+{extra}
+"""
+
+SRD_ROWS = "srd = [[0.0, 1e3, 1e6], [10.0, 2e4, 5e6]]"
+
+DRIVE = "[driveability]\ndepths = [2.0, 4.0]\n"
+
+
+def _system(tmp_path: Path, extra: str = DRIVE, soil_extra: str = SRD_ROWS) -> Path:
+    (tmp_path / "hammer.toml").write_text(HAMMER)
+    path = tmp_path / "system.toml"
+    path.write_text(SYSTEM.format(extra=extra, soil_extra=soil_extra))
+    return path
+
+
+def _grl(tmp_path: Path, runs) -> str:
+    """An [srd] tip-table reading a GRLWEAP model.json with ``runs``."""
+    (tmp_path / "model.json").write_text(json.dumps({"soil_model": {"srd_tables_by_run":
+                                                                    runs}}))
+    return DRIVE + '[srd]\nmethod = "tip-table"\nfile = "model.json"\n'
+
+
+def _run(tmp_path, cols=("soil_depth [m]", "unit_shaft_resistance [kPa]",
+                         "toe_resistance [kN]"), rows=((0.0, 1.0, 100.0), (10.0, 20.0, 900.0)),
+         tip=4.0):
+    return {"tip_depth_the_table_was_built_for [m]": tip, "columns": list(cols),
+            "rows": [list(r) for r in rows]}
+
+
+def _cpt_huge(tmp_path: Path) -> str:
+    (tmp_path / "cpt.csv").write_text("depth [m],qc [MPa],fs [kPa]\n0.0,1.0,10\n"
+                                      + "1.0,\"" + "9" * 200_000 + "\",10\n")
+    return (DRIVE + '[srd]\nmethod = "alm-hamre-2001"\ncpt = "cpt.csv"\n'
+            '[[srd.layers]]\ntop = 0.0\nbottom = 20.0\nsoil = "sand"\n'
+            'submerged_unit_weight = 10e3\ninterface_friction_angle = 29.0\n')
+
+
+def _record(tmp_path: Path, n: int = 50, dt: float = 1e-4) -> Path:
+    """A short gauge record (a half-sine pulse)."""
+    t = np.arange(n) * dt
+    f = 1e6 * np.sin(np.pi * np.clip(t / (10 * dt), 0, 1)) ** 2
+    path = tmp_path / "record.csv"
+    rows = "\n".join(f"{float(a)!r},{float(b)!r},{float(b) / 3e6!r}"
+                     for a, b in zip(t, f, strict=True))
+    path.write_text("time [s],force [N],velocity [m/s]\n" + rows + "\n")
+    return path
+
+
+# (class, id, extra of the system file or a builder (tmp_path) -> extra, extra arguments,
+#  the command, words the one line must hold)
+BAD_INPUTS = [
+    # tracebacks before
+    ("traceback", "time-series depth below the pile",
+     DRIVE + "time_series_depths = [12.0]\n", [], "drive",
+     ["driveability.time_series_depths", "row 1", "12 m"]),
+    ("traceback", "bearing-graph depth below the pile", DRIVE, ["--bearing-graph", "12"],
+     "drive", ["--bearing-graph", "12 m", "10 m"]),
+    ("traceback", "installation target below the pile",
+     DRIVE + "[installation]\ntarget_depth = 12.0\n", [], "install",
+     ["installation.target_depth", "12 m", "pile"]),
+    ("traceback", "installation start below the pile",
+     DRIVE + "[installation]\nstart_depth = 11.0\n", [], "install",
+     ["installation.start_depth", "11 m"]),
+    ("traceback", "installation start below the target",
+     DRIVE + "[installation]\nstart_depth = 3.0\ntarget_depth = 2.0\n", [], "install",
+     ["installation.start_depth", "target_depth"]),
+    ("traceback", "CPT file with a huge field", _cpt_huge, [], "drive",
+     ["cpt.csv", "line 3"]),
+    ("traceback", "GRLWEAP runs as a list", lambda p: _grl(p, [_run(p)]), [], "drive",
+     ["model.json", "soil_model.srd_tables_by_run", "list"]),
+    ("traceback", "GRLWEAP runs empty", lambda p: _grl(p, {}), [], "drive",
+     ["model.json", "soil_model.srd_tables_by_run", "non-empty"]),
+    ("traceback", "GRLWEAP empty rows", lambda p: _grl(p, {"1": _run(p, rows=())}), [],
+     "drive", ["model.json", "srd_tables_by_run.1.rows"]),
+    ("traceback", "GRLWEAP flat rows", lambda p: _grl(p, {"1": {**_run(p),
+                                                                "rows": [0.0, 1.0, 2.0]}}),
+     [], "drive", ["model.json", "srd_tables_by_run.1.rows", "shape"]),
+    ("traceback", "GRLWEAP run not an object", lambda p: _grl(p, {"1": [1, 2]}), [], "drive",
+     ["model.json", "srd_tables_by_run.1", "not a GRLWEAP table"]),
+    # bad values accepted before
+    ("accepted", "string in the depth schedule", "[driveability]\ndepths = [2.0, \"4\"]\n",
+     [], "drive", ["driveability.depths", "row 2", "'4'"]),
+    ("accepted", "string in the energy schedule",
+     DRIVE + "energy = [[0.0, 5000.0], [3.0, \"6000\"]]\n", [], "drive",
+     ["driveability.energy", "row 2", "column 2"]),
+    ("accepted", "energy above the rated energy",
+     DRIVE + "energy = [[0.0, 5000.0], [3.0, 20000.0]]\n", [], "drive",
+     ["driveability.energy", "row 2", "rated"]),
+    ("accepted", "negative time-series depth", DRIVE + "time_series_depths = [-1.0]\n", [],
+     "drive", ["driveability.time_series_depths", "row 1", "negative"]),
+    ("accepted", "negative bearing-graph depth", DRIVE, ["--bearing-graph", "-1"], "drive",
+     ["--bearing-graph", "-1 m"]),
+    ("accepted", "time-series depth beyond the last depth",
+     DRIVE + "time_series_depths = [2.0, 5.0]\n", [], "drive",
+     ["driveability.time_series_depths", "row 2", "last tip depth"]),
+    ("accepted", "--workers -3", DRIVE, ["--workers", "-3"], "drive", ["--workers", "-3"]),
+    ("accepted", "weld depth below the pile",
+     DRIVE + "[installation]\nweld_depths = [1.0, 11.0]\n", [], "install",
+     ["installation.weld_depths", "row 2", "11 m"]),
+    ("accepted", "spectra depth beyond the target",
+     DRIVE + "[installation]\ntarget_depth = 3.0\nspectra_depths = [2.0, 3.5]\n", [],
+     "install", ["installation.spectra_depths", "row 2", "target"]),
+    # vague or wrong messages before
+    ("vague", "driveability depth beyond the pile", "[driveability]\ndepths = [2.0, 12.0]\n",
+     [], "drive", ["driveability.depths", "row 2", "12 m", "pile's length, 10 m"]),
+    ("vague", "GRLWEAP NaN in run 3",
+     lambda p: _grl(p, {"1": _run(p, tip=2.0), "2": _run(p, tip=3.0),
+                        "3": _run(p, rows=((0.0, float("nan"), 1.0), (10.0, 2.0, 3.0)))}),
+     [], "drive", ["model.json", "srd_tables_by_run.3.rows", "row 1"]),
+    ("vague", "GRLWEAP duplicate tip depth in run 3",
+     lambda p: _grl(p, {"1": _run(p, tip=2.0), "2": _run(p, tip=3.0),
+                        "3": _run(p, tip=3.0)}),
+     [], "drive", ["model.json", "srd_tables_by_run.3", "duplicate"]),
+    ("vague", "GRLWEAP negative value in run 3",
+     lambda p: _grl(p, {"1": _run(p, tip=2.0), "2": _run(p, tip=3.0),
+                        "3": _run(p, rows=((0.0, 1.0, 1.0), (10.0, -2.0, 3.0)))}),
+     [], "drive", ["model.json", "srd_tables_by_run.3.rows", "row 2", "negative"]),
+    ("vague", "GRLWEAP soil depths not increasing",
+     lambda p: _grl(p, {"1": _run(p, rows=((5.0, 1.0, 1.0), (1.0, 2.0, 3.0)))}),
+     [], "drive", ["model.json", "srd_tables_by_run.1.rows", "increasing"]),
+]
+"""The command-line bad inputs: (class, case, system extra, arguments, command, words)."""
+
+OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result"]
+"""Bad output folders (test_bad_output_folder)."""
+
+FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass",
+               "file too large while writing",
+               "write refused (permission) while writing", "native build fails",
+               "Ctrl-C", "Ctrl-C on drive with workers",
+               "killed drive: no orphan workers, staging removed by the rerun",
+               "stale staging of a dead run removed", "match --zones too many",
+               "compare-pda record shorter than 2L/c",
+               "batch with a missing hammer anvil file: no half-made folder"]
+"""The faults and refusals tested one by one below."""
+
+PDA_CASES = ["BTA of an intact pile with 2 % noise", "impact peak on the first sample"]
+
+CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda"})
+COUNT = len(BAD_INPUTS) + len(OUTPUT_CASES) + len(FAULT_CASES) + len(PDA_CASES)
+"""Bad inputs and faults tested here."""
+
+
+def _assert_one_line_exit_2(code, capsys, words, out: Path | None = None):
+    err = capsys.readouterr().err.strip()
+    assert code == 2, err
+    assert "\n" not in err and "Traceback" not in err, err
+    assert err.startswith("anvilwave: error: "), err
+    for w in words:
+        assert w in err, (w, err)
+    if out is not None:
+        assert not out.exists()
+        assert not list(out.parent.glob(".partial-*"))
+
+
+@pytest.mark.parametrize("kind, case, extra, args, command, words", BAD_INPUTS,
+                         ids=[c[1] for c in BAD_INPUTS])
+def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra, args,
+                                              command, words):
+    system = _system(tmp_path, extra(tmp_path) if callable(extra) else extra)
+    out = tmp_path / "out"
+    code = cli.main([command, str(system), "--out", str(out), *args])
+    _assert_one_line_exit_2(code, capsys, words, out)
+
+
+def test_the_count_is_stated():
+    assert COUNT == len(BAD_INPUTS) + 17 and COUNT >= 42
+    assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
+
+
+@pytest.mark.parametrize("case", OUTPUT_CASES)
+def test_bad_output_folder(tmp_path, capsys, case):
+    record = _record(tmp_path)
+    if case == "out is a file":
+        out = tmp_path / "taken"
+        out.write_text("x")
+        words = ["--out", "is a file"]
+    elif case == "out below a file":
+        (tmp_path / "taken").write_text("x")
+        out = tmp_path / "taken" / "below"
+        words = ["--out", "is a file"]
+    else:
+        out = tmp_path / "drive_result"
+        out.mkdir()
+        (out / MARKER).write_text(json.dumps({"command": "drive"}))
+        (out / "driveability.csv").write_text("depth\n")
+        words = ["--out", "anvilwave drive", "'pda'"]
+    before = sorted(p.name for p in out.iterdir()) if out.is_dir() else None
+    code = cli.main(["pda", str(record), "--length", "4", "--area", "0.06", "--jc", "0.3",
+                     "--out", str(out)])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and "\n" not in err and all(w in err for w in words), err
+    if before is not None:
+        assert sorted(p.name for p in out.iterdir()) == before  # unchanged
+    assert not list(tmp_path.glob(".partial-*"))
+
+
+@pytest.mark.parametrize("error", [errno.ENOSPC, errno.EFBIG, errno.EACCES],
+                         ids=["disk full", "file too large", "permission"])
+def test_write_failure_is_one_line_and_leaves_nothing(tmp_path, capsys, monkeypatch, error):
+    """The result fails to be written after the work ran: one line, exit 2, no staging."""
+    import anvilwave.analyses.pda as pda
+
+    def full(*_args, **_kwargs):
+        raise OSError(error, os.strerror(error))
+
+    monkeypatch.setattr(pda, "write_csv", full)
+    record = _record(tmp_path)
+    out = tmp_path / "out"
+    code = cli.main(["pda", str(record), "--length", "4", "--area", "0.06", "--jc", "0.3",
+                     "--out", str(out)])
+    _assert_one_line_exit_2(code, capsys, ["--out", os.strerror(error), "not written"], out)
+
+
+def test_writer_keeps_the_old_result_when_a_write_fails(tmp_path):
+    out = tmp_path / "out"
+    with ResultWriter(out, command="impact") as w:
+        w.part("a.txt").write_text("old")
+    with pytest.raises(InputError, match="--out"), ResultWriter(out, command="impact") as w:
+        w.part("a.txt").write_text("new")
+        raise OSError(errno.ENOSPC, "No space left on device")
+    assert (out / "a.txt").read_text() == "old"
+    assert not list(tmp_path.glob(".partial-*"))
+
+
+def test_stale_staging_of_a_dead_run_is_removed(tmp_path):
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = tmp_path / f".partial-{dead.pid}-abc"
+    (stale / "x").mkdir(parents=True)
+    mine = tmp_path / f".partial-{os.getpid()}-live"
+    mine.mkdir()
+    with ResultWriter(tmp_path / "out", command="impact") as w:
+        w.part("a.txt").write_text("a")
+    assert not stale.exists() and mine.exists()  # a live process's staging is left alone
+
+
+def test_native_build_failure_is_one_line(tmp_path, capsys, monkeypatch):
+    def fails(*_args, **_kwargs):
+        raise NativeBuildError("cc: error: unrecognized option\ncompilation terminated.")
+
+    monkeypatch.setattr(cli.api, "build_fmus", fails)
+    system = _system(tmp_path)
+    out = tmp_path / "fmus"
+    code = cli.main(["build-fmus", str(system), "--out", str(out)])
+    _assert_one_line_exit_2(code, capsys, ["system.toml", "native anvil FMU",
+                                           "--python-anvil"], out)
+
+
+def test_ctrl_c_is_one_line(tmp_path, capsys, monkeypatch):
+    def interrupted(*_args, **_kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli.api, "pda", interrupted)
+    record = _record(tmp_path)
+    code = cli.main(["pda", str(record), "--length", "4", "--area", "0.06", "--jc", "0.3",
+                     "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err.strip()
+    assert code == 130 and err == "anvilwave: interrupted"
+
+
+def test_match_zones_beyond_the_segments_is_refused(tmp_path):
+    from anvilwave.config.budget import check_match_budget
+
+    with pytest.raises(InputError, match="--zones: 100000 zones on a pile of 20 segments"):
+        check_match_budget(100000, 20, 5000, 2000)
+    with pytest.raises(InputError, match=r"--zones: 300 zones need about .* forward runs"):
+        check_match_budget(300, 4000, 20000, 2000)
+    assert check_match_budget(3, 200, 4000, 2000)["wall_time [s]"] < 60.0
+
+
+def test_compare_pda_record_shorter_than_2l_over_c(tmp_path, capsys, monkeypatch):
+    import anvilwave.analyses.pda as pda
+
+    monkeypatch.setattr(pda, "compute_anvil_modes", None)  # never reached
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "examples" / "table1.toml").read_text().replace(
+        'file = "anvils/xl8.toml"', f'file = "{root}/examples/anvils/xl8.toml"')
+    system = tmp_path / "t1.toml"
+    system.write_text(text)
+    record = _record(tmp_path, n=100, dt=1e-4)  # 10 ms < 2L/c = 30 ms
+    out = tmp_path / "out"
+    code = cli.main(["compare-pda", str(record), str(system), "--out", str(out)])
+    _assert_one_line_exit_2(code, capsys, ["record.csv", "time [s]", "2L/c"], out)
+
+
+# ------------------------------------------------------------------------------------ PDA
+def _intact_record(noise: float, seed: int = 3):
+    """A uniform free pile without soil, by characteristics: the pulse and its toe
+    reflection, 2 % white noise of the peak on force and velocity."""
+    length, c, area, e = 40.0, 5172.0, 0.1, 2.1e11
+    z = e * area / c
+    dt = 0.2 / c
+    n = int(3 * 2 * length / c / dt)
+    t = np.arange(n) * dt
+    pulse = lambda s: np.where((s > 0) & (s < 2e-3), np.sin(np.pi * s / 2e-3) ** 2, 0.0)  # noqa: E731
+    p = 8e6
+    wd = p * pulse(t - 1e-3)
+    wu = -p * pulse(t - 1e-3 - 2 * length / c)  # free toe: the wave back in tension
+    f, v = wd + wu, (wd - wu) / z
+    rng = np.random.default_rng(seed)
+    f = f + noise * p * rng.standard_normal(n)
+    v = v + noise * (p / z) * rng.standard_normal(n)
+    return t, f, v, dict(area=area, elastic_modulus=e, wave_speed=c,
+                         length_below_gauges=length, case_damping=0.0)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_bta_of_an_intact_pile_with_noise(seed):
+    t, f, v, kw = _intact_record(0.02, seed)
+    assert case_method(t, f, v, **kw).bta >= 0.95
+    # unfiltered, the noise reads as damage
+    assert case_method(t, f, v, bta_cutoff=None, **kw).bta < 0.95
+
+
+def test_peak_on_the_first_sample():
+    s = np.array([10.0, 8.0, 6.0, 7.0, 3.0, 1.0])
+    assert first_peak_index(s) == 0
+    t, f, v, kw = _intact_record(0.0)
+    i = int(np.argmax(f))
+    r = case_method(t[i:], f[i:], v[i:], **kw)  # the record starts at the impact peak
+    assert r.t1 == pytest.approx(t[i]) and math.isfinite(r.rtl)
+
+
+# ---------------------------------------------------------------------- killed runs
+def _children(pid: int) -> list[int]:
+    out = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                stat = (d / "stat").read_text()
+            except OSError:
+                continue
+            if int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+                out.append(int(d.name))
+    return out
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_killed_drive_leaves_no_worker_and_the_rerun_no_staging(tmp_path):
+    system = _system(tmp_path, "[driveability]\nstart = 1.0\nstop = 10.0\nstep = 0.01\n"
+                               "blows_per_depth = 5\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "anvilwave", "drive", str(system), "--out", str(out),
+           "--workers", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    workers: list[int] = []
+    for _ in range(1200):  # until its two workers run (startup and compilation first)
+        workers = _children(proc.pid)
+        if len(workers) >= 2 or proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    assert proc.poll() is None and len(workers) >= 2, "the drive ended before its workers ran"
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    time.sleep(5.0)
+    alive = [w for w in workers if Path(f"/proc/{w}").exists()
+             and "Z" not in (Path(f"/proc/{w}/stat").read_text().rsplit(")", 1)[1].split()[:1])]
+    assert alive == []
+    # the writer of the rerun removes a staging folder the killed run left
+    remove_stale_staging(tmp_path)
+    assert not list(tmp_path.glob(".partial-*"))
+
+
+# ---------------------------------------------------------------------- the modal cache
+def test_a_cache_entry_with_scaled_frequencies_is_computed_again(tmp_path, monkeypatch):
+    """An entry valid as a file but holding another anvil's frequencies (scaled by 0.8) or
+    mass is found by the checks on reading, warned about, computed again and replaced."""
+    import dataclasses
+
+    import anvilwave.config.cache as cache
+    from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces
+
+    monkeypatch.setenv(cache.ENVIRONMENT_VARIABLE, str(tmp_path / "cache"))
+    spec = AnvilSpec(name="disc", material=STEEL,
+                     outline=np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 0.3], [0.0, 0.3]]),
+                     interfaces=Interfaces(0.2, 0.4, 0.1), mesh_size=0.06, fmax=10000.0)
+    clean = cache.cached_modal_data(spec)
+    assert cache.modal_data_mismatch(clean, spec, 10000.0) is None
+    (entry,) = (tmp_path / "cache").glob("*.npz")
+    for bad in (dataclasses.replace(clean, frequencies=clean.frequencies * 0.8),
+                dataclasses.replace(clean, total_mass=clean.total_mass * 1.21,
+                                    participation_gravity=clean.participation_gravity * 1.1)):
+        cache._store(bad, entry)
+        with pytest.warns(UserWarning, match="does not match its anvil"):
+            again = cache.cached_modal_data(spec)
+        np.testing.assert_allclose(again.frequencies, clean.frequencies, rtol=1e-9)
+        assert again.total_mass == pytest.approx(clean.total_mass, rel=1e-12)
+        assert cache.modal_data_mismatch(cache.load_modal_data(entry), spec, 10000.0) is None
+
+
+# ------------------------------------------------------------------------------ batch
+def test_batch_with_a_missing_hammer_anvil_leaves_no_folder(tmp_path, capsys):
+    """The campaign's hammer anvil file is missing: one line, exit 2, and the campaign folder
+    this run would have made is not left half-made."""
+    from .test_campaign import write_campaign
+
+    path = write_campaign(tmp_path / "c")
+    text = path.read_text().replace(
+        "[axes]", '[axes]\n[[axes.hammers]]\nname = "H"\ndatabase = "illustrative_s2"\n'
+                  '[axes.hammers.anvil]\nfile = "missing_anvil.toml"\n', 1)
+    path.write_text(text)
+    out = tmp_path / "campaign_out"
+    code = cli.main(["batch", str(path), "--out", str(out), "--workers", "1"])
+    _assert_one_line_exit_2(code, capsys, ["missing_anvil.toml"], out)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_ctrl_c_on_drive_is_one_line_and_leaves_no_worker(tmp_path):
+    system = _system(tmp_path, "[driveability]\nstart = 1.0\nstop = 10.0\nstep = 0.01\n"
+                               "blows_per_depth = 5\n")
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "anvilwave", "drive", str(system), "--out", str(out),
+           "--workers", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            start_new_session=True, text=True)
+    workers: list[int] = []
+    for _ in range(1200):
+        workers = _children(proc.pid)
+        if len(workers) >= 2 or proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    assert proc.poll() is None and len(workers) >= 2
+    os.killpg(proc.pid, signal.SIGINT)  # as the terminal sends Ctrl-C: to the whole group
+    _, err = proc.communicate(timeout=120)
+    lines = [x for x in err.replace("\r", "\n").splitlines() if x.strip()]
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    assert lines[-1] == "anvilwave: interrupted"
+    assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"]
+    time.sleep(1.0)
+    assert not [w for w in workers if Path(f"/proc/{w}").exists()]
+    assert not out.exists() and not list(tmp_path.glob(".partial-*"))
