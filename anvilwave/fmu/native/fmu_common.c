@@ -115,10 +115,50 @@ static char *next_token(Tokens *t)
     return start;
 }
 
+/* A hexadecimal floating constant as Python's float.hex() writes it ([-]0xH.HHHp[+-]E), read
+ * exactly without strtod (whose C runtime may not read the hexadecimal form). */
+static int parse_hex_real(const char *p, double *value)
+{
+    double sign = 1.0, mantissa = 0.0;
+    long exponent = 0, exponent_sign = 1;
+    int fraction_digits = 0, digits = 0, d;
+    if (*p == '-' || *p == '+') sign = *p++ == '-' ? -1.0 : 1.0;
+    if (p[0] != '0' || (p[1] != 'x' && p[1] != 'X')) return 0;
+    p += 2;
+    while ((d = hex_digit(*p)) >= 0) {
+        mantissa = mantissa * 16.0 + d; /* exact: at most 53 significant bits */
+        p++;
+        digits++;
+    }
+    if (*p == '.') {
+        p++;
+        while ((d = hex_digit(*p)) >= 0) {
+            mantissa = mantissa * 16.0 + d;
+            p++;
+            digits++;
+            fraction_digits++;
+        }
+    }
+    if (digits == 0 || digits > 14 || (*p != 'p' && *p != 'P')) return 0;
+    p++;
+    if (*p == '-' || *p == '+') exponent_sign = *p++ == '-' ? -1 : 1;
+    if (*p < '0' || *p > '9') return 0;
+    while (*p >= '0' && *p <= '9') {
+        exponent = exponent * 10 + (*p++ - '0');
+        if (exponent > 100000) return 0;
+    }
+    if (*p != '\0') return 0;
+    *value = sign * ldexp(mantissa, (int)(exponent_sign * exponent - 4 * fraction_digits));
+    return isfinite(*value);
+}
+
 static int parse_real(const char *token, double *value)
 {
     char *end;
+    const char *p = token;
     if (token == NULL) return 0;
+    if (*p == '-' || *p == '+') p++;
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) return parse_hex_real(token, value);
     errno = 0;
     *value = strtod(token, &end);
     return end != token && *end == '\0' && errno == 0 && isfinite(*value);
