@@ -424,7 +424,7 @@ def test_model_description_units_structure_and_sources(built):
         names = set(zf.namelist())
         build_xml = zf.read("sources/buildDescription.xml")
     source_files = md.buildConfigurations[0].sourceFileSets[0].sourceFiles  # <SourceFiles>
-    assert source_files == ["anvil_fmu.c", "anvil_model.c"]
+    assert source_files == ["anvil_fmu.c", "anvil_model.c", "fmu_common.c"]
     assert {f"sources/{f}" for f in source_files} <= names
     assert {"binaries/linux64/Anvil.so", f"resources/{MODAL_RESOURCE}",
             "sources/anvil_config.h", "sources/fmi2Functions.h"} <= names
