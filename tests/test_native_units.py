@@ -303,3 +303,50 @@ def test_sources_compile_warning_free_and_equal_the_shipped_binary(platform, tmp
             for name in ("fmi2Instantiate", "fmi2DoStep", "fmi2GetReal", "fmi2SetReal",
                          "fmi2FreeInstance"):
                 assert name in listing
+
+
+UNIT_HOST = Path(__file__).resolve().parent / "c_host" / "unit_host.c"
+
+
+def test_the_win64_binaries_run_under_wine_with_the_linux_numbers(built, tmp_path):
+    """tests/c_host/unit_host.c cross-compiled with mingw-w64 runs the shipped win64 DLLs of
+    an FMU under Wine; 2000 steps of a constant input give the linux64 binary's outputs (the
+    same operations: bitwise on this machine, rtol 1e-12 as above)."""
+    mingw, wine = shutil.which("x86_64-w64-mingw32-gcc"), shutil.which("wine")
+    gcc = nu.platform_compiler("linux64")
+    if not (mingw and wine and gcc):
+        pytest.skip("needs x86_64-w64-mingw32-gcc, wine and gcc (apt-get install mingw-w64 "
+                    "wine64)")
+    include = str(nu.NATIVE_DIR)
+    for compiler, exe, libs in ((mingw, tmp_path / "unit_host.exe", []),
+                                (gcc, tmp_path / "unit_host", ["-ldl"])):
+        run = subprocess.run([compiler, "-std=c99", "-O2", "-I", include, "-o", str(exe),
+                              str(UNIT_HOST), *libs], capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
+    cases = {"Ram": ("F_toe", 1e7, "u_toe", "v_toe"),
+             "PileSoil": ("F_head", 3.5e6, "u_head", "F_gauge")}
+    for kind, (name_in, value, out1, out2) in cases.items():
+        folder = tmp_path / kind
+        with zipfile.ZipFile(built[kind]) as zf:
+            zf.extractall(folder)
+        md = read_model_description(str(built[kind]))
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        tail = [md.guid, str(vr[name_in]), repr(value), str(vr[out1]), str(vr[out2]), "2000",
+                "1e-5"]
+        linux = subprocess.run([str(tmp_path / "unit_host"),
+                                str(folder / "binaries" / "linux64" / f"{kind}.so"),
+                                f"file://{folder}/resources", *tail],
+                               capture_output=True, text=True, timeout=120)
+        windows = subprocess.run([wine, str(tmp_path / "unit_host.exe"),
+                                  f"{kind}\\binaries\\win64\\{kind}.dll",
+                                  f"file:///Z:{folder}/resources", *tail], cwd=tmp_path,
+                                 capture_output=True, text=True, timeout=600,
+                                 env={"WINEDEBUG": "-all", "HOME": str(Path.home()),
+                                      "PATH": "/usr/bin:/bin"})
+        assert linux.returncode == 0, linux.stderr
+        assert windows.returncode == 0, windows.stdout + windows.stderr
+        assert "unit_host: ok" in windows.stdout
+        a = np.array(linux.stdout.split()[:2], dtype=float)
+        b = np.array(windows.stdout.split()[:2], dtype=float)
+        assert np.all(a != 0.0)
+        np.testing.assert_allclose(b, a, rtol=RTOL)
