@@ -18,7 +18,9 @@ compares them). The variables are those of the pythonfmu units of the same kind
 (:mod:`anvilwave.fmu.units.ram`, :mod:`anvilwave.fmu.units.pile_soil`) with the same value
 references, less the parameters that name or rebuild the model (``hammer``,
 ``pile_soil_file`` and the pile and soil settings, which the kernel arrays fix at the build).
-The modal ram runs in the pythonfmu Ram unit only (:func:`native_ram_support`).
+The modal ram (toe modes, :class:`anvilwave.hammer.modal_ram.ModalRamUnit`) runs natively too:
+every mode exact over the step (its toe sum in the order of the C loop, where the numba kernel
+may reassociate it: the two agree to rounding).
 
 :func:`rebuild_binaries` compiles the shipped binaries from the sources (gcc for linux64,
 x86_64-w64-mingw32-gcc for win64) and records the sources' SHA-256 beside them
@@ -33,6 +35,7 @@ import ctypes
 import hashlib
 import json
 import math
+import os
 import shutil
 import subprocess
 import sys
@@ -67,7 +70,8 @@ PLATFORMS: dict[str, dict[str, Any]] = {
     "linux64": {"suffix": ".so", "compilers": ("gcc", "cc"),
                 "flags": ("-fPIC", "-fvisibility=hidden"), "libs": ("-lm", "-Wl,-z,defs")},
     "win64": {"suffix": ".dll", "compilers": ("x86_64-w64-mingw32-gcc",),
-              "flags": ("-static-libgcc",), "libs": ("-lm",)},
+              "flags": ("-static-libgcc", "-Wl,--disable-auto-image-base"),
+              "libs": ("-lm",)},
 }
 """The platforms of the shipped binaries: suffix, compilers (first found), extra flags."""
 GENERATION_TOOL = "anvilwave fmu.native_units"
@@ -183,7 +187,10 @@ def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = 
     # relative names from the sources folder: nothing of the build machine in the binary
     cmd = [compiler, *COMMON_FLAGS, *WARNING_FLAGS, *spec["flags"], "-I.", "-o", str(binary),
            *sources, *spec["libs"]]
-    run = subprocess.run(cmd, cwd=NATIVE_DIR, capture_output=True, text=True, timeout=300)
+    # SOURCE_DATE_EPOCH: no build time in the binary (the PE header's), reproducible builds
+    env = {**os.environ, "SOURCE_DATE_EPOCH": "0"}
+    run = subprocess.run(cmd, cwd=NATIVE_DIR, capture_output=True, text=True, timeout=300,
+                         env=env)
     if run.returncode != 0 or not binary.is_file():
         raise NativeBuildError(f"compiling {kind} for {platform} failed ({' '.join(cmd)}):\n"
                                f"{run.stderr.strip()}")
@@ -247,7 +254,7 @@ def resource_text(kind: str, guid: str, starts: Mapping[str, float],
 
 def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
     """(arrays, parameter defaults) of a Ram unit for a
-    :class:`anvilwave.hammer.database.Hammer` (the rod or rigid ram of its ``ram``)."""
+    :class:`anvilwave.hammer.database.Hammer` (the rod, rigid or modal ram of its ``ram``)."""
     ram = hammer.ram
     supported, reason = native_ram_support(ram)
     if not supported:
@@ -255,6 +262,14 @@ def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
     arrays = {"mass": ram.mass, "stiffness": ram.stiffness,
               "total_mass": np.array([ram.total_mass]),
               "impact_velocity": np.array([float(hammer.impact_velocity)])}
+    if ram.is_modal_unit:  # the toe modes, the rigid-body mode first (ModalRamUnit's order)
+        modes = ram.modes
+        rigid = int(np.flatnonzero(modes.omega == 0.0)[0])
+        order = np.r_[rigid, np.delete(np.arange(modes.n_modes), rigid)]
+        arrays.update(modal_omega=modes.omega[order],
+                      modal_participation=modes.participation[order],
+                      modal_participation_gravity=np.array(
+                          [float(modes.participation_gravity[rigid])]))
     defaults = {"v_impact": float(hammer.impact_velocity), "mass": ram.total_mass,
                 "gravity": 9.81, "contact_displacement": 0.0, "contact_time": 0.0}
     return arrays, defaults
@@ -263,9 +278,8 @@ def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
 def native_ram_support(ram) -> tuple[bool, str]:
     """Whether the native Ram runs this :class:`anvilwave.hammer.ram.RamRod` ((True, "") or
     (False, the reason))."""
-    if ram.is_modal_unit:
-        return False, ("a modal ram (toe modes) runs in the pythonfmu Ram unit only; the native "
-                       "Ram is the lumped rod")
+    if ram.is_modal_unit and not np.any(ram.modes.omega == 0.0):
+        return False, "a modal ram without its rigid-body mode (omega = 0)"
     return True, ""
 
 

@@ -9,7 +9,11 @@
  *
  * Resource arrays (fmu_common.h): mass (n) [kg], top first; stiffness (n - 1) [N/m];
  * total_mass (1) [kg], the hammer's ram mass as Python sums it; impact_velocity (1) [m/s],
- * the hammer's at its rated energy.
+ * the hammer's at its rated energy. A modal ram (hammer/modal_ram.py ModalRamUnit) has also
+ * modal_omega (m) [rad/s], the rigid-body mode 0 first, modal_participation (m) [kg^-1/2] at
+ * the toe and modal_participation_gravity (1) [kg^1/2] of the rigid mode: every mode exact
+ * over the step for the held force (no sub-steps); its toe sum runs in the loop's order where
+ * the numba kernel may reassociate it, so the two agree to rounding.
  *
  * Variables (value references of the pythonfmu Ram unit): parameters v_impact [m/s] (0: the
  * hammer's), mass [kg] (0: the hammer's; else the segment masses are scaled to it), gravity
@@ -43,13 +47,30 @@ typedef struct {
     double *mass;      /* (n) [kg] */
     double *stiffness; /* (n - 1) [N/m] */
     double total_mass, impact_velocity;
+    /* a modal ram: its toe modes, the rigid-body mode first (n_modes 0: a rod) */
+    size_t n_modes;
+    double *omega, *participation; /* (n_modes) [rad/s], [kg^-1/2] */
+    double participation_gravity;  /* of the rigid-body mode [kg^1/2] */
 } RamModel;
+
+/* hammer/modal_ram.py ModalRamUnit: the two-step modal state */
+typedef struct {
+    size_t n;
+    double *a, *force, *p, *omega; /* (n): 2 cos(w h), c p_toe, p_toe, w */
+    double gravity_load;           /* c p_grav g of the rigid mode */
+    double p_grav, gravity;
+    double *q, *q_old;             /* (n): t_n and t_n-1 (swapped every step) */
+    double u, v, h;
+    int started;
+    double start_u, start_v;
+} ModalState;
 
 typedef struct {
     size_t n;
     double *weight, *inverse_mass, *stiffness, *u, *v; /* (n), (n), (n - 1), (n), (n) */
     double stable_step, h;
     double n_sub;
+    ModalState *modal; /* a modal ram: this instead of the chain */
 } RamState;
 
 static void free_model(void *p)
@@ -58,6 +79,8 @@ static void free_model(void *p)
     if (m == NULL) return;
     free(m->mass);
     free(m->stiffness);
+    free(m->omega);
+    free(m->participation);
     free(m);
 }
 
@@ -104,6 +127,30 @@ static void *load(const FmuResource *res, char *reason, size_t reason_size)
         snprintf(reason, reason_size, "out of memory");
         return NULL;
     }
+    {
+        size_t n_omega, n_p, n_g;
+        const double *omega = fmu_resource_array(res, "modal_omega", &n_omega);
+        const double *p = fmu_resource_array(res, "modal_participation", &n_p);
+        const double *g = fmu_resource_array(res, "modal_participation_gravity", &n_g);
+        if (omega == NULL) return m;
+        if (n_omega < 1 || p == NULL || n_p != n_omega || g == NULL || n_g != 1 ||
+            omega[0] != 0.0 || p[0] == 0.0) {
+            free_model(m);
+            snprintf(reason, reason_size, "a modal ram needs modal_omega (the rigid mode 0 "
+                     "first), modal_participation (as many, p[0] != 0) and "
+                     "modal_participation_gravity (1)");
+            return NULL;
+        }
+        m->n_modes = n_omega;
+        m->omega = copy_array(omega, n_omega);
+        m->participation = copy_array(p, n_omega);
+        m->participation_gravity = g[0];
+        if (m->omega == NULL || m->participation == NULL) {
+            free_model(m);
+            snprintf(reason, reason_size, "out of memory");
+            return NULL;
+        }
+    }
     return m;
 }
 
@@ -132,10 +179,109 @@ static double stable_time_step(const double *mass, const double *stiffness, size
     return 2.0 / sqrt(omega2);
 }
 
+static void free_modal(ModalState *m)
+{
+    if (m == NULL) return;
+    free(m->a);
+    free(m->force);
+    free(m->p);
+    free(m->omega);
+    free(m->q);
+    free(m->q_old);
+    free(m);
+}
+
+/* modal_ram.py ModalRamUnit._coefficients (rom.py modal_transition, undamped) */
+static void modal_coefficients(ModalState *m, double h)
+{
+    size_t j;
+    for (j = 0; j < m->n; j++) {
+        double w = m->omega[j], a, c;
+        if (w == 0.0) {
+            a = 2.0;
+            c = h * h;
+        } else {
+            a = 2.0 * 1.0 * cos(w * h);
+            c = (1.0 - a - -1.0) / (w * w);
+        }
+        m->a[j] = a;
+        m->force[j] = c * m->p[j];
+        if (j == 0) m->gravity_load = c * m->p_grav * m->gravity;
+    }
+    m->h = h;
+}
+
+static void *start_modal(const RamModel *model, double gravity, double u0, double velocity,
+                         char *reason, size_t reason_size)
+{
+    size_t n = model->n_modes;
+    RamState *s = (RamState *)calloc(1, sizeof *s);
+    ModalState *m = (ModalState *)calloc(1, sizeof *m);
+    if (s == NULL || m == NULL) {
+        free(s);
+        free(m);
+        snprintf(reason, reason_size, "out of memory");
+        return NULL;
+    }
+    s->modal = m;
+    m->n = n;
+    m->a = (double *)calloc(n, sizeof(double));
+    m->force = (double *)calloc(n, sizeof(double));
+    m->p = copy_array(model->participation, n);
+    m->omega = copy_array(model->omega, n);
+    m->q = (double *)calloc(n, sizeof(double));
+    m->q_old = (double *)calloc(n, sizeof(double));
+    if (m->a == NULL || m->force == NULL || m->p == NULL || m->omega == NULL || m->q == NULL ||
+        m->q_old == NULL) {
+        free_modal(m);
+        free(s);
+        snprintf(reason, reason_size, "out of memory");
+        return NULL;
+    }
+    m->p_grav = model->participation_gravity;
+    m->gravity = gravity;
+    m->h = NAN;
+    /* fmu/units/ram.py ModalRamState: the two-step state needs the step, set at the first */
+    m->start_u = m->u = u0;
+    m->start_v = m->v = velocity;
+    return s;
+}
+
+/* modal_ram.py ModalRamUnit.start / set_step and modal_ram_advance */
+static void step_modal(ModalState *m, double toe_force, double h)
+{
+    size_t j;
+    double u = 0.0, *swap;
+    if (!m->started) {
+        if (h != m->h) modal_coefficients(m, h);
+        for (j = 0; j < m->n; j++) m->q[j] = m->q_old[j] = 0.0;
+        m->q[0] = m->start_u / m->p[0];
+        m->q_old[0] = (m->start_u - h * m->start_v) / m->p[0];
+        m->u = m->start_u;
+        m->v = m->start_v;
+        m->started = 1;
+    } else if (h != m->h) {
+        for (j = 0; j < m->n; j++) m->q_old[j] = m->q[j] - h * (m->q[j] - m->q_old[j]) / m->h;
+        modal_coefficients(m, h);
+    }
+    m->q_old[0] -= m->gravity_load;
+    for (j = 0; j < m->n; j++) {
+        double x = m->a[j] * m->q[j] - m->q_old[j] - m->force[j] * toe_force;
+        m->q_old[j] = x;
+        u += m->p[j] * x;
+    }
+    swap = m->q;
+    m->q = m->q_old;
+    m->q_old = swap;
+    m->v = (u - m->u) / h;
+    m->u = u;
+}
+
 static void free_state(void *p)
 {
     RamState *s = (RamState *)p;
     if (s == NULL) return;
+    free_modal(s->modal);
     free(s->weight);
     free(s->inverse_mass);
     free(s->stiffness);
@@ -163,6 +309,11 @@ static void *start(const void *p, const double *slots, double start_time, char *
         return NULL;
     }
     if (wanted > 0.0 && wanted != m->total_mass) {
+        if (m->n_modes > 0) {
+            snprintf(reason, reason_size, "mass: a modal ram keeps its own mass (%.6g kg): give "
+                     "0, got %g kg", m->total_mass, wanted);
+            return NULL;
+        }
         scale = 1;
         ratio = wanted / m->total_mass;
     }
@@ -171,6 +322,10 @@ static void *start(const void *p, const double *slots, double start_time, char *
         snprintf(reason, reason_size, "v_impact: must be in (0, 50] m/s, got %g", velocity);
         return NULL;
     }
+    if (m->n_modes > 0)
+        return start_modal(m, gravity, slots[CONTACT_DISPLACEMENT] +
+                                           velocity * (start_time - slots[CONTACT_TIME]),
+                           velocity, reason, reason_size);
     s = (RamState *)calloc(1, sizeof *s);
     if (s == NULL) return NULL;
     s->n = n;
@@ -206,6 +361,11 @@ static void *start(const void *p, const double *slots, double start_time, char *
 static void outputs(const void *p, double *slots)
 {
     const RamState *s = (const RamState *)p;
+    if (s->modal != NULL) {
+        slots[U_TOE] = s->modal->u;
+        slots[V_TOE] = s->modal->v;
+        return;
+    }
     slots[U_TOE] = s->u[s->n - 1];
     slots[V_TOE] = s->v[s->n - 1];
 }
@@ -215,8 +375,13 @@ static int step(void *p, const double *slots, double h, char *reason, size_t rea
 {
     RamState *s = (RamState *)p;
     double toe_force = slots[F_TOE], dt;
-    size_t last = s->n - 1, i;
+    size_t last, i;
     long k, n_sub;
+    if (s->modal != NULL) {
+        step_modal(s->modal, toe_force, h);
+        return 1;
+    }
+    last = s->n - 1;
     if (h != s->h) {
         double n = ceil(h / s->stable_step - 1e-9);
         if (!(n <= MAX_SUBSTEPS)) {
