@@ -16,8 +16,8 @@ them, with anvilwave, is still installed: :mod:`anvilwave.fmu.fmi_build`) unless
 Ram and PileSoil units. By default (``native_units=None``) ``Ram.fmu`` and ``PileSoil.fmu`` are
 the native units of :mod:`anvilwave.fmu.native_units` (generic C binaries shipped with
 anvilwave for Linux x86-64 and Windows x64, the model as a resource: no compiler needed to
-build them, no Python to run them) when they support the system: a rod or rigid ram (the
-modal ram runs in the pythonfmu Ram only) and shipped binaries built from the current sources.
+build them, no Python to run them) when they support the system (a rod, rigid or modal ram;
+any pile and soil) and their shipped binaries are built from the current sources.
 Otherwise the pythonfmu unit is built, with a warning naming the reason; ``native_units=True``
 makes that an :class:`~anvilwave.inputs.InputError`, ``False`` builds the pythonfmu units.
 The native PileSoil fixes the pile and soil settings at the build (the pythonfmu unit also
