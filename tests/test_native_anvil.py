@@ -590,6 +590,11 @@ def test_calls_out_of_rule_give_fmi2error_and_the_host_survives(built):
             fmu.fmu.doStep(0.0, -1e-6)
         assert error.value.status == 3
         assert "communication step: must be positive" in fmu.errors()[-1]
+        fmu.fmu.reset()
+        fmu.initialize()
+        with pytest.raises(FMICallException):
+            fmu.fmu.doStep(0.0, 1e300)  # a master's unit mistake, not a step of a blow
+        assert "communication step 1e+300 s is larger than 1000 s" in fmu.errors()[-1]
     finally:
         fmu.close()
 

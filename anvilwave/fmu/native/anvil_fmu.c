@@ -852,6 +852,9 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
     if (!(isfinite(h) && h > 0.0))
         return fail(inst, "step at t = %.9g s: communication step: must be positive, got %g s",
                     currentCommunicationPoint, h);
+    if (h > FMU_MAX_STEP)
+        return fail(inst, "step at t = %.9g s: communication step %g s is larger than %g s",
+                    currentCommunicationPoint, h, FMU_MAX_STEP);
     if (extrapolating(inst)) {
         /* Python: AnvilSlaveBase.advance and InputExtrapolation.stepped */
         double u_ram, v_ram, u_pile, v_pile, force_ram, force_pile;

@@ -25,6 +25,10 @@
 #include "fmi2Functions.h"
 
 #define FMU_MESSAGE_SIZE 2048
+#define FMU_MAX_STEP 1.0e3
+/* Largest communication step of the native units [s]: a blow lasts tens of milliseconds; a
+ * step of more than 1000 s is a master's mistake (and one of 1e300 s would overflow the
+ * states or, in the modal recurrences, give meaningless phases). */
 #define FMU_UNIT_MAGIC "anvilwave-unit"
 #define FMU_UNIT_VERSION 1
 #define FMU_UNIT_RESOURCE "anvilwave_unit.txt"

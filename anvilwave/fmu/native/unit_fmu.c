@@ -12,7 +12,7 @@
  *   initialization, an output or an unknown value reference; the value is not stored.
  * - fmi2ExitInitializationMode builds the unit's state from the parameters (a bad value:
  *   fmi2Error with the unit's reason); fmi2DoStep refuses a non-finite, non-positive or too
- *   large step (above UNIT_MAX_STEP, or one the unit cannot sub-step) and reports non-finite
+ *   large step (above FMU_MAX_STEP, or one the unit cannot sub-step) and reports non-finite
  *   outputs after a step as fmi2Error. After an fmi2Error in initialization or stepping the
  *   instance refuses to step until fmi2Reset; fmi2Reset restores the build's start values.
  * - Calls out of sequence: fmi2Error, the reason logged, the state kept.
@@ -29,9 +29,6 @@
 #include "fmu_common.h"
 #include "unit_model.h"
 
-#define UNIT_MAX_STEP 1.0e3
-/* Largest communication step [s]: a blow lasts tens of milliseconds, a step of more than
- * 1000 s is a master's mistake (and 1e300 s would overflow the states). */
 
 typedef enum {
     ST_INSTANTIATED = 1,
@@ -573,9 +570,9 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
     if (!(isfinite(h) && h > 0.0))
         return fail(inst, "fmi2DoStep: the communication step must be finite and positive, "
                     "got %g s", h);
-    if (h > UNIT_MAX_STEP)
+    if (h > FMU_MAX_STEP)
         return fail(inst, "fmi2DoStep: the communication step %g s is larger than %g s",
-                    h, UNIT_MAX_STEP);
+                    h, FMU_MAX_STEP);
     inst->reason[0] = '\0';
     if (!UNIT_MODEL.step(inst->unit, inst->slots, h, inst->reason, sizeof inst->reason))
         return fail(inst, "fmi2DoStep: %s", inst->reason);
