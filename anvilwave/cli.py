@@ -118,10 +118,13 @@ def _build_fmus(args: argparse.Namespace) -> int:
     if args.anvil is not None:
         cfg = cfg.with_anvil_model(args.anvil)
     with ResultWriter(args.out) as out:
-        built = build_system_fmus(cfg, out.staging, native_anvil=not args.python_anvil)
+        built = build_system_fmus(cfg, out.staging, native_anvil=not args.python_anvil,
+                                  native_units=False if args.python_units else None)
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
-    print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}; system.ssp uses "
+    print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}, ram: "
+          f"{built['ram_implementation']}, pile/soil: {built['pile_soil_implementation']}; "
+          f"system.ssp uses "
           f"{built['anvil']} with input extrapolation, step {built['ssp_step'] * 1e6:.3g} us "
           f"= engine step {built['time_step'] * 1e6:.3g} us / "
           f"{built['time_step'] / built['ssp_step']:.0f})")
@@ -428,8 +431,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
         description="Build the FMI 2.0 co-simulation units of a system (native C anvils with "
-                    "the modal data embedded, needing a C compiler; pythonfmu ram and "
-                    "pile/soil) and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
+                    "the modal data embedded, needing a C compiler; native ram and pile/soil "
+                    "from shipped Linux x86-64 and Windows x64 binaries, no compiler needed) "
+                    "and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
                     "system's parameter values, for Jacobi-type masters such as libcosim.",
     )
     p.add_argument("system", type=Path, help="system file (TOML)")
@@ -438,6 +442,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--python-anvil", action="store_true",
                    help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of in C "
                         "(no C compiler needed; they run in the Python that built them)")
+    p.add_argument("--python-units", action="store_true",
+                   help="build Ram.fmu and PileSoil.fmu with pythonfmu instead of the native "
+                        "units (they run in the Python that built them; the pile and soil "
+                        "settings stay parameters)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_build_fmus)
 
