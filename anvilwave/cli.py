@@ -119,7 +119,8 @@ def _build_fmus(args: argparse.Namespace) -> int:
         cfg = cfg.with_anvil_model(args.anvil)
     with ResultWriter(args.out) as out:
         built = build_system_fmus(cfg, out.staging, native_anvil=not args.python_anvil,
-                                  native_units=False if args.python_units else None)
+                                  native_units=False if args.python_units else None,
+                                  fmi_version=args.fmi_version)
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
     print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}, ram: "
@@ -442,6 +443,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--python-anvil", action="store_true",
                    help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of in C "
                         "(no C compiler needed; they run in the Python that built them)")
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the native Ram.fmu and PileSoil.fmu (3: FMI 3.0 "
+                        "co-simulation, the same numbers; the anvils stay FMI 2.0)")
     p.add_argument("--python-units", action="store_true",
                    help="build Ram.fmu and PileSoil.fmu with pythonfmu instead of the native "
                         "units (they run in the Python that built them; the pile and soil "

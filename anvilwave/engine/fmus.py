@@ -119,7 +119,8 @@ SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
                       time_step: float | None = None, ssp: bool = True,
                       native_anvil: bool | None = True,
-                      native_units: bool | None = None) -> dict[str, Any]:
+                      native_units: bool | None = None,
+                      fmi_version: int = 2) -> dict[str, Any]:
     """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
     ``system.ssp`` for a system into ``out_dir`` (module docstring).
 
@@ -134,6 +135,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     native_units : Ram and PileSoil (module docstring): None native where supported, else
         pythonfmu with a warning; True native (InputError when not supported); False
         pythonfmu.
+    fmi_version : 3 builds the native Ram and PileSoil as FMI 3.0 co-simulation units (the same
+        binaries and numbers; InputError when they cannot be native); the anvils stay FMI 2.0.
 
     Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
     "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
@@ -174,15 +177,24 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                               "time_step": float(time_step), "ssp_step": step,
                               "modal_data": modal, "anvil_rest": rest,
                               "anvil_implementation": "native" if native else "pythonfmu"}
+    if fmi_version not in (2, 3):
+        raise InputError(cfg.source, "fmi_version", f"must be 2 or 3, got {fmi_version!r}")
+    if fmi_version == 3:
+        if native_units is False:
+            raise InputError(cfg.source, "fmi_version", "FMI 3.0 units are the native Ram and "
+                                                        "PileSoil: not with the pythonfmu units")
+        native_units = True
     native_ram = _native_unit_wanted("Ram", native_units, native_ram_support(cfg.hammer.ram))
     native_pile = _native_unit_wanted("PileSoil", native_units, (True, ""))
+    result["fmi_version"] = {"Ram": fmi_version, "PileSoil": fmi_version, "Anvil": 2,
+                             "AnvilLumped": 2}
     result["ram_implementation"] = "native" if native_ram else "pythonfmu"
     result["pile_soil_implementation"] = "native" if native_pile else "pythonfmu"
     with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
         if native_ram:
             result["Ram"] = build_native_ram_fmu(cfg.hammer, out_dir / "Ram.fmu",
-                                                 **parameters["Ram"])
+                                                 fmi_version=fmi_version, **parameters["Ram"])
         else:
             result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
         if native:
@@ -201,6 +213,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         if native_pile:
             result["PileSoil"] = build_native_pile_soil_fmu(cfg.pile_soil,
                                                             out_dir / "PileSoil.fmu",
+                                                            fmi_version=fmi_version,
                                                             **parameters["PileSoil"])
         else:
             result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,

@@ -53,10 +53,13 @@ from anvilwave.fmu.native_build import NATIVE_DIR, UNITS, NativeBuildError, _zip
 from anvilwave.inputs import InputError
 
 UNIT_KINDS = ("Ram", "PileSoil")
-COMMON_SOURCES = ("unit_fmu.c", "fmu_common.c")
+COMMON_SOURCES = ("unit_fmu.c", "unit_fmi3.c", "fmu_common.c")
 MODEL_SOURCES = {"Ram": "ram_model.c", "PileSoil": "pile_soil_model.c"}
 UNIT_HEADERS = ("unit_model.h", "fmu_common.h", "fmi2Functions.h", "fmi2FunctionTypes.h",
-                "fmi2TypesPlatform.h")
+                "fmi2TypesPlatform.h", "fmi3Functions.h", "fmi3FunctionTypes.h",
+                "fmi3PlatformTypes.h")
+FMI3_PLATFORMS = {"linux64": "x86_64-linux", "win64": "x86_64-windows"}
+"""The FMI 3.0 names of the binaries' folders (one binary holds the FMI 2.0 and 3.0 API)."""
 RESOURCE = "anvilwave_unit.txt"
 """The unit's model in ``resources/`` (``anvilwave/fmu/native/fmu_common.h``)."""
 RESOURCE_MAGIC = "anvilwave-unit 1"
@@ -295,7 +298,7 @@ def pile_soil_arrays(model) -> tuple[dict[str, np.ndarray], dict[str, float]]:
 
 # ---------------------------------------------------------------------------- build
 def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
-                         **parameters) -> Path:
+                         fmi_version: int = 2, **parameters) -> Path:
     """``Ram.fmu`` (native) for a :class:`anvilwave.hammer.database.Hammer` (or a name of the
     hammer database); parameters as the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg],
     ``gravity`` [m/s^2], ``contact_displacement`` [m], ``contact_time`` [s])."""
@@ -305,11 +308,11 @@ def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
         hammer = load_hammer(hammer, float(parameters.get("gravity", 9.81)))
     arrays, defaults = ram_arrays(hammer)
     return build_unit_fmu("Ram", arrays, {**defaults, **parameters}, out_path,
-                          validate=validate, explicit=set(parameters))
+                          validate=validate, explicit=set(parameters), fmi_version=fmi_version)
 
 
 def build_native_pile_soil_fmu(pile_soil, out_path: str | Path, *, validate: bool = True,
-                               **parameters) -> Path:
+                               fmi_version: int = 2, **parameters) -> Path:
     """``PileSoil.fmu`` (native) for a :class:`anvilwave.pile.model.PileSoil` (or the path of
     a TOML file with ``[pile]`` and an optional ``[soil]``); parameters ``static_head_load``
     [N] and ``gravity`` [m/s^2]."""
@@ -318,21 +321,24 @@ def build_native_pile_soil_fmu(pile_soil, out_path: str | Path, *, validate: boo
     model = pile_soil if isinstance(pile_soil, PileSoil) else load_pile_soil(pile_soil)
     arrays, defaults = pile_soil_arrays(model)
     return build_unit_fmu("PileSoil", arrays, {**defaults, **parameters}, out_path,
-                          validate=validate, explicit=set(parameters))
+                          validate=validate, explicit=set(parameters), fmi_version=fmi_version)
 
 
 def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[str, Any],
                    out_path: str | Path, *, validate: bool = True,
-                   explicit: set[str] | None = None) -> Path:
+                   explicit: set[str] | None = None, fmi_version: int = 2) -> Path:
     """Write a native unit FMU of ``kind`` with these kernel arrays and parameter start values
     (``out_path``: the ``.fmu`` or a folder); nothing is written when the build fails.
 
     The FMU holds modelDescription.xml, resources/anvilwave_unit.txt, the shipped binaries
     (:func:`unit_binaries`) under binaries/<platform>/ and the C sources under sources/. Its
     GUID is derived from the content, and the archive has fixed timestamps and order: the same
-    inputs give the same bytes.
+    inputs give the same bytes. ``fmi_version`` 3: an FMI 3.0 co-simulation FMU (the same
+    binaries, which hold both APIs, under the FMI 3.0 platform folders).
     """
     source = f"native {kind} FMU build"
+    if fmi_version not in (2, 3):
+        raise InputError(source, "fmi_version", f"must be 2 or 3, got {fmi_version!r}")
     variables = VARIABLES[kind]
     names = {v.name for v in variables if v.causality == "parameter"}
     for name in sorted(set(values) - names):
@@ -352,7 +358,8 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
     out_path = Path(out_path)
     target = out_path if out_path.suffix == ".fmu" else out_path / f"{kind}.fmu"
     content = resource_text(kind, "", starts, arrays)
-    digest = hashlib.sha256(content.encode())
+    digest = hashlib.sha256(f"FMI {fmi_version}".encode())
+    digest.update(content.encode())
     digest.update(sources_digest(kind).encode())
     for platform in sorted(binaries):
         digest.update(binaries[platform].read_bytes())
@@ -367,14 +374,19 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
         for name in (*COMMON_SOURCES, MODEL_SOURCES[kind], *UNIT_HEADERS):
             shutil.copyfile(NATIVE_DIR / name, sources / name)
         for platform, path in binaries.items():
-            folder = stage / "binaries" / platform
+            folder = stage / "binaries" / (platform if fmi_version == 2
+                                           else FMI3_PLATFORMS[platform])
             folder.mkdir(parents=True)
             shutil.copyfile(path, folder / f"{kind}{PLATFORMS[platform]['suffix']}")
-        (stage / "modelDescription.xml").write_bytes(unit_model_description(kind, guid, starts))
+        describe = unit_model_description if fmi_version == 2 else unit_model_description_3
+        (stage / "modelDescription.xml").write_bytes(describe(kind, guid, starts))
         archive = Path(scratch) / f"{kind}.fmu"
         _zip(stage, archive)
         if validate:
-            check_unit_fmu(archive, stage, kind, guid)
+            if fmi_version == 2:
+                check_unit_fmu(archive, stage, kind, guid)
+            else:
+                check_unit_fmu_3(archive, kind)
         target.parent.mkdir(parents=True, exist_ok=True)
         part = target.with_name(target.name + ".part")
         shutil.copyfile(archive, part)
@@ -445,6 +457,79 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) ->
                           dependencies=parameters)
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
+
+
+def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float]) -> bytes:
+    """``modelDescription.xml`` of a native unit as FMI 3.0 co-simulation (the variables and
+    value references of the FMI 2.0 unit, Float64, and the independent variable ``time``)."""
+    variables = VARIABLES[kind]
+    root = ET.Element("fmiModelDescription", {
+        "fmiVersion": "3.0", "modelName": kind, "instantiationToken": token,
+        "description": DESCRIPTIONS[kind], "author": AUTHOR, "version": package_version(),
+        "license": LICENSE, "copyright": f"{AUTHOR}, {LICENSE} licence",
+        "generationTool": GENERATION_TOOL, "variableNamingConvention": "structured"})
+    ET.SubElement(root, "CoSimulation", {
+        "modelIdentifier": kind, "needsExecutionTool": "false",
+        "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "false",
+        "canSerializeFMUState": "false", "providesDirectionalDerivatives": "false",
+        "providesAdjointDerivatives": "false", "canHandleVariableCommunicationStepSize": "true",
+        "providesIntermediateUpdate": "false", "canReturnEarlyAfterIntermediateUpdate": "false",
+        "hasEventMode": "false"})
+    units = ET.SubElement(root, "UnitDefinitions")
+    for name in sorted({v.unit for v in variables} | {"s"}):  # "s": time
+        unit = ET.SubElement(units, "Unit", name=name)
+        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
+    categories = ET.SubElement(root, "LogCategories")
+    for name, text in (("logStatusError", "Errors (always reported)"),
+                       ("logStatusWarning", "Warnings (always reported)"),
+                       ("logCalls", "Every FMI call, with debug logging on")):
+        ET.SubElement(categories, "Category", name=name, description=text)
+    ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime="0.02", stepSize="1e-05")
+    mv = ET.SubElement(root, "ModelVariables")
+    ET.SubElement(mv, "Float64", name="time", valueReference="0", causality="independent",
+                  variability="continuous", description="Simulation time [s]", unit="s")
+    for v in variables:
+        attrs = {"name": v.name, "valueReference": str(v.vr), "description": v.description,
+                 "causality": v.causality,
+                 "variability": "fixed" if v.causality == "parameter" else "continuous",
+                 "unit": v.unit}
+        if v.causality == "parameter":
+            attrs["start"] = repr(starts[v.name])
+        elif v.causality == "input":
+            attrs["start"] = "0.0"
+        ET.SubElement(mv, "Float64", attrs)
+    structure = ET.SubElement(root, "ModelStructure")
+    for v in variables:
+        if v.causality == "output":  # states: no feedthrough
+            ET.SubElement(structure, "Output", valueReference=str(v.vr), dependencies="")
+    for v in variables:
+        if v.causality == "output":
+            ET.SubElement(structure, "InitialUnknown", valueReference=str(v.vr))
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
+
+
+def check_unit_fmu_3(archive: Path, kind: str) -> None:
+    """fmpy's validation of an FMI 3.0 unit and one short simulation (skipped without fmpy or
+    off linux64)."""
+    try:
+        from fmpy import simulate_fmu
+        from fmpy.validation import validate_fmu
+    except ImportError:
+        return
+    problems = validate_fmu(str(archive))
+    if problems:
+        raise NativeBuildError(f"{archive.name} does not validate: " + "; ".join(problems))
+    if not (sys.platform.startswith("linux") and sys.maxsize > 2**32):
+        return
+    try:
+        result = simulate_fmu(str(archive), stop_time=2e-5, step_size=1e-5,
+                              output_interval=1e-5)
+    except Exception as exc:  # noqa: BLE001 - reported as a build error
+        raise NativeBuildError(f"{archive.name} does not simulate: {exc}") from None
+    outputs = [v.name for v in VARIABLES[kind] if v.causality == "output"]
+    if not all(np.all(np.isfinite(result[name])) for name in outputs):
+        raise NativeBuildError(f"{archive.name}: outputs are not finite")
 
 
 def check_unit_fmu(archive: Path, stage: Path, kind: str, guid: str) -> None:
