@@ -8,7 +8,8 @@ build copies them into the FMU and writes what is particular to it into
 ``resources/anvilwave_unit.txt`` (the ``anvilwave-unit`` text format of
 ``anvilwave/fmu/native/fmu_common.h``: GUID, parameter start values, the kernel arrays as
 exact hexadecimal floats), so that building FMUs needs no C compiler and the FMU runs on Linux
-x86-64 and Windows x64 without Python.
+x86-64 and Windows x64 without Python. The same binaries hold the FMI 3.0 co-simulation API
+(``unit_fmi3.c``): ``fmi_version=3`` packs them as an FMI 3.0 FMU.
 
 The numerics are those of the Python kernels, operation for operation (``-ffp-contract=off``):
 :func:`anvilwave.hammer.ram.ram_advance` and :func:`anvilwave.hammer.ram.stable_time_step` for
