@@ -218,10 +218,21 @@ def rebuild_binaries(platforms: tuple[str, ...] | None = None,
         built[platform] = {kind: compile_unit(kind, platform,
                                               out_dir / platform / f"{kind}{suffix}")
                            for kind in UNIT_KINDS}
-    (out_dir / DIGEST_FILE).write_text(
-        json.dumps({kind: sources_digest(kind) for kind in UNIT_KINDS}, indent=2,
-                   sort_keys=True) + "\n", encoding="ascii")
+    record = {kind: sources_digest(kind) for kind in UNIT_KINDS}
+    record["compilers"] = {platform: compiler_version(platform) for platform in platforms}
+    (out_dir / DIGEST_FILE).write_text(json.dumps(record, indent=2, sort_keys=True) + "\n",
+                                       encoding="ascii")
     return built
+
+
+def compiler_version(platform: str) -> str | None:
+    """The first line of ``--version`` of the platform's compiler (None without one): the
+    shipped binaries are byte-reproducible with the same compiler version."""
+    compiler = platform_compiler(platform)
+    if compiler is None:
+        return None
+    run = subprocess.run([compiler, "--version"], capture_output=True, text=True)
+    return run.stdout.splitlines()[0].strip() if run.stdout else None
 
 
 def unit_binaries(kind: str) -> dict[str, Path]:
