@@ -113,14 +113,18 @@ def _build_fmus(args: argparse.Namespace) -> int:
     try:
         with ResultWriter(args.out, command="build-fmus") as out:
             built = api.build_fmus(args.system, out.staging, anvil=args.anvil,
-                                   native_anvil=not args.python_anvil)
+                                   native_anvil=not args.python_anvil,
+                                   native_units=False if args.python_units else None,
+                                   fmi_version=args.fmi_version)
     except NativeBuildError as exc:
         raise InputError(str(args.system), "", f"the native anvil FMU cannot be built here "
                                                f"({_one_line(exc)}); --python-anvil builds "
                                                "the Python one") from None
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
                                                     "ssp"))
-    print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}; system.ssp uses "
+    print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}, ram: "
+          f"{built['ram_implementation']}, pile/soil: {built['pile_soil_implementation']}; "
+          f"system.ssp uses "
           f"{built['anvil']} with input extrapolation, step {built['ssp_step'] * 1e6:.3g} us "
           f"= engine step {built['time_step'] * 1e6:.3g} us / "
           f"{built['time_step'] / built['ssp_step']:.0f})")
@@ -401,8 +405,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser(
         "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
         description="Build the FMI 2.0 co-simulation units of a system (native C anvils with "
-                    "the modal data embedded, needing a C compiler; pythonfmu ram and "
-                    "pile/soil) and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
+                    "the modal data embedded, needing a C compiler; native ram and pile/soil "
+                    "from shipped Linux x86-64 and Windows x64 binaries, no compiler needed) "
+                    "and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
                     "system's parameter values, for Jacobi-type masters such as libcosim.",
     )
     p.add_argument("system", type=Path, help="system file (TOML)")
@@ -411,6 +416,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--python-anvil", action="store_true",
                    help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of in C "
                         "(no C compiler needed; they run in the Python that built them)")
+    p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the native Ram.fmu and PileSoil.fmu (3: FMI 3.0 "
+                        "co-simulation, the same numbers; the anvils stay FMI 2.0)")
+    p.add_argument("--python-units", action="store_true",
+                   help="build Ram.fmu and PileSoil.fmu with pythonfmu instead of the native "
+                        "units (they run in the Python that built them; the pile and soil "
+                        "settings stay parameters)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_build_fmus)
 

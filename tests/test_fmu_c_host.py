@@ -209,3 +209,64 @@ def test_no_python_at_all_is_a_clear_error(host, fmus, tmp_path):
             f"installed: the Python that built it (/gone/bin/python, library "
             f"/gone/lib/libpython.so.1.0) is gone and no python{version} is on the PATH"
             in run.stderr)
+
+
+SYSTEM_HOST_SOURCE = ROOT / "tests" / "c_host" / "system_host.c"
+
+
+def test_native_three_unit_system_in_a_c_host_with_an_empty_environment_equals_the_engine(
+        tmp_path):
+    """Ram, Anvil and PileSoil, all native (no Python inside), run by tests/c_host/
+    system_host.c (the DESIGN.md exchange order of fmi_master.BlowMaster) with an empty
+    environment: the peak contact forces equal the in-process engine's to 1e-9 of the peaks
+    (the same kernels in C and numba, the same exchange; the bound is the issue's)."""
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+    from anvilwave.engine.fmus import build_system_fmus, load_anvil_modal_data
+
+    compiler = _compiler()
+    exe = tmp_path / "system_host"
+    run = subprocess.run([*compiler.split(), "-std=c99", "-O2", "-I",
+                          str(ROOT / "anvilwave" / "fmu" / "native"), "-o", str(exe),
+                          str(SYSTEM_HOST_SOURCE), "-ldl"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    cfg = load_system(EXAMPLES / "size_s2.toml")  # a rod ram (Table 1's is modal)
+    modal = load_anvil_modal_data(cfg)
+    fmus = build_system_fmus(cfg, tmp_path / "fmus", modal, ssp=False, native_anvil=True,
+                             native_units=True)
+    assert fmus["ram_implementation"] == fmus["pile_soil_implementation"] == "native"
+    kind = fmus["anvil"]
+    folders, mds = {}, {}
+    for role in ("Ram", kind, "PileSoil"):
+        folders[role] = unpack(fmus[role], tmp_path / role)
+        mds[role] = read_model_description(str(fmus[role]))
+        assert not list(folders[role].rglob("*.py"))  # nothing of Python inside
+
+    def vrs(role, names):
+        vr = {v.name: v.valueReference for v in mds[role].modelVariables}
+        return ",".join(str(vr[n]) for n in names)
+
+    h = float(fmus["time_step"])
+    steps = int(round(cfg.duration / h))
+    csv = tmp_path / "system.csv"
+    command = [str(exe), str(folders["Ram"]), mds["Ram"].guid, str(folders[kind]), kind,
+               mds[kind].guid, str(folders["PileSoil"]), mds["PileSoil"].guid, str(steps),
+               repr(h), str(csv),
+               "--vr", vrs("Ram", ("F_toe", "u_toe", "v_toe", "contact_displacement",
+                                   "contact_time")),
+               "--vr", vrs(kind, ("u_ram", "v_ram", "u_pile", "v_pile", "F_ram", "F_pile",
+                                  "u_top", "u_bottom", "initial_pile_head_displacement")),
+               "--vr", vrs("PileSoil", ("F_head", "u_head", "v_head"))]
+    run = subprocess.run(command, env={}, capture_output=True, text=True, timeout=600)
+    print("\n" + run.stdout + run.stderr)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.rstrip().endswith("system_host: ok")
+    table = np.loadtxt(csv, delimiter=",", skiprows=1)
+    blow = build_engine(cfg, modal).run(blows=1)[0]
+    for column, name in ((1, "ram_anvil_force [N]"), (2, "anvil_pile_force [N]")):
+        expected = blow.columns[name].max()
+        assert expected > 1e6  # a real blow: the test can fail
+        difference = table[:, column].max() - expected
+        print(f"{name}: peak {expected:.6e} N, host - engine {difference:.3e} N")
+        assert abs(table[:, column].max() - expected) <= 1e-9 * expected, (
+            name, table[:, column].max(), expected)

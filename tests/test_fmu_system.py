@@ -67,7 +67,7 @@ def system(tmp_path_factory):
     cfg = load_system(EXAMPLES / "table1.toml")
     modal = load_anvil_modal_data(cfg)
     out = tmp_path_factory.mktemp("system_fmus")
-    fmus = build_system_fmus(cfg, out, modal, native_anvil=None)
+    fmus = build_system_fmus(cfg, out, modal, native_anvil=None, native_units=False)
     return {"cfg": cfg, "modal": modal, "fmus": fmus, "out": out}
 
 

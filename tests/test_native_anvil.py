@@ -424,7 +424,7 @@ def test_model_description_units_structure_and_sources(built):
         names = set(zf.namelist())
         build_xml = zf.read("sources/buildDescription.xml")
     source_files = md.buildConfigurations[0].sourceFileSets[0].sourceFiles  # <SourceFiles>
-    assert source_files == ["anvil_fmu.c", "anvil_model.c"]
+    assert source_files == ["anvil_fmu.c", "anvil_model.c", "fmu_common.c"]
     assert {f"sources/{f}" for f in source_files} <= names
     assert {"binaries/linux64/Anvil.so", f"resources/{MODAL_RESOURCE}",
             "sources/anvil_config.h", "sources/fmi2Functions.h"} <= names
@@ -590,6 +590,11 @@ def test_calls_out_of_rule_give_fmi2error_and_the_host_survives(built):
             fmu.fmu.doStep(0.0, -1e-6)
         assert error.value.status == 3
         assert "communication step: must be positive" in fmu.errors()[-1]
+        fmu.fmu.reset()
+        fmu.initialize()
+        with pytest.raises(FMICallException):
+            fmu.fmu.doStep(0.0, 1e300)  # a master's unit mistake, not a step of a blow
+        assert "communication step 1e+300 s is larger than 1000 s" in fmu.errors()[-1]
     finally:
         fmu.close()
 

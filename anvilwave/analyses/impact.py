@@ -107,24 +107,43 @@ def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
 
 
 def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
-               anvil: str | None = None, modal_data=None,
-               native_anvil: bool = True) -> dict[str, Any]:
+               anvil: str | None = None, modal_data=None, native_anvil: bool = True,
+               native_units: bool | None = None, fmi_version: int = 2) -> dict[str, Any]:
     """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
-    ``system.ssp`` of a system into ``out_dir`` (FMI 2.0 co-simulation).
+    ``system.ssp`` of a system into ``out_dir`` (co-simulation FMUs).
 
-    native_anvil : the anvils in C (default; needs a C compiler), else with pythonfmu
-        (:func:`anvilwave.engine.fmus.build_system_fmus`).
+    Parameters
+    ----------
+    system : SystemConfig, str or Path
+        The system (or its file).
+    out_dir : str or Path
+        The folder the FMUs and ``system.ssp`` are written to.
+    anvil : str, optional
+        The anvil model instead of the system's.
+    modal_data : ModalData or path, optional
+        The anvil's modal data (default: from the cache or computed).
+    native_anvil : bool
+        The anvils in C (default; compiled per build), else with pythonfmu.
+    native_units : bool, optional
+        The Ram and PileSoil units: the shipped native binaries (True), pythonfmu (False), or
+        native where they support the system and pythonfmu otherwise (None, default).
+    fmi_version : int
+        2 or 3 (FMI 3.0 Ram and PileSoil; the anvils stay FMI 2.0).
 
-    Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
-    "ssp": path, "anvil": name of the system's anvil FMU, "parameters": {...},
-    "time_step": master step [s], "ssp_step": the step of system.ssp [s]}``.
+    Returns
+    -------
+    dict
+        ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path, "ssp": path,
+        "anvil": name of the system's anvil FMU, "parameters": {...}, "time_step": master
+        step [s], "ssp_step": the step of system.ssp [s], and the implementation of each
+        unit}`` (:func:`anvilwave.engine.fmus.build_system_fmus`).
     """
-
     cfg = system if isinstance(system, SystemConfig) else _load_system(system)
     if anvil is not None:
         cfg = cfg.with_anvil_model(anvil)
     Path(out_dir).mkdir(parents=True, exist_ok=True)
-    return build_system_fmus(cfg, out_dir, modal_data, native_anvil=native_anvil)
+    return build_system_fmus(cfg, out_dir, modal_data, native_anvil=native_anvil,
+                             native_units=native_units, fmi_version=fmi_version)
 
 
 def write_blows(blows: list[Blow], out, system: str, title: str = "") -> None:

@@ -11,7 +11,17 @@ build needs a C compiler: without one, ``native_anvil=True`` stops with an
 :class:`~anvilwave.inputs.InputError` naming what is missing, and ``native_anvil=None`` (what
 ``impact --engine fmi`` uses) falls back to the pythonfmu anvils with a warning. Ram and
 PileSoil are pythonfmu units (their status shim runs them in C hosts when the Python that built
-them, with anvilwave, is still installed: :mod:`anvilwave.fmu.fmi_build`).
+them, with anvilwave, is still installed: :mod:`anvilwave.fmu.fmi_build`) unless native.
+
+Ram and PileSoil units. By default (``native_units=None``) ``Ram.fmu`` and ``PileSoil.fmu`` are
+the native units of :mod:`anvilwave.fmu.native_units` (generic C binaries shipped with
+anvilwave for Linux x86-64 and Windows x64, the model as a resource: no compiler needed to
+build them, no Python to run them) when they support the system (a rod, rigid or modal ram;
+any pile and soil) and their shipped binaries are built from the current sources.
+Otherwise the pythonfmu unit is built, with a warning naming the reason; ``native_units=True``
+makes that an :class:`~anvilwave.inputs.InputError`, ``False`` builds the pythonfmu units.
+The native PileSoil fixes the pile and soil settings at the build (the pythonfmu unit also
+takes them as parameters).
 
 ``system.ssp`` is for Jacobi-type masters (OSP libcosim and most SSP runners: every unit steps,
 then the outputs are exchanged, so the anvil's forces reach ram and pile one step late). Its
@@ -34,6 +44,13 @@ from typing import Any
 
 from anvilwave.config.system import SystemConfig
 from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
+from anvilwave.fmu.native_build import NativeBuildError
+from anvilwave.fmu.native_units import (
+    build_native_pile_soil_fmu,
+    build_native_ram_fmu,
+    native_ram_support,
+    unit_binaries,
+)
 from anvilwave.fmu.ssp import ANVIL_FMU, write_ssp
 from anvilwave.inputs import InputError
 
@@ -101,7 +118,9 @@ SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
 
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
                       time_step: float | None = None, ssp: bool = True,
-                      native_anvil: bool | None = True) -> dict[str, Any]:
+                      native_anvil: bool | None = True,
+                      native_units: bool | None = None,
+                      fmi_version: int = 2) -> dict[str, Any]:
     """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
     ``system.ssp`` for a system into ``out_dir`` (module docstring).
 
@@ -113,10 +132,16 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     native_anvil : True: native anvils (InputError without a C compiler); False: the
         pythonfmu anvils; None: native when a C compiler is found, else pythonfmu with a
         warning.
+    native_units : Ram and PileSoil (module docstring): None native where supported, else
+        pythonfmu with a warning; True native (InputError when not supported); False
+        pythonfmu.
+    fmi_version : 3 builds the native Ram and PileSoil as FMI 3.0 co-simulation units (the same
+        binaries and numbers; InputError when they cannot be native); the anvils stay FMI 2.0.
 
     Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
     "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
-    "anvil_implementation": "native" or "pythonfmu",
+    "anvil_implementation", "ram_implementation", "pile_soil_implementation": "native" or
+    "pythonfmu",
     "parameters": {fmu type: {name: value}}, "time_step": h [s], "ssp_step": [s],
     "modal_data": ModalData,
     "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
@@ -152,9 +177,26 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                               "time_step": float(time_step), "ssp_step": step,
                               "modal_data": modal, "anvil_rest": rest,
                               "anvil_implementation": "native" if native else "pythonfmu"}
+    if fmi_version not in (2, 3):
+        raise InputError(cfg.source, "fmi_version", f"must be 2 or 3, got {fmi_version!r}")
+    if fmi_version == 3:
+        if native_units is False:
+            raise InputError(cfg.source, "fmi_version", "FMI 3.0 units are the native Ram and "
+                                                        "PileSoil: not with the pythonfmu units")
+        native_units = True
+    native_ram = _native_unit_wanted("Ram", native_units, native_ram_support(cfg.hammer.ram))
+    native_pile = _native_unit_wanted("PileSoil", native_units, (True, ""))
+    result["fmi_version"] = {"Ram": fmi_version, "PileSoil": fmi_version, "Anvil": 2,
+                             "AnvilLumped": 2}
+    result["ram_implementation"] = "native" if native_ram else "pythonfmu"
+    result["pile_soil_implementation"] = "native" if native_pile else "pythonfmu"
     with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
-        result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
+        if native_ram:
+            result["Ram"] = build_native_ram_fmu(cfg.hammer, out_dir / "Ram.fmu",
+                                                 fmi_version=fmi_version, **parameters["Ram"])
+        else:
+            result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
         if native:
             from anvilwave.fmu.native_build import build_native_anvil_fmu
 
@@ -168,8 +210,14 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
             result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
             result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
                                                     **parameters["AnvilLumped"])
-        result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
-                                                 **parameters["PileSoil"])
+        if native_pile:
+            result["PileSoil"] = build_native_pile_soil_fmu(cfg.pile_soil,
+                                                            out_dir / "PileSoil.fmu",
+                                                            fmi_version=fmi_version,
+                                                            **parameters["PileSoil"])
+        else:
+            result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
+                                                     **parameters["PileSoil"])
     if ssp:
         kind = result["anvil"]
         result["ssp"] = write_ssp(
@@ -202,3 +250,26 @@ def _native_anvil_wanted(native_anvil: bool | None) -> bool:
     return True
 
 
+
+
+def _native_unit_wanted(kind: str, native_units: bool | None,
+                        support: tuple[bool, str]) -> bool:
+    """Whether to build the native Ram or PileSoil (module docstring); InputError when it is
+    asked for and does not support the system or has no current binaries."""
+    if native_units is False:
+        return False
+    supported, reason = support
+    if supported:
+        try:
+            unit_binaries(kind)
+        except NativeBuildError as exc:
+            supported, reason = False, str(exc)
+    if supported:
+        return True
+    if native_units is None:
+        warnings.warn(f"the native {kind} FMU is not used ({reason}): building the pythonfmu "
+                      f"{kind} unit (it runs where anvilwave's Python is installed)",
+                      stacklevel=3)
+        return False
+    raise InputError(f"native {kind} FMU", "native_units",
+                     f"{reason}; or build the pythonfmu unit (native_units=False)")

@@ -70,9 +70,9 @@ from anvilwave.inputs import InputError
 
 NATIVE_DIR = Path(__file__).resolve().parent / "native"
 """The C sources and headers of the native anvil FMU."""
-C_SOURCES = ("anvil_fmu.c", "anvil_model.c")
-C_HEADERS = ("anvil_fmu.h", "anvil_model.h", "fmi2Functions.h", "fmi2FunctionTypes.h",
-             "fmi2TypesPlatform.h")
+C_SOURCES = ("anvil_fmu.c", "anvil_model.c", "fmu_common.c")
+C_HEADERS = ("anvil_fmu.h", "anvil_model.h", "fmu_common.h", "fmi2Functions.h",
+             "fmi2FunctionTypes.h", "fmi2TypesPlatform.h")
 CONFIG_HEADER = "anvil_config.h"
 MODAL_RESOURCE = "modal_data.bin"
 """Name of the embedded modal data in ``resources/`` (start value of ``modal_data_file``)."""
@@ -664,7 +664,7 @@ def build_description(model: str) -> bytes:
     """``sources/buildDescription.xml`` (FMI 3.0 format, optional in an FMI 2.0.4 source FMU)."""
     root = ET.Element("fmiBuildDescription", fmiVersion="3.0")
     config = ET.SubElement(root, "BuildConfiguration", modelIdentifier=model,
-                           description="Compile both files into one shared library; keep "
+                           description="Compile the files into one shared library; keep "
                                        "floating-point contraction off so that the results "
                                        "equal those of anvilwave's Python kernels")
     files = ET.SubElement(config, "SourceFileSet", language="C99",

@@ -38,7 +38,7 @@
  * - No global mutable state: any number of instances in one process.
  *
  * Build (fmu/native_build.py): cc -shared -fPIC -O2 -ffp-contract=off -fvisibility=hidden
- *   -std=c99 -I. -o <modelIdentifier>.so anvil_fmu.c anvil_model.c -lm
+ *   -std=c99 -I. -o <modelIdentifier>.so anvil_fmu.c anvil_model.c fmu_common.c -lm
  */
 #include <math.h>
 #include <stdarg.h>
@@ -47,6 +47,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
+#include "fmu_common.h"
 #include "anvil_model.h"
 #include "anvil_fmu.h"
 #include "anvil_config.h"
@@ -56,7 +57,7 @@
 #endif
 
 #define N_VARIABLES (sizeof ANVIL_VARIABLES / sizeof ANVIL_VARIABLES[0])
-#define MESSAGE_SIZE 2048
+#define MESSAGE_SIZE FMU_MESSAGE_SIZE
 
 typedef enum {
     ST_INSTANTIATED = 1,
@@ -94,33 +95,17 @@ typedef struct {
     char reason[MESSAGE_SIZE];
 } Instance;
 
-/* ------------------------------------------------------------------ helpers */
-static char *copy_string(const char *text)
-{
-    size_t n = strlen(text) + 1;
-    char *copy = (char *)malloc(n);
-    if (copy != NULL) memcpy(copy, text, n);
-    return copy;
-}
+/* ------------------------------------------------------------------ helpers
+ * strings, logging and the resource location: fmu_common.c (shared with the Ram and PileSoil
+ * units) */
+#define copy_string fmu_copy_string
 
 static void log_va(fmi2CallbackLogger logger, fmi2ComponentEnvironment environment,
                    const char *name, fmi2Status status, const char *category,
                    const char *format, va_list args)
 {
-    char message[MESSAGE_SIZE], escaped[2 * MESSAGE_SIZE];
-    size_t i, j;
-    int n;
-    if (logger == NULL) return;
-    n = snprintf(message, sizeof message, "%s %s: ", ANVIL_MODEL_IDENTIFIER, name);
-    if (n < 0 || (size_t)n >= sizeof message) n = 0;
-    vsnprintf(message + n, sizeof message - (size_t)n, format, args);
-    /* the host logger treats the message as a printf format */
-    for (i = 0, j = 0; message[i] != '\0' && j + 2 < sizeof escaped; i++) {
-        escaped[j++] = message[i];
-        if (message[i] == '%') escaped[j++] = '%';
-    }
-    escaped[j] = '\0';
-    logger(environment, name, status, category, escaped);
+    fmu_log_va(logger, environment, ANVIL_MODEL_IDENTIFIER, name, status, category, format,
+               args);
 }
 
 static void log_raw(const fmi2CallbackFunctions *functions, const char *name, fmi2Status status,
@@ -211,55 +196,8 @@ static const char *type_name(AnvilType type)
     return type == ANVIL_REAL ? "Real" : type == ANVIL_BOOLEAN ? "Boolean" : "String";
 }
 
-static int hex_digit(char c)
-{
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-}
-
-/* The resources folder of fmuResourceLocation (file:///path, file:/path, file://localhost/path;
- * percent-encoded), without a trailing slash; "" when there is none or it is not a local
- * file URI; NULL when out of memory. */
-static char *resource_folder(const char *uri)
-{
-    const char *p = uri;
-    char *path;
-    size_t n, i, j;
-    if (p == NULL) return copy_string("");
-    if (strncmp(p, "file://localhost/", 17) == 0)
-        p += 16;
-    else if (strncmp(p, "file:///", 8) == 0)
-        p += 7;
-    else if (strncmp(p, "file:/", 6) == 0)
-        p += 5;
-    else if (p[0] != '/')
-        return copy_string(""); /* not a local file URI */
-    /* "/C:/..." on Windows */
-    if (p[0] == '/' && p[1] != '\0' && p[2] == ':') p += 1;
-    n = strlen(p);
-    path = (char *)malloc(n + 1);
-    if (path == NULL) return NULL;
-    for (i = 0, j = 0; i < n; i++) {
-        if (p[i] == '%' && i + 2 < n && hex_digit(p[i + 1]) >= 0 &&
-            hex_digit(p[i + 2]) >= 0) {
-            path[j++] = (char)(hex_digit(p[i + 1]) * 16 + hex_digit(p[i + 2]));
-            i += 2;
-        } else {
-            path[j++] = p[i];
-        }
-    }
-    while (j > 1 && path[j - 1] == '/') j--;
-    path[j] = '\0';
-    return path;
-}
-
-static int is_absolute(const char *path)
-{
-    return path[0] == '/' || path[0] == '\\' ||
-           (path[0] != '\0' && path[1] == ':' && (path[2] == '/' || path[2] == '\\'));
-}
+#define resource_folder fmu_resource_folder
+#define is_absolute fmu_is_absolute
 
 #if !ANVIL_LUMPED
 /* The file a modal_data_file value names: absolute as is, relative inside the resources. */
@@ -914,6 +852,9 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
     if (!(isfinite(h) && h > 0.0))
         return fail(inst, "step at t = %.9g s: communication step: must be positive, got %g s",
                     currentCommunicationPoint, h);
+    if (h > FMU_MAX_STEP)
+        return fail(inst, "step at t = %.9g s: communication step %g s is larger than %g s",
+                    currentCommunicationPoint, h, FMU_MAX_STEP);
     if (extrapolating(inst)) {
         /* Python: AnvilSlaveBase.advance and InputExtrapolation.stepped */
         double u_ram, v_ram, u_pile, v_pile, force_ram, force_pile;
