@@ -100,8 +100,11 @@ def test_ram_outline_of_a_stepped_hollow_ram():
 @pytest.fixture(scope="module")
 def slender():
     """A slender steel ram, D 0.2 m x L 4 m, modal up to 3 kHz (about five axial modes)."""
-    rod = RamRod.uniform(4.0, 0.2)
-    return rod, modal_ram(rod, 3000.0, realisation="chain")
+    from anvilwave.config.cache import cached_chain, cached_modal_data
+
+    rod = RamRod.uniform(4.0, 0.2)  # modes and chain from the session's modal-data cache
+    return rod, modal_ram(rod, 3000.0, realisation="chain", modes=cached_modal_data,
+                          realise=cached_chain)
 
 
 def test_slender_modal_ram_is_the_1d_rod(slender):
@@ -136,7 +139,9 @@ def test_modal_ram_static_toe_compliance_is_exact(slender):
     assert total == pytest.approx(4.0 / (3 * 210e9 * area), rel=0.01)
     assert ram.fmax == 3000.0
     # the modal unit carries the same toe modes: the same compliance without a chain
-    unit = modal_ram(RamRod.uniform(4.0, 0.2), 3000.0)
+    from anvilwave.config.cache import cached_modal_data
+
+    unit = modal_ram(RamRod.uniform(4.0, 0.2), 3000.0, modes=cached_modal_data)
     assert unit.is_modal_unit and unit.stiffness.size == 0
     modes = unit.modes
     flexible_unit = np.sum(modes.participation[1:] ** 2 / modes.omega[1:] ** 2)
