@@ -175,11 +175,12 @@ def test_system_file_ram_model(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def table1_runs():
-    """Table 1 without soil, ROM anvil, with the modal and with the rod ram."""
-    cfg = without_soil(load_system(EXAMPLES / "table1.toml"))
+def table1_runs(table1_unit_runs):
+    """Table 1 without soil, ROM anvil, with the modal and with the rod ram (the modal ram's
+    blow is the system's own, run once by table1_unit_runs)."""
+    _, blows, cfg, _ = table1_unit_runs
     rod = dataclasses.replace(cfg, hammer=load_hammer("illustrative_5500kj"))
-    return {name: build_engine(c).run()[0] for name, c in (("modal", cfg), ("rod", rod))}, cfg
+    return {"modal": blows["unit"], "rod": build_engine(rod).run()[0]}, cfg
 
 
 def test_modal_ram_energy_balance(table1_runs):
@@ -271,7 +272,8 @@ def table1_unit_runs():
         cfg.hammer, ram=modal_ram_chain(cfg.hammer.ram, modes)))
     engines = {"chain": build_engine(chain), "unit": build_engine(cfg)}
     assert engines["chain"].ram_modes is None and engines["unit"].ram_modes is modes
-    return engines, cfg, modes
+    blows = {name: engine.run()[0] for name, engine in engines.items()}
+    return engines, blows, cfg, modes
 
 
 def test_modal_ram_unit_in_the_engine(table1_unit_runs):
@@ -281,8 +283,7 @@ def test_modal_ram_unit_in_the_engine(table1_unit_runs):
     the chain's leapfrog and the exact modes integrate the content near fmax differently). The
     unit's energy residual is within 0.5 % of the impact energy (measured -7.5e-4), its coupled
     limit within 10 % of the chain's, and the ram no longer sub-steps."""
-    engines, cfg, modes = table1_unit_runs
-    blows = {name: engine.run()[0] for name, engine in engines.items()}
+    engines, blows, cfg, modes = table1_unit_runs
     band = comparison_bandwidth(cfg)
     chain = ModelRun("chain", blows["chain"].columns, 0.0, {})
     m = metrics(ModelRun("unit", blows["unit"].columns, 0.0, {}), chain, 0.0, band)
