@@ -212,10 +212,11 @@ def table1():
 
 @pytest.fixture(scope="module")
 def xl8_modal(table1):
-    """The xl8 modes, computed once for the tests of this module."""
-    from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
+    """The xl8 modes, from the session's modal-data cache (the engine's own, computed once per
+    session for every worker and module that runs Table 1)."""
+    from anvilwave.config.cache import cached_modal_data
 
-    return compute_anvil_modes(table1.anvil.spec, fmax=table1.anvil.fmax).modal_data
+    return cached_modal_data(table1.anvil.spec, table1.anvil.fmax)
 
 
 @pytest.mark.parametrize("model", ["rom", "lumped"])

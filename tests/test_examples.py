@@ -1,4 +1,5 @@
-"""Every shipped system file loads, and its anvil's ram face fits its ram."""
+"""Every shipped system file loads, and its anvil's ram face fits its ram (each example also runs a
+short case against its stored number: tests/test_example_numbers.py)."""
 
 from __future__ import annotations
 

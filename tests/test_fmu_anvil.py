@@ -31,9 +31,9 @@ from fmpy.validation import validate_fmu  # noqa: E402
 
 from anvilwave.anvil_rom.fem.geometry import load_anvil  # noqa: E402
 from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data  # noqa: E402
-from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes  # noqa: E402
 from anvilwave.anvil_rom.rom import ModalAnvil  # noqa: E402
 from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
+from anvilwave.config.cache import cached_modal_data  # noqa: E402
 from anvilwave.fmu.fmi_build import SHIM_INNER_LIBRARY, build_anvil_fmu, build_fmu  # noqa: E402
 from anvilwave.fmu.fmi_master import ChainMaster, CosimulationError  # noqa: E402
 from anvilwave.inputs import InputError  # noqa: E402
@@ -134,7 +134,8 @@ def built(tmp_path_factory):
     root = tmp_path_factory.mktemp("fmu_anvil")
     spec = load_anvil(EXAMPLES / "anvils" / "s2.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.03})
-    modal = save_modal_data(compute_anvil_modes(spec, fmax=20000.0).modal_data,
+    # the session's modal-data cache: the same entry as test_native_anvil's
+    modal = save_modal_data(cached_modal_data(spec, 20000.0),
                             root / "modes.npz")
     out = root / "fmus"
     scripts = {}

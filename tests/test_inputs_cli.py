@@ -110,7 +110,9 @@ def test_cli_help_explains_every_option(capsys):
 
 @pytest.fixture(scope="module")
 def small_modal_data():
-    return compute_anvil_modes(load_anvil(EXAMPLES / "anvils" / "s2.toml"), fmax=20000.0).modal_data
+    from anvilwave.config.cache import cached_modal_data  # the session's cache
+
+    return cached_modal_data(load_anvil(EXAMPLES / "anvils" / "s2.toml"), 20000.0)
 
 
 def test_modal_file_round_trip(tmp_path, small_modal_data):

@@ -100,8 +100,11 @@ def test_ram_outline_of_a_stepped_hollow_ram():
 @pytest.fixture(scope="module")
 def slender():
     """A slender steel ram, D 0.2 m x L 4 m, modal up to 3 kHz (about five axial modes)."""
-    rod = RamRod.uniform(4.0, 0.2)
-    return rod, modal_ram(rod, 3000.0, realisation="chain")
+    from anvilwave.config.cache import cached_chain, cached_modal_data
+
+    rod = RamRod.uniform(4.0, 0.2)  # modes and chain from the session's modal-data cache
+    return rod, modal_ram(rod, 3000.0, realisation="chain", modes=cached_modal_data,
+                          realise=cached_chain)
 
 
 def test_slender_modal_ram_is_the_1d_rod(slender):
@@ -136,7 +139,9 @@ def test_modal_ram_static_toe_compliance_is_exact(slender):
     assert total == pytest.approx(4.0 / (3 * 210e9 * area), rel=0.01)
     assert ram.fmax == 3000.0
     # the modal unit carries the same toe modes: the same compliance without a chain
-    unit = modal_ram(RamRod.uniform(4.0, 0.2), 3000.0)
+    from anvilwave.config.cache import cached_modal_data
+
+    unit = modal_ram(RamRod.uniform(4.0, 0.2), 3000.0, modes=cached_modal_data)
     assert unit.is_modal_unit and unit.stiffness.size == 0
     modes = unit.modes
     flexible_unit = np.sum(modes.participation[1:] ** 2 / modes.omega[1:] ** 2)
@@ -170,11 +175,12 @@ def test_system_file_ram_model(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def table1_runs():
-    """Table 1 without soil, ROM anvil, with the modal and with the rod ram."""
-    cfg = without_soil(load_system(EXAMPLES / "table1.toml"))
+def table1_runs(table1_unit_runs):
+    """Table 1 without soil, ROM anvil, with the modal and with the rod ram (the modal ram's
+    blow is the system's own, run once by table1_unit_runs)."""
+    _, blows, cfg, _ = table1_unit_runs
     rod = dataclasses.replace(cfg, hammer=load_hammer("illustrative_5500kj"))
-    return {name: build_engine(c).run()[0] for name, c in (("modal", cfg), ("rod", rod))}, cfg
+    return {"modal": blows["unit"], "rod": build_engine(rod).run()[0]}, cfg
 
 
 def test_modal_ram_energy_balance(table1_runs):
@@ -266,7 +272,8 @@ def table1_unit_runs():
         cfg.hammer, ram=modal_ram_chain(cfg.hammer.ram, modes)))
     engines = {"chain": build_engine(chain), "unit": build_engine(cfg)}
     assert engines["chain"].ram_modes is None and engines["unit"].ram_modes is modes
-    return engines, cfg, modes
+    blows = {name: engine.run()[0] for name, engine in engines.items()}
+    return engines, blows, cfg, modes
 
 
 def test_modal_ram_unit_in_the_engine(table1_unit_runs):
@@ -276,8 +283,7 @@ def test_modal_ram_unit_in_the_engine(table1_unit_runs):
     the chain's leapfrog and the exact modes integrate the content near fmax differently). The
     unit's energy residual is within 0.5 % of the impact energy (measured -7.5e-4), its coupled
     limit within 10 % of the chain's, and the ram no longer sub-steps."""
-    engines, cfg, modes = table1_unit_runs
-    blows = {name: engine.run()[0] for name, engine in engines.items()}
+    engines, blows, cfg, modes = table1_unit_runs
     band = comparison_bandwidth(cfg)
     chain = ModelRun("chain", blows["chain"].columns, 0.0, {})
     m = metrics(ModelRun("unit", blows["unit"].columns, 0.0, {}), chain, 0.0, band)

@@ -34,9 +34,9 @@ from fmpy.model_description import read_build_description  # noqa: E402
 from fmpy.validation import validate_fmu  # noqa: E402
 
 from anvilwave.anvil_rom.fem.geometry import load_anvil  # noqa: E402
-from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes  # noqa: E402
 from anvilwave.anvil_rom.rom import ModalAnvil  # noqa: E402
 from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters  # noqa: E402
+from anvilwave.config.cache import cached_modal_data  # noqa: E402
 from anvilwave.fmu.native_build import (  # noqa: E402
     MODAL_RESOURCE,
     NativeBuildError,
@@ -71,7 +71,7 @@ def built(tmp_path_factory):
     root = tmp_path_factory.mktemp("native_anvil")
     spec = load_anvil(EXAMPLES / "anvils" / "s2.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.03})
-    data = compute_anvil_modes(spec, fmax=20000.0).modal_data
+    data = cached_modal_data(spec, 20000.0)  # the session's cache: shared with test_fmu_anvil
     out = root / "fmus"
     return {
         "data": data,
@@ -744,7 +744,7 @@ def built_rings(built):
     spec = load_anvil(EXAMPLES / "anvils" / "s2.toml")
     spec = dataclasses.replace(spec, mesh_size=0.03, interfaces=dataclasses.replace(
         spec.interfaces, pile_rings=2))
-    data = compute_anvil_modes(spec, fmax=20000.0).modal_data
+    data = cached_modal_data(spec, 20000.0)
     return {"data": data, "Anvil": build_native_anvil_fmu(data, built["root"] / "rings",
                                                           **CONTACTS)}
 

@@ -13,6 +13,7 @@ import pytest
 from anvilwave.inputs import Table
 
 from .conftest import EXAMPLES, ROOT, example_systems
+from .example_numbers import SCRIPT_API_FIRST_PEAK, first_printed_peak, load_numbers
 
 BIN = Path(sys.executable).parent
 
@@ -38,6 +39,10 @@ def test_script_api_example_runs_and_prints_its_table():
     peaks = [float(ln.split()[2]) for ln in lines[1:]]
     # the peak pile force grows with the energy for each anvil (a physical check on the sweep)
     assert peaks[0] < peaks[2] < peaks[4] and peaks[1] < peaks[3] < peaks[5]
+    # its first peak (3500 kJ, ROM) is the stored one of tests/data/example_numbers.json
+    # (python -m tests.regenerate_example_numbers): printed to 0.1 MN, so within half of that
+    stored = load_numbers()[SCRIPT_API_FIRST_PEAK]
+    assert first_printed_peak(r.stdout) == pytest.approx(stored, abs=0.05 + 1e-9)
 
 
 def test_layering_contract_is_kept():
