@@ -5,7 +5,7 @@ instead of a batch file around an executable::
 
     import anvilwave
 
-    system = anvilwave.load_system("examples/table1.toml")
+    system = anvilwave.load_system("anvilwave/examples/table1.toml")
     for fmax in (3000.0, 5000.0):
         blow = anvilwave.simulate(system.with_fmax(fmax))[0]
         print(fmax, blow.summary["peak_anvil_pile_force [N]"])

@@ -38,6 +38,7 @@ from anvilwave.config.schema import describe
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmus import build_system_fmus
+from anvilwave.examples import EXAMPLES_DIR
 from anvilwave.fea.impact import run_impact_fea
 from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
@@ -282,7 +283,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 
     start = time.perf_counter()
-    system = Path(__file__).resolve().parents[1] / "examples" / "table1.toml"
+    system = EXAMPLES_DIR / "table1.toml"
     if args.system is not None:
         system = args.system
     cfg = load_system(system)  # a modal ram's modes are computed here
@@ -357,6 +358,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="anvilwave",
         description="Impact pile driving with a Mode Displacement Method anvil.",
     )
+    parser.add_argument("--version", action="version",
+                        version=f"anvilwave {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     p = sub.add_parser(
@@ -467,7 +470,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "FEA, Fig. 2 and Fig. 3 and DIR/summary.json.",
     )
     p.add_argument("--system", type=Path, default=None,
-                   help="system file (default: examples/table1.toml)")
+                   help="system file (default: the shipped Table 1 example, table1.toml)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=_demo)
 
@@ -574,7 +577,36 @@ def build_parser() -> argparse.ArgumentParser:
                                       "meaning)")
     p.add_argument("kind", nargs="?", choices=("system", "anvil"), default="system")
     p.set_defaults(func=_schema)
+
+    p = sub.add_parser("examples", help="copy the shipped example files (system files, anvils, "
+                                        "soil, PDA records, scripts) into DIR",
+                       description="Copy the example files that ship with anvilwave into DIR "
+                                   "(created; a file already there is never overwritten). "
+                                   "Then e.g. anvilwave impact DIR/table1.toml --out res.")
+    p.add_argument("dir", type=Path, metavar="DIR", help="destination folder")
+    p.set_defaults(func=_examples)
     return parser
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("anvilwave")
+    except PackageNotFoundError:  # run from a checkout that is not installed
+        return "unknown (not installed)"
+
+
+def _examples(args: argparse.Namespace) -> int:
+    from anvilwave.examples import copy_examples
+
+    try:
+        copied = copy_examples(args.dir)
+    except FileExistsError as exc:
+        print(f"anvilwave: error: {exc}", file=sys.stderr)
+        return 2
+    print(f"anvilwave examples: {len(copied)} files -> {args.dir}")
+    return 0
 
 
 def _drive(args: argparse.Namespace) -> int:

@@ -1,4 +1,5 @@
-"""Campaign speed-up: 2 workers against 1 on examples/campaign_small.toml, measured in one run,
+"""Campaign speed-up: 2 workers against 1 on anvilwave/examples/campaign_small.toml, measured in
+one run,
 the memory of each worker, and what a wind-farm campaign costs from the measured seconds per
 case.
 
@@ -74,7 +75,7 @@ def measure(campaign_path: Path, scratch: Path, workers: int, k: int) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--campaign", type=Path, default=ROOT / "examples" /
+    parser.add_argument("--campaign", type=Path, default=ROOT / "anvilwave" / "examples" /
                         "campaign_small.toml")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=1)

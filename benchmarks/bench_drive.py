@@ -2,8 +2,9 @@
 
 Run: python benchmarks/bench_drive.py [--shared ../shared] [--workers N]
 
-Cases: ``examples/xl_monopile_drive.toml`` with the ROM anvil (39 depths, the modal ram) and
-``examples/grlweap_s4000.toml`` (50 depths; needs the GRLWEAP benchmark input under
+Cases: ``anvilwave/examples/xl_monopile_drive.toml`` with the ROM anvil (39 depths, the modal ram)
+and
+``anvilwave/examples/grlweap_s4000.toml`` (50 depths; needs the GRLWEAP benchmark input under
 ``--shared``/reference/grlweap-s4000, skipped with a message when absent). For each: the wall
 time of the whole analysis (engine built and compiled kernels loaded first, as a second run of
 the command would), depths, blows, seconds per depth and per blow, the stepping's share, and
@@ -53,9 +54,9 @@ def main() -> None:
     parser.add_argument("--shared", type=Path, default=ROOT.parent / "shared")
     parser.add_argument("--workers", type=int, default=None)
     args = parser.parse_args()
-    cases = [ROOT / "examples" / "xl_monopile_drive.toml"]
+    cases = [ROOT / "anvilwave" / "examples" / "xl_monopile_drive.toml"]
     if (args.shared / "reference" / "grlweap-s4000" / "model.json").exists():
-        cases.append(ROOT / "examples" / "grlweap_s4000.toml")
+        cases.append(ROOT / "anvilwave" / "examples" / "grlweap_s4000.toml")
     else:
         print(f"grlweap_s4000: skipped, {args.shared}/reference/grlweap-s4000/model.json "
               "not found")

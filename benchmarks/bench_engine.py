@@ -20,7 +20,7 @@ printed per anvil model (the issue's bound: at most 1; both run in the one compi
 ratio is the two ram kernels' difference), with the two ram kernels alone, the pile port in
 three rings (``[anvil] pile_port_rings = 3``) against the one port, the three rings on the
 tube head (``pile_head = "tube"``) against them on the 1D head, and on that head the ram port
-in six annuli (``ram_port_annuli = 6``, examples/table1_interfaces.toml) against one.
+in six annuli (``ram_port_annuli = 6``, anvilwave/examples/table1_interfaces.toml) against one.
 """
 
 from __future__ import annotations
@@ -135,7 +135,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=21)
     parser.add_argument("--blows", type=int, default=100)
     args = parser.parse_args()
-    cfg = load_system(ROOT / "examples" / "table1.toml")
+    cfg = load_system(ROOT / "anvilwave" / "examples" / "table1.toml")
     rod = dataclasses.replace(cfg, hammer=load_hammer("illustrative_5500kj"))
     chain = dataclasses.replace(cfg, hammer=dataclasses.replace(
         cfg.hammer, ram=modal_ram_chain(cfg.hammer.ram, cfg.hammer.ram.modes, cached_chain)))
@@ -196,8 +196,8 @@ def main() -> None:
     ratio = alternated_ratio(tube_engine, ringed_engine, args.repeat)
     print(f"three rings on the tube head / on the 1D head: {ratio:.3f} (pile_head = \"tube\": "
           "the head's convolution over the blow)")
-    # the same with the ram port in six annuli (examples/table1_interfaces.toml)
-    faces = load_system(ROOT / "examples" / "table1_interfaces.toml")
+    # the same with the ram port in six annuli (anvilwave/examples/table1_interfaces.toml)
+    faces = load_system(ROOT / "anvilwave" / "examples" / "table1_interfaces.toml")
     faces_engine = build_engine(faces)
     ratio = alternated_ratio(faces_engine, tube_engine, args.repeat)
     blow = faces_engine.blow()

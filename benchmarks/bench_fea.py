@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main() -> None:
-    cfg = without_soil(load_system(ROOT / "examples" / "table1.toml"))
+    cfg = without_soil(load_system(ROOT / "anvilwave" / "examples" / "table1.toml"))
     fea = run_impact_fea(fea_config(cfg))
     engine = build_engine(cfg)
     direct = min(engine.run()[0].wall_time for _ in range(3))

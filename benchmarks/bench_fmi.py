@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "anvilwave" / "examples"
 
 
 def _best(times: list[float]) -> tuple[float, float]:
@@ -38,7 +39,7 @@ def _best(times: list[float]) -> tuple[float, float]:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("system", nargs="?", type=Path, default=ROOT / "examples" / "table1.toml")
+    parser.add_argument("system", nargs="?", type=Path, default=EXAMPLES / "table1.toml")
     parser.add_argument("--repeat", type=int, default=5, help="runs per engine (default 5)")
     args = parser.parse_args(argv)
 

@@ -1,4 +1,5 @@
-"""Modal analysis speed: `anvilwave modes examples/anvils/xl8.toml` at the default mesh and fmax.
+"""Modal analysis speed: `anvilwave modes anvilwave/examples/anvils/xl8.toml` at the default mesh
+and fmax.
 
 Run: python benchmarks/bench_modes.py
 Prints the command's total wall time (process start to finish: imports, meshing, assembly,
@@ -19,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def main() -> None:
-    anvil = ROOT / "examples" / "anvils" / "xl8.toml"
+    anvil = ROOT / "anvilwave" / "examples" / "anvils" / "xl8.toml"
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
         subprocess.run([sys.executable, "-m", "anvilwave.cli", "modes", str(anvil), "--out", tmp],

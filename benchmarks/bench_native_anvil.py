@@ -47,7 +47,7 @@ def _modal_data(path: Path | None):
     from anvilwave.anvil_rom.fem.geometry import load_anvil
     from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
-    spec = load_anvil(ROOT / "examples" / "anvils" / "s2.toml")
+    spec = load_anvil(ROOT / "anvilwave" / "examples" / "anvils" / "s2.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.03})
     return compute_anvil_modes(spec, fmax=20000.0).modal_data
 

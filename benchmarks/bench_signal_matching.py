@@ -6,7 +6,8 @@ Run: python benchmarks/bench_signal_matching.py [--seeds N]
 1. Recovery (tests/test_signal_matching.py): a 2 m x 40 m pile simulated on 0.25 m segments,
    2 % noise (one record per seed), matched on 0.4 m from half the true SRD, imposing the
    velocity and the wave down; per seed the errors of Rut, shaft and toe and the time.
-2. examples/pda_record_synthetic.csv (the ROM of examples/table1.toml, 78 m below the gauges)
+2. anvilwave/examples/pda_record_synthetic.csv (the ROM of anvilwave/examples/table1.toml, 78 m
+   below the gauges)
    matched with table1's pile from half its SRD (the true soil is table1's).
 Kernels are compiled (or loaded) before the timings.
 """
@@ -75,9 +76,10 @@ def recovery(seeds: int) -> None:
 def synthetic_xl() -> None:
     from anvilwave.analyses.pda import load_record
 
-    system = ROOT / "examples" / "table1.toml"
+    system = ROOT / "anvilwave" / "examples" / "table1.toml"
     text = system.read_text()
-    text = text.replace('"anvils/xl8.toml"', f'"{(ROOT / "examples/anvils/xl8.toml").as_posix()}"')
+    xl8 = (ROOT / "anvilwave/examples/anvils/xl8.toml").as_posix()
+    text = text.replace('"anvils/xl8.toml"', f'"{xl8}"')
     half = [[d, s / 2, q / 2] for d, s, q in tomllib.loads(text)["soil"]["srd"]]
     text = re.sub(r"^srd = .*$", f"srd = {half}", text, flags=re.M)
     with tempfile.TemporaryDirectory() as tmp:
@@ -85,7 +87,7 @@ def synthetic_xl() -> None:
         path.write_text(text)
         guess = anvilwave.load_system(path)
     exact = truth(anvilwave.load_system(system))
-    record, _, _ = load_record(ROOT / "examples" / "pda_record_synthetic.csv")
+    record, _, _ = load_record(ROOT / "anvilwave" / "examples" / "pda_record_synthetic.csv")
     start = time.perf_counter()
     result = match_record(record, guess)
     wall = time.perf_counter() - start

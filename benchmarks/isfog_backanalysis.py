@@ -44,7 +44,8 @@ anvilwave/hammer/data):
   The classic driving system (GRLWEAP's model of a hydrohammer, no cushion material): the
   steel striker contact as a stiff "hammer cushion", helmet (anvil + pile sleeve), the hammer
   housing resting on it, the steel helmet-pile contact. The values are class ESTIMATES scaled
-  from GRLWEAP's S-4000 model (examples/grlweap_s4000.toml) by the ram's face area (contact)
+  from GRLWEAP's S-4000 model (anvilwave/examples/grlweap_s4000.toml) by the ram's face area
+  (contact)
   and mass (masses, housing spring); see :func:`driving_system`.
 * Driving: one blow per tip depth from static equilibrium under the hammer's weight, blow
   window 0.2 s (the pile has come to rest), the permanent set (the default rule of
@@ -164,7 +165,7 @@ class PileRecord:
 
 def driving_system(model: Model) -> dict:
     """The classic driving system of the hammer class (GRLWEAP's model of a hydrohammer),
-    ESTIMATES scaled from GRLWEAP's IHC S-4000 model (examples/grlweap_s4000.toml: hammer
+    ESTIMATES scaled from GRLWEAP's IHC S-4000 model (anvilwave/examples/grlweap_s4000.toml: hammer
     cushion 3.8487e10 N/m for a ram face of 1.23044 m, CoR 0.8, round-out 3 mm; housing
     2 x 109.25 t on springs of 2.11e11 N/m for a 201.5 t ram; helmet 1.3 x the ram mass for a
     3.5 m pile): the striker contact by the ram's face area, the housing (one mass) and its

@@ -4,13 +4,14 @@ Run: python benchmarks/study_anvil_size.py [--out results/study_size] [--series 
 
 Two series, each of a 2 m, a 5.5 m and an 8 m pile, every ram striking at 6.16 m/s:
 
-* "scaled": the s2, m55 and xl8 anvils on their piles (examples/size_s2.toml, size_m55.toml,
+* "scaled": the s2, m55 and xl8 anvils on their piles (anvilwave/examples/size_s2.toml,
+   size_m55.toml,
   table1.toml: the same configuration at scales 0.25, 0.6875 and 1), struck by their
   illustrative rams (scaled with the rest). The window (25 ms at full scale) and the FEA
   element size scale with the anvil, so the three cases differ in size only: under geometric
   similarity the wave problem is scale-free and the errors come out the same at every size.
 * "class": class-typical systems, in which the ram does not scale with the pile:
-  examples/size_s2_class.toml (IHC S-800, 40 t, D 0.95 m ram on the 2 m pile) and
+  anvilwave/examples/size_s2_class.toml (IHC S-800, 40 t, D 0.95 m ram on the 2 m pile) and
   size_m55_class.toml (MENCK MHU 1900S, 95 t, D 1.26 m on the 5.5 m pile), whose anvils keep the
   xl8 proportions scaled with the pile but a top face of the ram's radius, and the xl8 case
   (table1.toml) with its 275 t illustrative ram. Every ram is a Smith rod of segments
@@ -103,7 +104,7 @@ def case_config(case: Case) -> SystemConfig:
     contact dashpot), and the step is the automatic one: the ram's cut-off then stays above the
     comparison band of the case, and the scaled series is similar down to its discretisation.
     """
-    cfg = without_soil(load_system(ROOT / "examples" / case.file))
+    cfg = without_soil(load_system(ROOT / "anvilwave" / "examples" / case.file))
     segment = max(cfg.pile_soil.pile.segment_length, 0.5 * case.scale)
     pile = dataclasses.replace(cfg.pile_soil.pile, segment_length=segment)
     cfg = dataclasses.replace(

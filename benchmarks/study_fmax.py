@@ -46,6 +46,7 @@ from anvilwave.inputs import InputError
 from anvilwave.output.tables import read_csv, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "anvilwave" / "examples"
 FMAX = (500.0, 1000.0, 2000.0, 3000.0, 5000.0, 7500.0, 10000.0)
 BANDS = (3300.0, 5000.0)
 """Bands of the errors [Hz]: the paper's 0.5 m pile chain's cut-off and the default fmax."""
@@ -53,7 +54,7 @@ BANDS = (3300.0, 5000.0)
 
 def main() -> None:
     parser = argparse.ArgumentParser()
-    parser.add_argument("--system", type=Path, default=ROOT / "examples" / "table1.toml")
+    parser.add_argument("--system", type=Path, default=EXAMPLES / "table1.toml")
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_fmax")
     parser.add_argument("--fea-csv", type=Path, default=None,
                         help="reuse an FEA time series (fea.csv of `anvilwave compare`)")

@@ -17,7 +17,7 @@ m x
 steel ram at 6.16 m/s, here a Smith rod of 0.5 m segments (the classic programs' ram; the FEA
 does not depend on the 1D ram model), contacts without dashpots, the automatic time step, a
 25 ms window: the setting of the paper's lumped-mass programs. These are fixed here whatever
-examples/table1.toml sets (0.25 m segments, modal ram, a contact dashpot).
+anvilwave/examples/table1.toml sets (0.25 m segments, modal ram, a contact dashpot).
 
 The anvils are the xl8 outline, (r, z) = (0, 0), (r_top, 0), (4.15, 0.75 s), (4.15, 1.2 s),
 (0, 1.2 s), with thickness scale s and top-face radius r_top, struck by a 275 t ram of
@@ -58,7 +58,8 @@ is cached as CSV in --out and reused on a rerun):
   cushion material): the FE mass as the helmet between a steel "hammer cushion" of the ram's
   toe half segment (restitution 1) and the steel pile contact 2 E A / dx.
 * ``4b classic GRLWEAP``: the helmet with GRLWEAP's hammer cushion of a large hydraulic hammer
-  (IHC S-4000 of examples/grlweap_s4000.toml: 38,487 kN/mm, restitution 0.8, round-out 3 mm)
+  (IHC S-4000 of anvilwave/examples/grlweap_s4000.toml: 38,487 kN/mm, restitution 0.8, round-out 3
+  mm)
   in series with the ram's toe half segment, and the pile contact E A / dx with 3 mm round-out.
   (GRLWEAP's hammer damping is left out.)
 
@@ -112,11 +113,12 @@ RAM_SEGMENT = 0.5
 PILE_SEGMENT = 0.5
 """Pile segment length [m], the paper's: the comparison band c / (pi dx) is 3.3 kHz."""
 XL8_OUTLINE = np.array([[0.0, 0.0], [0.9, 0.0], [4.15, 0.75], [4.15, 1.2], [0.0, 1.2]])
-"""examples/anvils/xl8.toml, (r, z) [m], z down."""
+"""anvilwave/examples/anvils/xl8.toml, (r, z) [m], z down."""
 GRLWEAP_HAMMER_CUSHION = Cushion(3.8487e10, 0.8, 0.003)
-"""GRLWEAP's hammer cushion of the IHC S-4000 (examples/grlweap_s4000.toml) [N/m, -, m]."""
+"""GRLWEAP's hammer cushion of the IHC S-4000 (anvilwave/examples/grlweap_s4000.toml) [N/m, -,
+m]."""
 GRLWEAP_ROUND_OUT = 0.003
-"""Round-out of GRLWEAP's steel helmet-pile contact [m] (examples/grlweap_s4000.toml)."""
+"""Round-out of GRLWEAP's steel helmet-pile contact [m] (anvilwave/examples/grlweap_s4000.toml)."""
 EARLY = 0.012
 """Lift-off intervals ending before this time [s] count as the early lift-off."""
 BANDS = (500.0, 1000.0, 2000.0)
@@ -169,7 +171,7 @@ def ram_length(diameter: float, density: float) -> float:
 def base_config() -> SystemConfig:
     """Table 1 on the free pile, rod ram, automatic step, 25 ms (study_anvil_size's xl8), with
     the paper's pile segments (PILE_SEGMENT) and contacts without dashpots, whatever
-    examples/table1.toml says about those."""
+    anvilwave/examples/table1.toml says about those."""
     cfg = size_case_config(Case("xl8", "table1.toml", 1.0, FULL_WINDOW))
     pile = dataclasses.replace(cfg.pile_soil.pile, segment_length=PILE_SEGMENT)
     anvil = dataclasses.replace(cfg.anvil, ram_contact_damping=0.0, pile_contact_damping=0.0)

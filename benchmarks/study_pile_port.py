@@ -93,6 +93,7 @@ from anvilwave.output.tables import write_csv
 from anvilwave.pile.head_kernel import ring_kernel, tube_contact_stiffness
 
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "anvilwave" / "examples"
 PATCHES = 6
 """Equal-width patches across the pile wall; the rings are groups of them."""
 FMAX_ANVIL = 5000.0
@@ -618,7 +619,7 @@ def _row(run: ModelRun, fea: ModelRun, fea_columns, t_fea) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser()
-    parser.add_argument("--system", type=Path, default=ROOT / "examples" / "table1.toml")
+    parser.add_argument("--system", type=Path, default=EXAMPLES / "table1.toml")
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_pile_port")
     parser.add_argument("--fmax", type=float, default=FMAX_ANVIL,
                         help="modes of the anvil and the ram up to this frequency [Hz]")

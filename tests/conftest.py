@@ -13,7 +13,7 @@ from anvilwave.anvil_rom.fem.geometry import STEEL
 from anvilwave.anvil_rom.fem.mesh import mesh_outline, to_skfem
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "examples"
+EXAMPLES = ROOT / "anvilwave" / "examples"
 SHARED = ROOT.parent / "shared"
 """The shared reference data beside the repository (never copied into it)."""
 NEEDS_SHARED = {"grlweap_s4000.toml"}

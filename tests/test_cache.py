@@ -173,7 +173,7 @@ def test_lumped_anvil_needs_no_modes(monkeypatch):
     monkeypatch.setattr(pipeline, "compute_anvil_modes", refuse)
     engine = build_engine(cfg)
     mass = engine.anvil.unit.anvil.total_mass
-    # the FE mass of examples/anvils/xl8.toml (its modal data, computed elsewhere)
+    # the FE mass of anvilwave/examples/anvils/xl8.toml (its modal data, computed elsewhere)
     assert mass == pytest.approx(325334.5387463, rel=1e-12)
     assert engine.blow(duration=0.002, record=False).max_pile_head_force > 0.0
 

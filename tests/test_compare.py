@@ -20,7 +20,7 @@ from anvilwave.cli import main
 
 from .conftest import assert_within_issue_bounds
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
 
 
 @pytest.fixture(scope="module")

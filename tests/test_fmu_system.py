@@ -1,6 +1,7 @@
 """The system FMUs (Ram, Anvil, AnvilLumped, PileSoil), system.ssp and the FMI engine.
 
-Built once per module from examples/table1.toml (anvil modes ~2-5 s, four FMUs ~3 s), with the
+Built once per module from anvilwave/examples/table1.toml (anvil modes ~2-5 s, four FMUs ~3 s),
+with the
 native anvils when a C compiler is found (else the pythonfmu anvils, and the tests that need
 the native ones say so). The FMU chain under the fmpy master (``run_fmi``) must reproduce the
 in-process engine (``build_engine(cfg).run()``): both run the same kernels (the native anvil:
@@ -563,7 +564,8 @@ def test_fmi_results_write_like_the_engines(system, tmp_path):
 
 # ---------------------------------------------------------------------------- the user's side
 def test_fmpy_cosim_example_swaps_the_anvil_with_fmpy_alone(direct, tmp_path):
-    """examples/fmpy_cosim.py on the FMUs of ``anvilwave build-fmus examples/table1.toml``: its
+    """anvilwave/examples/fmpy_cosim.py on the FMUs of ``anvilwave build-fmus
+    anvilwave/examples/table1.toml``: its
     own master loop (fmpy only: ``import anvilwave`` is made to fail) runs Anvil.fmu, then
     AnvilLumped.fmu swapped in, and plots the pile-head force. Its loop is the DESIGN order with
     the engine's initialisation, so its peaks are the direct engine's (printed to 1 kN)."""

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from numba import njit
 
+from anvilwave.examples import EXAMPLES_DIR
 from anvilwave.hammer import (
     Cushion,
     DrivingSystem,
@@ -36,7 +37,7 @@ from anvilwave.hammer import (
     series_stiffness,
     strain_energy,
 )
-from anvilwave.hammer.database import DATA_DIR, available_hammers
+from anvilwave.hammer.database import available_hammers
 from anvilwave.hammer.driving_system import (
     N_PARAMS,
     N_STATE,
@@ -58,7 +59,8 @@ from anvilwave.inputs import InputError, Table
 
 G = 9.81  # GRLWEAP's gravity in the benchmark [m/s^2]
 KN_PER_MM = 1e6  # [N/m] per [kN/mm]
-GRLWEAP_HAMMER = DATA_DIR / "grlweap" / "ihc_s4000_grlweap.toml"
+# loaded by path from the example beside grlweap_s4000.toml (not a database hammer)
+GRLWEAP_HAMMER = EXAMPLES_DIR / "hammers" / "ihc_s4000_grlweap.toml"
 
 # GRLWEAP's hammer 1372 as printed in the benchmark listing
 K_RAM_BOTTOM = 222_478.5 * KN_PER_MM  # spring below ram segment 9

@@ -19,7 +19,7 @@ from tests.conftest import EXAMPLES
 
 RECORD = EXAMPLES / "pda_record_synthetic.csv"
 RAW = EXAMPLES / "pda_raw_synthetic.csv"
-AREA = math.pi * (8.0 - 0.14) * 0.14  # [m^2] steel at the gauges of examples/table1.toml
+AREA = math.pi * (8.0 - 0.14) * 0.14  # [m^2] steel at the gauges of anvilwave/examples/table1.toml
 LENGTH = 78.0  # [m] below the gauges (80 m pile, gauges 2 m below the head)
 NAMES = ("RTL [N]", "RSP [N]", "RMX [N]", "EMX [J]", "FMX [N]", "CSX [Pa]", "TSX [Pa]",
          "BTA [-]")

@@ -2,7 +2,8 @@
 ram's toe
 annuli make up its toe, the annuli's offsets from the ram unit's toe are the ram's own annulus
 displacements, the engine's blow is the pile-port study's closed loop with six ram annuli on the
-FEA's pile, and examples/table1_interfaces.toml against the reference FEA (band levels, peaks,
+FEA's pile, and anvilwave/examples/table1_interfaces.toml against the reference FEA (band levels,
+peaks,
 energy), then the refusals."""
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from .conftest import assert_within_issue_bounds
 from .study_loop import loop_on_feas_pile
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "examples"
+EXAMPLES = ROOT / "anvilwave" / "examples"
 SYSTEM = EXAMPLES / "table1_interfaces.toml"
 
 

@@ -21,7 +21,7 @@ from anvilwave.config.system import load_system
 from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
 from anvilwave.inputs import InputError
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
 
 
 def system_text(extra: str, model: str = "rom") -> str:

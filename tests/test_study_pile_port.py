@@ -177,7 +177,7 @@ def test_closed_loop_reproduces_the_engine(study):
     from anvilwave.config.system import load_system
     from anvilwave.engine.direct import build_engine
 
-    cfg = without_soil(load_system(PATH.parents[1] / "examples" / "table1.toml"))
+    cfg = without_soil(load_system(PATH.parents[1] / "anvilwave" / "examples" / "table1.toml"))
     blow = build_engine(dataclasses.replace(cfg, time_step=2e-5)).blow()
     section = cfg.pile_soil.pile.sections[0]
     r_out = 0.5 * section.outer_diameter
@@ -204,7 +204,7 @@ def _table1(study):
     from anvilwave.analyses.compare import without_soil
     from anvilwave.config.system import load_system
 
-    cfg = without_soil(load_system(PATH.parents[1] / "examples" / "table1.toml"))
+    cfg = without_soil(load_system(PATH.parents[1] / "anvilwave" / "examples" / "table1.toml"))
     section = cfg.pile_soil.pile.sections[0]
     r_out = 0.5 * section.outer_diameter
     return cfg, r_out - section.wall_thickness, r_out

@@ -24,7 +24,7 @@ from anvilwave.pile.model import substeps
 from .study_loop import loop_on_feas_pile
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "examples"
+EXAMPLES = ROOT / "anvilwave" / "examples"
 
 
 def on_rings(cfg, head: str, rings: int = 3):

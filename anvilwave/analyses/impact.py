@@ -39,6 +39,8 @@ ENGINES = ("direct", "fmi")
 class Blow:
     """One simulated blow.
 
+    Attributes
+    ----------
     columns : time series ``{"name [unit]": array}`` (the columns of ``impact.csv``).
     summary : the blow's ``summary.json`` entries (peaks [N], stresses [Pa], transferred
         energy [J], permanent set [m], energy balance, wall time [s] ...).

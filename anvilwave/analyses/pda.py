@@ -270,6 +270,8 @@ def match(record_path: str | Path, system_path: str | Path, *,
           fit_dampings: bool = True, preload: float | None = None) -> MatchResult:
     """Signal matching of a record with the pile and soil of a system file.
 
+    Parameters
+    ----------
     record_path : gauge record or raw channels CSV (raw: converted with the area and modulus
         of the system's pile at the gauges).
     system_path : system file (pile, gauge depth, soil model and starting SRD, gravity, and
@@ -280,8 +282,11 @@ def match(record_path: str | Path, system_path: str | Path, *,
     fit_quakes, fit_dampings : fit them, or keep the system's.
     preload : force on the gauges at rest [N] (default from the system file).
 
-    Returns a :class:`MatchResult`; its ``content`` is match.json (``rut [N]``,
-    ``rut_shaft [N]``, ``rut_toe [N]``, ``match_quality [-]``, the fitted parameters ...).
+    Returns
+    -------
+    MatchResult
+        Its ``content`` is match.json (``rut [N]``, ``rut_shaft [N]``, ``rut_toe [N]``,
+        ``match_quality [-]``, the fitted parameters ...).
     """
 
     if imposed not in IMPOSED:

@@ -1,13 +1,14 @@
 """Your own co-simulation of the anvilwave FMUs, with fmpy only (no anvilwave import).
 
-The FMUs come from ``anvilwave build-fmus examples/table1.toml --out DIR``. This script loads
+The FMUs come from ``anvilwave build-fmus anvilwave/examples/table1.toml --out DIR``. This script
+loads
 Ram.fmu, an anvil and PileSoil.fmu from DIR, connects them in its own master loop (the step
 order of DESIGN.md: ram and pile states -> anvil -> contact forces at t_n -> every unit steps
 over [t_n, t_n + h]), runs the blow once with the modal anvil (Anvil.fmu) and once with the
 rigid lumped-mass anvil swapped in (AnvilLumped.fmu; same variables, nothing else changes), and
 plots the pile-head force (the anvil-pile contact force) of both.
 
-Run: ``python examples/fmpy_cosim.py DIR [--plot pile_head_force.png]`` (a few seconds;
+Run: ``python anvilwave/examples/fmpy_cosim.py DIR [--plot pile_head_force.png]`` (a few seconds;
 without --plot the figure opens in a window). ``--pile OTHER.fmu`` swaps in another pile/soil
 unit (e.g. a PileSoil.fmu built from a system file with other soil).
 """

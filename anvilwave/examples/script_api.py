@@ -1,7 +1,7 @@
 """A parameter study in a few lines of Python: the Table 1 blow at three energy settings with
 the ROM anvil and the rigid lumped-mass anvil (the anvil's modes are computed once and reused).
 
-Run: ``python examples/script_api.py`` (about 10 s).
+Run: ``python anvilwave/examples/script_api.py`` (about 10 s).
 """
 
 from pathlib import Path
