@@ -38,7 +38,7 @@ from anvilwave.config.schema import describe
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmus import build_system_fmus
-from anvilwave.examples import EXAMPLES_DIR
+from anvilwave.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.fea.impact import run_impact_fea
 from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
@@ -598,7 +598,6 @@ def _version() -> str:
 
 
 def _examples(args: argparse.Namespace) -> int:
-    from anvilwave.examples import copy_examples
 
     try:
         copied = copy_examples(args.dir)

@@ -67,8 +67,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=5000)
     args = parser.parse_args()
-    cfg = load_system(ROOT / "examples" / "table1.toml")
-    tables = tomllib.loads((ROOT / "examples" / "table1.toml").read_text())
+    cfg = load_system(ROOT / "anvilwave" / "examples" / "table1.toml")
+    tables = tomllib.loads((ROOT / "anvilwave" / "examples" / "table1.toml").read_text())
     pile = PileSoil.from_tables(Table(tables["pile"], "table1", "pile"),
                                 Table(tables["soil"], "table1", "soil"))
     rod = load_hammer("illustrative_5500kj", 9.81)

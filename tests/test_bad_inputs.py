@@ -346,8 +346,8 @@ def test_compare_pda_record_shorter_than_2l_over_c(tmp_path, capsys, monkeypatch
 
     monkeypatch.setattr(pda, "compute_anvil_modes", None)  # never reached
     root = Path(__file__).resolve().parents[1]
-    text = (root / "examples" / "table1.toml").read_text().replace(
-        'file = "anvils/xl8.toml"', f'file = "{root}/examples/anvils/xl8.toml"')
+    text = (root / "anvilwave" / "examples" / "table1.toml").read_text().replace(
+        'file = "anvils/xl8.toml"', f'file = "{root}/anvilwave/examples/anvils/xl8.toml"')
     system = tmp_path / "t1.toml"
     system.write_text(text)
     record = _record(tmp_path, n=100, dt=1e-4)  # 10 ms < 2L/c = 30 ms

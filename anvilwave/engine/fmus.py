@@ -42,9 +42,13 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from anvilwave.anvil_rom.fem.modalfile import ModalData, load_modal_data, save_modal_data
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
 from anvilwave.config.system import SystemConfig
+from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
 from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
-from anvilwave.fmu.native_build import NativeBuildError
+from anvilwave.fmu.native_build import NativeBuildError, build_native_anvil_fmu, find_compiler
 from anvilwave.fmu.native_units import (
     build_native_pile_soil_fmu,
     build_native_ram_fmu,
@@ -59,7 +63,6 @@ def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
     """The modal data of the system's anvil: ``anvil_model`` (a ModalData or a modal-data
     ``.npz`` path) or that of the anvil file, from the modal-data cache as the engine takes it
     (:func:`anvilwave.config.cache.cached_modal_data`)."""
-    from anvilwave.anvil_rom.fem.modalfile import ModalData, load_modal_data
 
     if isinstance(anvil_model, ModalData):
         return anvil_model
@@ -69,7 +72,6 @@ def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
         raise InputError(cfg.source, "anvil.file", "the FMUs need the anvil geometry (the "
                                                    "Anvil and AnvilLumped units are built "
                                                    "from its modes)")
-    from anvilwave.engine.direct import anvil_modal_data
 
     return anvil_modal_data(cfg)
 
@@ -79,9 +81,6 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
 
     Also returns, under ``"_rest"``, the anvil top face at rest [m] per anvil FMU.
     """
-    from anvilwave.anvil_rom.rom import ModalAnvil
-    from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
-    from anvilwave.engine.direct import contact_stiffnesses
 
     s = cfg.anvil
     k_ram, k_pile = contact_stiffnesses(cfg)
@@ -147,7 +146,6 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
     The anvil model of the system must be "rom" or "lumped" (InputError otherwise).
     """
-    from anvilwave.anvil_rom.fem.modalfile import save_modal_data
 
     if cfg.anvil.model not in ANVIL_FMU:
         raise InputError(cfg.source, "anvil.model",
@@ -168,7 +166,6 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     parameters = system_parameters(cfg, modal)
     rest = parameters.pop("_rest")
     if time_step is None:
-        from anvilwave.engine.direct import build_engine
 
         time_step = build_engine(cfg, modal).time_step
     out_dir = Path(out_dir)
@@ -198,7 +195,6 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         else:
             result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
         if native:
-            from anvilwave.fmu.native_build import build_native_anvil_fmu
 
             result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
                                                      **parameters["Anvil"])
@@ -235,7 +231,6 @@ def _native_anvil_wanted(native_anvil: bool | None) -> bool:
     for and cannot be built here."""
     if native_anvil is False:
         return False
-    from anvilwave.fmu.native_build import NativeBuildError, find_compiler
 
     try:
         find_compiler()

@@ -65,6 +65,9 @@ from typing import Any
 
 import numpy as np
 
+from anvilwave.anvil_rom.fem.modalfile import ModalData, check_modal_data, load_modal_data
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.unit import ContactParameters
 from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION
 from anvilwave.inputs import InputError
 
@@ -298,8 +301,6 @@ def read_modal_resource(source: str | Path | bytes) -> NativeModalData:
 def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeModalData:
     """The modal data of a ROM build from a ModalData, a ModalAnvil, a mapping of plain arrays
     (ModalData names) or a modal-data ``.npz`` path; checked like a modal-data file."""
-    from anvilwave.anvil_rom.fem.modalfile import ModalData, check_modal_data, load_modal_data
-    from anvilwave.anvil_rom.rom import ModalAnvil
 
     if isinstance(modal, str | os.PathLike):
         modal = load_modal_data(modal)
@@ -484,12 +485,10 @@ def _modal_defaults(modal, lumped: bool, source: str):
     if lumped:
         if isinstance(modal, numbers.Real) and not isinstance(modal, bool):
             return None, {"mass": float(modal)}
-        from anvilwave.anvil_rom.rom import ModalAnvil
 
         if isinstance(modal, ModalAnvil):
             return None, {"mass": float(modal.total_mass)}
         return None, {"mass": native_modal_data(modal, source).total_mass}
-    from anvilwave.anvil_rom.rom import ModalAnvil
 
     data = native_modal_data(modal, source)
     defaults: dict[str, Any] = {"fmax": data.fmax, "damping_ratio": data.damping_ratio}
@@ -531,8 +530,6 @@ def _start_values(variables, given: dict[str, Any], source: str, explicit: set[s
 
 def _check_physics(data, values: dict[str, Any], lumped: bool) -> None:
     """The rules of the Python units, through their physics objects (InputError)."""
-    from anvilwave.anvil_rom.rom import ModalAnvil
-    from anvilwave.anvil_rom.unit import ContactParameters
 
     ContactParameters(values["ram_contact_stiffness"], values["pile_contact_stiffness"],
                       values["ram_contact_damping"], values["pile_contact_damping"])

@@ -51,7 +51,9 @@ from typing import Any
 import numpy as np
 
 from anvilwave.fmu.native_build import NATIVE_DIR, UNITS, NativeBuildError, _zip
+from anvilwave.hammer.database import load_hammer
 from anvilwave.inputs import InputError
+from anvilwave.pile.model import PileSoil, load_pile_soil
 
 UNIT_KINDS = ("Ram", "PileSoil")
 COMMON_SOURCES = ("unit_fmu.c", "unit_fmi3.c", "fmu_common.c")
@@ -315,7 +317,6 @@ def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
     hammer database); parameters as the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg],
     ``gravity`` [m/s^2], ``contact_displacement`` [m], ``contact_time`` [s])."""
     if isinstance(hammer, str):
-        from anvilwave.hammer.database import load_hammer
 
         hammer = load_hammer(hammer, float(parameters.get("gravity", 9.81)))
     arrays, defaults = ram_arrays(hammer)
@@ -328,7 +329,6 @@ def build_native_pile_soil_fmu(pile_soil, out_path: str | Path, *, validate: boo
     """``PileSoil.fmu`` (native) for a :class:`anvilwave.pile.model.PileSoil` (or the path of
     a TOML file with ``[pile]`` and an optional ``[soil]``); parameters ``static_head_load``
     [N] and ``gravity`` [m/s^2]."""
-    from anvilwave.pile.model import PileSoil, load_pile_soil
 
     model = pile_soil if isinstance(pile_soil, PileSoil) else load_pile_soil(pile_soil)
     arrays, defaults = pile_soil_arrays(model)
