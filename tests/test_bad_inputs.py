@@ -187,9 +187,9 @@ BAD_INPUTS = [
      lambda p: _grl(p, {"1": _run(p, tip=2.0), "2": _run(p, tip=3.0),
                         "3": _run(p, rows=((0.0, 1.0, 1.0), (10.0, -2.0, 3.0)))}),
      [], "drive", ["model.json", "srd_tables_by_run.3.rows", "row 2", "negative"]),
-    ("vague", "GRLWEAP soil depths not increasing",
+    ("vague", "GRLWEAP soil depths decreasing",
      lambda p: _grl(p, {"1": _run(p, rows=((5.0, 1.0, 1.0), (1.0, 2.0, 3.0)))}),
-     [], "drive", ["model.json", "srd_tables_by_run.1.rows", "increasing"]),
+     [], "drive", ["model.json", "srd_tables_by_run.1.rows", "row 2", "must not decrease"]),
 ]
 """The command-line bad inputs: (class, case, system extra, arguments, command, words)."""
 

@@ -355,8 +355,12 @@ def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
             if row[ish] < 0.0 or row[ito] < 0.0 or row[iz] < 0.0:
                 raise InputError(path, f"{at}.rows", f"row {i + 1}: {row.tolist()} has a "
                                                      "negative depth or resistance")
-        if np.any(np.diff(rows[:, iz]) <= 0.0):
-            raise InputError(path, f"{at}.rows", "soil depths must be strictly increasing")
+        if np.any(np.diff(rows[:, iz]) < 0.0):
+            # a depth given twice is a step of the resistance (GRLWEAP's layer boundaries)
+            bad = int(np.flatnonzero(np.diff(rows[:, iz]) < 0.0)[0]) + 2
+            raise InputError(path, f"{at}.rows", f"row {bad}: soil depths must not decrease "
+                                                 f"({rows[bad - 2, iz]:g} m, then "
+                                                 f"{rows[bad - 1, iz]:g} m)")
         if any(abs(tip - other) < 1e-9 for other, _ in items):
             raise InputError(path, f"{at}.tip_depth_the_table_was_built_for [m]",
                              f"{tip:g} m is the tip depth of another run (duplicate)")
