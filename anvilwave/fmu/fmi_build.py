@@ -98,7 +98,8 @@ UNIT_DEFINITIONS: dict[str, dict[str, int]] = {
 
 def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] | None = None,
               resources: Iterable[str | Path] = (), *, status_shim: bool | None = None,
-              validate: bool = True) -> Path:
+              validate: bool = True,
+              default_experiment: tuple[float, float, float] | None = None) -> Path:
     """Build one FMU and return its path ``out_dir/<kind>.fmu``.
 
     Parameters
@@ -113,6 +114,9 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
     status_shim : install the fmi2Error status shim: ``None`` when possible (Linux with a C
         compiler), ``True`` required, ``False`` never.
     validate : run ``fmpy.validation.validate_fmu`` on the result (needs fmpy).
+    default_experiment : (start time, stop time, step) [s] of the system the FMU is built for:
+        its ``DefaultExperiment`` (default: the slave class's), and the step the ram places its
+        first contact with before the first ``fmi2DoStep`` (:mod:`anvilwave.fmu.units.ram`).
     """
     script = _script(kind)
     parameters = dict(parameters or {})
@@ -125,9 +129,16 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
         parameters = _checked_parameters(cls, parameters)
         staged = _stage_resources(resources, stage, script)
         defaults = stage / _defaults_file()
-        defaults.write_text(json.dumps({"format": FORMAT, "version": 1,
-                                        "parameters": parameters}, indent=2,
-                                       allow_nan=False) + "\n")
+        content: dict[str, Any] = {"format": FORMAT, "version": 1, "parameters": parameters}
+        if default_experiment is not None:
+            start, stop, step = (float(x) for x in default_experiment)
+            if not (math.isfinite(start) and stop > start and step > 0.0):
+                raise InputError("build_fmu", "default_experiment",
+                                 f"must be (start, stop > start, step > 0) [s], got "
+                                 f"{default_experiment!r}")
+            content["default_experiment"] = {"start_time": start, "stop_time": stop,
+                                             "step_size": step}
+        defaults.write_text(json.dumps(content, indent=2, allow_nan=False) + "\n")
         staged.append(defaults)
         runtime = stage / RUNTIME_FILE
         runtime.write_text(python_runtime_text(), encoding="utf-8")
@@ -136,7 +147,7 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
         built = _pythonfmu_build(script, scratch / "build", staged)
         shim = _compile_shim(scratch, status_shim)
         final = scratch / built.name
-        _post_process(built, final, slave, shim)
+        _post_process(built, final, slave, shim, content.get("default_experiment"))
         if validate:
             _validate(final)
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -148,6 +159,7 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
 
 
 def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped: bool = False,
+                    default_experiment: tuple[float, float, float] | None = None,
                     **parameters) -> Path:
     """``Anvil.fmu`` (modal ROM) or, with ``lumped``, ``AnvilLumped.fmu`` from a modal-data file.
 
@@ -160,17 +172,21 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
     path = Path(modal_data_file)
     data = load_modal_data(path)
     if lumped:
-        return build_fmu("AnvilLumped", out_dir, {"mass": data.total_mass, **parameters})
+        return build_fmu("AnvilLumped", out_dir, {"mass": data.total_mass, **parameters},
+                         default_experiment=default_experiment)
     defaults = {"modal_data_file": path.name, "fmax": data.fmax,
                 "damping_ratio": data.damping_ratio}
-    return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path])
+    return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path],
+                     default_experiment=default_experiment)
 
 
 HAMMER_RESOURCE = "hammer.toml"
 PILE_SOIL_RESOURCE = "pile_soil.toml"
 
 
-def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
+def build_ram_fmu(out_dir: str | Path, hammer=None, *,
+                  default_experiment: tuple[float, float, float] | None = None,
+                  **parameters) -> Path:
     """``Ram.fmu`` for a hammer.
 
     hammer : a :class:`anvilwave.hammer.database.Hammer` (its ram is embedded as
@@ -179,7 +195,10 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
         [kg] default to the hammer's), the name of a database hammer (nothing embedded), the
         path of a hammer TOML file (embedded), or None (the default database hammer).
     parameters : further parameters of the Ram FMU (``v_impact`` [m/s], ``gravity`` [m/s^2],
-        ``contact_displacement`` [m], ``contact_time`` [s], ``mass`` [kg]).
+        ``contact_displacement`` [m], ``contact_mid_step``, ``contact_time`` [s], ``mass``
+        [kg]).
+    default_experiment : (start, stop, step) [s] of the system (:func:`build_fmu`); the same
+        keyword for the other helpers.
     """
     from anvilwave.hammer.database import Hammer
 
@@ -205,10 +224,13 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
                                      f"({', '.join(available_hammers())}) nor a .toml file")
                 resources.append(path)
                 defaults = {"hammer": path.name}
-        return build_fmu("Ram", out_dir, {**defaults, **parameters}, resources)
+        return build_fmu("Ram", out_dir, {**defaults, **parameters}, resources,
+                         default_experiment=default_experiment)
 
 
-def build_pile_soil_fmu(out_dir: str | Path, pile_soil, **parameters) -> Path:
+def build_pile_soil_fmu(out_dir: str | Path, pile_soil, *,
+                        default_experiment: tuple[float, float, float] | None = None,
+                        **parameters) -> Path:
     """``PileSoil.fmu`` for a pile with its soil.
 
     pile_soil : a :class:`anvilwave.pile.model.PileSoil` (written exactly as ``pile_soil.toml``; the
@@ -229,7 +251,8 @@ def build_pile_soil_fmu(out_dir: str | Path, pile_soil, **parameters) -> Path:
             path = Path(pile_soil)
             model = load_pile_soil(path)
         defaults = {"pile_soil_file": path.name, **pile_soil_parameters(model)}
-        return build_fmu("PileSoil", out_dir, {**defaults, **parameters}, [path])
+        return build_fmu("PileSoil", out_dir, {**defaults, **parameters}, [path],
+                         default_experiment=default_experiment)
 
 
 def pile_soil_parameters(model) -> dict[str, Any]:
@@ -488,11 +511,20 @@ def _compile_shim(scratch: Path, wanted: bool | None) -> Path | None:
     return None
 
 
-def _post_process(built: Path, final: Path, slave, shim: Path | None) -> None:
+def _post_process(built: Path, final: Path, slave, shim: Path | None,
+                  experiment: dict[str, float] | None = None) -> None:
     with zipfile.ZipFile(built) as zin:
         root = ET.fromstring(zin.read("modelDescription.xml"))
         identifier = root.find("CoSimulation").get("modelIdentifier")
         complete_model_description(root, slave.fmi_units, slave.fmi_dependencies)
+        if experiment is not None:
+            node = root.find("DefaultExperiment")
+            if node is None:
+                node = ET.SubElement(root, "DefaultExperiment")
+            node.attrib.clear()
+            node.set("startTime", repr(experiment["start_time"]))
+            node.set("stopTime", repr(experiment["stop_time"]))
+            node.set("stepSize", repr(experiment["step_size"]))
         binary = f"binaries/linux64/{identifier}.so"
         with zipfile.ZipFile(final, "w", zipfile.ZIP_DEFLATED) as zout:
             for item in zin.infolist():

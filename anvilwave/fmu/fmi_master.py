@@ -442,12 +442,14 @@ class BlowMaster(ChainMaster):
     pile's ``u_head`` at the start of the blow), and the ram is reset and starts in free
     flight at its impact velocity so that its toe reaches the anvil's top face (``u_top``
     read from the anvil at rest, the ram's ``contact_displacement``) half a step after the
-    start (``contact_time``). Time runs on continuously over the blows in the FMUs,
-    T = t0 + (k N + n) h for step n of blow k (from the step count); each blow's own time is
-    t0 + n h with the first contact at 0, as in the engine.
+    start (``contact_time``; the ram's ``contact_mid_step`` would do the same, but the engine
+    computes the start as start + h/2, and so does this master, to the bit). Time runs on
+    continuously over the blows in the FMUs, T = t0 + (k N + n) h for step n of blow k (from
+    the step count); each blow's own time is t0 + n h with the first contact at 0, as in the engine.
 
     Parameters as :class:`ChainMaster`; the master sets ``initial_pile_head_displacement``
-    (anvil), ``contact_displacement`` and ``contact_time`` (ram) itself unless given.
+    (anvil), ``contact_displacement``, ``contact_time`` and ``contact_mid_step`` (ram) itself
+    unless given.
 
     compiled : run the DESIGN.md loop compiled with numba (:func:`_design_loop`, about
         10 us per step less than the interpreted loop); False runs it in Python.
@@ -536,6 +538,8 @@ class BlowMaster(ChainMaster):
         ram = dict(self.parameters["ram"])
         if self._has_parameter("ram", "contact_displacement"):
             ram.setdefault("contact_displacement", top)
+        if self._has_parameter("ram", "contact_mid_step") and "contact_time" not in ram:
+            ram.setdefault("contact_mid_step", False)  # the engine's: the contact at start + h/2
         if self._has_parameter("ram", "contact_time"):
             ram.setdefault("contact_time", start + 0.5 * h)
         self._start_unit("ram", ram, start, stop)

@@ -108,6 +108,7 @@ class UnitSlave(Fmi2Slave):
         self._feedthrough = False  # does any output depend directly on an input?
         self.component = None
         self.start_time = 0.0
+        self.default_step: float | None = None  # the build's DefaultExperiment step [s]
         self.failed = False
         self._initialized = False
         self._outputs_current = False
@@ -307,6 +308,8 @@ class UnitSlave(Fmi2Slave):
             return {}
         try:
             content = json.loads(path.read_text(encoding="utf-8"))
+            step = (content.get("default_experiment") or {}).get("step_size")
+            self.default_step = float(step) if step else None
             return dict(content["parameters"])
         except (OSError, ValueError, KeyError, TypeError) as exc:
             self.log(f"{path}: unreadable parameter defaults ({exc})", Fmi2Status.error)
