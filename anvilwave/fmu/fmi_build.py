@@ -43,6 +43,8 @@ system file: :func:`anvilwave.engine.fmus.build_system_fmus`.
 
 from __future__ import annotations
 
+import hashlib
+import importlib.metadata
 import importlib.util
 import inspect
 import json
@@ -53,6 +55,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import uuid
 import warnings
 import xml.etree.ElementTree as ET
 import zipfile
@@ -68,6 +71,11 @@ UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"
 SHIM_INNER_LIBRARY = "pythonfmu-export.so"  # must match INNER_LIBRARY in the shim source
 RUNTIME_FILE = "anvilwave_python.txt"  # must match RUNTIME_FILE in the shim source
+GUID_FILE = "anvilwave_guid.txt"  # must match GUID_FILE in the shim source
+AUTHOR = "anvilwave"
+"""``author`` of the FMUs' modelDescription.xml (with ``version``: anvilwave's, and
+``license``: the project's)."""
+LICENSE = "MIT"
 FORMAT = "anvilwave-fmu-parameters"
 
 KINDS: dict[str, Path] = {
@@ -391,7 +399,8 @@ def _script(kind: str | Path) -> Path:
 
 
 def _stage_resources(resources, stage: Path, script: Path) -> list[Path]:
-    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu", RUNTIME_FILE}
+    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu", RUNTIME_FILE,
+                GUID_FILE}
     staged = []
     for res in resources:
         res = Path(res)
@@ -526,18 +535,65 @@ def _post_process(built: Path, final: Path, slave, shim: Path | None,
             node.set("stopTime", repr(experiment["stop_time"]))
             node.set("stepSize", repr(experiment["step_size"]))
         binary = f"binaries/linux64/{identifier}.so"
-        with zipfile.ZipFile(final, "w", zipfile.ZIP_DEFLATED) as zout:
-            for item in zin.infolist():
-                if item.filename == "modelDescription.xml":
-                    continue
-                data = zin.read(item.filename)
-                if shim is not None and item.filename == binary:
-                    zout.writestr(f"binaries/linux64/{SHIM_INNER_LIBRARY}", data)
-                    data = shim.read_bytes()
-                zout.writestr(item, data)
-            ET.indent(root, space="  ")
-            xml = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
-            zout.writestr("modelDescription.xml", xml)
+        files: dict[str, bytes] = {}
+        for item in sorted(zin.infolist(), key=lambda i: i.filename):
+            if item.filename == "modelDescription.xml" or item.is_dir():
+                continue
+            data = zin.read(item.filename)
+            if shim is not None and item.filename == binary:
+                files[f"binaries/linux64/{SHIM_INNER_LIBRARY}"] = data
+                data = shim.read_bytes()
+            files[item.filename] = data
+    _exact_start_values(root, slave.parameters)
+    root.attrib.pop("generationDateAndTime", None)  # identical builds, identical files
+    root.set("author", AUTHOR)
+    root.set("version", anvilwave_version())
+    root.set("license", LICENSE)
+    root.set("guid", "")
+    ET.indent(root, space="  ")
+    guid = content_guid(ET.tostring(root, encoding="UTF-8"), files)
+    root.set("guid", guid)
+    files[f"resources/{GUID_FILE}"] = (guid + "\n").encode()
+    files["modelDescription.xml"] = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
+    with zipfile.ZipFile(final, "w", zipfile.ZIP_DEFLATED) as zout:
+        for name in ["modelDescription.xml", *sorted(set(files) - {"modelDescription.xml"})]:
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            zout.writestr(info, files[name])
+
+
+def _exact_start_values(root: ET.Element, values: dict[str, Any]) -> None:
+    """Parameter start values as the unit reads them (``repr`` of a float: pythonfmu writes 16
+    significant digits, so an SSP tool comparing with them would see another number)."""
+    for var in root.find("ModelVariables").findall("ScalarVariable"):
+        name = var.get("name")
+        if var.get("causality") != "parameter" or name not in values:
+            continue
+        for node in var:
+            if "start" in node.attrib:
+                value = values[name]
+                node.set("start", ("true" if value else "false") if isinstance(value, bool)
+                         else repr(float(value)) if node.tag == "Real" else str(value))
+
+
+def content_guid(model_description: bytes, files: dict[str, bytes]) -> str:
+    """The GUID of an FMU from its content: a name-based UUID (RFC 4122 version 5 layout) of the
+    SHA-256 of the model description (its ``guid`` empty) and of every other file (name and
+    bytes), so that identical builds get identical GUIDs and any change a new one."""
+    digest = hashlib.sha256(model_description)
+    for name in sorted(files):
+        digest.update(b"\0" + name.encode() + b"\0" + len(files[name]).to_bytes(8, "little"))
+        digest.update(files[name])
+    return "{" + str(uuid.UUID(bytes=digest.digest()[:16], version=5)) + "}"
+
+
+def anvilwave_version() -> str:
+    """The installed anvilwave's version (``0+unknown`` for a checkout that is not installed)."""
+    try:
+        return importlib.metadata.version("anvilwave")
+    except importlib.metadata.PackageNotFoundError:
+        return "0+unknown"
 
 
 def complete_model_description(root: ET.Element, units: dict[str, str],
