@@ -538,7 +538,7 @@ class BlowMaster(ChainMaster):
         ram = dict(self.parameters["ram"])
         if self._has_parameter("ram", "contact_displacement"):
             ram.setdefault("contact_displacement", top)
-        if self._has_parameter("ram", "contact_mid_step") and "contact_time" not in ram:
+        if self._has_parameter("ram", "contact_mid_step"):
             ram.setdefault("contact_mid_step", False)  # the engine's: the contact at start + h/2
         if self._has_parameter("ram", "contact_time"):
             ram.setdefault("contact_time", start + 0.5 * h)
