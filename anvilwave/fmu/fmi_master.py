@@ -53,7 +53,8 @@ BLOW_ROW = RAM_OUTPUTS + PILE_OUTPUTS + PILE_EXTRA_OUTPUTS + ANVIL_OUTPUTS
 _F_RAM = BLOW_ROW.index("F_ram")
 _F_PILE = BLOW_ROW.index("F_pile")
 _PILE_AT = BLOW_ROW.index("u_head")
-assert (_PILE_AT, _F_RAM, _F_PILE) == (2, 8, 9)  # the offsets compiled into _design_loop
+_OFFSETS = np.array([_PILE_AT, _F_RAM, _F_PILE], dtype=np.int64)
+"""Offsets in the exchange row of the pile outputs and the two forces (for _design_loop)."""
 
 COLUMNS: tuple[tuple[str, str], ...] = (
     ("time", "s"),
@@ -614,12 +615,12 @@ class BlowMaster(ChainMaster):
         chunk = max(1000, (n_steps + 1) // 50)
         # compile (or load from numba's cache) outside the timed stepping: an empty range
         _design_loop(0, 0, n_steps, n_offset, h, t0, record_every, *functions, *components,
-                     *refs, counts, row, data)
+                     *refs, counts, _OFFSETS, row, data)
         start = time.perf_counter()
         for first in range(0, n_steps + 1, chunk):
             last = min(first + chunk, n_steps + 1)
             code = _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
-                                *functions, *components, *refs, counts, row, data)
+                                *functions, *components, *refs, counts, _OFFSETS, row, data)
             if code != 0:
                 n = abs(code) - 1
                 self._diagnose(n_offset + n, h, t0, "exchange" if code > 0 else "step")
@@ -641,17 +642,19 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
                  get_ram, set_ram, step_ram, get_anvil, set_anvil, step_anvil,
                  get_pile, set_pile, step_pile, c_ram, c_anvil, c_pile,
                  vr_ram_out, vr_ram_in, vr_pile_out, vr_pile_in, vr_anvil_in, vr_anvil_out,
-                 counts, row, data):
+                 counts, offsets, row, data):
     """Steps n = first .. last - 1 of a blow in the DESIGN.md order (see BlowMaster).
 
     ``row`` is the exchange row (BLOW_ROW), read and written in place through its address;
-    the value-reference arguments are addresses of unsigned arrays. Returns 0, or n + 1 when
+    the value-reference arguments are addresses of unsigned arrays; ``offsets`` the row
+    offsets of the pile outputs and of F_ram, F_pile (:data:`_OFFSETS`). Returns 0, or n + 1 when
     the exchange at step n failed, -(n + 1) when its doStep did.
     """
     size = 8  # bytes per double
     base = row.ctypes.data
-    p_pile = base + 2 * size  # BLOW_ROW.index("u_head")
-    p_forces = base + 8 * size  # BLOW_ROW.index("F_ram")
+    p_pile = base + offsets[0] * size
+    p_forces = base + offsets[1] * size
+    p_force_pile = base + offsets[2] * size
     n_ram, n_pile, n_anvil = counts[0], counts[1], counts[2]
     for n in range(first, last):
         # 1-2: states of ram and pile -> anvil -> contact forces at t_n
@@ -668,7 +671,7 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
         # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
         t = t0 + (n_offset + n) * h
         status = (set_ram(c_ram, vr_ram_in, 1, p_forces)
-                  | set_pile(c_pile, vr_pile_in, 1, p_forces + size)
+                  | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
                   | step_ram(c_ram, t, h, 1)
                   | step_anvil(c_anvil, t, h, 1)
                   | step_pile(c_pile, t, h, 1))
