@@ -521,12 +521,13 @@ static void shim_logger(fmi2ComponentEnvironment environment, fmi2String instanc
 static int refused(fmi2Component c, const char *call, int allowed)
 {
     Shim *s = (Shim *)c;
+    char message[256];  /* formatted here: the names hold no '%' for the host's printf */
     if (s == NULL) return 1;
     if (allowed & (1 << s->state)) return 0;
+    snprintf(message, sizeof message, "%s is not allowed in the state '%s' (FMI 2.0 call "
+             "sequence)", call, STATE_NAMES[s->state]);
     if (s->host.logger != NULL)
-        s->host.logger(s->host.componentEnvironment, "", fmi2Error, "",
-                       "%s is not allowed in the state '%s' (FMI 2.0 call sequence)", call,
-                       STATE_NAMES[s->state]);
+        s->host.logger(s->host.componentEnvironment, "", fmi2Error, "", message);
     return 1;
 }
 
@@ -570,14 +571,17 @@ EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType,
 {
     Shim *s;
     int python, loaded = 0;
-    char expected[256];
+    char expected[256], message[700];
     if (functions == NULL) return NULL;
     if (!guid_matches(fmuResourceLocation, fmuGUID, expected, sizeof expected)) {
+        snprintf(message, sizeof message, "wrong GUID %.200s: this FMU is %.200s (instantiate "
+                 "it with the GUID of its modelDescription.xml)", fmuGUID ? fmuGUID : "(null)",
+                 expected);
+        for (char *p = message; *p; p++)
+            if (*p == '%') *p = '?';  /* the host's logger takes it as a printf format */
         if (functions->logger != NULL)
             functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "",
-                              "wrong GUID %s: this FMU is %s (instantiate it with the GUID of "
-                              "its modelDescription.xml)", fmuGUID ? fmuGUID : "(null)",
-                              expected);
+                              message);
         return NULL;
     }
     pthread_mutex_lock(&load_lock);
