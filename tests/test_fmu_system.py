@@ -147,9 +147,9 @@ def test_each_fmu_runs_alone_with_fmpy_simulate(system, kind):
     assert all(np.all(np.isfinite(result[n])) for n in names)
     parameters = system["fmus"]["parameters"]
     t = result["time"]
-    if kind == "Ram":  # free fall from the contact point: v = v0 + g t, no input force
+    if kind == "Ram":  # free fall from the start: v = v0 + g (t - t0), no input force
         v0, g = parameters["Ram"]["v_impact"], parameters["Ram"]["gravity"]
-        np.testing.assert_allclose(result["v_toe"], v0 + g * t, rtol=1e-9)
+        np.testing.assert_allclose(result["v_toe"], v0 + g * (t - t[0]), rtol=1e-9)
     elif kind == "PileSoil":  # at rest under the anvil weight, unloaded at t = 0: it rebounds
         assert result["u_head"][0] == 0.0 and result["u_head"][-1] < 0.0
     else:  # the anvil at rest on the pile: the contact force is its weight
@@ -175,17 +175,31 @@ def test_system_ssp_is_valid_ssp_1_0(system):
         assert {"resources/Ram.fmu", "resources/Anvil.fmu", "resources/PileSoil.fmu"} <= set(
             zf.namelist())
         xml = zf.read("SystemStructure.ssd").decode()
-    # every parameter value of the build is in the SSP (exactly, repr round trip), and the
-    # anvil's input extrapolation for Jacobi masters
-    ssp_anvil = {**fmus["parameters"]["Anvil"], "input_extrapolation": True}
-    for values in (fmus["parameters"]["Ram"], ssp_anvil, fmus["parameters"]["PileSoil"]):
-        for name, value in values.items():
+    # every parameter value of the build is in the SSP (exactly, repr round trip), the anvil's
+    # input extrapolation for Jacobi masters among them, and each is the FMU's own default
+    # (for tools that ignore the bindings)
+    assert fmus["parameters"]["Anvil"]["input_extrapolation"] is True
+    for kind in ("Ram", "Anvil", "PileSoil"):
+        md = read_model_description(str(fmus[kind]))
+        starts = {v.name: v.start for v in md.modelVariables if v.causality == "parameter"}
+        for name, value in fmus["parameters"][kind].items():
             text = ("true" if value else "false") if isinstance(value, bool) else repr(value)
             assert f'<ssv:Parameter name="{name}">' in xml and f'value="{text}"' in xml
+            assert str(starts[name]).lower() in (text, repr(float(value)) if not
+                                                 isinstance(value, bool) else text)
     step = round(fmus["time_step"] * 1e9 / SSP_STEP_DIVISOR) * 1e-9
     assert f'baseStepSize="{step!r}"' in xml and "osp:FixedStepAlgorithm" in xml
+    assert f'stepSize="{step!r}"' in xml and "oms:FixedStepMaster" in xml  # OMSimulator's
     assert SSP_STEP_DIVISOR <= 4  # the SSP step is at least h/4 of the fmpy master's h
-    assert f'startTime="{-0.5 * fmus["ssp_step"]!r}"' in xml  # contact at half a step
+    assert f'startTime="{-0.5 * fmus["ssp_step"]!r}"' in xml  # the engine's time axis
+    assert 'name="anvilwave_table1"' in xml  # an identifier (OMSimulator)
+    assert "<ssc:String" not in xml  # OMSimulator imports no String connector
+    # the pythonfmu FMUs' DefaultExperiment is the SSP's
+    for kind in ("Ram", "PileSoil"):
+        experiment = read_model_description(str(fmus[kind])).defaultExperiment
+        assert (float(experiment.startTime), float(experiment.stopTime),
+                float(experiment.stepSize)) == (-0.5 * fmus["ssp_step"],
+                                                system["cfg"].duration, fmus["ssp_step"])
 
 
 def test_build_rejects_an_anvil_model_without_fmus(system, tmp_path):
@@ -222,8 +236,15 @@ def test_ram_fmu_from_the_hammer_database(system, tmp_path):
         fmu.fmu.setupExperiment(startTime=0.0)
         fmu.fmu.enterInitializationMode()
         fmu.fmu.exitInitializationMode()
-        assert fmu.get("v_toe") == hammer.impact_velocity
-        assert fmu.get("u_toe") == 0.0
+        v = hammer.impact_velocity
+        assert fmu.get("v_toe") == v
+        # contact_displacement 0 reached in the middle of the first step (contact_mid_step):
+        # before it, half the default step h_d (no DefaultExperiment given: 1e-5 s) away
+        np.testing.assert_allclose(fmu.get("u_toe"), -0.5e-5 * v, rtol=1e-12)
+        h = 4e-5
+        fmu.fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=h)
+        # free flight over the step from -v h / 2: at +v h / 2, up to gravity (g h^2 / 2)
+        np.testing.assert_allclose(fmu.get("u_toe"), 0.5 * v * h, rtol=0, atol=2 * 9.81 * h * h)
     finally:
         fmu.close()
 
@@ -442,7 +463,7 @@ def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int,
     fmus = system["fmus"]
     ram = system["fmus"]["parameters"]["Ram"]
     parameters = {"ram": {"contact_displacement": ram["contact_displacement"],
-                          "contact_time": ram["contact_time"]}, "anvil": dict(anvil or {})}
+                          "contact_time": 0.0}, "anvil": dict(anvil or {})}
     with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"], parameters,
                     exchange=exchange, compiled=False) as master:
         return master.run_blows(1, n_steps, step_ns * 1e-9, start_time=start_ns * 1e-9)[0]
@@ -537,11 +558,12 @@ def test_input_extrapolation_converges_and_leaves_the_design_order_alone(system)
         errors[divisor] = max(relative_difference(jacobi[f], design[f])
                               for f in ("F_ram", "F_pile"))
         if divisor == 4:
-            lagging = fmpy_run(system, "jacobi", step_ns, n, -step_ns // 2)
+            lagging = fmpy_run(system, "jacobi", step_ns, n, -step_ns // 2,
+                               {"input_extrapolation": False})
             assert max(relative_difference(lagging[f], design[f])
                        for f in ("F_ram", "F_pile")) > 0.1
             same = fmpy_run(system, "design", step_ns, n, -step_ns // 2,
-                            {"input_extrapolation": True})
+                            {"input_extrapolation": False})
             assert np.array_equal(same.data, design.data, equal_nan=True)
     print("\nJacobi with input extrapolation vs DESIGN order, max |dF| / peak: "
           + ", ".join(f"h/{d}: {e:.2e}" for d, e in errors.items()))

@@ -23,16 +23,18 @@ makes that an :class:`~anvilwave.inputs.InputError`, ``False`` builds the python
 The native PileSoil fixes the pile and soil settings at the build (the pythonfmu unit also
 takes them as parameters).
 
-``system.ssp`` is for Jacobi-type masters (OSP libcosim and most SSP runners: every unit steps,
-then the outputs are exchanged, so the anvil's forces reach ram and pile one step late). Its
-anvil turns ``input_extrapolation`` on (:mod:`anvilwave.fmu.coupling`: the inputs extrapolated to
-the
-unit's time, the missed contact impulse given back) and its fixed step is the engine's step h
-over :data:`SSP_STEP_DIVISOR`, from -step/2 (the ram touches the anvil half a step after the
-start, as in the engine). Measured on Table 1 (modal ram, ROM anvil) with libcosim at h/4: peak
-forces within 0.3 % of the fmpy master (DESIGN.md order) on the same step. The FMUs themselves
-keep ``input_extrapolation`` off, so the fmpy master and ``run_fmi`` run the DESIGN order as
-before (with it on they would give the same bits).
+``system.ssp`` is for Jacobi-type masters (OSP libcosim, OMSimulator, fmpy's SSP runner: every
+unit steps, then the outputs are exchanged, so the anvil's forces reach ram and pile one step
+late). Its anvil has ``input_extrapolation`` on (:mod:`anvilwave.fmu.coupling`: the inputs
+extrapolated to the unit's time, the missed contact impulse given back), and its fixed step is
+the engine's step h over :data:`SSP_STEP_DIVISOR`, from -step/2 (the engine's time axis: the
+first contact at 0). Every parameter value of the SSP is also the FMUs' default (they are built
+with them, ``input_extrapolation`` included: in the DESIGN.md order of the fmpy master it
+changes no bit), so a tool that ignores the SSP's bindings runs the same system, and every
+pythonfmu FMU's DefaultExperiment is the SSP's. The ram places the first contact in the middle
+of the first step whatever the start time (:mod:`anvilwave.fmu.units.ram`). Measured on Table 1
+(modal ram, ROM anvil) with libcosim at h/4: peak forces within 0.3 % of the fmpy master
+(DESIGN.md order) on the same step.
 """
 
 from __future__ import annotations
@@ -87,7 +89,7 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
     contacts = {"ram_contact_stiffness": k_ram, "pile_contact_stiffness": k_pile,
                 "ram_contact_damping": float(s.ram_contact_damping),
                 "pile_contact_damping": float(s.pile_contact_damping),
-                "gravity": float(cfg.gravity)}
+                "gravity": float(cfg.gravity), "input_extrapolation": True}
     rom = {**contacts, "fmax": float(s.fmax if s.fmax is not None else modal.fmax),
            "damping_ratio": float(s.damping_ratio if s.damping_ratio is not None
                                   else modal.damping_ratio),
@@ -104,7 +106,7 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
                       float(anvil.total_mass * cfg.gravity))
     kind = ANVIL_FMU.get(s.model, "Anvil")
     ram = {"v_impact": float(cfg.impact_velocity), "gravity": float(cfg.gravity),
-           "contact_displacement": rest[kind][0], "contact_time": 0.0}
+           "contact_displacement": rest[kind][0]}
     pile = {"static_head_load": rest[kind][1], "gravity": float(cfg.gravity)}
     return {"Ram": ram, "Anvil": rom, "AnvilLumped": lumped, "PileSoil": pile, "_rest": rest}
 
@@ -112,7 +114,8 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
 SSP_STEP_DIVISOR = 4
 """The SSP's fixed step is the engine's step over this (module docstring)."""
 SSP_ANVIL_PARAMETERS = {"input_extrapolation": True}
-"""Anvil parameters that ``system.ssp`` sets on top of the build's (module docstring)."""
+"""Anvil parameters ``system.ssp`` needs (module docstring); the anvil FMUs are built with them
+(:func:`system_parameters`), so that tools ignoring the SSP's bindings run them too."""
 
 
 def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, *,
@@ -187,13 +190,15 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                              "AnvilLumped": 2}
     result["ram_implementation"] = "native" if native_ram else "pythonfmu"
     result["pile_soil_implementation"] = "native" if native_pile else "pythonfmu"
+    experiment = (-0.5 * step, float(cfg.duration), step)  # the SSP's (module docstring)
     with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
         if native_ram:
             result["Ram"] = build_native_ram_fmu(cfg.hammer, out_dir / "Ram.fmu",
                                                  fmi_version=fmi_version, **parameters["Ram"])
         else:
-            result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, **parameters["Ram"])
+            result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, default_experiment=experiment,
+                                          **parameters["Ram"])
         if native:
 
             result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
@@ -203,8 +208,10 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                                                            **parameters["AnvilLumped"])
         else:
             modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
-            result["Anvil"] = build_anvil_fmu(modal_file, out_dir, **parameters["Anvil"])
+            result["Anvil"] = build_anvil_fmu(modal_file, out_dir, default_experiment=experiment,
+                                              **parameters["Anvil"])
             result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
+                                                    default_experiment=experiment,
                                                     **parameters["AnvilLumped"])
         if native_pile:
             result["PileSoil"] = build_native_pile_soil_fmu(cfg.pile_soil,
@@ -213,13 +220,14 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                                                             **parameters["PileSoil"])
         else:
             result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,
+                                                     default_experiment=experiment,
                                                      **parameters["PileSoil"])
     if ssp:
         kind = result["anvil"]
         result["ssp"] = write_ssp(
             out_dir / "system.ssp",
             {"Ram": result["Ram"], "Anvil": result[kind], "PileSoil": result["PileSoil"]},
-            {"Ram": parameters["Ram"], "Anvil": {**parameters[kind], **SSP_ANVIL_PARAMETERS},
+            {"Ram": parameters["Ram"], "Anvil": parameters[kind],
              "PileSoil": parameters["PileSoil"]},
             name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * step,
             stop_time=cfg.duration, step_size=step)

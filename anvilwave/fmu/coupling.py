@@ -10,7 +10,10 @@ order
 in ``anvilwave/fmu/native/anvil_fmu.c``):
 
 1. inputs set at a new communication point t_in keep the velocities of the point before
-   (t_in - d): a = (v - v_before) / d is the neighbour's acceleration (0 at the first point);
+   (t_in - d): a = (v - v_before) / d is the neighbour's acceleration (0 at the first point,
+   and 0 while the point before is the start time: inputs there are a master's initial values,
+   e.g. the zeros fmpy's SSP runner sets before it has read any output, not the neighbours'
+   states, so a difference across them is no acceleration; a neighbour in free flight has none);
 2. the outputs at the unit's time t use the inputs extrapolated over the age s = t - t_in,
    :func:`extrapolated_input`: u + s (v + a d / 2) + a s^2 / 2 and v + a s (the velocity inputs
    are the neighbours' half-step values, their mean velocity over their last step, so that
@@ -72,6 +75,7 @@ class InputExtrapolation:
     """
 
     def __init__(self, time: float):
+        self.start = time  # the start time [s] (step 1: no acceleration across it)
         self.time = time
         self.input_time = time  # when the inputs were last set [s]
         self.interval = 0.0  # from the point before to input_time [s] (0: no point before)
@@ -84,7 +88,7 @@ class InputExtrapolation:
         """Before new inputs are stored: at a new point keep the velocities of the last one."""
         if self.time > self.input_time:
             self.previous_velocity = (inputs[1], inputs[3])
-            self.interval = self.time - self.input_time
+            self.interval = self.time - self.input_time if self.input_time > self.start else 0.0
             self.input_time = self.time
 
     def extrapolated(self, inputs) -> tuple[float, float, float, float]:

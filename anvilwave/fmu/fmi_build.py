@@ -43,6 +43,8 @@ system file: :func:`anvilwave.engine.fmus.build_system_fmus`.
 
 from __future__ import annotations
 
+import hashlib
+import importlib.metadata
 import importlib.util
 import inspect
 import json
@@ -53,6 +55,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import uuid
 import warnings
 import xml.etree.ElementTree as ET
 import zipfile
@@ -68,6 +71,11 @@ UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"
 SHIM_INNER_LIBRARY = "pythonfmu-export.so"  # must match INNER_LIBRARY in the shim source
 RUNTIME_FILE = "anvilwave_python.txt"  # must match RUNTIME_FILE in the shim source
+GUID_FILE = "anvilwave_guid.txt"  # must match GUID_FILE in the shim source
+AUTHOR = "anvilwave"
+"""``author`` of the FMUs' modelDescription.xml (with ``version``: anvilwave's, and
+``license``: the project's)."""
+LICENSE = "MIT"
 FORMAT = "anvilwave-fmu-parameters"
 
 KINDS: dict[str, Path] = {
@@ -98,7 +106,8 @@ UNIT_DEFINITIONS: dict[str, dict[str, int]] = {
 
 def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] | None = None,
               resources: Iterable[str | Path] = (), *, status_shim: bool | None = None,
-              validate: bool = True) -> Path:
+              validate: bool = True,
+              default_experiment: tuple[float, float, float] | None = None) -> Path:
     """Build one FMU and return its path ``out_dir/<kind>.fmu``.
 
     Parameters
@@ -113,6 +122,9 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
     status_shim : install the fmi2Error status shim: ``None`` when possible (Linux with a C
         compiler), ``True`` required, ``False`` never.
     validate : run ``fmpy.validation.validate_fmu`` on the result (needs fmpy).
+    default_experiment : (start time, stop time, step) [s] of the system the FMU is built for:
+        its ``DefaultExperiment`` (default: the slave class's), and the step the ram places its
+        first contact with before the first ``fmi2DoStep`` (:mod:`anvilwave.fmu.units.ram`).
     """
     script = _script(kind)
     parameters = dict(parameters or {})
@@ -125,9 +137,16 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
         parameters = _checked_parameters(cls, parameters)
         staged = _stage_resources(resources, stage, script)
         defaults = stage / _defaults_file()
-        defaults.write_text(json.dumps({"format": FORMAT, "version": 1,
-                                        "parameters": parameters}, indent=2,
-                                       allow_nan=False) + "\n")
+        content: dict[str, Any] = {"format": FORMAT, "version": 1, "parameters": parameters}
+        if default_experiment is not None:
+            start, stop, step = (float(x) for x in default_experiment)
+            if not (math.isfinite(start) and stop > start and step > 0.0):
+                raise InputError("build_fmu", "default_experiment",
+                                 f"must be (start, stop > start, step > 0) [s], got "
+                                 f"{default_experiment!r}")
+            content["default_experiment"] = {"start_time": start, "stop_time": stop,
+                                             "step_size": step}
+        defaults.write_text(json.dumps(content, indent=2, allow_nan=False) + "\n")
         staged.append(defaults)
         runtime = stage / RUNTIME_FILE
         runtime.write_text(python_runtime_text(), encoding="utf-8")
@@ -136,7 +155,7 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
         built = _pythonfmu_build(script, scratch / "build", staged)
         shim = _compile_shim(scratch, status_shim)
         final = scratch / built.name
-        _post_process(built, final, slave, shim)
+        _post_process(built, final, slave, shim, content.get("default_experiment"))
         if validate:
             _validate(final)
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -148,6 +167,7 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
 
 
 def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped: bool = False,
+                    default_experiment: tuple[float, float, float] | None = None,
                     **parameters) -> Path:
     """``Anvil.fmu`` (modal ROM) or, with ``lumped``, ``AnvilLumped.fmu`` from a modal-data file.
 
@@ -160,17 +180,21 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
     path = Path(modal_data_file)
     data = load_modal_data(path)
     if lumped:
-        return build_fmu("AnvilLumped", out_dir, {"mass": data.total_mass, **parameters})
+        return build_fmu("AnvilLumped", out_dir, {"mass": data.total_mass, **parameters},
+                         default_experiment=default_experiment)
     defaults = {"modal_data_file": path.name, "fmax": data.fmax,
                 "damping_ratio": data.damping_ratio}
-    return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path])
+    return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path],
+                     default_experiment=default_experiment)
 
 
 HAMMER_RESOURCE = "hammer.toml"
 PILE_SOIL_RESOURCE = "pile_soil.toml"
 
 
-def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
+def build_ram_fmu(out_dir: str | Path, hammer=None, *,
+                  default_experiment: tuple[float, float, float] | None = None,
+                  **parameters) -> Path:
     """``Ram.fmu`` for a hammer.
 
     hammer : a :class:`anvilwave.hammer.database.Hammer` (its ram is embedded as
@@ -179,7 +203,10 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
         [kg] default to the hammer's), the name of a database hammer (nothing embedded), the
         path of a hammer TOML file (embedded), or None (the default database hammer).
     parameters : further parameters of the Ram FMU (``v_impact`` [m/s], ``gravity`` [m/s^2],
-        ``contact_displacement`` [m], ``contact_time`` [s], ``mass`` [kg]).
+        ``contact_displacement`` [m], ``contact_mid_step``, ``contact_time`` [s], ``mass``
+        [kg]).
+    default_experiment : (start, stop, step) [s] of the system (:func:`build_fmu`); the same
+        keyword for the other helpers.
     """
     from anvilwave.hammer.database import Hammer
 
@@ -205,10 +232,13 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, **parameters) -> Path:
                                      f"({', '.join(available_hammers())}) nor a .toml file")
                 resources.append(path)
                 defaults = {"hammer": path.name}
-        return build_fmu("Ram", out_dir, {**defaults, **parameters}, resources)
+        return build_fmu("Ram", out_dir, {**defaults, **parameters}, resources,
+                         default_experiment=default_experiment)
 
 
-def build_pile_soil_fmu(out_dir: str | Path, pile_soil, **parameters) -> Path:
+def build_pile_soil_fmu(out_dir: str | Path, pile_soil, *,
+                        default_experiment: tuple[float, float, float] | None = None,
+                        **parameters) -> Path:
     """``PileSoil.fmu`` for a pile with its soil.
 
     pile_soil : a :class:`anvilwave.pile.model.PileSoil` (written exactly as ``pile_soil.toml``; the
@@ -229,7 +259,8 @@ def build_pile_soil_fmu(out_dir: str | Path, pile_soil, **parameters) -> Path:
             path = Path(pile_soil)
             model = load_pile_soil(path)
         defaults = {"pile_soil_file": path.name, **pile_soil_parameters(model)}
-        return build_fmu("PileSoil", out_dir, {**defaults, **parameters}, [path])
+        return build_fmu("PileSoil", out_dir, {**defaults, **parameters}, [path],
+                         default_experiment=default_experiment)
 
 
 def pile_soil_parameters(model) -> dict[str, Any]:
@@ -368,7 +399,8 @@ def _script(kind: str | Path) -> Path:
 
 
 def _stage_resources(resources, stage: Path, script: Path) -> list[Path]:
-    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu", RUNTIME_FILE}
+    reserved = {_defaults_file(), script.name, "slavemodule.txt", "pythonfmu", RUNTIME_FILE,
+                GUID_FILE}
     staged = []
     for res in resources:
         res = Path(res)
@@ -488,24 +520,80 @@ def _compile_shim(scratch: Path, wanted: bool | None) -> Path | None:
     return None
 
 
-def _post_process(built: Path, final: Path, slave, shim: Path | None) -> None:
+def _post_process(built: Path, final: Path, slave, shim: Path | None,
+                  experiment: dict[str, float] | None = None) -> None:
     with zipfile.ZipFile(built) as zin:
         root = ET.fromstring(zin.read("modelDescription.xml"))
         identifier = root.find("CoSimulation").get("modelIdentifier")
         complete_model_description(root, slave.fmi_units, slave.fmi_dependencies)
+        if experiment is not None:
+            node = root.find("DefaultExperiment")
+            if node is None:
+                node = ET.SubElement(root, "DefaultExperiment")
+            node.attrib.clear()
+            node.set("startTime", repr(experiment["start_time"]))
+            node.set("stopTime", repr(experiment["stop_time"]))
+            node.set("stepSize", repr(experiment["step_size"]))
         binary = f"binaries/linux64/{identifier}.so"
-        with zipfile.ZipFile(final, "w", zipfile.ZIP_DEFLATED) as zout:
-            for item in zin.infolist():
-                if item.filename == "modelDescription.xml":
-                    continue
-                data = zin.read(item.filename)
-                if shim is not None and item.filename == binary:
-                    zout.writestr(f"binaries/linux64/{SHIM_INNER_LIBRARY}", data)
-                    data = shim.read_bytes()
-                zout.writestr(item, data)
-            ET.indent(root, space="  ")
-            xml = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
-            zout.writestr("modelDescription.xml", xml)
+        files: dict[str, bytes] = {}
+        for item in sorted(zin.infolist(), key=lambda i: i.filename):
+            if item.filename == "modelDescription.xml" or item.is_dir():
+                continue
+            data = zin.read(item.filename)
+            if shim is not None and item.filename == binary:
+                files[f"binaries/linux64/{SHIM_INNER_LIBRARY}"] = data
+                data = shim.read_bytes()
+            files[item.filename] = data
+    _exact_start_values(root, slave.parameters)
+    root.attrib.pop("generationDateAndTime", None)  # identical builds, identical files
+    root.set("author", AUTHOR)
+    root.set("version", anvilwave_version())
+    root.set("license", LICENSE)
+    root.set("guid", "")
+    ET.indent(root, space="  ")
+    guid = content_guid(ET.tostring(root, encoding="UTF-8"), files)
+    root.set("guid", guid)
+    files[f"resources/{GUID_FILE}"] = (guid + "\n").encode()
+    files["modelDescription.xml"] = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
+    with zipfile.ZipFile(final, "w", zipfile.ZIP_DEFLATED) as zout:
+        for name in ["modelDescription.xml", *sorted(set(files) - {"modelDescription.xml"})]:
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = 0o644 << 16
+            zout.writestr(info, files[name])
+
+
+def _exact_start_values(root: ET.Element, values: dict[str, Any]) -> None:
+    """Parameter start values as the unit reads them (``repr`` of a float: pythonfmu writes 16
+    significant digits, so an SSP tool comparing with them would see another number)."""
+    for var in root.find("ModelVariables").findall("ScalarVariable"):
+        name = var.get("name")
+        if var.get("causality") != "parameter" or name not in values:
+            continue
+        for node in var:
+            if "start" in node.attrib:
+                value = values[name]
+                node.set("start", ("true" if value else "false") if isinstance(value, bool)
+                         else repr(float(value)) if node.tag == "Real" else str(value))
+
+
+def content_guid(model_description: bytes, files: dict[str, bytes]) -> str:
+    """The GUID of an FMU from its content: a name-based UUID (RFC 4122 version 5 layout) of the
+    SHA-256 of the model description (its ``guid`` empty) and of every other file (name and
+    bytes), so that identical builds get identical GUIDs and any change a new one."""
+    digest = hashlib.sha256(model_description)
+    for name in sorted(files):
+        digest.update(b"\0" + name.encode() + b"\0" + len(files[name]).to_bytes(8, "little"))
+        digest.update(files[name])
+    return "{" + str(uuid.UUID(bytes=digest.digest()[:16], version=5)) + "}"
+
+
+def anvilwave_version() -> str:
+    """The installed anvilwave's version (``0+unknown`` for a checkout that is not installed)."""
+    try:
+        return importlib.metadata.version("anvilwave")
+    except importlib.metadata.PackageNotFoundError:
+        return "0+unknown"
 
 
 def complete_model_description(root: ET.Element, units: dict[str, str],

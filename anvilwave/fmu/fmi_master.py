@@ -53,7 +53,8 @@ BLOW_ROW = RAM_OUTPUTS + PILE_OUTPUTS + PILE_EXTRA_OUTPUTS + ANVIL_OUTPUTS
 _F_RAM = BLOW_ROW.index("F_ram")
 _F_PILE = BLOW_ROW.index("F_pile")
 _PILE_AT = BLOW_ROW.index("u_head")
-assert (_PILE_AT, _F_RAM, _F_PILE) == (2, 8, 9)  # the offsets compiled into _design_loop
+_OFFSETS = np.array([_PILE_AT, _F_RAM, _F_PILE], dtype=np.int64)
+"""Offsets in the exchange row of the pile outputs and the two forces (for _design_loop)."""
 
 COLUMNS: tuple[tuple[str, str], ...] = (
     ("time", "s"),
@@ -442,12 +443,14 @@ class BlowMaster(ChainMaster):
     pile's ``u_head`` at the start of the blow), and the ram is reset and starts in free
     flight at its impact velocity so that its toe reaches the anvil's top face (``u_top``
     read from the anvil at rest, the ram's ``contact_displacement``) half a step after the
-    start (``contact_time``). Time runs on continuously over the blows in the FMUs,
-    T = t0 + (k N + n) h for step n of blow k (from the step count); each blow's own time is
-    t0 + n h with the first contact at 0, as in the engine.
+    start (``contact_time``; the ram's ``contact_mid_step`` would do the same, but the engine
+    computes the start as start + h/2, and so does this master, to the bit). Time runs on
+    continuously over the blows in the FMUs, T = t0 + (k N + n) h for step n of blow k (from
+    the step count); each blow's own time is t0 + n h with the first contact at 0, as in the engine.
 
     Parameters as :class:`ChainMaster`; the master sets ``initial_pile_head_displacement``
-    (anvil), ``contact_displacement`` and ``contact_time`` (ram) itself unless given.
+    (anvil), ``contact_displacement``, ``contact_time`` and ``contact_mid_step`` (ram) itself
+    unless given.
 
     compiled : run the DESIGN.md loop compiled with numba (:func:`_design_loop`, about
         10 us per step less than the interpreted loop); False runs it in Python.
@@ -536,6 +539,8 @@ class BlowMaster(ChainMaster):
         ram = dict(self.parameters["ram"])
         if self._has_parameter("ram", "contact_displacement"):
             ram.setdefault("contact_displacement", top)
+        if self._has_parameter("ram", "contact_mid_step"):
+            ram.setdefault("contact_mid_step", False)  # the engine's: the contact at start + h/2
         if self._has_parameter("ram", "contact_time"):
             ram.setdefault("contact_time", start + 0.5 * h)
         self._start_unit("ram", ram, start, stop)
@@ -610,12 +615,12 @@ class BlowMaster(ChainMaster):
         chunk = max(1000, (n_steps + 1) // 50)
         # compile (or load from numba's cache) outside the timed stepping: an empty range
         _design_loop(0, 0, n_steps, n_offset, h, t0, record_every, *functions, *components,
-                     *refs, counts, row, data)
+                     *refs, counts, _OFFSETS, row, data)
         start = time.perf_counter()
         for first in range(0, n_steps + 1, chunk):
             last = min(first + chunk, n_steps + 1)
             code = _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
-                                *functions, *components, *refs, counts, row, data)
+                                *functions, *components, *refs, counts, _OFFSETS, row, data)
             if code != 0:
                 n = abs(code) - 1
                 self._diagnose(n_offset + n, h, t0, "exchange" if code > 0 else "step")
@@ -637,17 +642,19 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
                  get_ram, set_ram, step_ram, get_anvil, set_anvil, step_anvil,
                  get_pile, set_pile, step_pile, c_ram, c_anvil, c_pile,
                  vr_ram_out, vr_ram_in, vr_pile_out, vr_pile_in, vr_anvil_in, vr_anvil_out,
-                 counts, row, data):
+                 counts, offsets, row, data):
     """Steps n = first .. last - 1 of a blow in the DESIGN.md order (see BlowMaster).
 
     ``row`` is the exchange row (BLOW_ROW), read and written in place through its address;
-    the value-reference arguments are addresses of unsigned arrays. Returns 0, or n + 1 when
+    the value-reference arguments are addresses of unsigned arrays; ``offsets`` the row
+    offsets of the pile outputs and of F_ram, F_pile (:data:`_OFFSETS`). Returns 0, or n + 1 when
     the exchange at step n failed, -(n + 1) when its doStep did.
     """
     size = 8  # bytes per double
     base = row.ctypes.data
-    p_pile = base + 2 * size  # BLOW_ROW.index("u_head")
-    p_forces = base + 8 * size  # BLOW_ROW.index("F_ram")
+    p_pile = base + offsets[0] * size
+    p_forces = base + offsets[1] * size
+    p_force_pile = base + offsets[2] * size
     n_ram, n_pile, n_anvil = counts[0], counts[1], counts[2]
     for n in range(first, last):
         # 1-2: states of ram and pile -> anvil -> contact forces at t_n
@@ -664,7 +671,7 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
         # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
         t = t0 + (n_offset + n) * h
         status = (set_ram(c_ram, vr_ram_in, 1, p_forces)
-                  | set_pile(c_pile, vr_pile_in, 1, p_forces + size)
+                  | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
                   | step_ram(c_ram, t, h, 1)
                   | step_anvil(c_anvil, t, h, 1)
                   | step_pile(c_pile, t, h, 1))

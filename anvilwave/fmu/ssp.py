@@ -2,15 +2,33 @@
 
 :func:`write_ssp` writes an SSP 1.0 archive (``SystemStructure.ssd`` plus the FMUs under
 ``resources/``): the units, their connections (DESIGN.md interface, :data:`CONNECTIONS`) and
-parameter values (``ssv:ParameterSet`` per component). ``DefaultExperiment`` carries the
-Open Simulation Platform annotation (``osp:FixedStepAlgorithm``) with the base step in whole
-nanoseconds (libcosim's time unit). Which step a system needs, and why it is finer than the
+parameter values (``ssv:ParameterSet`` per component). The file is written for the SSP tools
+that the tests run (OMSimulator, OSP libcosim, fmpy's SSP runner; ``README-ssp.md``) to take
+as it is:
+
+- the model and system names are identifiers (:func:`ssp_identifier`: OMSimulator refuses
+  anything else);
+- ``ssd:DefaultExperiment`` gives start and stop time; the fixed master step is written in the
+  two annotations the fixed-step masters read: OMSimulator's (``org.openmodelica``,
+  ``oms:FixedStepMaster`` of the system) and Open Simulation Platform's
+  (``osp:FixedStepAlgorithm``, in whole nanoseconds, libcosim's time unit);
+- String parameters (file names, the hammer's and the soil model's names) get no connector and
+  no binding: OMSimulator cannot import String connectors. The FMUs default to the values the
+  build gave them; :func:`write_ssp` refuses a String value that differs from the FMU's
+  default (it could not be carried);
+- the bindings of the other parameters are written, but a tool that ignores them (fmpy's SSP
+  runner) must get the same system: the FMUs are built with these values as their defaults
+  (:func:`anvilwave.engine.fmus.build_system_fmus`), and :func:`write_ssp` checks that every
+  bound value equals the FMU's start value unless ``require_defaults=False``.
+
+Which step a system needs, and why it is finer than the
 fmpy master's (a Jacobi master lags the contact forces by one step), is decided by the system
 layer (:mod:`anvilwave.engine.fmus`). This module knows FMUs and parameters, not system files.
 """
 
 from __future__ import annotations
 
+import re
 import shutil
 import xml.etree.ElementTree as ET
 import zipfile
@@ -37,26 +55,42 @@ NS = {
     "ssc": "http://ssp-standard.org/SSP1/SystemStructureCommon",
     "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues",
     "osp": "http://opensimulationplatform.com/SSP/OSPAnnotations",
+    "oms": "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd",
 }
+
+
+def ssp_identifier(name: str) -> str:
+    """``name`` as an identifier (letters, digits, ``_``; not starting with a digit), the form
+    OMSimulator requires of model, system and component names: ``"anvilwave table1"`` ->
+    ``"anvilwave_table1"``."""
+    ident = re.sub(r"\W", "_", str(name), flags=re.ASCII).strip("_") or "system"
+    return f"_{ident}" if ident[0].isdigit() else ident
 
 
 # ---------------------------------------------------------------------------- SSP
 def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dict[str, Any]],
               name: str = "anvilwave", start_time: float = 0.0, stop_time: float | None = None,
-              step_size: float | None = None) -> Path:
+              step_size: float | None = None, require_defaults: bool = True) -> Path:
     """Write an SSP 1.0 archive of the Ram - Anvil - PileSoil system.
 
     fmus : component name ("Ram", "Anvil", "PileSoil") -> FMU file (copied into the archive's
         ``resources/``). parameters : component name -> parameter values of the
-        component's ``ssv:ParameterSet``. start_time, stop_time [s]: the default experiment;
-        step_size [s]: the OSP fixed-step annotation (rounded to whole nanoseconds).
+        component's ``ssv:ParameterSet``. name : of the model and its system (made an
+        identifier, :func:`ssp_identifier`). start_time, stop_time [s]: the default
+        experiment; step_size [s]: the fixed master step of the OMSimulator and OSP
+        annotations (rounded to whole nanoseconds in both).
+    require_defaults : every bound value must be the FMU's own start value (InputError
+        otherwise), so that a tool ignoring the bindings runs the same system (module
+        docstring). String values must always be the FMU's.
     """
     from fmpy import read_model_description
 
     path = Path(path)
     for prefix, uri in NS.items():
         ET.register_namespace(prefix, uri)
-    ssd, ssc, ssv, osp = (f"{{{NS[k]}}}" for k in ("ssd", "ssc", "ssv", "osp"))
+    ssd, ssc, ssv, osp, oms = (f"{{{NS[k]}}}" for k in ("ssd", "ssc", "ssv", "osp", "oms"))
+    name = ssp_identifier(name)
+    step_ns = None if step_size is None else max(1, round(float(step_size) * 1e9))
     root = ET.Element(f"{ssd}SystemStructureDescription", {"version": "1.0", "name": name})
     system = ET.SubElement(root, f"{ssd}System", {
         "name": name, "description": "anvilwave impact pile driving: ram, anvil and pile/soil "
@@ -71,7 +105,7 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
             "source": f"resources/{Path(fmu).name}"})
         connectors = ET.SubElement(element, f"{ssd}Connectors")
         for var in md.modelVariables:
-            if var.causality not in ("input", "output", "parameter"):
+            if var.causality not in ("input", "output", "parameter") or var.type == "String":
                 continue
             connector = ET.SubElement(connectors, f"{ssd}Connector",
                                       {"name": var.name, "kind": var.causality})
@@ -82,7 +116,23 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
                 attrib["unit"] = var.unit
                 used_units.add(var.unit)
             ET.SubElement(connector, f"{ssc}{var.type}", attrib)
-        values = parameters.get(component, {})
+        values = {}
+        for pname, value in parameters.get(component, {}).items():
+            var = variables.get(pname)
+            if var is None or var.causality != "parameter":
+                raise InputError(str(fmu), pname, "is not a parameter of this FMU")
+            default = _start_value(var)
+            if var.type == "String" or require_defaults:
+                if _ssv_value(var, value) != _ssv_value(var, default):
+                    why = ("String parameters cannot be carried by an SSP (OMSimulator imports "
+                           "no String connector)" if var.type == "String" else
+                           "tools that ignore the SSP's bindings (fmpy's SSP runner) would run "
+                           "the FMU's default")
+                    raise InputError(str(fmu), pname,
+                                     f"the system's value {value!r} differs from the FMU's "
+                                     f"default {default!r}: {why}; build the FMU with it")
+            if var.type != "String":
+                values[pname] = value
         if values:
             bindings = ET.SubElement(element, f"{ssd}ParameterBindings")
             binding = ET.SubElement(bindings, f"{ssd}ParameterBinding")
@@ -91,9 +141,7 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
                                  {"version": "1.0", "name": f"{component} parameters"})
             plist = ET.SubElement(pset, f"{ssv}Parameters")
             for pname, value in values.items():
-                var = variables.get(pname)
-                if var is None or var.causality != "parameter":
-                    raise InputError(str(fmu), pname, "is not a parameter of this FMU")
+                var = variables[pname]
                 parameter = ET.SubElement(plist, f"{ssv}Parameter", {"name": pname})
                 ET.SubElement(parameter, f"{ssv}{var.type}", _ssv_value(var, value))
     connections = ET.SubElement(system, f"{ssd}Connections")
@@ -102,6 +150,13 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
             ET.SubElement(connections, f"{ssd}Connection", {
                 "startElement": start, "startConnector": output,
                 "endElement": end, "endConnector": input_})
+    if step_ns is not None:  # OMSimulator's fixed-step master (it reads no other annotation)
+        notes = ET.SubElement(system, f"{ssd}Annotations")
+        note = ET.SubElement(notes, f"{ssc}Annotation", {"type": "org.openmodelica"})
+        info = ET.SubElement(ET.SubElement(note, f"{oms}Annotations"),
+                             f"{oms}SimulationInformation")
+        ET.SubElement(info, f"{oms}FixedStepMaster", {"description": "oms-ma",
+                                                       "stepSize": repr(step_ns * 1e-9)})
     units = ET.SubElement(root, f"{ssd}Units")
     for unit in sorted(used_units):
         node = ET.SubElement(units, f"{ssc}Unit", {"name": unit})
@@ -111,8 +166,7 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
     if stop_time is not None:
         attrib["stopTime"] = repr(float(stop_time))
     experiment = ET.SubElement(root, f"{ssd}DefaultExperiment", attrib)
-    if step_size is not None:
-        step_ns = max(1, round(float(step_size) * 1e9))
+    if step_ns is not None:
         notes = ET.SubElement(experiment, f"{ssd}Annotations")
         note = ET.SubElement(notes, f"{ssc}Annotation", {"type": "com.opensimulationplatform"})
         algorithm = ET.SubElement(note, f"{osp}Algorithm")
@@ -128,6 +182,18 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
             zf.write(fmu, f"resources/{Path(fmu).name}")
     part.replace(path)
     return path
+
+
+def _start_value(var):
+    """The start value of a parameter as Python value (fmpy gives it as its XML text)."""
+    start = var.start
+    if var.type == "Real":
+        return float(start)
+    if var.type == "Boolean":
+        return start in (True, "true", "1", 1)
+    if var.type == "Integer":
+        return int(start)
+    return "" if start is None else str(start)
 
 
 def _ssv_value(var, value) -> dict[str, str]:

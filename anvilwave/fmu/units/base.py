@@ -108,6 +108,8 @@ class UnitSlave(Fmi2Slave):
         self._feedthrough = False  # does any output depend directly on an input?
         self.component = None
         self.start_time = 0.0
+        self._time = 0.0
+        self.default_step: float | None = None  # the build's DefaultExperiment step [s]
         self.failed = False
         self._initialized = False
         self._outputs_current = False
@@ -196,7 +198,7 @@ class UnitSlave(Fmi2Slave):
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):
         """Record the start time [s] (``self.start_time``); the component starts there."""
         if not self._initialized:
-            self.start_time = float(start_time)
+            self.start_time = self._time = float(start_time)
             self.component = None  # its initial state may depend on the start time
 
     def exit_initialization_mode(self):
@@ -231,7 +233,13 @@ class UnitSlave(Fmi2Slave):
             if not self._guard("outputs", self._refresh):
                 return [math.nan] * len(plan)
         outputs = self.outputs
-        return [outputs[i] for i in plan]
+        values = [outputs[i] for i in plan]
+        if not all(map(math.isfinite, values)):  # never fmi2OK with a NaN or an infinity
+            bad = [self.output_names[i] for i, v in zip(plan, values, strict=True)
+                   if not math.isfinite(v)]
+            self._fail(f"outputs {bad} are not finite at t = {self.time_now():.9g} s "
+                       f"(inputs {dict(zip(self.input_names, self.inputs, strict=True))})")
+        return values
 
     def set_real(self, vrs, values):
         key = tuple(vrs)
@@ -244,6 +252,9 @@ class UnitSlave(Fmi2Slave):
             return super().set_real(vrs, values)
         inputs = self.inputs
         for i, value in zip(plan, values, strict=False):
+            if not math.isfinite(value):
+                self._fail(f"input {self.input_names[i]!r} is not finite ({value!r})")
+                continue
             inputs[i] = value
         if self._feedthrough:  # outputs that are states stay valid
             self._outputs_current = False
@@ -261,6 +272,10 @@ class UnitSlave(Fmi2Slave):
             self.start_component()
             self._outputs_current = False
 
+    def time_now(self) -> float:
+        """The unit's communication point [s] (start time, then the end of the last step)."""
+        return self._time
+
     def _step(self, h: float) -> None:
         if not (math.isfinite(h) and h > 0.0):
             raise InputError(self.instance_name, "communication step", f"must be positive, "
@@ -268,6 +283,7 @@ class UnitSlave(Fmi2Slave):
         if not self._outputs_current:
             self.compute_outputs(self.inputs, self.outputs)
         self.advance(h)
+        self._time += h
         self._outputs_current = False
 
     def _refresh(self) -> None:
@@ -307,6 +323,8 @@ class UnitSlave(Fmi2Slave):
             return {}
         try:
             content = json.loads(path.read_text(encoding="utf-8"))
+            step = (content.get("default_experiment") or {}).get("step_size")
+            self.default_step = float(step) if step else None
             return dict(content["parameters"])
         except (OSError, ValueError, KeyError, TypeError) as exc:
             self.log(f"{path}: unreadable parameter defaults ({exc})", Fmi2Status.error)

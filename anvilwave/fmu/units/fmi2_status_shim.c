@@ -18,6 +18,12 @@
  * recorded, not forwarded; categories are not filtered). Forwarded messages have '%' doubled
  * because the host logger treats the message as a printf format.
  *
+ * FMI hygiene: fmi2Instantiate refuses (NULL, with an fmi2Error message) a GUID other than the
+ * one of this FMU (resources/anvilwave_guid.txt, GUID_FILE, written by the build: the GUID of
+ * modelDescription.xml, derived from the FMU's content), and a call made in a state that FMI 2.0
+ * does not allow it in (e.g. fmi2Terminate or fmi2DoStep before initialization) returns
+ * fmi2Error with the reason and is not forwarded.
+ *
  * Python in a host that is not Python: see "the Python runtime" below (libpython of the
  * Python that built the FMU, loaded and initialized before pythonfmu, never finalized).
  *
@@ -461,8 +467,14 @@ __attribute__((destructor)) static void unload_inner(void)
 }
 
 /* ---- one instance ---- */
+enum { INSTANTIATED, INITIALIZATION, STEPPING, TERMINATED };
+static const char *STATE_NAMES[] = {"instantiated", "initialization mode", "stepping",
+                                    "terminated"};
+#define GUID_FILE "anvilwave_guid.txt"
+
 typedef struct {
     fmi2Component inner;
+    int state;                   /* INSTANTIATED .. TERMINATED (FMI 2.0 co-simulation states) */
     fmi2CallbackFunctions host;  /* the host's callbacks */
     fmi2CallbackFunctions mine;  /* given to pythonfmu: logger = shim_logger, environment = us */
     int logging_on;
@@ -505,6 +517,49 @@ static void shim_logger(fmi2ComponentEnvironment environment, fmi2String instanc
 
 #define C(c) (((Shim *)(c))->inner)
 
+/* fmi2Error (logged) unless the instance is in one of the states of the mask (1 << state). */
+static int refused(fmi2Component c, const char *call, int allowed)
+{
+    Shim *s = (Shim *)c;
+    char message[256];  /* formatted here: the names hold no '%' for the host's printf */
+    if (s == NULL) return 1;
+    if (allowed & (1 << s->state)) return 0;
+    snprintf(message, sizeof message, "%s is not allowed in the state '%s' (FMI 2.0 call "
+             "sequence)", call, STATE_NAMES[s->state]);
+    if (s->host.logger != NULL)
+        s->host.logger(s->host.componentEnvironment, "", fmi2Error, "", message);
+    return 1;
+}
+
+#define IN_STATES(c, call, allowed)                                                              \
+    do {                                                                                         \
+        if (refused(c, call, allowed)) return fmi2Error;                                         \
+    } while (0)
+#define ANY_STATE ((1 << INSTANTIATED) | (1 << INITIALIZATION) | (1 << STEPPING) |             \
+                   (1 << TERMINATED))
+
+/* The FMU's own GUID (resources/GUID_FILE); 1 when it matches or the file is absent. */
+static int guid_matches(const char *resource_uri, const char *guid, char *expected,
+                        size_t size)
+{
+    char resources[4096], path[4200];
+    FILE *f;
+    size_t n;
+    expected[0] = '\0';
+    if (resource_uri == NULL) return 1;
+    resource_folder(resource_uri, resources, sizeof resources);
+    snprintf(path, sizeof path, "%.4000s/%s", resources, GUID_FILE);
+    f = fopen(path, "r");
+    if (f == NULL) return 1;
+    n = fread(expected, 1, size - 1, f);
+    fclose(f);
+    expected[n] = '\0';
+    while (n > 0 && (expected[n - 1] == '\n' || expected[n - 1] == '\r' ||
+                     expected[n - 1] == ' '))
+        expected[--n] = '\0';
+    return guid != NULL && strcmp(guid, expected) == 0;
+}
+
 EXPORT const char *fmi2GetTypesPlatform(void) { return "default"; }
 
 EXPORT const char *fmi2GetVersion(void) { return "2.0"; }
@@ -516,7 +571,19 @@ EXPORT fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType,
 {
     Shim *s;
     int python, loaded = 0;
+    char expected[256], message[700];
     if (functions == NULL) return NULL;
+    if (!guid_matches(fmuResourceLocation, fmuGUID, expected, sizeof expected)) {
+        snprintf(message, sizeof message, "wrong GUID %.200s: this FMU is %.200s (instantiate "
+                 "it with the GUID of its modelDescription.xml)", fmuGUID ? fmuGUID : "(null)",
+                 expected);
+        for (char *p = message; *p; p++)
+            if (*p == '%') *p = '?';  /* the host's logger takes it as a printf format */
+        if (functions->logger != NULL)
+            functions->logger(functions->componentEnvironment, instanceName, fmi2Error, "",
+                              message);
+        return NULL;
+    }
     pthread_mutex_lock(&load_lock);
     python = ensure_python(fmuResourceLocation);
     if (python) loaded = load_inner();
@@ -569,23 +636,46 @@ EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefi
                                       fmi2Real tolerance, fmi2Real startTime,
                                       fmi2Boolean stopTimeDefined, fmi2Real stopTime)
 {
+    IN_STATES(c, "fmi2SetupExperiment", 1 << INSTANTIATED);
     FORWARD(c, SetupExperiment(C(c), toleranceDefined, tolerance, startTime, stopTimeDefined,
                                stopTime));
 }
 
+/* a forwarded call that moves the instance to `next` when it did not fail */
+#define FORWARD_TO(c, call, next)                                                                \
+    do {                                                                                         \
+        Shim *s_ = (Shim *)(c);                                                                  \
+        fmi2Status status_;                                                                      \
+        s_->error_logged = 0;                                                                    \
+        status_ = inner.call;                                                                    \
+        if (status_ < fmi2Error && s_->error_logged) status_ = fmi2Error;                        \
+        if (status_ <= fmi2Warning) s_->state = (next);                                          \
+        return status_;                                                                          \
+    } while (0)
+
 EXPORT fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
-    FORWARD(c, EnterInitializationMode(C(c)));
+    IN_STATES(c, "fmi2EnterInitializationMode", 1 << INSTANTIATED);
+    FORWARD_TO(c, EnterInitializationMode(C(c)), INITIALIZATION);
 }
 
 EXPORT fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
-    FORWARD(c, ExitInitializationMode(C(c)));
+    IN_STATES(c, "fmi2ExitInitializationMode", 1 << INITIALIZATION);
+    FORWARD_TO(c, ExitInitializationMode(C(c)), STEPPING);
 }
 
-EXPORT fmi2Status fmi2Terminate(fmi2Component c) { FORWARD(c, Terminate(C(c))); }
+EXPORT fmi2Status fmi2Terminate(fmi2Component c)
+{
+    IN_STATES(c, "fmi2Terminate", 1 << STEPPING);
+    FORWARD_TO(c, Terminate(C(c)), TERMINATED);
+}
 
-EXPORT fmi2Status fmi2Reset(fmi2Component c) { FORWARD(c, Reset(C(c))); }
+EXPORT fmi2Status fmi2Reset(fmi2Component c)
+{
+    IN_STATES(c, "fmi2Reset", ANY_STATE);
+    FORWARD_TO(c, Reset(C(c)), INSTANTIATED);
+}
 
 EXPORT fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                               fmi2Real value[])
@@ -696,6 +786,7 @@ EXPORT fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint
                              fmi2Real communicationStepSize,
                              fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
+    IN_STATES(c, "fmi2DoStep", 1 << STEPPING);
     FORWARD(c, DoStep(C(c), currentCommunicationPoint, communicationStepSize,
                       noSetFMUStatePriorToCurrentPoint));
 }

@@ -1,0 +1,201 @@
+"""system.ssp of Table 1 in third-party SSP tools, as written: OMSimulator, libcosim, fmpy.
+
+Each tool runs the SSP (ROM anvil, and the same system with AnvilLumped in its place) with its
+own master and settings; the peak ram-anvil and anvil-pile forces must be within 1 % of the
+FMI engine (the fmpy master, DESIGN.md order, at the engine's step h, ``impact --engine
+fmi``). The SSP's step is h/4 and its anvil extrapolates its inputs (Jacobi masters), so the
+tools' peaks differ from the engine's by the step's effect on the explicit coupling (< 0.5 %
+measured for the ROM between h and h/4) plus the extrapolation's error (< 0.3 %): 1 % bounds
+both.
+
+Exception, the lumped anvil's ram force: its peak is the first sample after the contact of a
+rigid 325 t anvil behind a 5.9e12 N/m contact spring, a transient the steps do not resolve
+(1002 MN at h, 935 MN at h/4 under the same fmpy master: -6.7 % from the step alone). It is
+compared with the fmpy master on the SSP's own step instead, within 1 % for OMSimulator and
+3 % for libcosim, whose Jacobi exchange extrapolates across that unresolved first sample
+(+2.2 % measured).
+
+OMSimulator is a test host found at ROOT/../shared/tools/omsimulator (skipped where
+absent); its command line starts at 0 (not at the SSP's -h/8), which the ram's mid-step
+placement of the first contact makes irrelevant.
+"""
+
+from __future__ import annotations
+
+import csv
+import subprocess
+import tarfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("fmpy")
+pytest.importorskip("pythonfmu")
+
+from anvilwave.config.system import load_system  # noqa: E402
+from anvilwave.engine.fmus import (  # noqa: E402
+    build_system_fmus,
+    load_anvil_modal_data,
+    system_parameters,
+)
+from anvilwave.fmu.fmi_build import build_ram_fmu  # noqa: E402
+from anvilwave.fmu.fmi_master import BlowMaster  # noqa: E402
+from anvilwave.fmu.ssp import write_ssp  # noqa: E402
+
+from .conftest import EXAMPLES  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+OMS_DIR = ROOT.parent.parent / "shared" / "tools" / "omsimulator"
+if not OMS_DIR.is_dir():  # a worktree one level deeper than the main checkout
+    OMS_DIR = ROOT.parent.parent.parent / "shared" / "tools" / "omsimulator"
+
+
+@pytest.fixture(scope="module")
+def systems(tmp_path_factory):
+    """system.ssp of Table 1 (ROM anvil) and its copy with AnvilLumped (and the Ram built for
+    the lumped anvil's top face at rest); the FMI engine's peaks of both."""
+    cfg = load_system(EXAMPLES / "table1.toml")
+    modal = load_anvil_modal_data(cfg)
+    out = tmp_path_factory.mktemp("ssp_tools")
+    fmus = build_system_fmus(cfg, out, modal, native_anvil=None)
+    lumped_cfg = cfg.with_anvil_model("lumped")
+    lumped = system_parameters(lumped_cfg, modal)
+    step = fmus["ssp_step"]
+    experiment = (-0.5 * step, float(cfg.duration), step)
+    ram = build_ram_fmu(out / "lumped", cfg.hammer, default_experiment=experiment,
+                        **lumped["Ram"])
+    ssp_lumped = write_ssp(out / "system_lumped.ssp",
+                           {"Ram": ram, "Anvil": fmus["AnvilLumped"],
+                            "PileSoil": fmus["PileSoil"]},
+                           {"Ram": lumped["Ram"], "Anvil": lumped["AnvilLumped"],
+                            "PileSoil": lumped["PileSoil"]},
+                           name="anvilwave table1 lumped", start_time=-0.5 * step,
+                           stop_time=cfg.duration, step_size=step)
+    h = fmus["time_step"]
+    n = int(round(cfg.duration / h))
+    engine = {}
+    for model, anvil, ram_fmu in (("rom", fmus["Anvil"], fmus["Ram"]),
+                                  ("lumped", fmus["AnvilLumped"], ram)):
+        with BlowMaster(ram_fmu, anvil, fmus["PileSoil"]) as master:
+            blow = master.run_blows(1, n, h)[0]
+        engine[model] = (blow["F_ram"].max(), blow["F_pile"].max())
+    with BlowMaster(ram, fmus["AnvilLumped"], fmus["PileSoil"]) as master:  # docstring
+        fine = master.run_blows(1, int(round(cfg.duration / step)), step)[0]
+    engine["lumped_ram_on_the_ssp_step"] = fine["F_ram"].max()
+    return {"ssp": {"rom": fmus["ssp"], "lumped": ssp_lumped}, "engine": engine,
+            "duration": float(cfg.duration), "step": step, "out": out}
+
+
+def check_peaks(tool: str, model: str, peaks, systems, lumped_ram_tolerance=0.01,
+                names=("F_ram", "F_pile")) -> None:
+    """Peaks (F_ram, F_pile) [N] within 1 % of the FMI engine's (module docstring)."""
+    references = dict(zip(("F_ram", "F_pile"), systems["engine"][model], strict=True))
+    tolerances = {"F_ram": 0.01, "F_pile": 0.01}
+    what = {"F_ram": "FMI engine", "F_pile": "FMI engine"}
+    if model == "lumped":
+        references["F_ram"] = systems["engine"]["lumped_ram_on_the_ssp_step"]
+        tolerances["F_ram"] = lumped_ram_tolerance
+        what["F_ram"] = "fmpy master on the SSP step"
+    for name, peak in zip(("F_ram", "F_pile"), peaks, strict=True):
+        reference = references[name]
+        print(f"\n{tool} {model} {name}: {peak / 1e6:.2f} MN, {what[name]} "
+              f"{reference / 1e6:.2f} MN ({peak / reference - 1:+.3%})")
+        assert np.isfinite(peak)
+        if name in names:
+            assert abs(peak / reference - 1.0) <= tolerances[name]
+
+
+def omsimulator(tmp_path_factory) -> Path:
+    archives = sorted(OMS_DIR.glob("omsimulator-*.tgz")) if OMS_DIR.is_dir() else []
+    if not archives:
+        pytest.skip(f"OMSimulator (a test host) not found in {OMS_DIR}")
+    target = tmp_path_factory.getbasetemp() / "oms"
+    binary = target / "omsinstall" / "bin" / "OMSimulator"
+    if not binary.is_file():
+        with tarfile.open(archives[-1]) as tf:
+            tf.extractall(target, filter="tar")
+    return binary
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("model", ["rom", "lumped"])
+def test_omsimulator_runs_system_ssp(systems, model, tmp_path, tmp_path_factory):
+    """OMSimulator 2.1.1 on the SSP as written; only the stop time is given on its command line
+    (its command line replaced the SSP's start and stop times by its defaults, 0 and 1 s, in
+    our runs); its fixed step is the SSP's own (the oms annotation), checked in the result."""
+    binary = omsimulator(tmp_path_factory)
+    result = tmp_path / "oms.csv"
+    run = subprocess.run([str(binary), str(systems["ssp"][model]), f"--resultFile={result}",
+                          f"--stopTime={systems['duration']!r}", f"--tempDir={tmp_path}"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=900)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert "error" not in run.stdout.lower(), run.stdout[-3000:]
+    with result.open() as f:
+        rows = list(csv.reader(f))
+    header, data = rows[0], np.array(rows[1:], dtype=float)
+    column = {name.rsplit(".", 2)[-2] + "." + name.rsplit(".", 1)[-1]: j
+              for j, name in enumerate(header) if "." in name}
+    steps = np.diff(data[:, 0])
+    assert np.allclose(steps[steps > 0], systems["step"], rtol=1e-6)
+    check_peaks("OMSimulator", model, (data[:, column["Ram.F_toe"]].max(),
+                                       data[:, column["PileSoil.F_head"]].max()), systems)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("model", ["rom", "lumped"])
+def test_fmpy_ssp_runner_runs_system_ssp(systems, model):
+    """fmpy's own SSP runner ignores the SSP's bindings and experiment: it gets the step and
+    stop time as arguments; the FMUs' defaults are the SSP's values. It never reads the units'
+    outputs before the first step (every input is 0 there), so the anvil's first contact sample
+    is computed from the ram at 0, not from its real state, and the missed impulse comes back
+    as the input-extrapolation correction added to F_ram at the next sample: a spike in the
+    F_ram series (measured +151 % with the native anvil, +66 % with the pythonfmu anvil, whose
+    extrapolation already ignores the zero start inputs: anvilwave/fmu/coupling.py). Only the
+    pile force is checked here (within 1 %); the spike is an open item (README-ssp.md)."""
+    from fmpy.ssp.simulation import simulate_ssp
+
+    result = simulate_ssp(str(systems["ssp"][model]), start_time=0.0,
+                          stop_time=systems["duration"], step_size=systems["step"])
+    check_peaks("fmpy simulate_ssp", model, (result["Ram.F_toe"].max(),
+                                             result["PileSoil.F_head"].max()), systems,
+                names=("F_pile",))
+
+
+LIBCOSIM_RUN = """
+import sys
+import numpy as np
+from libcosimpy.CosimExecution import CosimExecution
+from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+from libcosimpy.CosimObserver import CosimObserver
+
+log_output_level(CosimLogLevel.WARNING)
+ssp, n_steps, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+execution = CosimExecution.from_ssp_file(ssp)
+index = {i.name.decode(): i.index for i in execution.slave_infos()}
+refs = {v.name.decode(): v.reference for v in execution.slave_variables(index["Anvil"])}
+observer = CosimObserver.create_last_value()
+execution.add_observer(observer)
+rows = []
+for n in range(n_steps):
+    if not execution.step(1):
+        raise SystemExit(f"libcosim step {n} failed")
+    rows.append(observer.last_real_values(index["Anvil"], [refs["F_ram"], refs["F_pile"]]))
+np.save(out, np.array(rows))
+"""
+
+
+@pytest.mark.slow
+def test_libcosim_runs_the_lumped_system_ssp(systems, tmp_path):
+    """libcosim on the AnvilLumped SSP (the ROM one: tests/test_fmu_system.py), in a subprocess
+    (a crash on its worker threads must not take the session down)."""
+    import sys
+
+    pytest.importorskip("libcosimpy")
+    n = int(round(systems["duration"] / systems["step"]))
+    out = tmp_path / "lc.npy"
+    run = subprocess.run([sys.executable, "-c", LIBCOSIM_RUN, str(systems["ssp"]["lumped"]),
+                          str(n), str(out)], capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stderr[-3000:]
+    forces = np.load(out)
+    check_peaks("libcosim", "lumped", forces.max(axis=0), systems, lumped_ram_tolerance=0.03)
