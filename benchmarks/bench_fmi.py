@@ -10,7 +10,7 @@ PileSoil. Then in ONE process times, for the ROM and the lumped anvil,
 - ``fmi``: :func:`anvilwave.engine.fmi.run_fmi`, Ram, the native Anvil and PileSoil under the
   fmpy master with its numba-compiled DESIGN.md loop;
 - ``fmi-pyanvil``: the same with the pythonfmu anvil (the FMI engine before the native anvil);
-- ``fmi-py``: the native-anvil chain with the master loop interpreted by Python (reference).
+- ``fmi-jacobi``: the native-anvil chain under the same loop in the Jacobi exchange order.
 
 Each time is the stepping of one blow alone (``wall_time``: no build, no compilation, no
 initialisation), the best of ``--repeat`` runs, with the median in brackets (a shared 2-core
@@ -74,11 +74,12 @@ def main(argv: list[str] | None = None) -> None:
             n = int(round(c.duration / h))
             kind = fmus["anvil"] if model == cfg.anvil.model else \
                 {"rom": "Anvil", "lumped": "AnvilLumped"}[model]
-            with BlowMaster(fmus["Ram"], fmus[kind], fmus["PileSoil"], compiled=False) as m:
-                interpreted = [m.run_blows(1, n, h)[0].wall_time for _ in range(args.repeat)]
+            with BlowMaster(fmus["Ram"], fmus[kind], fmus["PileSoil"],
+                            exchange="jacobi") as m:
+                jacobi = [m.run_blows(1, n, h)[0].wall_time for _ in range(args.repeat)]
             simulated = n * h
             rows = {"direct": _best(direct), "fmi": _best(fmi),
-                    "fmi-pyanvil": _best(fmi_pyanvil), "fmi-py": _best(interpreted)}
+                    "fmi-pyanvil": _best(fmi_pyanvil), "fmi-jacobi": _best(jacobi)}
             for name, (best, median) in rows.items():
                 print(f"{model:7s} {name:11s} {1e6 * h:7.2f} {n:6d} "
                       f"{1e3 * best:7.2f} ({1e3 * median:6.2f}) {1e6 * best / n:8.2f} "

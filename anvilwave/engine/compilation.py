@@ -21,7 +21,7 @@ def _main_kernels():
     found = []
     for module, names in (("anvilwave.engine.direct", ("run_blow",)),
                           ("anvilwave.fea.solver", ("_advance",)),
-                          ("anvilwave.fmu.fmi_master", ("_design_loop",))):
+                          ("anvilwave.fmu.fmi_master", ("_master_loop",))):
         mod = importlib.import_module(module)
         found += [getattr(mod, n) for n in names if hasattr(getattr(mod, n, None), "_cache")]
     return tuple(found)

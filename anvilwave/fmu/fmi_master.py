@@ -21,11 +21,12 @@ Cost: the Python-side call overhead of pythonfmu units dominates (tens of micros
 
 :class:`BlowMaster` (the master of :func:`anvilwave.engine.fmi.run_fmi`) runs consecutive blows the
 way the in-process engine does (the pile/soil unit lives on, ram and anvil are reset for each
-blow and start at rest on the pile head) with the same step order. Its loop is compiled with
-numba (:func:`_design_loop`): the nine FMI calls per step go straight from machine code to the
+blow and start at rest on the pile head) with the same step order. Both masters run one step
+loop, compiled with numba (:func:`_master_loop`, the DESIGN.md or the Jacobi exchange order):
+the nine FMI calls per step go straight from machine code to the
 FMU binaries, which leaves the FMUs' own cost (pythonfmu's C++ to Python crossing, ~1-1.5 us a
 call, and the slaves' Python and kernels): about 13 us per step for Table 1 against ~21 us
-with the interpreted loop (``compiled=False``) on the reference 2-core machine.
+with an interpreted loop on the reference 2-core machine.
 """
 
 from __future__ import annotations
@@ -54,7 +55,7 @@ _F_RAM = BLOW_ROW.index("F_ram")
 _F_PILE = BLOW_ROW.index("F_pile")
 _PILE_AT = BLOW_ROW.index("u_head")
 _OFFSETS = np.array([_PILE_AT, _F_RAM, _F_PILE], dtype=np.int64)
-"""Offsets in the exchange row of the pile outputs and the two forces (for _design_loop)."""
+"""Offsets in the exchange row of the pile outputs and the two forces (for _master_loop)."""
 
 COLUMNS: tuple[tuple[str, str], ...] = (
     ("time", "s"),
@@ -274,8 +275,7 @@ class ChainMaster:
             rows.append(n_steps)
         data = np.full((len(rows), len(BLOW_ROW)), np.nan)
         with tqdm(total=n_steps, unit="step", disable=not progress, mininterval=0.5) as bar:
-            wall = self._python_loop(n_steps, h, 0, t0, record_every, data, bar,
-                                     record_last=True)
+            wall = self._loop(n_steps, h, 0, t0, record_every, data, bar, record_last=True)
         columns = [BLOW_ROW.index(name) for name in
                    RAM_OUTPUTS + PILE_OUTPUTS + ANVIL_OUTPUTS]
         table = np.empty((len(rows), len(COLUMNS)))
@@ -284,104 +284,46 @@ class ChainMaster:
         return ChainResult(data=table, wall_time=wall, n_steps=n_steps,
                            messages={r: list(m) for r, m in self.messages.items()})
 
-    def _calls(self):
-        """(component, fmi2GetReal, fmi2SetReal, fmi2DoStep) of ram, anvil and pile."""
-        return tuple((slave.component, *(getattr(slave.dll, f) for f in
-                                         ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep")))
-                     for slave in (self.units[r].slave for r in UNITS))
-
-    def _python_loop(self, n_steps, h, n_offset, t0, record_every, data, bar,
-                     record_last: bool = False) -> float:
-        """THE step loop in Python through fmpy's ctypes functions, in the exchange order of
+    def _loop(self, n_steps, h, n_offset, t0, record_every, data, bar,
+              record_last: bool = False) -> float:
+        """Run THE step loop (:func:`_master_loop`, compiled) in the exchange order of
         ``self.exchange`` (DESIGN.md order, or Jacobi); returns its wall time [s].
 
         Rows n with n % record_every == 0 (and the last, with ``record_last``) of the exchange
         row (:data:`BLOW_ROW`, absent pile outputs NaN) go into ``data``; time is
-        t0 + (n_offset + n) h from the step count.
+        t0 + (n_offset + n) h from the step count. The loop calls the units' FMI functions
+        directly from machine code: the same calls, arguments and order as through fmpy's
+        ctypes functions, so the same numbers, without the interpreter's share of the cost.
         """
-        ram, anvil, pile = (self.units[r].slave for r in UNITS)
-        (c_ram, get_ram, set_ram, step_ram), (c_anvil, get_anvil, set_anvil, step_anvil), \
-            (c_pile, get_pile, set_pile, step_pile) = self._calls()
+        functions = []
+        for role in UNITS:
+            dll = self.units[role].slave.dll
+            functions += [_FMI_GET(ctypes.cast(dll.fmi2GetReal, ctypes.c_void_p).value),
+                          _FMI_SET(ctypes.cast(dll.fmi2SetReal, ctypes.c_void_p).value),
+                          _FMI_STEP(ctypes.cast(dll.fmi2DoStep, ctypes.c_void_p).value)]
+        components = [self.units[role].slave.component for role in UNITS]
         vr = self._vr
-        vr_ram_out, vr_ram_in = vr["ram_out"], vr["ram_in"]
-        vr_pile_out, vr_pile_in = vr["pile_out"], vr["pile_in"]
-        vr_anvil_in, vr_anvil_out = vr["anvil_in"], vr["anvil_out"]
-        # the exchange row (BLOW_ROW); each call reads / writes its slice through a pointer:
-        # [u_toe, v_toe | u_head, v_head, F_gauge, v_gauge, u_head_total, u_pile_toe |
-        #  F_ram, F_pile, u_top, u_bottom]; the anvil's inputs are the first four in a row
-        scratch = (ctypes.c_double * len(BLOW_ROW))(*([np.nan] * len(BLOW_ROW)))
-        row = np.frombuffer(scratch, dtype=np.float64)
-        base = ctypes.addressof(scratch)
-        size = ctypes.sizeof(ctypes.c_double)
-
-        def at(offset):
-            return ctypes.cast(base + offset * size, ctypes.POINTER(ctypes.c_double))
-
-        p_ram_out, p_pile_out, p_anvil_in = at(0), at(_PILE_AT), at(0)
-        p_anvil_out, p_force_ram, p_force_pile = at(_F_RAM), at(_F_RAM), at(_F_PILE)
-        n_ram, n_pile, n_anvil = len(RAM_OUTPUTS), len(self._pile_names), len(ANVIL_OUTPUTS)
-        chunk = max(1, (n_steps + 1) // 100)
-        k = 0
+        refs = [ctypes.addressof(vr[k]) for k in ("ram_out", "ram_in", "pile_out", "pile_in",
+                                                   "anvil_in", "anvil_out")]
+        counts = np.array([len(RAM_OUTPUTS), len(self._pile_names), len(ANVIL_OUTPUTS)],
+                          dtype=np.int64)
+        row = np.full(len(BLOW_ROW), np.nan)
+        jacobi = self.exchange == "jacobi"
+        chunk = max(1000, (n_steps + 1) // 50)
+        arguments = (*functions, *components, *refs, counts, _OFFSETS, row, data)
+        # compile (or load from numba's cache) outside the timed stepping: an empty range
+        _master_loop(0, 0, n_steps, n_offset, h, t0, record_every, record_last, jacobi,
+                     *arguments)
         start = time.perf_counter()
-        if self.exchange == "jacobi":
-            status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                      | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                      | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
-                      | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
-            if status > 1:
-                self._diagnose(n_offset, h, t0, "exchange")
-            data[0] = row
-            k = 1
-            for n in range(n_steps):
-                t = t0 + (n_offset + n) * h
-                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
-                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
-                          | step_ram(c_ram, t, h, 1)
-                          | step_anvil(c_anvil, t, h, 1)
-                          | step_pile(c_pile, t, h, 1))
-                if status > 1:
-                    self._diagnose(n_offset + n, h, t0, "step")
-                # every output read after the step, the anvil's with its inputs of t_n
-                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out)
-                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in))
-                if status > 1:
-                    self._diagnose(n_offset + n + 1, h, t0, "exchange")
-                if (n + 1) % record_every == 0 or (record_last and n + 1 == n_steps):
-                    data[k] = row
-                    k += 1
-                if (n + 1) % chunk == 0:
-                    bar.update(chunk)
-            bar.update(n_steps % chunk)
-            return time.perf_counter() - start
         for first in range(0, n_steps + 1, chunk):
             last = min(first + chunk, n_steps + 1)
-            for n in range(first, last):
-                # 1-2: states of ram and pile -> anvil -> contact forces at t_n
-                status = (get_ram(c_ram, vr_ram_out, n_ram, p_ram_out)
-                          | get_pile(c_pile, vr_pile_out, n_pile, p_pile_out)
-                          | set_anvil(c_anvil, vr_anvil_in, 4, p_anvil_in)
-                          | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_anvil_out))
-                if status > 1:  # statuses <= 1 (OK, warning) only ever set bit 0
-                    self._diagnose(n_offset + n, h, t0, "exchange")
-                if n % record_every == 0 or (record_last and n == n_steps):
-                    data[k] = row
-                    k += 1
-                if n == n_steps:
-                    break
-                # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
-                t = t0 + (n_offset + n) * h
-                status = (set_ram(c_ram, vr_ram_in, 1, p_force_ram)
-                          | set_pile(c_pile, vr_pile_in, 1, p_force_pile)
-                          | step_ram(c_ram, t, h, 1)
-                          | step_anvil(c_anvil, t, h, 1)
-                          | step_pile(c_pile, t, h, 1))
-                if status > 1:
-                    self._diagnose(n_offset + n, h, t0, "step")
+            code = _master_loop(first, last, n_steps, n_offset, h, t0, record_every,
+                                record_last, jacobi, *arguments)
+            if code != 0:
+                n = abs(code) - 1
+                self._diagnose(n_offset + n, h, t0, "exchange" if code > 0 else "step")
             bar.update(min(last, n_steps) - min(first, n_steps))
         return time.perf_counter() - start
-
 
     def _diagnose(self, n: int, h: float, t0: float, phase: str) -> None:
         raise CosimulationError(
@@ -452,8 +394,6 @@ class BlowMaster(ChainMaster):
     (anvil), ``contact_displacement``, ``contact_time`` and ``contact_mid_step`` (ram) itself
     unless given.
 
-    compiled : run the DESIGN.md loop compiled with numba (:func:`_design_loop`, about
-        10 us per step less than the interpreted loop); False runs it in Python.
     exchange : ``"design"`` (default), the DESIGN.md step order above; ``"jacobi"``, the
         exchange of the common fixed-step masters (libcosim's): every unit steps, then every
         output is read and passed on, so the anvil's forces, read right after its step, are
@@ -466,11 +406,10 @@ class BlowMaster(ChainMaster):
     EXCHANGES = ("design", "jacobi")
 
     def __init__(self, ram_fmu, anvil_fmu, pile_fmu, parameters=None, debug_logging=False,
-                 exchange: str = "design", compiled: bool = True):
+                 exchange: str = "design"):
         if exchange not in self.EXCHANGES:
             raise ValueError(f"exchange must be one of {self.EXCHANGES}, got {exchange!r}")
         self.exchange = exchange
-        self.compiled = compiled
         super().__init__(ram_fmu, anvil_fmu, pile_fmu, parameters, debug_logging)
         try:
             pile = self.units["pile"]
@@ -588,44 +527,8 @@ class BlowMaster(ChainMaster):
         return records
 
     def _blow_loop(self, n_steps, h, n_offset, t0, record_every, data, bar) -> float:
-        """The stepping loop of one blow (DESIGN.md step order); returns its wall time [s]."""
-        if self.exchange == "design" and self.compiled:
-            return self._compiled_loop(n_steps, h, n_offset, t0, record_every, data, bar)
-        return self._python_loop(n_steps, h, n_offset, t0, record_every, data, bar)
-
-    def _compiled_loop(self, n_steps, h, n_offset, t0, record_every, data, bar) -> float:
-        """The DESIGN.md loop compiled with numba, calling the FMI functions directly.
-
-        Same calls, arguments and order as :meth:`_python_loop` (so the same numbers); the
-        compiled loop only removes the interpreter's share of the exchange cost.
-        """
-        functions = []
-        for role in UNITS:
-            dll = self.units[role].slave.dll
-            functions += [_FMI_GET(ctypes.cast(dll.fmi2GetReal, ctypes.c_void_p).value),
-                          _FMI_SET(ctypes.cast(dll.fmi2SetReal, ctypes.c_void_p).value),
-                          _FMI_STEP(ctypes.cast(dll.fmi2DoStep, ctypes.c_void_p).value)]
-        components = [self.units[role].slave.component for role in UNITS]
-        vr = self._vr
-        refs = [ctypes.addressof(vr[k]) for k in ("ram_out", "ram_in", "pile_out", "pile_in",
-                                                   "anvil_in", "anvil_out")]
-        counts = np.array([len(RAM_OUTPUTS), len(self._pile_names), len(ANVIL_OUTPUTS)],
-                          dtype=np.int64)
-        row = np.full(len(BLOW_ROW), np.nan)
-        chunk = max(1000, (n_steps + 1) // 50)
-        # compile (or load from numba's cache) outside the timed stepping: an empty range
-        _design_loop(0, 0, n_steps, n_offset, h, t0, record_every, *functions, *components,
-                     *refs, counts, _OFFSETS, row, data)
-        start = time.perf_counter()
-        for first in range(0, n_steps + 1, chunk):
-            last = min(first + chunk, n_steps + 1)
-            code = _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
-                                *functions, *components, *refs, counts, _OFFSETS, row, data)
-            if code != 0:
-                n = abs(code) - 1
-                self._diagnose(n_offset + n, h, t0, "exchange" if code > 0 else "step")
-            bar.update(min(last, n_steps) - min(first, n_steps))
-        return time.perf_counter() - start
+        """The stepping loop of one blow (:meth:`ChainMaster._loop`); its wall time [s]."""
+        return self._loop(n_steps, h, n_offset, t0, record_every, data, bar)
 
 # The FMI 2.0 functions of the loop as C function types numba can call:
 # fmi2GetReal / fmi2SetReal(component, const unsigned vr[], size_t nvr, double value[]) and
@@ -638,17 +541,23 @@ _FMI_STEP = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, cty
 
 
 @njit(cache=True)
-def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
+def _master_loop(first, last, n_steps, n_offset, h, t0, record_every, record_last, jacobi,
                  get_ram, set_ram, step_ram, get_anvil, set_anvil, step_anvil,
                  get_pile, set_pile, step_pile, c_ram, c_anvil, c_pile,
                  vr_ram_out, vr_ram_in, vr_pile_out, vr_pile_in, vr_anvil_in, vr_anvil_out,
                  counts, offsets, row, data):
-    """Steps n = first .. last - 1 of a blow in the DESIGN.md order (see BlowMaster).
+    """Steps n = first .. last - 1 of a run (THE master loop; see ChainMaster, BlowMaster).
+
+    DESIGN.md order (``jacobi`` False): at t_n the states of ram and pile go to the anvil and
+    its contact forces are read; the forces go to ram and pile; every unit steps. Jacobi
+    order (``jacobi`` True): after the exchange at t_0, every unit steps, then every output
+    is read (the anvil's with its inputs of t_n) and passed on. Row n (the exchanged values
+    at t_n) is recorded when n % record_every == 0, and row n_steps with ``record_last``.
 
     ``row`` is the exchange row (BLOW_ROW), read and written in place through its address;
     the value-reference arguments are addresses of unsigned arrays; ``offsets`` the row
     offsets of the pile outputs and of F_ram, F_pile (:data:`_OFFSETS`). Returns 0, or n + 1 when
-    the exchange at step n failed, -(n + 1) when its doStep did.
+    the exchange at t_n failed, -(n + 1) when the doStep from t_n did.
     """
     size = 8  # bytes per double
     base = row.ctypes.data
@@ -657,15 +566,18 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
     p_force_pile = base + offsets[2] * size
     n_ram, n_pile, n_anvil = counts[0], counts[1], counts[2]
     for n in range(first, last):
-        # 1-2: states of ram and pile -> anvil -> contact forces at t_n
-        status = (get_ram(c_ram, vr_ram_out, n_ram, base)
-                  | get_pile(c_pile, vr_pile_out, n_pile, p_pile)
-                  | set_anvil(c_anvil, vr_anvil_in, 4, base)
-                  | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_forces))
-        if status > 1:
-            return n + 1
+        if n == 0 or not jacobi:
+            # 1-2: states of ram and pile -> anvil -> contact forces at t_n
+            status = (get_ram(c_ram, vr_ram_out, n_ram, base)
+                      | get_pile(c_pile, vr_pile_out, n_pile, p_pile)
+                      | set_anvil(c_anvil, vr_anvil_in, 4, base)
+                      | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_forces))
+            if status > 1:  # statuses <= 1 (OK, warning) only ever set bit 0
+                return n + 1
         if n % record_every == 0:
             data[n // record_every, :] = row
+        elif record_last and n == n_steps:
+            data[n_steps // record_every + 1, :] = row
         if n == n_steps:
             break
         # 3-4: forces to ram and pile, then every unit steps over [t_n, t_n + h]
@@ -677,6 +589,14 @@ def _design_loop(first, last, n_steps, n_offset, h, t0, record_every,
                   | step_pile(c_pile, t, h, 1))
         if status > 1:
             return -(n + 1)
+        if jacobi:
+            # every output read after the step, the anvil's with its inputs of t_n
+            status = (get_ram(c_ram, vr_ram_out, n_ram, base)
+                      | get_pile(c_pile, vr_pile_out, n_pile, p_pile)
+                      | get_anvil(c_anvil, vr_anvil_out, n_anvil, p_forces)
+                      | set_anvil(c_anvil, vr_anvil_in, 4, base))
+            if status > 1:
+                return n + 2
     return 0
 
 
