@@ -26,10 +26,29 @@ above ``refusal`` blows per 0.25 m (default 250). Total blows integrate the blow
 depth from the self-weight penetration to the last depth driven (or the refusal depth);
 driving time is total blows / blow rate.
 
-Self-weight penetration and pile runs: the weight of pile, hammer and helmet (or anvil) rests
-on the soil. The pile penetrates under its own weight to the first depth where the SRD (its
-static resistance at that tip depth) exceeds the weight; deeper, a depth where the SRD falls
-below the weight again (a soft layer) is a pile run.
+Self-weight penetration and pile runs: a weight rests on the soil (``weight_on_soil``):
+``"all"`` (default) the pile, the ram, the helmet (or anvil) and the hammer assembly;
+``"grlweap"`` the pile, the helmet (or anvil) and the assembly, without the ram: GRLWEAP's
+"Total Wt", the weight it compares with the total resistance Rut ("Hammer+Pile Weight > Rult:
+Pile Runs", blow count 0; the benchmark's listing: 9158.8 kN = pile 3172.3 + helmet 2575.1 +
+assembly 3411.4 kN). The pile penetrates under its own weight to the first depth where the SRD
+(its static resistance at that tip depth) exceeds the weight; deeper, a depth where the SRD
+falls below the weight again (a soft layer) is a pile run. Where the pile does not run, the
+blow starts either way from the static equilibrium of the pile under its own weight and the
+helmet's (or anvil's) and assembly's on its head; the ram falls freely and its weight acts on
+it during the blow, as in GRLWEAP (its static analysis before the blow loads the soil with the
+pile's and the hammer assembly's weight; the ram is in flight).
+
+Blow window (``window``): ``"fixed"`` (default) simulates the whole ``duration``;
+``"toe-rebound"`` ends the blow when the toe, having moved down, first moves up (the first
+maximum of the toe displacement), at most ``duration``: the end of the analysis of Smith's
+method, whose set (the maximum toe displacement minus the toe quake, ``set_rule =
+"grlweap"``) assumes the pile rebounds from that instant (Smith 1960, J. Soil Mech. Found.
+Div. 86(4), 35-61). Stresses and energies are then the extremes up to that instant: a tension
+reflected after the toe's rebound (a high toe resistance) is not seen. The blow is simulated
+twice (once recorded to find the instant). GRLWEAP's own default analysis time is not stated
+in its input echo; this option follows the rule its set implies and is not fitted to its
+results.
 """
 
 from __future__ import annotations
@@ -133,6 +152,39 @@ class DepthResult:
     blow: object = None
 
 
+TOE_MOVING = 1e-6
+"""Toe displacement [m] from which the toe counts as moving down (window "toe-rebound")."""
+
+
+def toe_rebound_time(blow) -> float:
+    """The instant the toe first moves up after moving down [s] (its first maximum of
+    displacement, the end of a "toe-rebound" window): the first recorded sample after the toe
+    has moved :data:`TOE_MOVING` down whose successor is not lower; the blow's end if the toe
+    never turns.
+
+    Parameters
+    ----------
+    blow : BlowResult
+        A recorded blow (columns ``time [s]`` and ``pile_toe_displacement [m]``).
+
+    Returns
+    -------
+    float
+        The blow window ending at the toe's first rebound [s] (at least one time step).
+    """
+    t = np.asarray(blow.columns["time [s]"], dtype=float)
+    u = np.asarray(blow.columns["pile_toe_displacement [m]"], dtype=float)
+    u = u - u[0]
+    moving = np.flatnonzero(u > TOE_MOVING)
+    if moving.size == 0:
+        return float(t[-1])
+    k0 = int(moving[0])
+    turns = np.flatnonzero(np.diff(u[k0:]) <= 0.0)
+    if turns.size == 0:
+        return float(t[-1])
+    return max(float(t[k0 + int(turns[0])]), float(blow.time_step))
+
+
 def set_of_blow(blow, rule: str, toe_quake: float) -> float:
     """The blow's set [m] by the rule (module docstring)."""
     if rule == "grlweap":
@@ -150,7 +202,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     """Simulate the blows of one tip depth and summarise them (one CSV row)."""
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, depth, settings.multiplier)
     energy, velocity = impact_at(settings, depth, cfg)
-    weight = driving_weight(cfg, engine.static_head_force)
+    weight = driving_weight(cfg, engine.static_head_force, settings.weight_on_soil)
     if shaft + toe <= weight:  # the pile runs (or stands) under its own weight: no blows
         return DepthResult(_run_row(depth, shaft, toe, energy, velocity))
     eng = engine.with_pile_soil(ps)
@@ -161,8 +213,13 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     blow = None
     for k in range(settings.blows_per_depth):
         last = k == settings.blows_per_depth - 1
+        duration = settings.duration
+        if settings.window == "toe-rebound":
+            duration = toe_rebound_time(eng.blow(state=state, impact_velocity=velocity,
+                                                 duration=duration, record=True,
+                                                 energy=False))
         # the last blow records its gauge signals (for the Case method; 2-7 % of its cost)
-        blow = eng.blow(state=state, impact_velocity=velocity, duration=settings.duration,
+        blow = eng.blow(state=state, impact_velocity=velocity, duration=duration,
                         record=record or last, energy=record)
         state = blow.final_state
     quake_toe = float(ps.soil.quake_toe)
@@ -275,12 +332,14 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
                        summary=summary)
 
 
-def driving_weight(cfg, head_load: float) -> float:
-    """Weight resting on the soil before driving [N]: pile and ram, plus ``head_load`` [N],
-    the anvil's (or the helmet's and hammer assembly's) weight on the pile head."""
+def driving_weight(cfg, head_load: float, rule: str = "all") -> float:
+    """Weight resting on the soil before driving [N]: the pile's, plus ``head_load`` [N], the
+    anvil's (or the helmet's and hammer assembly's) weight on the pile head, plus the ram's
+    with ``rule = "all"`` (not with ``"grlweap"``: module docstring)."""
     seg = cfg.pile_soil.pile.discretise()
     pile = float(np.sum(seg.area * seg.length * seg.density))
-    return (pile + float(np.sum(cfg.hammer.ram.mass))) * cfg.gravity + float(head_load)
+    ram = float(np.sum(cfg.hammer.ram.mass)) if rule == "all" else 0.0
+    return (pile + ram) * cfg.gravity + float(head_load)
 
 
 def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) -> dict:
@@ -290,7 +349,7 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
     srd = np.array([r["srd [N]"] for r in rows])
     refused = np.flatnonzero(0.25 * count > settings.refusal)
     refusal_depth = float(depth[refused[0]]) if refused.size else None
-    weight = driving_weight(cfg, head_load)
+    weight = driving_weight(cfg, head_load, settings.weight_on_soil)
     above = np.flatnonzero(srd >= weight)
     swp = float(depth[above[0]]) if above.size else (float(depth[-1]) if depth.size else 0.0)
     # a pile run: deeper than the self-weight penetration, the SRD falls below the weight
@@ -328,6 +387,8 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
         "refusal_criterion [blows/0.25m]": settings.refusal,
         "blow_rate [blows/min]": settings.blow_rate,
         "blows_per_depth [-]": settings.blows_per_depth,
+        "weight_on_soil": settings.weight_on_soil,
+        "window": settings.window,
         "anvil_model": cfg.anvil.model,
     }
 

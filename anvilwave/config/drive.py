@@ -25,6 +25,7 @@ from anvilwave.pile.soil.profile import (
     SoilLayer,
     SoilProfile,
     Stevens1982,
+    TIP_TABLE_RULES,
     TipDepthTables,
     srd_distribution,
 )
@@ -36,6 +37,13 @@ ENTHRU_LOCATIONS = ("gauge", "head")
 BOUNDS = ("lower", "best", "upper")
 
 SRD_METHODS = ("table", "tip-table", "alm-hamre-2001", "stevens-1982")
+
+WEIGHT_RULES = ("all", "grlweap")
+"""What weighs on the soil for the self-weight penetration and pile-run check (module
+docstring of :mod:`anvilwave.analyses.drive`)."""
+
+WINDOWS = ("fixed", "toe-rebound")
+"""Blow windows (module docstring of :mod:`anvilwave.analyses.drive`)."""
 
 DEFAULT_REFUSAL = 250.0
 """Refusal blow count [blows / 0.25 m] (common offshore practice)."""
@@ -77,6 +85,8 @@ class DriveSettings:
     duration: float | None = None
     stroke_schedule: np.ndarray | None = None
     efficiency_schedule: np.ndarray | None = None
+    weight_on_soil: str = "all"
+    window: str = "fixed"
 
     @property
     def multiplier(self) -> float:
@@ -144,13 +154,19 @@ def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
                    "upper": table.number("upper_multiplier", 1.25, ge=1.0, le=5.0)}
     series = table.array("time_series_depths", None)
     duration = table.number("duration", None, gt=0.0, le=1.0, unit="s")
+    weight_rule = table.string("weight_on_soil", "all", choices=WEIGHT_RULES)
+    window = table.string("window", "fixed", choices=WINDOWS)
+    if window == "toe-rebound" and (blows > 1 or set_rule != "grlweap"):
+        raise table.error("window", "'toe-rebound' stops the blow before the pile rests: it "
+                                    "needs set_rule = 'grlweap' and blows_per_depth = 1")
     table.finish()
     return DriveSettings(depths=depths, blows_per_depth=blows, refusal=refusal,
                          blow_rate=rate, set_rule=set_rule, enthru_location=enthru,
                          energy_schedule=schedule, bound=bound, multipliers=multipliers,
                          time_series_depths=tuple(series) if series is not None else (),
                          duration=duration, stroke_schedule=stroke,
-                         efficiency_schedule=efficiency)
+                         efficiency_schedule=efficiency, weight_on_soil=weight_rule,
+                         window=window)
 
 def _schedule(table: Table, key: str, what: str, upper: float):
     """A per-depth schedule: rows [tip depth [m], value], depths strictly increasing."""
@@ -287,7 +303,10 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
 
 def _tip_tables(table: Table, pile_soil):
     """Per-tip-depth tables: inline ``[[srd.tables]]`` (tip_depth, rows [depth [m], unit shaft
-    [Pa], unit toe [Pa]]) or ``file`` = a GRLWEAP-style model.json (``format``)."""
+    [Pa], unit toe [Pa]]) or ``file`` = a GRLWEAP-style model.json (``format``); ``tip_table_rule``
+    says how a tip depth picks its table (:func:`anvilwave.pile.soil.profile.
+    tip_table_resistance`)."""
+    rule = table.string("tip_table_rule", "interpolate", choices=TIP_TABLE_RULES)
     if table.has("file"):
         path = table.path("file")
         fmt = table.string("format", "grlweap-model-json", choices=("grlweap-model-json",))
@@ -303,7 +322,7 @@ def _tip_tables(table: Table, pile_soil):
             tables.append(t.array("rows", columns=3))
             t.finish()
     try:
-        return TipDepthTables(np.array(tips), tuple(tables))
+        return TipDepthTables(np.array(tips), tuple(tables), rule=rule)
     except ValueError as exc:
         raise table.error("tables", str(exc)) from None
 

@@ -127,6 +127,12 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "driveability.upper_multiplier": ("-", 1.25, "SRD factor of the upper bound"),
     "driveability.time_series_depths": ("m", None, "depths whose blow time series are written"),
     "driveability.duration": ("s", None, "blow window; default simulation.duration"),
+    "driveability.weight_on_soil": ("-", "all", "weight for self-weight penetration and pile "
+                                    "runs: 'all' (pile, ram, helmet or anvil, assembly) or "
+                                    "'grlweap' (without the ram: GRLWEAP's Total Wt)"),
+    "driveability.window": ("-", "fixed", "'fixed' (the whole duration) or 'toe-rebound' (the "
+                            "blow ends at the toe's first maximum, Smith's; needs set_rule "
+                            "'grlweap', blows_per_depth 1)"),
     # [srd] (the SRD of a drive analysis)
     "srd.method": ("-", REQUIRED, "'table' ([soil] srd), 'tip-table', 'alm-hamre-2001', "
                                   "'stevens-1982'"),
@@ -146,6 +152,10 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "srd.stevens_bound": ("-", "lower", "Stevens et al. K: 'lower' 0.5 or 'upper' 0.7"),
     "srd.file": ("-", None, "tip-table: a GRLWEAP input decoded to JSON"),
     "srd.format": ("-", "grlweap-model-json", "tip-table file format"),
+    "srd.tip_table_rule": ("-", "interpolate", "tip-table: a tip between table depths blends "
+                           "the two tables ('interpolate') or takes the nearest table at or "
+                           "below it, the toe above a step at the tip ('grlweap'); on a table "
+                           "depth, that table"),
     "srd.tables": ("-", None, "tip-table inline: [[srd.tables]] tip_depth, rows"),
     "srd.tables.tip_depth": ("m", REQUIRED, "tip depth of the table"),
     "srd.tables.rows": ("[m, Pa, Pa]", REQUIRED, "depth, unit shaft, unit toe"),
