@@ -21,11 +21,11 @@ from anvilwave.inputs import InputError, Table
 from anvilwave.pile.soil.cpt import read_cpt_csv
 from anvilwave.pile.soil.models import soil_capacities
 from anvilwave.pile.soil.profile import (
+    TIP_TABLE_RULES,
     AlmHamre2001,
     SoilLayer,
     SoilProfile,
     Stevens1982,
-    TIP_TABLE_RULES,
     TipDepthTables,
     srd_distribution,
 )

@@ -518,7 +518,7 @@ class Stevens1982:
 
 
 TIP_TABLE_RULES = ("interpolate", "grlweap")
-"""How a tip depth picks its table among tables given per tip depth (:func:`tip_table_resistance`)."""
+"""How a tip depth picks its table among tables per tip depth (:func:`tip_table_resistance`)."""
 
 
 def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str = "interpolate"):
