@@ -74,6 +74,7 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
 from anvilwave.output.tables import write_csv
+from anvilwave.pile.soil.models import toe_quake
 
 MIN_SET = 1e-7
 """Sets below this [m] count as zero (blow count infinite: refusal)."""
@@ -222,7 +223,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         blow = eng.blow(state=state, impact_velocity=velocity, duration=duration,
                         record=record or last, energy=record)
         state = blow.final_state
-    quake_toe = float(ps.soil.quake_toe)
+    quake_toe = toe_quake(ps.soil, ps.pile)
     permanent = set_of_blow(blow, "permanent", quake_toe)
     grl = set_of_blow(blow, "grlweap", quake_toe)
     set_m = set_of_blow(blow, settings.set_rule, quake_toe)

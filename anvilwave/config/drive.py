@@ -19,7 +19,7 @@ import numpy as np
 from anvilwave.hammer.impact import impact_velocity_from_energy
 from anvilwave.inputs import InputError, Table
 from anvilwave.pile.soil.cpt import read_cpt_csv
-from anvilwave.pile.soil.models import soil_capacities
+from anvilwave.pile.soil.models import SoilLayers, soil_capacities
 from anvilwave.pile.soil.profile import (
     TIP_TABLE_RULES,
     AlmHamre2001,
@@ -28,6 +28,7 @@ from anvilwave.pile.soil.profile import (
     Stevens1982,
     TipDepthTables,
     srd_distribution,
+    tip_table_index,
 )
 
 SET_RULES = ("permanent", "grlweap")
@@ -102,6 +103,9 @@ class SrdSource:
     profile : the soil profile (layers and CPT) of the CPT/layer methods.
     method_object : the method with its options (:mod:`anvilwave.pile.soil.profile`).
     pile_mode : "coring" or "plugged"; faces : friction faces override (None: the mode's).
+    tip_layers : quakes and dampings per layer of each tip table, a tuple of
+        :class:`~anvilwave.pile.soil.models.SoilLayers` (one per table, from a GRLWEAP file's
+        columns with ``layer_parameters = "file"``), or None (the [soil] table's).
     """
 
     method: str
@@ -109,6 +113,7 @@ class SrdSource:
     method_object: object = None
     pile_mode: str = "coring"
     faces: str | None = None
+    tip_layers: tuple | None = None
 
 def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
     """Read and validate the ``[driveability]`` table."""
@@ -228,6 +233,10 @@ def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float)
     """The system's PileSoil embedded to ``tip_depth`` [m] with the SRD of that tip."""
     shaft, toe = segment_capacities(pile_soil, srd, tip_depth, multiplier)
     soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=(shaft, toe))
+    if srd.tip_layers is not None:
+        tables = srd.method_object
+        j = tip_table_index(tables.tip_depths, float(tip_depth), tables.rule)
+        soil = replace(soil, layers=srd.tip_layers[j])
     return replace(pile_soil, soil=soil), float(shaft.sum()), float(toe)
 
 def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
@@ -247,9 +256,9 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
             raise table.error("method", "'table' uses the [soil] srd rows, which are missing")
         return SrdSource("table", pile_mode=pile_mode, faces=faces)
     if method == "tip-table":
-        obj = _tip_tables(table, pile_soil)
+        obj, layers = _tip_tables(table, pile_soil)
         table.finish()
-        return SrdSource("tip-table", None, obj, pile_mode, faces)
+        return SrdSource("tip-table", None, obj, pile_mode, faces, layers)
     layers = []
     for lt in table.tables("layers"):
         kind = lt.string("soil", choices=("sand", "clay"))
@@ -307,6 +316,7 @@ def _tip_tables(table: Table, pile_soil):
     says how a tip depth picks its table (:func:`anvilwave.pile.soil.profile.
     tip_table_resistance`)."""
     rule = table.string("tip_table_rule", "interpolate", choices=TIP_TABLE_RULES)
+    layers = None
     if table.has("file"):
         path = table.path("file")
         fmt = table.string("format", "grlweap-model-json", choices=("grlweap-model-json",))
@@ -315,6 +325,8 @@ def _tip_tables(table: Table, pile_soil):
                                       "../shared/reference/grlweap-s4000/ beside the "
                                       "repository; it is never copied into it)")
         tips, tables = read_grlweap_tip_tables(path, pile_soil, table.source, fmt)
+        if table.string("layer_parameters", "soil", choices=("soil", "file")) == "file":
+            layers = read_grlweap_tip_layers(path)
     else:
         tips, tables = [], []
         for t in table.tables("tables"):
@@ -322,9 +334,59 @@ def _tip_tables(table: Table, pile_soil):
             tables.append(t.array("rows", columns=3))
             t.finish()
     try:
-        return TipDepthTables(np.array(tips), tuple(tables), rule=rule)
+        return TipDepthTables(np.array(tips), tuple(tables), rule=rule), layers
     except ValueError as exc:
         raise table.error("tables", str(exc)) from None
+
+
+GRLWEAP_LAYER_COLUMNS = ("shaft_quake [mm]", "toe_quake [mm]", "shaft_damping [s/m]",
+                         "toe_damping [s/m]")
+"""The quake and damping columns of a GRLWEAP table row, in :class:`SoilLayers` order."""
+
+
+def grlweap_rows_to_layers(rows: np.ndarray) -> SoilLayers:
+    """Quakes and dampings per layer from the rows of a GRLWEAP resistance table.
+
+    Parameters
+    ----------
+    rows : ndarray
+        (n, 5) rows [soil depth [m], shaft quake [mm], toe quake [mm], shaft damping [s/m], toe
+        damping [s/m]], depths non-decreasing (a repeated depth is a step).
+
+    Returns
+    -------
+    SoilLayers
+        One layer from each row to the next deeper row, with the values of the row at its top
+        (below a step, the step's second row); the last row's values from its depth down.
+    """
+    rows = np.asarray(rows, dtype=float)
+    out = []
+    for k in range(rows.shape[0]):
+        top = rows[k, 0]
+        bottom = rows[k + 1, 0] if k + 1 < rows.shape[0] else max(top, 0.0) + 1e3
+        if bottom > top:
+            out.append([top, bottom, 1e-3 * rows[k, 1], 1e-3 * rows[k, 2], rows[k, 3],
+                        rows[k, 4]])
+    return SoilLayers(np.array(out))
+
+
+def read_grlweap_tip_layers(path: Path) -> tuple:
+    """The quakes and dampings of every tip table of a GRLWEAP input decoded to JSON, sorted
+    by tip depth (:func:`grlweap_rows_to_layers`)."""
+    runs = json.loads(Path(path).read_text())["soil_model"]["srd_tables_by_run"]
+    items = []
+    for key, run in runs.items():
+        try:
+            cols = run["columns"]
+            rows = np.array(run["rows"], dtype=float)
+            idx = [cols.index("soil_depth [m]")] + [cols.index(c) for c in GRLWEAP_LAYER_COLUMNS]
+            items.append((float(run["tip_depth_the_table_was_built_for [m]"]),
+                          grlweap_rows_to_layers(rows[:, idx])))
+        except (KeyError, ValueError, TypeError) as exc:
+            raise InputError(path, f"soil_model.srd_tables_by_run.{key}",
+                             f"has no valid quake and damping columns ({exc})") from None
+    items.sort(key=lambda x: x[0])
+    return tuple(x[1] for x in items)
 
 def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
     """The SRD tables by tip depth of a GRLWEAP input decoded to JSON (``soil_model.

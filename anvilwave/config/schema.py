@@ -101,6 +101,10 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "soil.quake_toe": ("m", 0.0025, "toe quake (not lysmer-toe)"),
     "soil.damping_shaft": ("s/m", 0.65, "Smith shaft damping"),
     "soil.damping_toe": ("s/m", 0.5, "Smith toe damping (not lysmer-toe)"),
+    "soil.layers": ("[m, m, m, m, s/m, s/m]", None, "per layer: rows top, bottom (below the "
+                    "mudline), quake_shaft, quake_toe, damping_shaft, damping_toe; a segment "
+                    "takes its embedded middle's layer, the toe the tip's; elsewhere the "
+                    "scalars"),
     "soil.friction_perimeter": ("-", "outside+inside", "or 'outside'"),
     "soil.toe_area": ("-", "annulus", "or 'plugged'"),
     "soil.toe_shear_modulus": ("Pa", None, "lysmer-toe: soil shear modulus"),
@@ -152,6 +156,9 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "srd.stevens_bound": ("-", "lower", "Stevens et al. K: 'lower' 0.5 or 'upper' 0.7"),
     "srd.file": ("-", None, "tip-table: a GRLWEAP input decoded to JSON"),
     "srd.format": ("-", "grlweap-model-json", "tip-table file format"),
+    "srd.layer_parameters": ("-", "soil", "tip-table file: quakes and dampings from the [soil] "
+                             "table ('soil') or per row of each tip's table ('file', as the "
+                             "GRLWEAP model gives them)"),
     "srd.tip_table_rule": ("-", "interpolate", "tip-table: a tip between table depths blends "
                            "the two tables ('interpolate') or takes the nearest table at or "
                            "below it, the toe above a step at the tip ('grlweap'); on a table "

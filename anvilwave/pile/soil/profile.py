@@ -563,8 +563,7 @@ def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str 
         return np.interp(x, table[:, 0], table[:, column])
 
     if rule == "grlweap":
-        j = int(np.clip(np.searchsorted(tips, tip_depth - _DEPTH_TOLERANCE, side="left"), 0,
-                        tips.size - 1))
+        j = tip_table_index(tips, tip_depth, rule)
         table = np.asarray(tables[j], dtype=float)
         return at(table, 1, z), _toe_above_step(table, tip_depth)
     j = int(np.clip(np.searchsorted(tips, tip_depth, side="right") - 1, 0, tips.size - 1))
@@ -574,6 +573,18 @@ def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str 
     shaft = (1.0 - w) * at(tables[j], 1, z) + w * at(tables[j_next], 1, z)
     toe = (1.0 - w) * at(tables[j], 2, tip_depth) + w * at(tables[j_next], 2, tip_depth)
     return shaft, float(toe)
+
+
+def tip_table_index(tip_depths, tip_depth: float, rule: str = "interpolate") -> int:
+    """Index of the table a tip depth [m] takes by ``rule`` (:func:`tip_table_resistance`):
+    "grlweap" the nearest table at or below the tip, "interpolate" the nearest at or above it
+    (the first of the two it blends)."""
+    tips = np.asarray(tip_depths, dtype=float)
+    if rule == "grlweap":
+        j = np.searchsorted(tips, tip_depth - _DEPTH_TOLERANCE, side="left")
+    else:
+        j = np.searchsorted(tips, tip_depth + _DEPTH_TOLERANCE, side="right") - 1
+    return int(np.clip(j, 0, tips.size - 1))
 
 
 def _toe_above_step(table: np.ndarray, tip_depth: float) -> float:
