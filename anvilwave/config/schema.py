@@ -191,6 +191,14 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "installation.scf": ("-", 1.0, "stress concentration factor"),
     "installation.spectra_depths": ("m", None, "tip depths of the head-force spectra"),
     "installation.record_interval": ("s", None, "sampling of the stress histories"),
+    "installation.pauses": ("[m, h]", None, "rows tip depth, pause duration: driving stops "
+                            "there; the shaft sets up (restrike blow counts in the summary)"),
+    "installation.setup": ("-", "skov-denver-1988", "set-up of the shaft during a pause: "
+                           "1 + A log10(t / t0), sand A 0.2, t0 0.5 d; clay A 0.6, t0 1 d"),
+    "installation.setup_soil": ("-", None, "'sand' or 'clay' where the SRD has no soil "
+                                "layers (default: each segment's layer type)"),
+    "installation.remoulding_length": ("m", 0.5, "the blows after a restart remould the gain "
+                                       "as exp(-penetration / this length)"),
 }
 
 ANVIL: dict[str, tuple[str, object, str]] = {
