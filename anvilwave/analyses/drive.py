@@ -39,6 +39,13 @@ helmet's (or anvil's) and assembly's on its head; the ram falls freely and its w
 it during the blow, as in GRLWEAP (its static analysis before the blow loads the soil with the
 pile's and the hammer assembly's weight; the ram is in flight).
 
+Restrike (``anvilwave drive --restrike HOURS``): at every depth a second blow estimates the
+restrike after a pause of that duration: the shaft resistance of the embedded segments times
+the set-up factor of Skov & Denver (1988) for each segment's soil type (the SRD's layers, or
+``[installation] setup_soil``; :mod:`anvilwave.pile.soil.setup`), nothing remoulded yet, from
+the static equilibrium on that soil; columns ``restrike_blow_count [1/m]`` and
+``restrike_setup_factor [-]`` (the largest over the segments).
+
 Blow window (``window``): ``"fixed"`` (default) simulates the whole ``duration``;
 ``"toe-rebound"`` ends the blow when the toe, having moved down, first moves up (the first
 maximum of the toe displacement), at most ``duration``: the end of the analysis of Smith's
@@ -70,6 +77,7 @@ from anvilwave.config.drive import (
     load_srd_source,
     pile_soil_at,
 )
+from anvilwave.config.install import InstallSettings, segment_soil_types, setup_pile_soil
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
@@ -85,7 +93,7 @@ COLUMNS = ("depth [m]", "srd [N]", "srd_shaft [N]", "srd_toe [N]", "blow_count [
            "max_pile_head_force [N]", "emx_gauge [J]", "emx_head [J]",
            "permanent_set [m]", "grlweap_set [m]", "impact_velocity [m/s]",
            "energy_residual_relative [-]", "toe_velocity_end [m/s]", "FMX [N]", "RMX [N]",
-           "case_damping [-]")
+           "case_damping [-]", "restrike_blow_count [1/m]", "restrike_setup_factor [-]")
 """Columns of ``driveability.csv`` (the DESIGN.md contract first, then extra columns)."""
 
 
@@ -127,7 +135,8 @@ class DriveResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The rows as columns ``{name [unit]: array}`` (the columns of driveability.csv)."""
-        return {name: np.array([r[name] for r in self.rows], dtype=float) for name in COLUMNS}
+        return {name: np.array([r.get(name, math.nan) for r in self.rows], dtype=float)
+                for name in COLUMNS}
 
     def write(self, out, title: str = "", prefix: str = "") -> None:
         """``driveability.csv``, ``summary.json``, ``driveability.png`` and a
@@ -199,8 +208,9 @@ def blow_count(set_m: float) -> float:
 
 
 def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float,
-                  record: bool = False) -> DepthResult:
-    """Simulate the blows of one tip depth and summarise them (one CSV row)."""
+                  record: bool = False, restrike: tuple | None = None) -> DepthResult:
+    """Simulate the blows of one tip depth and summarise them (one CSV row); ``restrike``
+    = (InstallSettings, pause [s]) adds the restrike blow count (module docstring)."""
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, depth, settings.multiplier)
     energy, velocity = impact_at(settings, depth, cfg)
     weight = driving_weight(cfg, engine.static_head_force, settings.weight_on_soil)
@@ -214,14 +224,8 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     blow = None
     for k in range(settings.blows_per_depth):
         last = k == settings.blows_per_depth - 1
-        duration = settings.duration
-        if settings.window == "toe-rebound":
-            duration = toe_rebound_time(eng.blow(state=state, impact_velocity=velocity,
-                                                 duration=duration, record=True,
-                                                 energy=False))
         # the last blow records its gauge signals (for the Case method; 2-7 % of its cost)
-        blow = eng.blow(state=state, impact_velocity=velocity, duration=duration,
-                        record=record or last, energy=record)
+        blow = _window_blow(eng, state, velocity, settings, record or last, record)
         state = blow.final_state
     quake_toe = toe_quake(ps.soil, ps.pile)
     permanent = set_of_blow(blow, "permanent", quake_toe)
@@ -247,7 +251,32 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         "toe_velocity_end [m/s]": float(getattr(blow, "toe_velocity_end", float("nan"))),
     }
     row.update(_case_method(blow, replace(cfg, pile_soil=ps)))
+    if restrike is not None:
+        row.update(_restrike(engine, srd, settings, ps, depth, velocity, restrike))
     return DepthResult(row, blow if record else None)
+
+
+def _window_blow(eng, state, velocity, settings: DriveSettings, record: bool, energy: bool):
+    """One blow in the settings' window: the whole duration, or up to the toe's first
+    rebound (found by a first, recorded blow)."""
+    duration = settings.duration
+    if settings.window == "toe-rebound":
+        duration = toe_rebound_time(eng.blow(state=state, impact_velocity=velocity,
+                                             duration=duration, record=True, energy=False))
+    return eng.blow(state=state, impact_velocity=velocity, duration=duration, record=record,
+                    energy=energy)
+
+
+def _restrike(engine, srd, settings, ps, depth, velocity, restrike) -> dict:
+    """The restrike blow count [1/m] and largest shaft set-up factor [-] after the pause of
+    ``restrike`` = (InstallSettings, pause [s]) at the tip depth ``depth`` [m]."""
+    install, duration = restrike
+    set_up, _, factor = setup_pile_soil(ps, srd, depth, install, duration, depth, 0.0)
+    eng = engine.with_pile_soil(set_up)
+    blow = _window_blow(eng, eng.static_state(), velocity, settings, False, False)
+    set_m = set_of_blow(blow, settings.set_rule, toe_quake(set_up.soil, set_up.pile))
+    return {"restrike_blow_count [1/m]": blow_count(set_m),
+            "restrike_setup_factor [-]": factor}
 
 
 def _case_method(blow, cfg) -> dict:
@@ -277,17 +306,20 @@ _WORK: dict = {}
 
 def _work(depth: float) -> dict:
     w = _WORK
-    return analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth).row
+    return analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth,
+                         restrike=w["restrike"]).row
 
 
 def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, *,
-                     workers: int | None = None, progress: bool = False) -> DriveResult:
+                     workers: int | None = None, progress: bool = False,
+                     restrike: tuple | None = None) -> DriveResult:
     """Analyse every depth of ``settings``; returns a :class:`DriveResult` (no time series).
 
     cfg : the :class:`~anvilwave.config.system.SystemConfig` (its hammer, anvil, pile and soil
     model).
     engine : a built :class:`~anvilwave.engine.direct.Engine` for ``cfg`` (default: built here).
     workers : processes over the depths (default: the machine's cores; 1 runs in-process).
+    restrike : (InstallSettings, pause [s]) for the restrike columns (module docstring).
     """
 
     start = time.perf_counter()
@@ -305,14 +337,16 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     try:
         if workers == 1:
             for d in depths:
-                rows.append(analyse_depth(engine, cfg, srd, settings, d).row)
+                rows.append(analyse_depth(engine, cfg, srd, settings, d,
+                                          restrike=restrike).row)
                 if bar is not None:
                     bar.update(1)
         else:
             import multiprocessing as mp
             from concurrent.futures import ProcessPoolExecutor
 
-            _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings)
+            _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings,
+                         restrike=restrike)
             try:
                 with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork")) as pool:
                     for row in pool.map(_work, depths, chunksize=max(1, len(depths)
@@ -329,6 +363,8 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     summary["wall_time [s]"] = time.perf_counter() - start
     summary["depths_analysed [-]"] = len(rows)
     summary["workers [-]"] = workers
+    if restrike is not None:
+        summary["restrike_pause [h]"] = restrike[1] / 3600.0
     return DriveResult(model=cfg.anvil.model, source=str(cfg.source), rows=rows,
                        summary=summary)
 
@@ -427,7 +463,8 @@ def time_series(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: flo
 
 # ----------------------------------------------------------------------------- entry points
 def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
-          workers: int | None = None, progress: bool = False) -> DriveResult:
+          workers: int | None = None, progress: bool = False,
+          restrike: float | None = None) -> DriveResult:
     """The driveability of a system: blow count, stresses and ENTHRU against the tip depth.
 
     Parameters
@@ -443,6 +480,9 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
         Processes over the depths (default: the machine's cores; 1 runs in-process).
     progress : bool
         A progress bar over the depths.
+    restrike : float, optional
+        A pause [h]: add the restrike blow count after it at every depth (module docstring;
+        the set-up settings of ``[installation]``).
 
     Returns
     -------
@@ -454,7 +494,8 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
     srd = _srd(cfg)
     engine = build_engine(run_cfg)
     result = run_driveability(run_cfg, srd, settings, engine, workers=workers,
-                              progress=progress)
+                              progress=progress, restrike=_restrike_settings(cfg, srd,
+                                                                             restrike))
     for depth in settings.time_series_depths:
         blow = time_series(engine, run_cfg, srd, settings, float(depth))
         result.time_series[float(depth)] = None if blow is None else blow.columns
@@ -516,6 +557,21 @@ def _settings(cfg, bound: str | None) -> DriveSettings:
         raise InputError(str(cfg.source), "driveability", "the drive analysis needs a "
                                                           "[driveability] table")
     return cfg.drive if bound is None else replace(cfg.drive, bound=bound)
+
+
+def _restrike_settings(cfg, srd, hours: float | None):
+    """(InstallSettings, pause [s]) of a restrike of ``hours`` [h], or None."""
+    if hours is None:
+        return None
+    if not (math.isfinite(hours) and 0.0 < hours <= 8760.0):
+        raise InputError(str(cfg.source), "restrike", f"the pause must be in (0, 8760] h, got "
+                                                      f"{hours!r}")
+    install = cfg.install if cfg.install is not None else InstallSettings()
+    if install.setup_soil is None and segment_soil_types(srd, np.array([0.0])) is None:
+        raise InputError(str(cfg.source), "installation.setup_soil",
+                         "the restrike's set-up needs the soil type ('sand' or 'clay') where "
+                         "the SRD has no soil layers")
+    return install, 3600.0 * float(hours)
 
 
 def _srd(cfg) -> SrdSource:

@@ -35,14 +35,14 @@ from __future__ import annotations
 import bisect
 import json
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from anvilwave.analyses.drive import driving_weight
 from anvilwave.analyses.impact import energy_balance
 from anvilwave.config.drive import impact_at, load_srd_source, pile_soil_at, segment_capacities
-from anvilwave.config.install import InstallSettings, shaft_setup_factors
+from anvilwave.config.install import InstallSettings, segment_soil_types, setup_pile_soil
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_installation
@@ -160,48 +160,6 @@ def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0
     return length
 
 
-def _segment_middles(pile, tip: float) -> np.ndarray:
-    """Depth below the mudline of each segment's embedded middle for the tip at ``tip`` [m]
-    (NaN for a segment above the mudline)."""
-    seg = pile.discretise()
-    mudline = pile.length - tip
-    low = np.clip(seg.top - mudline, 0.0, tip)
-    high = np.clip(seg.bottom - mudline, 0.0, tip)
-    return np.where(high > low, 0.5 * (low + high), np.nan)
-
-
-def _segment_soil_types(srd, middles: np.ndarray):
-    """The soil type of each segment from the SRD's soil layers, or None (no layers)."""
-    profile = getattr(srd, "profile", None)
-    layers = getattr(profile, "layers", None)
-    if not layers:
-        return None
-    kinds = []
-    for z in middles:
-        kind = layers[-1].soil_type
-        for layer in layers:
-            if z == z and layer.top <= z < layer.bottom:
-                kind = layer.soil_type
-                break
-        kinds.append(kind)
-    return kinds
-
-
-def _setup_pile_soil(cfg, srd, tip, multiplier, settings, pause):
-    """(PileSoil, shaft [N], toe [N], largest factor [-]) at ``tip`` with the set-up of the
-    active ``pause`` (dict: depth [m], duration [s], restart tip [m]) on the shaft."""
-    ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, tip, multiplier)
-    if pause is None:
-        return ps, shaft, toe, 1.0
-    middles = _segment_middles(cfg.pile_soil.pile, tip)
-    factors = shaft_setup_factors(settings, pause["duration"], middles, pause["depth"],
-                                  tip - pause["restart"], _segment_soil_types(srd, middles))
-    seg_shaft, seg_toe = ps.soil.capacities
-    scaled = np.asarray(seg_shaft, dtype=float) * factors
-    soil = replace(ps.soil, capacities=(scaled, seg_toe))
-    return replace(ps, soil=soil), float(scaled.sum()), toe, float(np.max(factors))
-
-
 def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                      progress: bool = False, energy_check: bool = False) -> InstallResult:
     """Simulate every blow; returns the blow rows, fatigue rows, spectra rows and summary
@@ -226,7 +184,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     stress_factor = cfg.pile_soil.stress_factors()[index]
     pending_spectra = sorted(d for d in settings.spectra_depths if start <= d <= target)
     pending_pauses = [p for p in settings.pauses if p[0] >= start]
-    if pending_pauses and settings.setup_soil is None and _segment_soil_types(
+    if pending_pauses and settings.setup_soil is None and segment_soil_types(
             srd, np.array([0.0])) is None:
         raise InputError(cfg.source, "installation.setup_soil",
                          "the pauses' set-up needs the soil type ('sand' or 'clay') where the "
@@ -262,8 +220,12 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                 restrikes.append({"depth [m]": tip, "pause [h]": duration / 3600.0,
                                   "blow_count_before [1/m]": before})
             if pause is not None or restart or tip - built_at >= settings.srd_update:
-                ps, shaft, toe, factor_now = _setup_pile_soil(cfg, srd, tip, multiplier,
-                                                              settings, pause)
+                ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, tip, multiplier)
+                factor_now = 1.0
+                if pause is not None:
+                    ps, shaft, factor_now = setup_pile_soil(
+                        ps, srd, tip, settings, pause["duration"], pause["depth"],
+                        tip - pause["restart"])
                 eng = engine.with_pile_soil(ps)
                 built_at = tip
                 if pause is not None and factor_now - 1.0 < 1e-4:

@@ -4,7 +4,7 @@ of the shaft during them (:mod:`anvilwave.pile.soil.setup`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -79,6 +79,48 @@ def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depth
         factor = skov_denver_1988_for(kind, duration)
         out[k] = remoulded_setup(factor, penetration, settings.remoulding_length)
     return out
+
+
+def segment_middles(pile, tip: float) -> np.ndarray:
+    """Depth below the mudline of each segment's embedded middle for the tip at ``tip`` [m]
+    (NaN for a segment above the mudline)."""
+    seg = pile.discretise()
+    mudline = pile.length - tip
+    low = np.clip(seg.top - mudline, 0.0, tip)
+    high = np.clip(seg.bottom - mudline, 0.0, tip)
+    return np.where(high > low, 0.5 * (low + high), np.nan)
+
+
+def segment_soil_types(srd, middles: np.ndarray):
+    """The soil type at each depth [m] from the SRD's soil layers (the deepest layer's below
+    them), or None where the SRD has no layers."""
+    layers = getattr(getattr(srd, "profile", None), "layers", None)
+    if not layers:
+        return None
+    kinds = []
+    for z in middles:
+        kind = layers[-1].soil_type
+        for layer in layers:
+            if z == z and layer.top <= z < layer.bottom:
+                kind = layer.soil_type
+                break
+        kinds.append(kind)
+    return kinds
+
+
+def setup_pile_soil(ps, srd, tip: float, settings: InstallSettings, duration: float,
+                    pause_depth: float, penetration: float):
+    """(PileSoil, shaft [N], largest factor [-]): ``ps`` (embedded to ``tip`` [m], its
+    capacities set) with the shaft set up by a pause of ``duration`` [s] at ``pause_depth``
+    [m] and remoulded by ``penetration`` [m] since the restart (:func:`shaft_setup_factors`,
+    the soil types of the SRD's layers or ``settings.setup_soil``)."""
+    middles = segment_middles(ps.pile, tip)
+    factors = shaft_setup_factors(settings, duration, middles, pause_depth, penetration,
+                                  segment_soil_types(srd, middles))
+    shaft, toe = ps.soil.capacities
+    scaled = np.asarray(shaft, dtype=float) * factors
+    return (replace(ps, soil=replace(ps.soil, capacities=(scaled, toe))), float(scaled.sum()),
+            float(np.max(factors)))
 
 
 def load_install_settings(table: Table | None) -> InstallSettings:
