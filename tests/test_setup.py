@@ -229,3 +229,15 @@ def test_drive_restrike_estimates_the_blow_count_after_a_pause(tmp_path, capsys)
     assert main(["drive", str(bare), "--out", str(out), "--restrike", "48"]) != 0
     captured = capsys.readouterr()
     assert "installation.setup_soil" in captured.out + captured.err
+
+
+def test_a_site_specific_a_overrides_the_soil_types(tmp_path):
+    s = InstallSettings(setup_soil="clay", setup_a=4.3, setup_t0=12 * HOUR)
+    f = shaft_setup_factors(s, 45 * HOUR, [1.0], pause_depth=6.0, penetration=0.0)
+    assert f[0] == pytest.approx(1.0 + 4.3 * math.log10(45 / 12), rel=1e-12)
+    path = _system(tmp_path, "setup_a = 4.3\nsetup_t0 = 12.0")
+    cfg = load_system(path)
+    assert cfg.install.setup_a == 4.3 and cfg.install.setup_t0 == 12 * HOUR
+    path.write_text(path.read_text().replace("setup_a = 4.3\n", ""))
+    with pytest.raises(InputError, match="installation.setup_t0"):
+        load_system(path)

@@ -567,7 +567,8 @@ def _restrike_settings(cfg, srd, hours: float | None):
         raise InputError(str(cfg.source), "restrike", f"the pause must be in (0, 8760] h, got "
                                                       f"{hours!r}")
     install = cfg.install if cfg.install is not None else InstallSettings()
-    if install.setup_soil is None and segment_soil_types(srd, np.array([0.0])) is None:
+    if install.setup_soil is None and install.setup_a is None \
+            and segment_soil_types(srd, np.array([0.0])) is None:
         raise InputError(str(cfg.source), "installation.setup_soil",
                          "the restrike's set-up needs the soil type ('sand' or 'clay') where "
                          "the SRD has no soil layers")

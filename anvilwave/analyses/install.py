@@ -184,7 +184,8 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     stress_factor = cfg.pile_soil.stress_factors()[index]
     pending_spectra = sorted(d for d in settings.spectra_depths if start <= d <= target)
     pending_pauses = [p for p in settings.pauses if p[0] >= start]
-    if pending_pauses and settings.setup_soil is None and segment_soil_types(
+    if pending_pauses and settings.setup_soil is None and settings.setup_a is None \
+            and segment_soil_types(
             srd, np.array([0.0])) is None:
         raise InputError(cfg.source, "installation.setup_soil",
                          "the pauses' set-up needs the soil type ('sand' or 'clay') where the "

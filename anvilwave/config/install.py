@@ -15,6 +15,7 @@ from anvilwave.pile.soil.setup import (
     SKOV_DENVER_1988,
     remoulded_setup,
     skov_denver_1988_for,
+    skov_denver_1988_setup,
 )
 
 SETUP_METHODS = ("skov-denver-1988",)
@@ -38,6 +39,8 @@ class InstallSettings:
     setup_soil : soil type of the set-up ("sand", "clay") where the SRD has no soil layers
         (None: the layers' types; required without layers when pauses are given).
     remoulding_length : e-folding penetration of the set-up gain after a restart [m].
+    setup_a, setup_t0 : A [-] and t0 [s] of the set-up for every soil, overriding the soil
+        types' values (site-specific, e.g. from restrike records); None: by soil type.
     """
 
     start_depth: float | None = None
@@ -55,6 +58,8 @@ class InstallSettings:
     setup: str = "skov-denver-1988"
     setup_soil: str | None = None
     remoulding_length: float = DEFAULT_REMOULDING_LENGTH
+    setup_a: float | None = None
+    setup_t0: float | None = None
 
 
 def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depths,
@@ -75,8 +80,14 @@ def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depth
     for k, depth in enumerate(z):
         if not (0.0 <= depth <= pause_depth):
             continue
-        kind = soil_types[k] if soil_types is not None else settings.setup_soil
-        factor = skov_denver_1988_for(kind, duration)
+        if settings.setup_a is not None:
+            a = settings.setup_a
+            t0 = settings.setup_t0 if settings.setup_t0 is not None else SKOV_DENVER_1988[
+                "clay"][1]
+            factor = skov_denver_1988_setup(duration, a, t0)
+        else:
+            kind = soil_types[k] if soil_types is not None else settings.setup_soil
+            factor = skov_denver_1988_for(kind, duration)
         out[k] = remoulded_setup(factor, penetration, settings.remoulding_length)
     return out
 
@@ -155,11 +166,20 @@ def load_install_settings(table: Table | None) -> InstallSettings:
         setup_soil=table.string("setup_soil", None, choices=tuple(SKOV_DENVER_1988)),
         remoulding_length=table.number("remoulding_length", DEFAULT_REMOULDING_LENGTH,
                                        gt=0.0, le=50.0, unit="m"),
+        setup_a=table.number("setup_a", None, ge=0.0, le=20.0),
+        setup_t0=_hours(table.number("setup_t0", None, gt=0.0, le=8760.0, unit="h")),
     )
+    if s.setup_t0 is not None and s.setup_a is None:
+        raise table.error("setup_t0", "give setup_a with it (A and t0 of one law)")
     if s.max_blows > 200_000:
         raise table.error("max_blows", f"must be at most 200000, got {s.max_blows}")
     table.finish()
     return s
+
+
+def _hours(value: float | None) -> float | None:
+    """Hours [h] to seconds [s] (None stays None)."""
+    return None if value is None else 3600.0 * value
 
 
 def _pauses(table: Table) -> tuple:

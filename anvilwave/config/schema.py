@@ -197,6 +197,9 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
                            "1 + A log10(t / t0), sand A 0.2, t0 0.5 d; clay A 0.6, t0 1 d"),
     "installation.setup_soil": ("-", None, "'sand' or 'clay' where the SRD has no soil "
                                 "layers (default: each segment's layer type)"),
+    "installation.setup_a": ("-", None, "set-up A for every soil (site-specific, e.g. from "
+                             "restrikes) instead of the soil types'"),
+    "installation.setup_t0": ("h", None, "with setup_a: its t0; default 24 h"),
     "installation.remoulding_length": ("m", 0.5, "the blows after a restart remould the gain "
                                        "as exp(-penetration / this length)"),
 }
