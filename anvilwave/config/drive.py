@@ -5,6 +5,16 @@ give at a tip depth.
 :class:`SrdSource` says where the SRD of each tip depth comes from. :func:`pile_soil_at`
 embeds the system's pile to a tip depth with that tip's SRD, which every analysis that drives
 the pile (drive, install, batch) starts from.
+
+Tables per tip depth (``[srd] method = "tip-table"``): ``tip_table_rule`` chooses the table of
+a tip depth, "interpolate" (default; a blend of the two tables around it) or "grlweap" (the
+nearest table at or below the tip, the toe value above a step at the tip: a GRLWEAP run with
+the table of tip depth t analyses the penetrations from the previous table depth down to t
+with that table; :func:`anvilwave.pile.soil.profile.tip_table_resistance`); on a table depth
+both take that table. ``layer_parameters = "file"`` takes the quakes and dampings per row of
+each tip's table of a GRLWEAP model (:func:`grlweap_rows_to_layers`) instead of the [soil]
+table's. ``[driveability] weight_on_soil`` and ``window`` are explained in
+:mod:`anvilwave.analyses.drive`.
 """
 
 from __future__ import annotations
