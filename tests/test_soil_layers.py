@@ -102,3 +102,48 @@ def test_bad_layers_name_the_key_and_rule(rows, rule):
                    "layers": rows}, "sys.toml", "soil")
     with pytest.raises(InputError, match=f"soil.layers.*{rule}"):
         soil_from_table(table, 10.0)
+
+
+def test_srd_layers_give_smith_dampings_by_soil_type(tmp_path):
+    """``[srd] layer_parameters = "soil-type"``: sand 0-5 m, clay below; every segment takes
+    the Smith shaft damping of its layer's type, the toe in clay 0.5 s/m, the [soil] quakes;
+    the set-up's installation and drive analyses see them through pile_soil_at."""
+    from anvilwave.config.drive import pile_soil_at
+    from anvilwave.config.system import load_system
+
+    from .test_setup import HAMMER, SYSTEM
+
+    (tmp_path / "hammer.toml").write_text(HAMMER)
+    text = SYSTEM.format(pauses="") + '''
+[srd]
+method = "stevens-1982"
+layer_parameters = "soil-type"
+[[srd.layers]]
+top = 0.0
+bottom = 5.0
+soil = "sand"
+submerged_unit_weight = 10.0e3
+interface_friction_angle = 29.0
+[[srd.layers]]
+top = 5.0
+bottom = 30.0
+soil = "clay"
+submerged_unit_weight = 9.0e3
+undrained_shear_strength = 60.0e3
+plasticity_index = 0.3
+'''
+    path = tmp_path / "layers.toml"
+    path.write_text(text)
+    cfg = load_system(path)
+    ps, _, _ = pile_soil_at(cfg.pile_soil, cfg.srd, 8.0, 1.0)
+    p = soil_parameters(ps.soil, ps.pile)
+    cap = p[SOIL_CAPACITY, :-1]
+    embedded = cap > 0.0
+    # 20 m pile, tip at 8 m: 8 embedded 1 m segments, middles 0.5 ... 7.5 m
+    np.testing.assert_allclose(p[SOIL_DASHPOT, :-1][embedded] / cap[embedded],
+                               [0.16] * 5 + [0.65] * 3, rtol=1e-12)
+    assert p[SOIL_DASHPOT, -1] / p[SOIL_CAPACITY, -1] == pytest.approx(0.5)
+    np.testing.assert_allclose(cap[embedded] / p[SOIL_STIFFNESS, :-1][embedded], 0.0025)
+    path.write_text(text.replace('"soil-type"', '"file"'))
+    with pytest.raises(InputError, match="srd.layer_parameters"):
+        load_system(path)

@@ -29,7 +29,7 @@ import numpy as np
 from anvilwave.hammer.impact import impact_velocity_from_energy
 from anvilwave.inputs import InputError, Table
 from anvilwave.pile.soil.cpt import read_cpt_csv
-from anvilwave.pile.soil.models import SoilLayers, soil_capacities
+from anvilwave.pile.soil.models import SoilLayers, smith_damping_by_soil_type, soil_capacities
 from anvilwave.pile.soil.profile import (
     TIP_TABLE_RULES,
     AlmHamre2001,
@@ -116,6 +116,8 @@ class SrdSource:
     tip_layers : quakes and dampings per layer of each tip table, a tuple of
         :class:`~anvilwave.pile.soil.models.SoilLayers` (one per table, from a GRLWEAP file's
         columns with ``layer_parameters = "file"``), or None (the [soil] table's).
+    layers : quakes and dampings per layer for every tip (``layer_parameters = "soil-type"``
+        of the CPT and layer methods: by each layer's soil type), or None.
     """
 
     method: str
@@ -124,6 +126,7 @@ class SrdSource:
     pile_mode: str = "coring"
     faces: str | None = None
     tip_layers: tuple | None = None
+    layers: SoilLayers | None = None
 
 def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
     """Read and validate the ``[driveability]`` table."""
@@ -243,6 +246,8 @@ def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float)
     """The system's PileSoil embedded to ``tip_depth`` [m] with the SRD of that tip."""
     shaft, toe = segment_capacities(pile_soil, srd, tip_depth, multiplier)
     soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=(shaft, toe))
+    if srd.layers is not None:
+        soil = replace(soil, layers=srd.layers)
     if srd.tip_layers is not None:
         tables = srd.method_object
         j = tip_table_index(tables.tip_depths, float(tip_depth), tables.rule)
@@ -317,8 +322,22 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
     else:
         obj = Stevens1982(bound=table.string("stevens_bound", "lower",
                                              choices=("lower", "upper")))
+    by_type = table.string("layer_parameters", "soil", choices=("soil", "soil-type"))
     table.finish()
-    return SrdSource(method, profile, obj, pile_mode, faces)
+    layers = soil_type_layers(profile, pile_soil.soil) if by_type == "soil-type" else None
+    return SrdSource(method, profile, obj, pile_mode, faces, layers=layers)
+
+
+def soil_type_layers(profile, soil) -> SoilLayers:
+    """Quakes and dampings per layer of a soil profile by its layers' soil types: the Smith
+    shaft and toe dampings of :func:`anvilwave.pile.soil.models.smith_damping_by_soil_type`,
+    the quakes of the [soil] table (``soil``); the last layer extended 1 km down."""
+    rows = []
+    for k, layer in enumerate(profile.layers):
+        shaft, toe = smith_damping_by_soil_type(layer.soil_type)
+        bottom = layer.bottom if k + 1 < len(profile.layers) else layer.bottom + 1e3
+        rows.append([layer.top, bottom, soil.quake_shaft, soil.quake_toe, shaft, toe])
+    return SoilLayers(np.array(rows))
 
 def _tip_tables(table: Table, pile_soil):
     """Per-tip-depth tables: inline ``[[srd.tables]]`` (tip_depth, rows [depth [m], unit shaft

@@ -156,9 +156,11 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "srd.stevens_bound": ("-", "lower", "Stevens et al. K: 'lower' 0.5 or 'upper' 0.7"),
     "srd.file": ("-", None, "tip-table: a GRLWEAP input decoded to JSON"),
     "srd.format": ("-", "grlweap-model-json", "tip-table file format"),
-    "srd.layer_parameters": ("-", "soil", "tip-table file: quakes and dampings from the [soil] "
-                             "table ('soil') or per row of each tip's table ('file', as the "
-                             "GRLWEAP model gives them)"),
+    "srd.layer_parameters": ("-", "soil", "quakes and dampings from the [soil] table ('soil'); "
+                             "tip-table file: per row of each tip's table ('file', as the "
+                             "GRLWEAP model gives them); CPT/layer methods: Smith dampings by "
+                             "each layer's soil type ('soil-type': shaft 0.16 sand, 0.65 "
+                             "clay, toe 0.5 s/m)"),
     "srd.tip_table_rule": ("-", "interpolate", "tip-table: a tip between table depths blends "
                            "the two tables ('interpolate') or takes the nearest table at or "
                            "below it, the toe above a step at the tip ('grlweap'); on a table "
