@@ -249,6 +249,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         "impact_velocity [m/s]": float(velocity),
         "energy_residual_relative [-]": residual,
         "toe_velocity_end [m/s]": float(getattr(blow, "toe_velocity_end", float("nan"))),
+        "restrike_blow_count [1/m]": float("nan"), "restrike_setup_factor [-]": float("nan"),
     }
     row.update(_case_method(blow, replace(cfg, pile_soil=ps)))
     if restrike is not None:
