@@ -70,7 +70,7 @@ def _system(system: SystemConfig | str | Path) -> SystemConfig:
 
 def drive(system: SystemConfig | str | Path, *, anvil: str | None = None,
           bound: str | None = None, workers: int | None = None,
-          progress: bool = False) -> DriveResult:
+          progress: bool = False, restrike: float | None = None) -> DriveResult:
     """Driveability against the tip depth (``anvilwave drive``).
 
     Parameters
@@ -86,6 +86,9 @@ def drive(system: SystemConfig | str | Path, *, anvil: str | None = None,
         Processes over the depths (default: the machine's cores).
     progress : bool
         A progress bar.
+    restrike : float, optional
+        A pause [h]: the restrike blow count after it at every depth (set-up of Skov & Denver
+        1988 by soil type; columns ``restrike_blow_count [1/m]``, ``restrike_setup_factor [-]``).
 
     Returns
     -------
@@ -94,7 +97,7 @@ def drive(system: SystemConfig | str | Path, *, anvil: str | None = None,
         ``time_series`` of the chosen depths.
     """
     return _drive.drive(_system(system), anvil=anvil, bound=bound, workers=workers,
-                        progress=progress)
+                        progress=progress, restrike=restrike)
 
 
 def compare_anvils(system: SystemConfig | str | Path, *, bound: str | None = None,

@@ -492,6 +492,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "plot them together")
     p.add_argument("--bearing-graph", type=float, default=None, metavar="DEPTH",
                    help="blow count against Rut at this tip depth [m] instead")
+    p.add_argument("--restrike", type=float, default=None, metavar="DURATION",
+                   help="also the restrike blow count at every depth after a pause of DURATION "
+                        "[h] (shaft set-up of Skov & Denver 1988; [installation] setup_soil)")
     p.add_argument("--workers", type=int, default=None,
                    help="processes over the depths (default: all cores)")
     p.set_defaults(func=_drive)
@@ -631,7 +634,7 @@ def _drive(args: argparse.Namespace) -> int:
                                      progress=True)
     else:
         result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
-                           progress=True)
+                           progress=True, restrike=args.restrike)
         results = {result.model: result}
     with ResultWriter(args.out, command="drive") as out:
         write_anvil_comparison(results, out, title=name)

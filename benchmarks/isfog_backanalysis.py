@@ -70,6 +70,20 @@ multiplier), so the energy-only fit is reported beside the two-parameter one, an
 class decides which end of the valley is plausible: the largest blow energy must stay within
 the hammer's rating (``largest_blow_energy_within_rating`` in the summary).
 
+Cross-validation (``--cross-validate``): leave one foundation out. The piles of one
+foundation share its CPT, so a pile's neighbours under the same CPT would leak its soil into
+the fit: each fold holds out every pile of one foundation (``cpt_group``), fits E_ref (and the
+multiplier, as ``--fit``) on the piles of all the other foundations with the same grid and
+the same fit, and predicts the held-out piles' records at the fold's values (interpolated on
+the grid, as the fit itself; the interpolation error of the direct runs is reported). Every
+pile has the same CPT processing in it: the 0.5 m series of its foundation. The score is set
+against the naive baseline, which knows no soil: at each depth, the mean measured blow count of
+the piles of the other foundations driven at that depth (records at depths no other
+foundation reached are left out of both scores and counted). Outputs: ``cross_validation.csv``
+(per foundation and overall: RMSE of the model and of the baseline, bias, the fold's E_ref and
+multiplier) and ``"cross_validation"`` in the summary with the skill 1 - MSE_model /
+MSE_baseline (> 0: the model beats the baseline).
+
 Outputs in DIR: ``calibration_fit.csv`` (RMSE and bias = mean of predicted - measured, per
 pile and overall),
 ``calibration_summary.json`` (fitted values, RMSE, bias, ranges, assumptions, run time),
@@ -562,6 +576,95 @@ def fit(interp: GridInterpolator, measured: np.ndarray, with_multiplier: bool) -
             "at_grid_edge": at_edge, "rmse_curve": curve}
 
 
+def naive_baseline(train, held_out) -> list[np.ndarray]:
+    """The baseline of the cross-validation: for each held-out pile, at each of its depths, the
+    mean measured blow count [blows/m] of the ``train`` piles driven at that depth (NaN where
+    none was)."""
+    by_depth: dict[float, list[float]] = {}
+    for p in train:
+        for z, n in zip(p.depths, p.measured, strict=True):
+            by_depth.setdefault(round(float(z), 6), []).append(float(n))
+    return [np.array([float(np.mean(by_depth[round(float(z), 6)]))
+                      if round(float(z), 6) in by_depth else math.nan for z in p.depths])
+            for p in held_out]
+
+
+def leave_one_foundation_out(piles, grid, energies, multipliers,
+                             with_multiplier: bool) -> tuple[list[dict], dict]:
+    """Leave-one-foundation-out cross-validation (module docstring).
+
+    piles : the calibration piles; grid : their :func:`simulate_pile` results on the grid of
+    ``energies`` [J] x ``multipliers`` [-]; with_multiplier : fit the SRD multiplier too.
+    Returns (rows per foundation and "overall", summary).
+    """
+    groups = sorted({p.cpt_group for p in piles})
+    rows, model_all, base_all, measured_all = [], [], [], []
+    left_out = 0
+    for group in groups:
+        train = [k for k, p in enumerate(piles) if p.cpt_group != group]
+        test = [k for k, p in enumerate(piles) if p.cpt_group == group]
+        if not train:
+            continue
+        interp = GridInterpolator(energies, multipliers,
+                                  np.concatenate([grid[k]["count"] for k in train], axis=2),
+                                  np.concatenate([grid[k]["run_multiplier"] for k in train]))
+        measured = np.concatenate([piles[k].measured for k in train])
+        f = fit(interp, measured, with_multiplier)
+        e_ref, mult = f["E_ref [J]"], f["srd_multiplier [-]"]
+        held = [piles[k] for k in test]
+        predicted = [GridInterpolator(energies, multipliers, grid[k]["count"],
+                                      grid[k]["run_multiplier"])(e_ref, mult) for k in test]
+        base = naive_baseline([piles[k] for k in train], held)
+        pred = np.concatenate(predicted)
+        b = np.concatenate(base)
+        m = np.concatenate([p.measured for p in held])
+        ok = np.isfinite(b)
+        left_out += int(np.sum(~ok))
+        model_all.append(pred[ok])
+        base_all.append(b[ok])
+        measured_all.append(m[ok])
+        rows.append({"foundation": group, "piles [-]": len(held), "points [-]": int(ok.sum()),
+                     "points_without_baseline [-]": int(np.sum(~ok)),
+                     "E_ref [J]": e_ref, "srd_multiplier [-]": mult,
+                     "rmse_model [blows/m]": rmse(pred[ok], m[ok]) if ok.any() else math.nan,
+                     "rmse_baseline [blows/m]": rmse(b[ok], m[ok]) if ok.any() else math.nan,
+                     "bias_model [blows/m]": float(np.mean(pred[ok] - m[ok])) if ok.any()
+                     else math.nan,
+                     "bias_baseline [blows/m]": float(np.mean(b[ok] - m[ok])) if ok.any()
+                     else math.nan})
+    pred, base, meas = (np.concatenate(x) if x else np.zeros(0)
+                        for x in (model_all, base_all, measured_all))
+    overall = {"foundation": "overall", "piles [-]": len(piles), "points [-]": int(meas.size),
+               "points_without_baseline [-]": left_out, "E_ref [J]": math.nan,
+               "srd_multiplier [-]": math.nan,
+               "rmse_model [blows/m]": rmse(pred, meas) if meas.size else math.nan,
+               "rmse_baseline [blows/m]": rmse(base, meas) if meas.size else math.nan,
+               "bias_model [blows/m]": float(np.mean(pred - meas)) if meas.size else math.nan,
+               "bias_baseline [blows/m]": float(np.mean(base - meas)) if meas.size
+               else math.nan}
+    rows.append(overall)
+    mse_m, mse_b = overall["rmse_model [blows/m]"] ** 2, overall["rmse_baseline [blows/m]"] ** 2
+    folds = rows[:-1]
+    summary = {
+        "folds [-]": len(folds),
+        "rmse_model [blows/m]": overall["rmse_model [blows/m]"],
+        "rmse_baseline [blows/m]": overall["rmse_baseline [blows/m]"],
+        "skill [-]": 1.0 - mse_m / mse_b if mse_b > 0 else math.nan,
+        "folds_model_better [-]": sum(r["rmse_model [blows/m]"] < r["rmse_baseline [blows/m]"]
+                                      for r in folds),
+        "points [-]": overall["points [-]"],
+        "points_without_baseline [-]": left_out,
+        "E_ref_range [J]": [min(r["E_ref [J]"] for r in folds),
+                            max(r["E_ref [J]"] for r in folds)] if folds else None,
+        "srd_multiplier_range [-]": [min(r["srd_multiplier [-]"] for r in folds),
+                                     max(r["srd_multiplier [-]"] for r in folds)]
+        if folds else None,
+        "cpt": "the 0.5 m series of each pile's foundation, for every pile",
+        "fit": "energy+multiplier" if with_multiplier else "energy",
+    }
+    return rows, summary
+
+
 def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
     rows = []
     for p, pred in zip(piles, predicted, strict=True):
@@ -741,6 +844,9 @@ def parse_args(argv=None) -> argparse.Namespace:
                         help="SRD multipliers of the grid; '1' fits the energy alone")
     parser.add_argument("--fit", choices=("energy", "energy+multiplier"),
                         default="energy+multiplier", help="the fit used for the predictions")
+    parser.add_argument("--cross-validate", action="store_true",
+                        help="leave-one-foundation-out cross-validation against the naive "
+                             "baseline (mean of the other foundations at each depth)")
     parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
                         help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
     parser.add_argument("--segment-length", type=float, default=Model.segment_length,
@@ -808,6 +914,18 @@ def main(argv=None) -> int:
         fits["fit_energy_only"] = fit(interp, measured, False)
     chosen = fits["fit"] if with_multiplier else fits["fit_energy_only"]
     times["fit [s]"] = time.perf_counter() - t
+    cross = None
+    if args.cross_validate:
+        t = time.perf_counter()
+        cv_rows, cross = leave_one_foundation_out(calibration, grid, energies, multipliers,
+                                                  with_multiplier)
+        write_csv(out / "cross_validation.csv", cv_rows)
+        times["cross_validation [s]"] = time.perf_counter() - t
+        print(f"leave one foundation out ({cross['folds [-]']} folds, {cross['points [-]']} "
+              f"records): RMSE {cross['rmse_model [blows/m]']:.1f} blows/m against "
+              f"{cross['rmse_baseline [blows/m]']:.1f} for the baseline (mean of the other "
+              f"foundations), skill {cross['skill [-]']:+.2f}; the model better in "
+              f"{cross['folds_model_better [-]']} of {cross['folds [-]']} folds")
     e_ref, mult = chosen["E_ref [J]"], chosen["srd_multiplier [-]"]
     print(f"fit: E_ref {e_ref / 1e3:.1f} kJ, SRD multiplier {mult:.3f} (interpolated RMSE "
           f"{chosen['rmse_interpolated [blows/m]']:.1f} blows/m)")
@@ -907,6 +1025,7 @@ def main(argv=None) -> int:
                                  "hammer energy",
             "prediction_cpt": args.prediction_cpt,
         },
+        "cross_validation": cross,
         "data": str(data),
         "times": times,
         "workers [-]": args.workers,

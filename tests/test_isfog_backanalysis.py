@@ -159,3 +159,50 @@ def test_backanalysis_on_two_calibration_piles(tmp_path):
     assert all(math.isfinite(float(r["blowcount [blows/m]"])) for r in prediction)
     for name in ("calibration_profiles.png", "calibration_fit.png", "prediction_piles.png"):
         assert (out / name).stat().st_size > 0
+
+
+def _synthetic_piles(bench):
+    """Three foundations of two piles, driven at 1-3 m (foundation C only to 2 m), measured
+    blow counts by hand."""
+    measured = {"A1": [10, 20, 30], "A2": [12, 22, 32], "B1": [20, 40, 60],
+                "B2": [22, 42, 62], "C1": [5, 6], "C2": [7, 8]}
+    piles = []
+    for name, counts in measured.items():
+        z = np.arange(1.0, len(counts) + 1.0)
+        piles.append(bench.PileRecord(name, name[0], 0.05, 3.0, z, np.ones(z.size),
+                                      np.array(counts, float), "", {}))
+    return piles
+
+
+def test_naive_baseline_is_the_mean_of_the_other_foundations_at_each_depth():
+    bench = _benchmark()
+    piles = _synthetic_piles(bench)
+    base = bench.naive_baseline([p for p in piles if p.cpt_group != "A"],
+                                [p for p in piles if p.cpt_group == "A"])
+    # at 1 m: (20 + 22 + 5 + 7) / 4; at 2 m: (40 + 42 + 6 + 8) / 4; at 3 m only B: 61
+    np.testing.assert_allclose(base[0], [13.5, 24.0, 61.0])
+    c = bench.naive_baseline([p for p in piles if p.cpt_group == "C"],
+                             [p for p in piles if p.cpt_group == "A"])
+    assert math.isnan(c[0][2])  # no other foundation driven to 3 m
+
+
+def test_leave_one_foundation_out_scores_a_perfect_model_against_the_baseline():
+    """A grid whose blow counts are the measured ones at every energy: each fold predicts its
+    held-out piles exactly (RMSE 0, skill 1), while the baseline's error follows by hand."""
+    bench = _benchmark()
+    piles = _synthetic_piles(bench)
+    energies, multipliers = np.array([1e5, 1e6]), np.array([1.0])
+    grid = [{"count": np.broadcast_to(p.measured, (1, 2, p.measured.size)).copy(),
+             "run_multiplier": np.zeros(p.measured.size)} for p in piles]
+    rows, summary = bench.leave_one_foundation_out(piles, grid, energies, multipliers, False)
+    assert [r["foundation"] for r in rows] == ["A", "B", "C", "overall"]
+    assert summary["rmse_model [blows/m]"] == pytest.approx(0.0, abs=1e-9)
+    assert summary["skill [-]"] == pytest.approx(1.0)
+    # fold A: baseline 13.5, 24, 61 against A1 (10, 20, 30) and A2 (12, 22, 32)
+    errors = np.array([3.5, 4.0, 31.0, 1.5, 2.0, 29.0])
+    assert rows[0]["rmse_baseline [blows/m]"] == pytest.approx(math.sqrt(np.mean(errors**2)))
+    # fold C (1-2 m): baseline (10+12+20+22)/4 = 16 at 1 m, (20+22+40+42)/4 = 31 at 2 m
+    c_errors = np.array([11.0, 25.0, 9.0, 23.0])
+    assert rows[2]["rmse_baseline [blows/m]"] == pytest.approx(math.sqrt(np.mean(c_errors**2)))
+    assert summary["points_without_baseline [-]"] == 0
+    assert summary["folds_model_better [-]"] == 3

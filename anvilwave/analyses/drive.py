@@ -26,10 +26,36 @@ above ``refusal`` blows per 0.25 m (default 250). Total blows integrate the blow
 depth from the self-weight penetration to the last depth driven (or the refusal depth);
 driving time is total blows / blow rate.
 
-Self-weight penetration and pile runs: the weight of pile, hammer and helmet (or anvil) rests
-on the soil. The pile penetrates under its own weight to the first depth where the SRD (its
-static resistance at that tip depth) exceeds the weight; deeper, a depth where the SRD falls
-below the weight again (a soft layer) is a pile run.
+Self-weight penetration and pile runs: a weight rests on the soil (``weight_on_soil``):
+``"all"`` (default) the pile, the ram, the helmet (or anvil) and the hammer assembly;
+``"grlweap"`` the pile, the helmet (or anvil) and the assembly, without the ram: GRLWEAP's
+"Total Wt", the weight it compares with the total resistance Rut ("Hammer+Pile Weight > Rult:
+Pile Runs", blow count 0; the benchmark's listing: 9158.8 kN = pile 3172.3 + helmet 2575.1 +
+assembly 3411.4 kN). The pile penetrates under its own weight to the first depth where the SRD
+(its static resistance at that tip depth) exceeds the weight; deeper, a depth where the SRD
+falls below the weight again (a soft layer) is a pile run. Where the pile does not run, the
+blow starts either way from the static equilibrium of the pile under its own weight and the
+helmet's (or anvil's) and assembly's on its head; the ram falls freely and its weight acts on
+it during the blow, as in GRLWEAP (its static analysis before the blow loads the soil with the
+pile's and the hammer assembly's weight; the ram is in flight).
+
+Restrike (``anvilwave drive --restrike HOURS``): at every depth a second blow estimates the
+restrike after a pause of that duration: the shaft resistance of the embedded segments times
+the set-up factor of Skov & Denver (1988) for each segment's soil type (the SRD's layers, or
+``[installation] setup_soil``; :mod:`anvilwave.pile.soil.setup`), nothing remoulded yet, from
+the static equilibrium on that soil; columns ``restrike_blow_count [1/m]`` and
+``restrike_setup_factor [-]`` (the largest over the segments).
+
+Blow window (``window``): ``"fixed"`` (default) simulates the whole ``duration``;
+``"toe-rebound"`` ends the blow when the toe, having moved down, first moves up (the first
+maximum of the toe displacement), at most ``duration``: the end of the analysis of Smith's
+method, whose set (the maximum toe displacement minus the toe quake, ``set_rule =
+"grlweap"``) assumes the pile rebounds from that instant (Smith 1960, J. Soil Mech. Found.
+Div. 86(4), 35-61). Stresses and energies are then the extremes up to that instant: a tension
+reflected after the toe's rebound (a high toe resistance) is not seen. The blow is simulated
+twice (once recorded to find the instant). GRLWEAP's own default analysis time is not stated
+in its input echo; this option follows the rule its set implies and is not fitted to its
+results.
 """
 
 from __future__ import annotations
@@ -51,11 +77,13 @@ from anvilwave.config.drive import (
     load_srd_source,
     pile_soil_at,
 )
+from anvilwave.config.install import InstallSettings, segment_soil_types, setup_pile_soil
 from anvilwave.config.system import depth_limit
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
 from anvilwave.output.tables import write_csv
+from anvilwave.pile.soil.models import toe_quake
 
 MIN_SET = 1e-7
 """Sets below this [m] count as zero (blow count infinite: refusal)."""
@@ -66,7 +94,7 @@ COLUMNS = ("depth [m]", "srd [N]", "srd_shaft [N]", "srd_toe [N]", "blow_count [
            "max_pile_head_force [N]", "emx_gauge [J]", "emx_head [J]",
            "permanent_set [m]", "grlweap_set [m]", "impact_velocity [m/s]",
            "energy_residual_relative [-]", "toe_velocity_end [m/s]", "FMX [N]", "RMX [N]",
-           "case_damping [-]")
+           "case_damping [-]", "restrike_blow_count [1/m]", "restrike_setup_factor [-]")
 """Columns of ``driveability.csv`` (the DESIGN.md contract first, then extra columns)."""
 
 
@@ -108,7 +136,8 @@ class DriveResult:
 
     def columns(self) -> dict[str, np.ndarray]:
         """The rows as columns ``{name [unit]: array}`` (the columns of driveability.csv)."""
-        return {name: np.array([r[name] for r in self.rows], dtype=float) for name in COLUMNS}
+        return {name: np.array([r.get(name, math.nan) for r in self.rows], dtype=float)
+                for name in COLUMNS}
 
     def write(self, out, title: str = "", prefix: str = "") -> None:
         """``driveability.csv``, ``summary.json``, ``driveability.png`` and a
@@ -134,6 +163,39 @@ class DepthResult:
     blow: object = None
 
 
+TOE_MOVING = 1e-6
+"""Toe displacement [m] from which the toe counts as moving down (window "toe-rebound")."""
+
+
+def toe_rebound_time(blow) -> float:
+    """The instant the toe first moves up after moving down [s] (its first maximum of
+    displacement, the end of a "toe-rebound" window): the first recorded sample after the toe
+    has moved :data:`TOE_MOVING` down whose successor is not lower; the blow's end if the toe
+    never turns.
+
+    Parameters
+    ----------
+    blow : BlowResult
+        A recorded blow (columns ``time [s]`` and ``pile_toe_displacement [m]``).
+
+    Returns
+    -------
+    float
+        The blow window ending at the toe's first rebound [s] (at least one time step).
+    """
+    t = np.asarray(blow.columns["time [s]"], dtype=float)
+    u = np.asarray(blow.columns["pile_toe_displacement [m]"], dtype=float)
+    u = u - u[0]
+    moving = np.flatnonzero(u > TOE_MOVING)
+    if moving.size == 0:
+        return float(t[-1])
+    k0 = int(moving[0])
+    turns = np.flatnonzero(np.diff(u[k0:]) <= 0.0)
+    if turns.size == 0:
+        return float(t[-1])
+    return max(float(t[k0 + int(turns[0])]), float(blow.time_step))
+
+
 def set_of_blow(blow, rule: str, toe_quake: float) -> float:
     """The blow's set [m] by the rule (module docstring)."""
     if rule == "grlweap":
@@ -147,11 +209,12 @@ def blow_count(set_m: float) -> float:
 
 
 def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float,
-                  record: bool = False) -> DepthResult:
-    """Simulate the blows of one tip depth and summarise them (one CSV row)."""
+                  record: bool = False, restrike: tuple | None = None) -> DepthResult:
+    """Simulate the blows of one tip depth and summarise them (one CSV row); ``restrike``
+    = (InstallSettings, pause [s]) adds the restrike blow count (module docstring)."""
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, depth, settings.multiplier)
     energy, velocity = impact_at(settings, depth, cfg)
-    weight = driving_weight(cfg, engine.static_head_force)
+    weight = driving_weight(cfg, engine.static_head_force, settings.weight_on_soil)
     if shaft + toe <= weight:  # the pile runs (or stands) under its own weight: no blows
         return DepthResult(_run_row(depth, shaft, toe, energy, velocity))
     eng = engine.with_pile_soil(ps)
@@ -163,10 +226,9 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     for k in range(settings.blows_per_depth):
         last = k == settings.blows_per_depth - 1
         # the last blow records its gauge signals (for the Case method; 2-7 % of its cost)
-        blow = eng.blow(state=state, impact_velocity=velocity, duration=settings.duration,
-                        record=record or last, energy=record)
+        blow = _window_blow(eng, state, velocity, settings, record or last, record)
         state = blow.final_state
-    quake_toe = float(ps.soil.quake_toe)
+    quake_toe = toe_quake(ps.soil, ps.pile)
     permanent = set_of_blow(blow, "permanent", quake_toe)
     grl = set_of_blow(blow, "grlweap", quake_toe)
     set_m = set_of_blow(blow, settings.set_rule, quake_toe)
@@ -188,9 +250,35 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         "impact_velocity [m/s]": float(velocity),
         "energy_residual_relative [-]": residual,
         "toe_velocity_end [m/s]": float(getattr(blow, "toe_velocity_end", float("nan"))),
+        "restrike_blow_count [1/m]": float("nan"), "restrike_setup_factor [-]": float("nan"),
     }
     row.update(_case_method(blow, replace(cfg, pile_soil=ps)))
+    if restrike is not None:
+        row.update(_restrike(engine, srd, settings, ps, depth, velocity, restrike))
     return DepthResult(row, blow if record else None)
+
+
+def _window_blow(eng, state, velocity, settings: DriveSettings, record: bool, energy: bool):
+    """One blow in the settings' window: the whole duration, or up to the toe's first
+    rebound (found by a first, recorded blow)."""
+    duration = settings.duration
+    if settings.window == "toe-rebound":
+        duration = toe_rebound_time(eng.blow(state=state, impact_velocity=velocity,
+                                             duration=duration, record=True, energy=False))
+    return eng.blow(state=state, impact_velocity=velocity, duration=duration, record=record,
+                    energy=energy)
+
+
+def _restrike(engine, srd, settings, ps, depth, velocity, restrike) -> dict:
+    """The restrike blow count [1/m] and largest shaft set-up factor [-] after the pause of
+    ``restrike`` = (InstallSettings, pause [s]) at the tip depth ``depth`` [m]."""
+    install, duration = restrike
+    set_up, _, factor = setup_pile_soil(ps, srd, depth, install, duration, depth, 0.0)
+    eng = engine.with_pile_soil(set_up)
+    blow = _window_blow(eng, eng.static_state(), velocity, settings, False, False)
+    set_m = set_of_blow(blow, settings.set_rule, toe_quake(set_up.soil, set_up.pile))
+    return {"restrike_blow_count [1/m]": blow_count(set_m),
+            "restrike_setup_factor [-]": factor}
 
 
 def _case_method(blow, cfg) -> dict:
@@ -220,17 +308,20 @@ _WORK: dict = {}
 
 def _work(depth: float) -> dict:
     w = _WORK
-    return analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth).row
+    return analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth,
+                         restrike=w["restrike"]).row
 
 
 def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, *,
-                     workers: int | None = None, progress: bool = False) -> DriveResult:
+                     workers: int | None = None, progress: bool = False,
+                     restrike: tuple | None = None) -> DriveResult:
     """Analyse every depth of ``settings``; returns a :class:`DriveResult` (no time series).
 
     cfg : the :class:`~anvilwave.config.system.SystemConfig` (its hammer, anvil, pile and soil
     model).
     engine : a built :class:`~anvilwave.engine.direct.Engine` for ``cfg`` (default: built here).
     workers : processes over the depths (default: the machine's cores; 1 runs in-process).
+    restrike : (InstallSettings, pause [s]) for the restrike columns (module docstring).
     """
 
     start = time.perf_counter()
@@ -248,14 +339,16 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     try:
         if workers == 1:
             for d in depths:
-                rows.append(analyse_depth(engine, cfg, srd, settings, d).row)
+                rows.append(analyse_depth(engine, cfg, srd, settings, d,
+                                          restrike=restrike).row)
                 if bar is not None:
                     bar.update(1)
         else:
             import multiprocessing as mp
             from concurrent.futures import ProcessPoolExecutor
 
-            _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings)
+            _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings,
+                         restrike=restrike)
             try:
                 with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
                                          initializer=die_with_parent,
@@ -278,6 +371,8 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     summary["wall_time [s]"] = time.perf_counter() - start
     summary["depths_analysed [-]"] = len(rows)
     summary["workers [-]"] = workers
+    if restrike is not None:
+        summary["restrike_pause [h]"] = restrike[1] / 3600.0
     return DriveResult(model=cfg.anvil.model, source=str(cfg.source), rows=rows,
                        summary=summary)
 
@@ -310,12 +405,14 @@ def die_with_parent(parent: int) -> None:
     threading.Thread(target=watch, daemon=True).start()
 
 
-def driving_weight(cfg, head_load: float) -> float:
-    """Weight resting on the soil before driving [N]: pile and ram, plus ``head_load`` [N],
-    the anvil's (or the helmet's and hammer assembly's) weight on the pile head."""
+def driving_weight(cfg, head_load: float, rule: str = "all") -> float:
+    """Weight resting on the soil before driving [N]: the pile's, plus ``head_load`` [N], the
+    anvil's (or the helmet's and hammer assembly's) weight on the pile head, plus the ram's
+    with ``rule = "all"`` (not with ``"grlweap"``: module docstring)."""
     seg = cfg.pile_soil.pile.discretise()
     pile = float(np.sum(seg.area * seg.length * seg.density))
-    return (pile + float(np.sum(cfg.hammer.ram.mass))) * cfg.gravity + float(head_load)
+    ram = float(np.sum(cfg.hammer.ram.mass)) if rule == "all" else 0.0
+    return (pile + ram) * cfg.gravity + float(head_load)
 
 
 def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) -> dict:
@@ -325,7 +422,7 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
     srd = np.array([r["srd [N]"] for r in rows])
     refused = np.flatnonzero(0.25 * count > settings.refusal)
     refusal_depth = float(depth[refused[0]]) if refused.size else None
-    weight = driving_weight(cfg, head_load)
+    weight = driving_weight(cfg, head_load, settings.weight_on_soil)
     above = np.flatnonzero(srd >= weight)
     swp = float(depth[above[0]]) if above.size else (float(depth[-1]) if depth.size else 0.0)
     # a pile run: deeper than the self-weight penetration, the SRD falls below the weight
@@ -363,6 +460,8 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
         "refusal_criterion [blows/0.25m]": settings.refusal,
         "blow_rate [blows/min]": settings.blow_rate,
         "blows_per_depth [-]": settings.blows_per_depth,
+        "weight_on_soil": settings.weight_on_soil,
+        "window": settings.window,
         "anvil_model": cfg.anvil.model,
     }
 
@@ -400,7 +499,8 @@ def time_series(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: flo
 
 # ----------------------------------------------------------------------------- entry points
 def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
-          workers: int | None = None, progress: bool = False) -> DriveResult:
+          workers: int | None = None, progress: bool = False,
+          restrike: float | None = None) -> DriveResult:
     """The driveability of a system: blow count, stresses and ENTHRU against the tip depth.
 
     Parameters
@@ -416,6 +516,9 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
         Processes over the depths (default: the machine's cores; 1 runs in-process).
     progress : bool
         A progress bar over the depths.
+    restrike : float, optional
+        A pause [h]: add the restrike blow count after it at every depth (module docstring;
+        the set-up settings of ``[installation]``).
 
     Returns
     -------
@@ -427,7 +530,8 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
     srd = _srd(cfg)
     engine = build_engine(run_cfg)
     result = run_driveability(run_cfg, srd, settings, engine, workers=workers,
-                              progress=progress)
+                              progress=progress, restrike=_restrike_settings(cfg, srd,
+                                                                             restrike))
     for depth in settings.time_series_depths:
         blow = time_series(engine, run_cfg, srd, settings, float(depth))
         result.time_series[float(depth)] = None if blow is None else blow.columns
@@ -493,6 +597,22 @@ def _settings(cfg, bound: str | None) -> DriveSettings:
         raise InputError(str(cfg.source), "driveability", "the drive analysis needs a "
                                                           "[driveability] table")
     return cfg.drive if bound is None else replace(cfg.drive, bound=bound)
+
+
+def _restrike_settings(cfg, srd, hours: float | None):
+    """(InstallSettings, pause [s]) of a restrike of ``hours`` [h], or None."""
+    if hours is None:
+        return None
+    if not (math.isfinite(hours) and 0.0 < hours <= 8760.0):
+        raise InputError(str(cfg.source), "restrike", f"the pause must be in (0, 8760] h, got "
+                                                      f"{hours!r}")
+    install = cfg.install if cfg.install is not None else InstallSettings()
+    if install.setup_soil is None and install.setup_a is None \
+            and segment_soil_types(srd, np.array([0.0])) is None:
+        raise InputError(str(cfg.source), "installation.setup_soil",
+                         "the restrike's set-up needs the soil type ('sand' or 'clay') where "
+                         "the SRD has no soil layers")
+    return install, 3600.0 * float(hours)
 
 
 def _srd(cfg) -> SrdSource:

@@ -15,6 +15,16 @@ head, or every segment) is streamed blow by blow into a rainflow count over the 
 DNV-RP-C203 S-N curves (edition, environment, SCF, the thickness correction at the section's
 wall thickness). Memory stays bounded: only the reversal residue is kept between blows.
 
+Pauses and set-up (``[installation] pauses``, rows tip depth [m], duration [h]): when the tip
+reaches a pause depth, driving stops for the duration; the shaft resistance of the segments in
+the ground gains the set-up of Skov & Denver (1988) for the soil type of each segment (the
+SRD's soil layers, or ``setup_soil``), and the blows after the restart remould the gain
+exponentially over ``remoulding_length`` of penetration (:mod:`anvilwave.pile.soil.setup`);
+the SRD is rebuilt at every blow while the gain lasts. The first blow after a restart is the
+restrike: its blow count (1 / set), the one of the last blow before the pause and the set-up
+factor are listed in the summary's ``"restrikes"``; ``blows.csv`` carries the shaft set-up
+factor of every blow (the largest over the segments).
+
 Noise: the pile-head force of the first blow past each chosen depth is turned into
 one-third-octave band energies (IEC 61260-1, base 10; :func:`anvilwave.pile.post.spectra.
 third_octave_band_energies`), valid band stated.
@@ -30,8 +40,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from anvilwave.analyses.drive import driving_weight
+from anvilwave.analyses.impact import energy_balance
 from anvilwave.config.drive import impact_at, load_srd_source, pile_soil_at, segment_capacities
-from anvilwave.config.install import InstallSettings
+from anvilwave.config.install import InstallSettings, segment_soil_types, setup_pile_soil
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_installation
@@ -41,7 +52,8 @@ from anvilwave.pile.post.spectra import third_octave_band_energies
 
 BLOW_COLUMNS = ("blow [-]", "tip_depth [m]", "set [m]", "energy_setting [J]", "enthru [J]",
                 "max_compression_stress [Pa]", "max_tension_stress [Pa]",
-                "max_pile_head_force [N]", "srd [N]")
+                "max_pile_head_force [N]", "srd [N]", "shaft_setup_factor [-]",
+                "energy_residual_relative [-]")
 FATIGUE_COLUMNS = ("depth_below_head [m]", "sn_curve", "environment", "scf [-]",
                    "thickness [m]", "damage [-]", "closed_cycles [-]")
 """Columns of ``fatigue.csv``."""
@@ -149,9 +161,10 @@ def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0
 
 
 def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
-                     progress: bool = False) -> InstallResult:
+                     progress: bool = False, energy_check: bool = False) -> InstallResult:
     """Simulate every blow; returns the blow rows, fatigue rows, spectra rows and summary
-    (:class:`InstallResult`)."""
+    (:class:`InstallResult`). ``energy_check``: book every blow's energies and give its relative
+    energy residual (``energy_residual_relative [-]``; NaN without)."""
 
     start_wall = time.perf_counter()
     multiplier = drive.multiplier
@@ -170,6 +183,16 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     miner = StreamingMinerDamage(functions)
     stress_factor = cfg.pile_soil.stress_factors()[index]
     pending_spectra = sorted(d for d in settings.spectra_depths if start <= d <= target)
+    pending_pauses = [p for p in settings.pauses if p[0] >= start]
+    if pending_pauses and settings.setup_soil is None and settings.setup_a is None \
+            and segment_soil_types(
+            srd, np.array([0.0])) is None:
+        raise InputError(cfg.source, "installation.setup_soil",
+                         "the pauses' set-up needs the soil type ('sand' or 'clay') where the "
+                         "SRD has no soil layers")
+    pause = None  # the active pause: depth, duration, restart tip, factor and counts
+    restrikes: list[dict] = []
+    factor_now = 1.0
 
     tip = float(start)
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, tip, multiplier)
@@ -189,15 +212,31 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                    bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} m [{elapsed}<{remaining}]")
     try:
         for k in range(1, settings.max_blows + 1):
-            if tip - built_at >= settings.srd_update:
+            restart = bool(pending_pauses) and tip >= pending_pauses[0][0]
+            if restart:
+                _, duration = pending_pauses.pop(0)
+                before = 1.0 / rows[-1]["set [m]"] if rows and rows[-1]["set [m]"] > 0 \
+                    else None
+                pause = {"depth": tip, "duration": duration, "restart": tip}
+                restrikes.append({"depth [m]": tip, "pause [h]": duration / 3600.0,
+                                  "blow_count_before [1/m]": before})
+            if pause is not None or restart or tip - built_at >= settings.srd_update:
                 ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, tip, multiplier)
+                factor_now = 1.0
+                if pause is not None:
+                    ps, shaft, factor_now = setup_pile_soil(
+                        ps, srd, tip, settings, pause["duration"], pause["depth"],
+                        tip - pause["restart"])
                 eng = engine.with_pile_soil(ps)
                 built_at = tip
+                if pause is not None and factor_now - 1.0 < 1e-4:
+                    pause = None  # remoulded: the next rebuilds follow srd_update again
             energy, velocity = impact_at(drive, tip, cfg)
             spectrum = bool(pending_spectra) and tip >= pending_spectra[0]
             blow = eng.blow(state=state, impact_velocity=velocity, duration=drive.duration,
-                            record_interval=settings.record_interval, record=spectrum,
-                            energy=False, sections=index)
+                            record_interval=settings.record_interval,
+                            record=spectrum or energy_check, energy=energy_check,
+                            sections=index)
             miner.add_blow(blow.section_strain * stress_factor)
             state = blow.final_state
             set_m = max(float(blow.permanent_set), 0.0)
@@ -207,7 +246,14 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                          "max_compression_stress [Pa]": float(blow.max_compression_stress),
                          "max_tension_stress [Pa]": float(blow.max_tension_stress),
                          "max_pile_head_force [N]": float(blow.max_pile_head_force),
-                         "srd [N]": shaft + toe})
+                         "srd [N]": shaft + toe, "shaft_setup_factor [-]": factor_now,
+                         "energy_residual_relative [-]":
+                             energy_balance(blow)["residual_relative [-]"] if energy_check
+                             else float("nan")})
+            if restart:
+                restrikes[-1].update({"shaft_setup_factor [-]": factor_now,
+                                      "restrike_blow_count [1/m]": 1.0 / set_m if set_m > 0
+                                      else None})
             if spectrum:
                 c = blow.columns
                 t = c["time [s]"]
@@ -261,6 +307,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
         "sn_curve": settings.sn_curve, "environment": settings.environment,
         "edition": settings.edition, "scf [-]": settings.scf,
         "anvil_model": cfg.anvil.model,
+        "restrikes": restrikes,
         "stopped_by": ("refusal" if refusal_depth is not None else
                        "target depth" if tip >= target else "max_blows"),
         "wall_time [s]": time.perf_counter() - start_wall,

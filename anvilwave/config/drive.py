@@ -5,6 +5,16 @@ give at a tip depth.
 :class:`SrdSource` says where the SRD of each tip depth comes from. :func:`pile_soil_at`
 embeds the system's pile to a tip depth with that tip's SRD, which every analysis that drives
 the pile (drive, install, batch) starts from.
+
+Tables per tip depth (``[srd] method = "tip-table"``): ``tip_table_rule`` chooses the table of
+a tip depth, "interpolate" (default; a blend of the two tables around it) or "grlweap" (the
+nearest table at or below the tip, the toe value above a step at the tip: a GRLWEAP run with
+the table of tip depth t analyses the penetrations from the previous table depth down to t
+with that table; :func:`anvilwave.pile.soil.profile.tip_table_resistance`); on a table depth
+both take that table. ``layer_parameters = "file"`` takes the quakes and dampings per row of
+each tip's table of a GRLWEAP model (:func:`grlweap_rows_to_layers`) instead of the [soil]
+table's. ``[driveability] weight_on_soil`` and ``window`` are explained in
+:mod:`anvilwave.analyses.drive`.
 """
 
 from __future__ import annotations
@@ -19,14 +29,16 @@ import numpy as np
 from anvilwave.hammer.impact import impact_velocity_from_energy
 from anvilwave.inputs import InputError, Table
 from anvilwave.pile.soil.cpt import read_cpt_csv
-from anvilwave.pile.soil.models import soil_capacities
+from anvilwave.pile.soil.models import SoilLayers, smith_damping_by_soil_type, soil_capacities
 from anvilwave.pile.soil.profile import (
+    TIP_TABLE_RULES,
     AlmHamre2001,
     SoilLayer,
     SoilProfile,
     Stevens1982,
     TipDepthTables,
     srd_distribution,
+    tip_table_index,
 )
 
 SET_RULES = ("permanent", "grlweap")
@@ -36,6 +48,13 @@ ENTHRU_LOCATIONS = ("gauge", "head")
 BOUNDS = ("lower", "best", "upper")
 
 SRD_METHODS = ("table", "tip-table", "alm-hamre-2001", "stevens-1982")
+
+WEIGHT_RULES = ("all", "grlweap")
+"""What weighs on the soil for the self-weight penetration and pile-run check (module
+docstring of :mod:`anvilwave.analyses.drive`)."""
+
+WINDOWS = ("fixed", "toe-rebound")
+"""Blow windows (module docstring of :mod:`anvilwave.analyses.drive`)."""
 
 DEFAULT_REFUSAL = 250.0
 """Refusal blow count [blows / 0.25 m] (common offshore practice)."""
@@ -77,6 +96,8 @@ class DriveSettings:
     duration: float | None = None
     stroke_schedule: np.ndarray | None = None
     efficiency_schedule: np.ndarray | None = None
+    weight_on_soil: str = "all"
+    window: str = "fixed"
 
     @property
     def multiplier(self) -> float:
@@ -92,6 +113,11 @@ class SrdSource:
     profile : the soil profile (layers and CPT) of the CPT/layer methods.
     method_object : the method with its options (:mod:`anvilwave.pile.soil.profile`).
     pile_mode : "coring" or "plugged"; faces : friction faces override (None: the mode's).
+    tip_layers : quakes and dampings per layer of each tip table, a tuple of
+        :class:`~anvilwave.pile.soil.models.SoilLayers` (one per table, from a GRLWEAP file's
+        columns with ``layer_parameters = "file"``), or None (the [soil] table's).
+    layers : quakes and dampings per layer for every tip (``layer_parameters = "soil-type"``
+        of the CPT and layer methods: by each layer's soil type), or None.
     """
 
     method: str
@@ -99,6 +125,8 @@ class SrdSource:
     method_object: object = None
     pile_mode: str = "coring"
     faces: str | None = None
+    tip_layers: tuple | None = None
+    layers: SoilLayers | None = None
 
 def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
     """Read and validate the ``[driveability]`` table."""
@@ -144,13 +172,19 @@ def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
                    "upper": table.number("upper_multiplier", 1.25, ge=1.0, le=5.0)}
     series = table.array("time_series_depths", None)
     duration = table.number("duration", None, gt=0.0, le=1.0, unit="s")
+    weight_rule = table.string("weight_on_soil", "all", choices=WEIGHT_RULES)
+    window = table.string("window", "fixed", choices=WINDOWS)
+    if window == "toe-rebound" and (blows > 1 or set_rule != "grlweap"):
+        raise table.error("window", "'toe-rebound' stops the blow before the pile rests: it "
+                                    "needs set_rule = 'grlweap' and blows_per_depth = 1")
     table.finish()
     return DriveSettings(depths=depths, blows_per_depth=blows, refusal=refusal,
                          blow_rate=rate, set_rule=set_rule, enthru_location=enthru,
                          energy_schedule=schedule, bound=bound, multipliers=multipliers,
                          time_series_depths=tuple(series) if series is not None else (),
                          duration=duration, stroke_schedule=stroke,
-                         efficiency_schedule=efficiency)
+                         efficiency_schedule=efficiency, weight_on_soil=weight_rule,
+                         window=window)
 
 def _schedule(table: Table, key: str, what: str, upper: float):
     """A per-depth schedule: rows [tip depth [m], value], depths strictly increasing."""
@@ -212,6 +246,12 @@ def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float)
     """The system's PileSoil embedded to ``tip_depth`` [m] with the SRD of that tip."""
     shaft, toe = segment_capacities(pile_soil, srd, tip_depth, multiplier)
     soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=(shaft, toe))
+    if srd.layers is not None:
+        soil = replace(soil, layers=srd.layers)
+    if srd.tip_layers is not None:
+        tables = srd.method_object
+        j = tip_table_index(tables.tip_depths, float(tip_depth), tables.rule)
+        soil = replace(soil, layers=srd.tip_layers[j])
     return replace(pile_soil, soil=soil), float(shaft.sum()), float(toe)
 
 def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
@@ -231,9 +271,9 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
             raise table.error("method", "'table' uses the [soil] srd rows, which are missing")
         return SrdSource("table", pile_mode=pile_mode, faces=faces)
     if method == "tip-table":
-        obj = _tip_tables(table, pile_soil)
+        obj, layers = _tip_tables(table, pile_soil)
         table.finish()
-        return SrdSource("tip-table", None, obj, pile_mode, faces)
+        return SrdSource("tip-table", None, obj, pile_mode, faces, layers)
     layers = []
     for lt in table.tables("layers"):
         kind = lt.string("soil", choices=("sand", "clay"))
@@ -282,12 +322,30 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
     else:
         obj = Stevens1982(bound=table.string("stevens_bound", "lower",
                                              choices=("lower", "upper")))
+    by_type = table.string("layer_parameters", "soil", choices=("soil", "soil-type"))
     table.finish()
-    return SrdSource(method, profile, obj, pile_mode, faces)
+    layers = soil_type_layers(profile, pile_soil.soil) if by_type == "soil-type" else None
+    return SrdSource(method, profile, obj, pile_mode, faces, layers=layers)
+
+
+def soil_type_layers(profile, soil) -> SoilLayers:
+    """Quakes and dampings per layer of a soil profile by its layers' soil types: the Smith
+    shaft and toe dampings of :func:`anvilwave.pile.soil.models.smith_damping_by_soil_type`,
+    the quakes of the [soil] table (``soil``); the last layer extended 1 km down."""
+    rows = []
+    for k, layer in enumerate(profile.layers):
+        shaft, toe = smith_damping_by_soil_type(layer.soil_type)
+        bottom = layer.bottom if k + 1 < len(profile.layers) else layer.bottom + 1e3
+        rows.append([layer.top, bottom, soil.quake_shaft, soil.quake_toe, shaft, toe])
+    return SoilLayers(np.array(rows))
 
 def _tip_tables(table: Table, pile_soil):
     """Per-tip-depth tables: inline ``[[srd.tables]]`` (tip_depth, rows [depth [m], unit shaft
-    [Pa], unit toe [Pa]]) or ``file`` = a GRLWEAP-style model.json (``format``)."""
+    [Pa], unit toe [Pa]]) or ``file`` = a GRLWEAP-style model.json (``format``); ``tip_table_rule``
+    says how a tip depth picks its table (:func:`anvilwave.pile.soil.profile.
+    tip_table_resistance`)."""
+    rule = table.string("tip_table_rule", "interpolate", choices=TIP_TABLE_RULES)
+    layers = None
     if table.has("file"):
         path = table.path("file")
         fmt = table.string("format", "grlweap-model-json", choices=("grlweap-model-json",))
@@ -296,6 +354,8 @@ def _tip_tables(table: Table, pile_soil):
                                       "../shared/reference/grlweap-s4000/ beside the "
                                       "repository; it is never copied into it)")
         tips, tables = read_grlweap_tip_tables(path, pile_soil, table.source, fmt)
+        if table.string("layer_parameters", "soil", choices=("soil", "file")) == "file":
+            layers = read_grlweap_tip_layers(path)
     else:
         tips, tables = [], []
         for t in table.tables("tables"):
@@ -303,9 +363,59 @@ def _tip_tables(table: Table, pile_soil):
             tables.append(t.array("rows", columns=3))
             t.finish()
     try:
-        return TipDepthTables(np.array(tips), tuple(tables))
+        return TipDepthTables(np.array(tips), tuple(tables), rule=rule), layers
     except ValueError as exc:
         raise table.error("tables", str(exc)) from None
+
+
+GRLWEAP_LAYER_COLUMNS = ("shaft_quake [mm]", "toe_quake [mm]", "shaft_damping [s/m]",
+                         "toe_damping [s/m]")
+"""The quake and damping columns of a GRLWEAP table row, in :class:`SoilLayers` order."""
+
+
+def grlweap_rows_to_layers(rows: np.ndarray) -> SoilLayers:
+    """Quakes and dampings per layer from the rows of a GRLWEAP resistance table.
+
+    Parameters
+    ----------
+    rows : ndarray
+        (n, 5) rows [soil depth [m], shaft quake [mm], toe quake [mm], shaft damping [s/m], toe
+        damping [s/m]], depths non-decreasing (a repeated depth is a step).
+
+    Returns
+    -------
+    SoilLayers
+        One layer from each row to the next deeper row, with the values of the row at its top
+        (below a step, the step's second row); the last row's values from its depth down.
+    """
+    rows = np.asarray(rows, dtype=float)
+    out = []
+    for k in range(rows.shape[0]):
+        top = rows[k, 0]
+        bottom = rows[k + 1, 0] if k + 1 < rows.shape[0] else max(top, 0.0) + 1e3
+        if bottom > top:
+            out.append([top, bottom, 1e-3 * rows[k, 1], 1e-3 * rows[k, 2], rows[k, 3],
+                        rows[k, 4]])
+    return SoilLayers(np.array(out))
+
+
+def read_grlweap_tip_layers(path: Path) -> tuple:
+    """The quakes and dampings of every tip table of a GRLWEAP input decoded to JSON, sorted
+    by tip depth (:func:`grlweap_rows_to_layers`)."""
+    runs = json.loads(Path(path).read_text())["soil_model"]["srd_tables_by_run"]
+    items = []
+    for key, run in runs.items():
+        try:
+            cols = run["columns"]
+            rows = np.array(run["rows"], dtype=float)
+            idx = [cols.index("soil_depth [m]")] + [cols.index(c) for c in GRLWEAP_LAYER_COLUMNS]
+            items.append((float(run["tip_depth_the_table_was_built_for [m]"]),
+                          grlweap_rows_to_layers(rows[:, idx])))
+        except (KeyError, ValueError, TypeError) as exc:
+            raise InputError(path, f"soil_model.srd_tables_by_run.{key}",
+                             f"has no valid quake and damping columns ({exc})") from None
+    items.sort(key=lambda x: x[0])
+    return tuple(x[1] for x in items)
 
 def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
     """The SRD tables by tip depth of a GRLWEAP input decoded to JSON (``soil_model.

@@ -1,14 +1,24 @@
 """The ``[installation]`` table of a system file: start and target depth, the SRD update
-step, the fatigue sections and their S-N curve, the spectra depths."""
+step, the fatigue sections and their S-N curve, the spectra depths, the pauses and the set-up
+of the shaft during them (:mod:`anvilwave.pile.soil.setup`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from anvilwave.inputs import Table
 from anvilwave.pile.post.fatigue import EDITIONS, ENVIRONMENTS, dnv_rp_c203_curve
+from anvilwave.pile.soil.setup import (
+    DEFAULT_REMOULDING_LENGTH,
+    SKOV_DENVER_1988,
+    remoulded_setup,
+    skov_denver_1988_for,
+    skov_denver_1988_setup,
+)
+
+SETUP_METHODS = ("skov-denver-1988",)
 
 
 @dataclass(frozen=True)
@@ -23,6 +33,14 @@ class InstallSettings:
     sn_curve, environment, edition, scf : DNV-RP-C203 S-N curve of the sections.
     spectra_depths : tip depths whose first blow's head force spectrum is written [m].
     record_interval : sampling of the stress histories and head force [s] (None: every step).
+    pauses : ((tip depth [m], duration [s]), ...): driving stops when the tip reaches each
+        depth and restarts after the duration; sorted by depth.
+    setup : the set-up method of the shaft during a pause ("skov-denver-1988").
+    setup_soil : soil type of the set-up ("sand", "clay") where the SRD has no soil layers
+        (None: the layers' types; required without layers when pauses are given).
+    remoulding_length : e-folding penetration of the set-up gain after a restart [m].
+    setup_a, setup_t0 : A [-] and t0 [s] of the set-up for every soil, overriding the soil
+        types' values (site-specific, e.g. from restrike records); None: by soil type.
     """
 
     start_depth: float | None = None
@@ -36,6 +54,85 @@ class InstallSettings:
     scf: float = 1.0
     spectra_depths: tuple = ()
     record_interval: float | None = None
+    pauses: tuple = ()
+    setup: str = "skov-denver-1988"
+    setup_soil: str | None = None
+    remoulding_length: float = DEFAULT_REMOULDING_LENGTH
+    setup_a: float | None = None
+    setup_t0: float | None = None
+
+
+def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depths,
+                        pause_depth: float, penetration: float, soil_types=None) -> np.ndarray:
+    """Set-up factor [-] of each shaft segment after a pause, remoulded by the penetration
+    since the restart (:func:`anvilwave.pile.soil.setup.remoulded_setup`).
+
+    settings : the ``[installation]`` settings (method, soil type, remoulding length).
+    duration : the pause [s].
+    middle_depths : (N,) depth of each segment's embedded middle below the mudline [m]
+        (negative or NaN above it).
+    pause_depth : tip depth at the pause [m]: segments embedded above it gain, deeper not.
+    penetration : the penetration since the restart [m].
+    soil_types : (N,) soil type of each segment (None: ``settings.setup_soil``).
+    """
+    z = np.asarray(middle_depths, dtype=float)
+    out = np.ones(z.shape)
+    for k, depth in enumerate(z):
+        if not (0.0 <= depth <= pause_depth):
+            continue
+        if settings.setup_a is not None:
+            a = settings.setup_a
+            t0 = settings.setup_t0 if settings.setup_t0 is not None else SKOV_DENVER_1988[
+                "clay"][1]
+            factor = skov_denver_1988_setup(duration, a, t0)
+        else:
+            kind = soil_types[k] if soil_types is not None else settings.setup_soil
+            factor = skov_denver_1988_for(kind, duration)
+        out[k] = remoulded_setup(factor, penetration, settings.remoulding_length)
+    return out
+
+
+def segment_middles(pile, tip: float) -> np.ndarray:
+    """Depth below the mudline of each segment's embedded middle for the tip at ``tip`` [m]
+    (NaN for a segment above the mudline)."""
+    seg = pile.discretise()
+    mudline = pile.length - tip
+    low = np.clip(seg.top - mudline, 0.0, tip)
+    high = np.clip(seg.bottom - mudline, 0.0, tip)
+    return np.where(high > low, 0.5 * (low + high), np.nan)
+
+
+def segment_soil_types(srd, middles: np.ndarray):
+    """The soil type at each depth [m] from the SRD's soil layers (the deepest layer's below
+    them), or None where the SRD has no layers."""
+    layers = getattr(getattr(srd, "profile", None), "layers", None)
+    if not layers:
+        return None
+    kinds = []
+    for z in middles:
+        kind = layers[-1].soil_type
+        for layer in layers:
+            if z == z and layer.top <= z < layer.bottom:
+                kind = layer.soil_type
+                break
+        kinds.append(kind)
+    return kinds
+
+
+def setup_pile_soil(ps, srd, tip: float, settings: InstallSettings, duration: float,
+                    pause_depth: float, penetration: float):
+    """(PileSoil, shaft [N], largest factor [-]): ``ps`` (embedded to ``tip`` [m], its
+    capacities set) with the shaft set up by a pause of ``duration`` [s] at ``pause_depth``
+    [m] and remoulded by ``penetration`` [m] since the restart (:func:`shaft_setup_factors`,
+    the soil types of the SRD's layers or ``settings.setup_soil``)."""
+    middles = segment_middles(ps.pile, tip)
+    factors = shaft_setup_factors(settings, duration, middles, pause_depth, penetration,
+                                  segment_soil_types(srd, middles))
+    shaft, toe = ps.soil.capacities
+    scaled = np.asarray(shaft, dtype=float) * factors
+    return (replace(ps, soil=replace(ps.soil, capacities=(scaled, toe))), float(scaled.sum()),
+            float(np.max(factors)))
+
 
 def load_install_settings(table: Table | None) -> InstallSettings:
     """Read and validate ``[installation]`` (absent: the defaults)."""
@@ -64,8 +161,35 @@ def load_install_settings(table: Table | None) -> InstallSettings:
         scf=table.number("scf", 1.0, ge=1.0, le=10.0),
         spectra_depths=tuple(float(d) for d in spectra) if spectra is not None else (),
         record_interval=table.number("record_interval", None, gt=0.0, le=1e-3, unit="s"),
+        pauses=_pauses(table),
+        setup=table.string("setup", "skov-denver-1988", choices=SETUP_METHODS),
+        setup_soil=table.string("setup_soil", None, choices=tuple(SKOV_DENVER_1988)),
+        remoulding_length=table.number("remoulding_length", DEFAULT_REMOULDING_LENGTH,
+                                       gt=0.0, le=50.0, unit="m"),
+        setup_a=table.number("setup_a", None, ge=0.0, le=20.0),
+        setup_t0=_hours(table.number("setup_t0", None, gt=0.0, le=8760.0, unit="h")),
     )
+    if s.setup_t0 is not None and s.setup_a is None:
+        raise table.error("setup_t0", "give setup_a with it (A and t0 of one law)")
     if s.max_blows > 200_000:
         raise table.error("max_blows", f"must be at most 200000, got {s.max_blows}")
     table.finish()
     return s
+
+
+def _hours(value: float | None) -> float | None:
+    """Hours [h] to seconds [s] (None stays None)."""
+    return None if value is None else 3600.0 * value
+
+
+def _pauses(table: Table) -> tuple:
+    """The ``pauses`` rows [tip depth [m], duration [h]] as ((depth [m], duration [s]), ...)."""
+    rows = table.array("pauses", None, columns=2)
+    if rows is None:
+        return ()
+    if np.any(rows[:, 0] <= 0.0) or np.any(np.diff(rows[:, 0]) <= 0.0):
+        raise table.error("pauses", "rows [tip depth [m], duration [h]] need positive, "
+                                    "strictly increasing depths")
+    if np.any(rows[:, 1] <= 0.0) or np.any(rows[:, 1] > 24.0 * 365.0):
+        raise table.error("pauses", "durations must be in (0, 8760] h")
+    return tuple((float(d), 3600.0 * float(h)) for d, h in rows)

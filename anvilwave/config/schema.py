@@ -101,6 +101,10 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "soil.quake_toe": ("m", 0.0025, "toe quake (not lysmer-toe)"),
     "soil.damping_shaft": ("s/m", 0.65, "Smith shaft damping"),
     "soil.damping_toe": ("s/m", 0.5, "Smith toe damping (not lysmer-toe)"),
+    "soil.layers": ("[m, m, m, m, s/m, s/m]", None, "per layer: rows top, bottom (below the "
+                    "mudline), quake_shaft, quake_toe, damping_shaft, damping_toe; a segment "
+                    "takes its embedded middle's layer, the toe the tip's; elsewhere the "
+                    "scalars"),
     "soil.friction_perimeter": ("-", "outside+inside", "or 'outside'"),
     "soil.toe_area": ("-", "annulus", "or 'plugged'"),
     "soil.toe_shear_modulus": ("Pa", None, "lysmer-toe: soil shear modulus"),
@@ -127,6 +131,12 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "driveability.upper_multiplier": ("-", 1.25, "SRD factor of the upper bound"),
     "driveability.time_series_depths": ("m", None, "depths whose blow time series are written"),
     "driveability.duration": ("s", None, "blow window; default simulation.duration"),
+    "driveability.weight_on_soil": ("-", "all", "weight for self-weight penetration and pile "
+                                    "runs: 'all' (pile, ram, helmet or anvil, assembly) or "
+                                    "'grlweap' (without the ram: GRLWEAP's Total Wt)"),
+    "driveability.window": ("-", "fixed", "'fixed' (the whole duration) or 'toe-rebound' (the "
+                            "blow ends at the toe's first maximum, Smith's; needs set_rule "
+                            "'grlweap', blows_per_depth 1)"),
     # [srd] (the SRD of a drive analysis)
     "srd.method": ("-", REQUIRED, "'table' ([soil] srd), 'tip-table', 'alm-hamre-2001', "
                                   "'stevens-1982'"),
@@ -146,6 +156,15 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "srd.stevens_bound": ("-", "lower", "Stevens et al. K: 'lower' 0.5 or 'upper' 0.7"),
     "srd.file": ("-", None, "tip-table: a GRLWEAP input decoded to JSON"),
     "srd.format": ("-", "grlweap-model-json", "tip-table file format"),
+    "srd.layer_parameters": ("-", "soil", "quakes and dampings from the [soil] table ('soil'); "
+                             "tip-table file: per row of each tip's table ('file', as the "
+                             "GRLWEAP model gives them); CPT/layer methods: Smith dampings by "
+                             "each layer's soil type ('soil-type': shaft 0.16 sand, 0.65 "
+                             "clay, toe 0.5 s/m)"),
+    "srd.tip_table_rule": ("-", "interpolate", "tip-table: a tip between table depths blends "
+                           "the two tables ('interpolate') or takes the nearest table at or "
+                           "below it, the toe above a step at the tip ('grlweap'); on a table "
+                           "depth, that table"),
     "srd.tables": ("-", None, "tip-table inline: [[srd.tables]] tip_depth, rows"),
     "srd.tables.tip_depth": ("m", REQUIRED, "tip depth of the table"),
     "srd.tables.rows": ("[m, Pa, Pa]", REQUIRED, "depth, unit shaft, unit toe"),
@@ -174,6 +193,17 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "installation.scf": ("-", 1.0, "stress concentration factor"),
     "installation.spectra_depths": ("m", None, "tip depths of the head-force spectra"),
     "installation.record_interval": ("s", None, "sampling of the stress histories"),
+    "installation.pauses": ("[m, h]", None, "rows tip depth, pause duration: driving stops "
+                            "there; the shaft sets up (restrike blow counts in the summary)"),
+    "installation.setup": ("-", "skov-denver-1988", "set-up of the shaft during a pause: "
+                           "1 + A log10(t / t0), sand A 0.2, t0 0.5 d; clay A 0.6, t0 1 d"),
+    "installation.setup_soil": ("-", None, "'sand' or 'clay' where the SRD has no soil "
+                                "layers (default: each segment's layer type)"),
+    "installation.setup_a": ("-", None, "set-up A for every soil (site-specific, e.g. from "
+                             "restrikes) instead of the soil types'"),
+    "installation.setup_t0": ("h", None, "with setup_a: its t0; default 24 h"),
+    "installation.remoulding_length": ("m", 0.5, "the blows after a restart remould the gain "
+                                       "as exp(-penetration / this length)"),
 }
 
 ANVIL: dict[str, tuple[str, object, str]] = {

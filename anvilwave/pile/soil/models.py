@@ -31,6 +31,13 @@ serves all and the in-process engine needs no branch):
                     [kg/m^3], toe_poisson_ratio [-] (default 0.3) instead of quake_toe and
                     damping_toe. Deeks & Randolph (1995) use this toe in wave-equation analysis.
 
+Quakes and dampings per layer: ``layers = [[top [m], bottom [m], quake_shaft [m], quake_toe
+[m], damping_shaft [s/m], damping_toe [s/m]], ...]`` (depths below the mudline, layers not
+overlapping; :class:`SoilLayers`) give each shaft segment the shaft values of the layer holding
+the middle of its embedded part, and the toe the toe values of the layer holding the tip (the
+upper layer when the tip lies on a boundary); depths outside every layer keep the table's
+scalar values. :func:`smith_damping_by_soil_type` gives the customary Smith values by soil type.
+
 Shaft springs resist both ways with the same capacity (friction reverses); the toe takes no
 tension (it lifts off and re-contacts at its permanent set). Defaults: quake 2.5 mm shaft and
 toe (GRLWEAP's recommendation for the shaft and for the toe of non-displacement piles such as
@@ -106,6 +113,7 @@ class SoilSpec:
     capacities : optional (shaft per segment (N,) [N], toe [N]) given directly (an SRD
         distribution computed elsewhere, e.g. per tip depth with friction fatigue); when set,
         ``srd``, ``friction_perimeter`` and ``toe_area`` do not enter the capacities.
+    layers : optional :class:`SoilLayers`, quakes and dampings per layer (module docstring).
     """
 
     model: str
@@ -121,6 +129,117 @@ class SoilSpec:
     toe_density: float = 0.0
     toe_poisson_ratio: float = DEFAULT_TOE_POISSON_RATIO
     capacities: tuple | None = None
+    layers: SoilLayers | None = None
+
+
+SOIL_TYPE_SMITH_DAMPING = {"sand": (0.16, 0.5), "clay": (0.65, 0.5)}
+"""Smith damping factors (shaft, toe) [s/m] by soil type: 0.05 s/ft in non-cohesive ("sand")
+and 0.2 s/ft in cohesive ("clay") soils on the shaft, 0.15 s/ft at the toe, rounded (the
+wave-equation recommendations of Hannigan et al. 2016, FHWA-NHI-16-009, also GRLWEAP's)."""
+
+
+def smith_damping_by_soil_type(soil_type: str) -> tuple[float, float]:
+    """Smith damping factors (shaft, toe) [s/m] customary for a soil type.
+
+    Parameters
+    ----------
+    soil_type : str
+        "sand" or "clay".
+
+    Returns
+    -------
+    tuple of float
+        (shaft J [s/m], toe J [s/m]) of :data:`SOIL_TYPE_SMITH_DAMPING`.
+
+    References
+    ----------
+    Hannigan, P.J., Rausche, F., Likins, G.E., Robinson, B.R., Becker, M.L. (2016). Design and
+    construction of driven pile foundations, Vol. II. FHWA-NHI-16-009, Federal Highway
+    Administration, Washington DC.
+    """
+    try:
+        return SOIL_TYPE_SMITH_DAMPING[soil_type]
+    except KeyError:
+        raise ValueError(f"unknown soil type {soil_type!r}; choose one of "
+                         f"{tuple(SOIL_TYPE_SMITH_DAMPING)}") from None
+
+
+LAYER_COLUMNS = ("top [m]", "bottom [m]", "quake_shaft [m]", "quake_toe [m]",
+                 "damping_shaft [s/m]", "damping_toe [s/m]")
+"""Columns of the per-layer soil parameters (:class:`SoilLayers`)."""
+
+
+@dataclass(frozen=True, eq=False)
+class SoilLayers:
+    """Quakes and Smith dampings per soil layer (module docstring).
+
+    rows : (n, 6) rows of :data:`LAYER_COLUMNS`, depths below the mudline, top < bottom,
+        sorted and not overlapping; quakes > 0, dampings >= 0.
+    """
+
+    rows: np.ndarray
+
+    def __post_init__(self):
+        rows = np.atleast_2d(np.asarray(self.rows, dtype=float))
+        object.__setattr__(self, "rows", rows)
+        problem = self.problem()
+        if problem is not None:
+            raise ValueError(problem)
+
+    def problem(self) -> str | None:
+        """Why the rows are not valid, or None."""
+        r = self.rows
+        if r.ndim != 2 or r.shape[1] != 6 or r.shape[0] < 1:
+            return "needs rows [top, bottom, quake_shaft, quake_toe, damping_shaft, damping_toe]"
+        if not np.all(np.isfinite(r)):
+            return "must contain finite numbers only"
+        if np.any(r[:, 0] < 0.0) or np.any(r[:, 1] <= r[:, 0]):
+            return "layers need 0 <= top < bottom [m]"
+        if np.any(r[1:, 0] < r[:-1, 1] - 1e-9):
+            return "layers must be sorted by depth and must not overlap"
+        if np.any(r[:, 2:4] <= 0.0):
+            return "quakes must be positive [m]"
+        if np.any(r[:, 4:6] < 0.0):
+            return "dampings must not be negative [s/m]"
+        return None
+
+    def values(self, depth, column: int, default: float, upper: bool = False) -> np.ndarray:
+        """Column ``column`` of the layer holding each ``depth`` [m]; ``default`` outside every
+        layer. ``upper``: a depth on a boundary belongs to the layer above it."""
+        z = np.atleast_1d(np.asarray(depth, dtype=float))
+        out = np.full(z.shape, float(default))
+        for top, bottom, *vals in self.rows:
+            inside = (z > top) & (z <= bottom) if upper else (z >= top) & (z < bottom)
+            out[inside] = vals[column - 2]
+        return out
+
+
+def layer_values(soil: SoilSpec, segments: Segments, pile_length: float):
+    """(shaft quake (N,) [m], shaft damping (N,) [s/m], toe quake [m], toe damping [s/m]) of
+    the soil's segments: per layer where ``soil.layers`` gives them, else its scalars."""
+    n = segments.count
+    qs = np.full(n, float(soil.quake_shaft))
+    js = np.full(n, float(soil.damping_shaft))
+    qt, jt = float(soil.quake_toe), float(soil.damping_toe)
+    if soil.layers is None:
+        return qs, js, qt, jt
+    mudline = pile_length - soil.penetration
+    low = np.clip(segments.top - mudline, 0.0, soil.penetration)
+    high = np.clip(segments.bottom - mudline, 0.0, soil.penetration)
+    middle = 0.5 * (low + high)
+    layers = soil.layers
+    qs = layers.values(middle, 2, soil.quake_shaft)
+    js = layers.values(middle, 4, soil.damping_shaft)
+    qt = float(layers.values(soil.penetration, 3, soil.quake_toe, upper=True)[0])
+    jt = float(layers.values(soil.penetration, 5, soil.damping_toe, upper=True)[0])
+    return qs, js, qt, jt
+
+
+def toe_quake(soil: SoilSpec, pile: PileSpec) -> float:
+    """The toe quake [m] of the soil at its penetration (per layer where given)."""
+    if soil.layers is None:
+        return float(soil.quake_toe)
+    return layer_values(soil, discretise(pile), pile.length)[2]
 
 
 def lysmer_stiffness(shear_modulus: float, radius: float, poisson_ratio: float) -> float:
@@ -150,7 +269,8 @@ def smith_springs(capacity, quake, damping, viscous: bool) -> tuple:
     stiffness = capacity / quake
     if viscous:
         return stiffness, np.zeros_like(capacity), damping * capacity
-    return stiffness, np.full_like(capacity, damping), np.zeros_like(capacity)
+    return (stiffness, np.broadcast_to(np.asarray(damping, dtype=float), capacity.shape).copy(),
+            np.zeros_like(capacity))
 
 
 def soil_capacities(soil: SoilSpec, pile: PileSpec, segments: Segments | None = None):
@@ -183,7 +303,8 @@ def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
         return params
     shaft, toe = soil_capacities(soil, pile, seg)
     viscous = soil.model != "smith"
-    k, smith, dashpot = smith_springs(shaft, soil.quake_shaft, soil.damping_shaft, viscous)
+    qs, js, qt, jt = layer_values(soil, seg, pile.length)
+    k, smith, dashpot = smith_springs(shaft, qs, js, viscous)
     params[SOIL_CAPACITY, :-1] = shaft
     params[SOIL_TENSION, :-1] = shaft
     params[SOIL_STIFFNESS, :-1] = k
@@ -199,8 +320,7 @@ def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
         params[SOIL_DASHPOT, -1] = lysmer_dashpot(soil.toe_shear_modulus, soil.toe_density,
                                                   radius, soil.toe_poisson_ratio)
     else:
-        k, smith, dashpot = smith_springs(np.array([toe]), soil.quake_toe, soil.damping_toe,
-                                          viscous)
+        k, smith, dashpot = smith_springs(np.array([toe]), qt, jt, viscous)
         params[SOIL_STIFFNESS, -1] = k[0]
         params[SOIL_SMITH, -1] = smith[0]
         params[SOIL_DASHPOT, -1] = dashpot[0]
@@ -208,6 +328,17 @@ def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
 
 
 # ---------------------------------------------------------------------------- input
+def _layers(table: Table) -> SoilLayers | None:
+    """The ``layers`` rows of a soil table (:class:`SoilLayers`), or None."""
+    rows = table.array("layers", None, columns=6)
+    if rows is None:
+        return None
+    try:
+        return SoilLayers(rows)
+    except ValueError as exc:
+        raise table.error("layers", str(exc)) from None
+
+
 def soil_from_table(table: Table, pile_length: float, srd_optional: bool = False,
                     default_penetration: float | None = None) -> SoilSpec:
     """Read and validate the ``[soil]`` table (module docstring).
@@ -238,6 +369,7 @@ def soil_from_table(table: Table, pile_length: float, srd_optional: bool = False
         damping_shaft=table.number("damping_shaft", DEFAULT_DAMPING_SHAFT, ge=0.0, unit="s/m"),
         friction_perimeter=table.string("friction_perimeter", PERIMETERS[0], choices=PERIMETERS),
         toe_area=table.string("toe_area", TOE_AREAS[0], choices=TOE_AREAS),
+        layers=_layers(table),
     )
     if model == "lysmer-toe":
         spec = SoilSpec(

@@ -517,40 +517,83 @@ class Stevens1982:
         return float(sm.stevens_1982_clay_toe(profile.undrained_shear_strength(tip_depth)))
 
 
-def tip_table_resistance(tip_depths, tables, tip_depth: float, depth):
+TIP_TABLE_RULES = ("interpolate", "grlweap")
+"""How a tip depth picks its table among tables per tip depth (:func:`tip_table_resistance`)."""
+
+
+def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str = "interpolate"):
     """Unit resistances from user tables given per tip depth (GRLWEAP style).
 
     For tip depths t_1 < ... < t_m the user gives tables of rows [depth [m], unit shaft
     friction [Pa], unit toe resistance [Pa]] (each linear between its rows, held constant
-    beyond its first and last rows; a repeated depth makes a step). For a tip depth p with
-    t_j <= p <= t_j+1 the result is the linear blend (1 - w) table_j + w table_j+1,
-    w = (p - t_j) / (t_j+1 - t_j), both tables evaluated at the same depth; above t_1 the first
-    table is used as it is. A single table (m = 1) is therefore a plain per-depth table.
+    beyond its first and last rows; a repeated depth makes a step). On a table's tip depth
+    (p = t_j) both rules take that table exactly. Between table depths:
+
+    ``"interpolate"`` (default)
+        For t_j <= p <= t_j+1 the linear blend (1 - w) table_j + w table_j+1,
+        w = (p - t_j) / (t_j+1 - t_j), both tables evaluated at the same depth; above t_1 the
+        first table as it is. A single table (m = 1) is therefore a plain per-depth table. The
+        toe value at a step (a repeated depth) is the one below the step.
+    ``"grlweap"``
+        GRLWEAP's convention: a driveability run with the table of tip depth t_j analyses the
+        penetrations from t_j-1 down to t_j with that one table (its resistance distribution
+        does not change within the run), so a tip at t_j-1 < p <= t_j takes table j, the
+        nearest table at or below the tip (the first table above t_1). The toe value at a step
+        lying exactly at the tip is the one above the step (the first of the repeated rows),
+        as GRLWEAP interpolates the toe column at the penetration.
 
     tip_depths : (m,) tip depths of the tables [m], strictly increasing.
     tables : m arrays of shape (n_j, 3).
     tip_depth : tip depth p [m], 0 <= p <= t_m.
     depth : depths at which the unit shaft friction is wanted [m].
+    rule : "interpolate" or "grlweap".
 
     Returns (unit shaft friction at ``depth`` [Pa], unit toe resistance at the tip [Pa]).
     """
+    if rule not in TIP_TABLE_RULES:
+        raise ValueError(f"unknown tip-table rule {rule!r}; choose one of {TIP_TABLE_RULES}")
     tips = np.asarray(tip_depths, dtype=float)
     if tip_depth > tips[-1] + _DEPTH_TOLERANCE or tip_depth < 0.0:
         raise ValueError(f"tip depth {tip_depth:g} m outside the tables' range 0 to "
                          f"{tips[-1]:g} m")
-    j = int(np.clip(np.searchsorted(tips, tip_depth, side="right") - 1, 0, tips.size - 1))
-    j_next = min(j + 1, tips.size - 1)
-    width = tips[j_next] - tips[j]
-    w = float(np.clip((tip_depth - tips[j]) / width, 0.0, 1.0)) if width > 0.0 else 0.0
     z = np.asarray(depth, dtype=float)
 
     def at(table, column, x):
         table = np.asarray(table, dtype=float)
         return np.interp(x, table[:, 0], table[:, column])
 
+    if rule == "grlweap":
+        j = tip_table_index(tips, tip_depth, rule)
+        table = np.asarray(tables[j], dtype=float)
+        return at(table, 1, z), _toe_above_step(table, tip_depth)
+    j = int(np.clip(np.searchsorted(tips, tip_depth, side="right") - 1, 0, tips.size - 1))
+    j_next = min(j + 1, tips.size - 1)
+    width = tips[j_next] - tips[j]
+    w = float(np.clip((tip_depth - tips[j]) / width, 0.0, 1.0)) if width > 0.0 else 0.0
     shaft = (1.0 - w) * at(tables[j], 1, z) + w * at(tables[j_next], 1, z)
     toe = (1.0 - w) * at(tables[j], 2, tip_depth) + w * at(tables[j_next], 2, tip_depth)
     return shaft, float(toe)
+
+
+def tip_table_index(tip_depths, tip_depth: float, rule: str = "interpolate") -> int:
+    """Index of the table a tip depth [m] takes by ``rule`` (:func:`tip_table_resistance`):
+    "grlweap" the nearest table at or below the tip, "interpolate" the nearest at or above it
+    (the first of the two it blends)."""
+    tips = np.asarray(tip_depths, dtype=float)
+    if rule == "grlweap":
+        j = np.searchsorted(tips, tip_depth - _DEPTH_TOLERANCE, side="left")
+    else:
+        j = np.searchsorted(tips, tip_depth + _DEPTH_TOLERANCE, side="right") - 1
+    return int(np.clip(j, 0, tips.size - 1))
+
+
+def _toe_above_step(table: np.ndarray, tip_depth: float) -> float:
+    """The toe column at ``tip_depth`` [m], linear between rows; at a repeated depth the
+    value of its first row (above the step)."""
+    on = np.flatnonzero(np.abs(table[:, 0] - tip_depth) <= 1e-9)
+    if on.size:
+        return float(table[on[0], 2])
+    return float(np.interp(tip_depth, table[:, 0], table[:, 2]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -561,12 +604,15 @@ class TipDepthTables:
     tables : m arrays of rows [depth [m], unit shaft friction [Pa], unit toe resistance [Pa]],
         depths non-decreasing from >= 0, resistances >= 0.
     outside_factor, inside_factor : factors on the unit friction on each face [-].
+    rule : how a tip depth picks its table, "interpolate" or "grlweap"
+        (:func:`tip_table_resistance`).
     """
 
     tip_depths: np.ndarray
     tables: tuple
     outside_factor: float = 1.0
     inside_factor: float = 1.0
+    rule: str = "interpolate"
 
     name = "tip-depth-tables"
 
@@ -577,6 +623,9 @@ class TipDepthTables:
         object.__setattr__(self, "tables", tables)
         if tips.ndim != 1 or tips.size < 1 or np.any(np.diff(tips) <= 0.0) or tips[0] < 0.0:
             raise ValueError("tip_depths must be non-negative and strictly increasing")
+        if self.rule not in TIP_TABLE_RULES:
+            raise ValueError(f"unknown tip-table rule {self.rule!r}; choose one of "
+                             f"{TIP_TABLE_RULES}")
         if len(tables) != tips.size:
             raise ValueError(f"need one table per tip depth: {tips.size} tip depths, "
                              f"{len(tables)} tables")
@@ -603,12 +652,13 @@ class TipDepthTables:
     def unit_friction(self, profile, depth, tip_depth: float):
         """(outside, inside) unit shaft friction at ``depth`` [m] for the tip at
         ``tip_depth`` [m] [Pa] (face factors applied)."""
-        shaft, _ = tip_table_resistance(self.tip_depths, self.tables, tip_depth, depth)
+        shaft, _ = tip_table_resistance(self.tip_depths, self.tables, tip_depth, depth,
+                                        self.rule)
         return shaft * self.outside_factor, shaft * self.inside_factor
 
     def unit_toe(self, profile, tip_depth: float) -> float:
         """Unit toe resistance for the tip at ``tip_depth`` [m] [Pa]."""
-        return tip_table_resistance(self.tip_depths, self.tables, tip_depth, [])[1]
+        return tip_table_resistance(self.tip_depths, self.tables, tip_depth, [], self.rule)[1]
 
 
 def _method(method):
