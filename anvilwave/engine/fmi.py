@@ -21,6 +21,9 @@ from typing import Any
 import numpy as np
 
 from anvilwave.config.system import SystemConfig
+from anvilwave.engine.compilation import announce_compilation
+from anvilwave.engine.direct import COLUMNS, build_engine
+from anvilwave.engine.fmus import build_system_fmus
 from anvilwave.fmu.fmi_master import BlowMaster, BlowRecord
 
 ROLES = {"ram": "Ram", "pile": "PileSoil"}
@@ -67,7 +70,6 @@ def engine_columns(record: BlowRecord) -> dict[str, np.ndarray]:
     blow (where the anvil came to rest), as the engine reports them; a column the FMUs do not
     provide is NaN.
     """
-    from anvilwave.engine.direct import COLUMNS
 
     head = record.pile_head_start
     known = {
@@ -107,14 +109,12 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     native_anvil : the anvil FMUs to build (``build_system_fmus``): None (default) native
         when a C compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
     """
-    from anvilwave.engine.fmus import build_system_fmus
 
     if fmus is None:
         fmus = build_system_fmus(cfg, out_dir_for_fmus, anvil_model, time_step=time_step,
                                  ssp=True, native_anvil=native_anvil)
         h = float(fmus["time_step"])
     elif time_step is None:  # the engine's step for this system (its anvil model may differ)
-        from anvilwave.engine.direct import build_engine
 
         h = float(build_engine(cfg, fmus["modal_data"]).time_step)
     else:
@@ -124,7 +124,6 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     n_steps = int(round(duration / h))
     record_every = 1 if record_interval is None else max(1, int(round(record_interval / h)))
     kind = {"rom": "Anvil", "lumped": "AnvilLumped"}.get(cfg.anvil.model, fmus["anvil"])
-    from anvilwave.engine.compilation import announce_compilation
 
     announce_compilation()
     with BlowMaster(fmus["Ram"], fmus[kind], fmus["PileSoil"], parameters) as master:

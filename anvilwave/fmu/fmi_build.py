@@ -65,7 +65,12 @@ from typing import Any
 
 import numpy as np
 
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data
+from anvilwave.fmu.units.base import DEFAULTS_FILE, UnitSlave
+from anvilwave.hammer.database import Hammer, available_hammers
+from anvilwave.hammer.modal_ram import toe_modes_table
 from anvilwave.inputs import InputError, toml_dumps
+from anvilwave.pile.model import PileSoil, load_pile_soil
 
 UNITS_DIR = Path(__file__).resolve().parent / "units"
 SHIM_SOURCE = UNITS_DIR / "fmi2_status_shim.c"
@@ -175,7 +180,6 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
     the lumped anvil defaults its ``mass`` [kg] to the file's total mass. Other parameters
     (``ram_contact_stiffness`` [N/m], ``pile_contact_stiffness`` [N/m], ...) as keywords.
     """
-    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
     path = Path(modal_data_file)
     data = load_modal_data(path)
@@ -208,7 +212,6 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, *,
     default_experiment : (start, stop, step) [s] of the system (:func:`build_fmu`); the same
         keyword for the other helpers.
     """
-    from anvilwave.hammer.database import Hammer
 
     with tempfile.TemporaryDirectory(prefix="anvilwave_ram_") as tmp:
         resources = []
@@ -220,7 +223,6 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, *,
             defaults = {"hammer": HAMMER_RESOURCE, "v_impact": hammer.impact_velocity,
                         "mass": hammer.ram.total_mass}
         elif hammer is not None:
-            from anvilwave.hammer.database import available_hammers
 
             if str(hammer) in available_hammers():
                 defaults = {"hammer": str(hammer)}
@@ -248,7 +250,6 @@ def build_pile_soil_fmu(out_dir: str | Path, pile_soil, *,
     parameters : further parameters (``static_head_load`` [N], ``gravity`` [m/s^2],
         ``soil_model``, ``gauge_depth`` [m], ...; see :mod:`anvilwave.fmu.units.pile_soil`).
     """
-    from anvilwave.pile.model import PileSoil, load_pile_soil
 
     with tempfile.TemporaryDirectory(prefix="anvilwave_pile_") as tmp:
         if isinstance(pile_soil, PileSoil):
@@ -289,7 +290,6 @@ def hammer_toml(hammer) -> str:
     [kg] and springs [N/m] (or a modal ram's toe modes) and its impact velocity [m/s]."""
     ram = hammer.ram
     if ram.is_modal_unit:  # the toe modes of a modal ram (hammer.modal_ram)
-        from anvilwave.hammer.modal_ram import toe_modes_table
 
         ram_table: dict[str, Any] = toe_modes_table(ram.modes)
     else:
@@ -383,7 +383,6 @@ def python_runtime_text(runtime: dict[str, Any] | None = None) -> str:
 
 # ---------------------------------------------------------------------------- steps
 def _defaults_file() -> str:
-    from anvilwave.fmu.units.base import DEFAULTS_FILE
 
     return DEFAULTS_FILE
 
@@ -418,7 +417,6 @@ def _slave_class(script: Path):
     """The slave class of a script (the deepest Fmi2Slave subclass it defines or imports)."""
     from pythonfmu import Fmi2Slave
 
-    from anvilwave.fmu.units.base import UnitSlave
 
     name = f"_anvilwave_build_{script.stem}"
     spec = importlib.util.spec_from_file_location(name, script)
