@@ -441,8 +441,9 @@ def test_native_system_peaks_do_not_depend_on_the_start_time(table1_fmus, exchan
         assert engine[0] > 1e8  # the impact
         for t0 in starts:
             off = peaks[t0, False] / engine - 1.0
-            print(f"\n{exchange} {anvil} start {t0 / h:+.3f} h: F_ram {peaks[t0, True][0] / 1e6:.3f}"
-                  f" MN, F_pile {peaks[t0, True][1] / 1e6:.3f} MN (mid step; engine start "
+            print(f"\n{exchange} {anvil} start {t0 / h:+.3f} h: F_ram "
+                  f"{peaks[t0, True][0] / 1e6:.3f} MN, F_pile "
+                  f"{peaks[t0, True][1] / 1e6:.3f} MN (mid step; engine start "
                   f"{engine[0] / 1e6:.3f}, {engine[1] / 1e6:.3f} MN); contact_mid_step off: "
                   f"{off[0]:+.2%}, {off[1]:+.2%}")
             np.testing.assert_allclose(peaks[t0, True], peaks[starts[0], True], rtol=1e-9)
