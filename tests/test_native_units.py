@@ -276,7 +276,8 @@ def test_native_modal_ram_reproduces_the_modal_unit(tmp_path):
 
     hammer = load_system(EXAMPLES / "table1.toml").hammer
     assert hammer.ram.is_modal_unit
-    path = nu.build_native_ram_fmu(hammer, tmp_path, v_impact=6.0, contact_displacement=2e-3)
+    path = nu.build_native_ram_fmu(hammer, tmp_path, v_impact=6.0, contact_displacement=2e-3,
+                                   contact_mid_step=False)  # at contact_time 0 = the start
     forces = _force_series(2.0e8)
     steps = [H] * (STEPS // 2) + [0.5 * H] * (STEPS - STEPS // 2)
     unit = Unit(path)
@@ -305,6 +306,174 @@ def test_native_modal_ram_reproduces_the_modal_unit(tmp_path):
     np.testing.assert_allclose(got[:, 1], expected[:, 1], rtol=0, atol=2.0 * du / min(steps))
     print(f"\nmodal ram: max |du| {np.abs(got[:, 0] - expected[:, 0]).max():.2e} m "
           f"(bound {du:.2e}), max |dv| {np.abs(got[:, 1] - expected[:, 1]).max():.2e} m/s")
+
+
+START_FRACTIONS = (0.0, -0.5, -0.25, -0.999)
+"""Masters' start times over their step h: OMSimulator's 0, the engine's -h/2, and anywhere
+else on the grid."""
+START_TIMES = tuple(f * H for f in START_FRACTIONS)
+
+
+@pytest.mark.parametrize("mid_step", [True, False])
+def test_native_ram_equals_the_pythonfmu_ram_from_any_start(tmp_path, mid_step):
+    """One formula, two implementations: the native Ram and the pythonfmu Ram built with the
+    same parameters and DefaultExperiment give the same toe series on the same held forces
+    (rtol 1e-12; bitwise on this machine), from the start times of START_TIMES, with
+    contact_mid_step on (the default: the first contact mid first step, so every start gives
+    the same series) and off (the contact at contact_time). Before the first step both report
+    the toe half the DefaultExperiment's step h_d before the contact (mid step) or at
+    contact_time's free-flight position (off)."""
+    pytest.importorskip("pythonfmu")
+    from anvilwave.fmu.fmi_build import build_ram_fmu
+
+    hammer = load_hammer("illustrative_5500kj", 9.81)
+    h_d = 0.5 * H  # the DefaultExperiment's step: not the master's
+    experiment = (-0.5 * h_d, 0.02, h_d)
+    parameters = {"v_impact": 6.0, "contact_displacement": 1e-3, "contact_time": 0.0,
+                  "contact_mid_step": mid_step}
+    paths = {"native": nu.build_native_ram_fmu(hammer, tmp_path / "native",
+                                               default_experiment=experiment, **parameters),
+             "python": build_ram_fmu(tmp_path / "python", hammer,
+                                     default_experiment=experiment, **parameters)}
+    vrs = {}
+    for name, path in paths.items():
+        md = read_model_description(str(path))
+        vrs[name] = {v.name: (v.valueReference, v.type, v.start) for v in md.modelVariables
+                     if v.name != "hammer"}
+        assert (float(md.defaultExperiment.startTime), float(md.defaultExperiment.stopTime),
+                float(md.defaultExperiment.stepSize)) == experiment
+    assert vrs["native"]["contact_mid_step"] == vrs["python"]["contact_mid_step"] == \
+        (6, "Boolean", "true" if mid_step else "false")
+    assert {n: v[:2] for n, v in vrs["native"].items()} == \
+        {n: v[:2] for n, v in vrs["python"].items()}  # same value references and types
+    forces = _force_series(2.0e8)[:600]
+    series = {}
+    for t0 in START_TIMES:
+        for name, path in paths.items():
+            unit = Unit(path)
+            try:
+                unit.start(t0=t0)
+                first = unit.fmu.getReal([unit.vr["u_toe"], unit.vr["v_toe"]])
+                series[name, t0] = first, unit.run("F_toe", forces, ["u_toe", "v_toe"], t0=t0)
+            finally:
+                unit.close()
+        (first, got), (first_python, expected) = series["native", t0], series["python", t0]
+        assert np.ptp(expected[:, 1]) > 1.0  # the blow reverses the ram
+        _close(got, expected)
+        np.testing.assert_allclose(first, first_python, rtol=RTOL)
+        offset = -0.5 * h_d if mid_step else t0
+        np.testing.assert_allclose(first, [1e-3 + 6.0 * offset, 6.0], rtol=RTOL)
+    exact = all(np.array_equal(series["native", t][1], series["python", t][1])
+                for t in START_TIMES)
+    print(f"\nnative vs pythonfmu Ram (contact_mid_step {mid_step}): bitwise equal from every "
+          f"start: {exact}")
+    if mid_step:  # the same series from every start, to the bit
+        for t0 in START_TIMES[1:]:
+            assert np.array_equal(series["native", t0][1], series["native", 0.0][1])
+    else:  # the contact at contact_time 0: a start further from it gives another series
+        assert not np.array_equal(series["native", -0.25 * H][1],
+                                  series["native", -0.5 * H][1])
+
+
+@pytest.fixture(scope="module")
+def table1_fmus(tmp_path_factory):
+    """The FMUs of Table 1 as ``build-fmus`` makes them by default: native anvils, native Ram
+    and PileSoil (skipped without a C compiler for the anvils)."""
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.fmus import build_system_fmus, load_anvil_modal_data
+    from anvilwave.fmu.native_build import NativeBuildError, find_compiler
+
+    try:
+        find_compiler()
+    except NativeBuildError as exc:
+        pytest.skip(f"the native anvils need a C compiler: {exc}")
+    cfg = load_system(EXAMPLES / "table1.toml")
+    fmus = build_system_fmus(cfg, tmp_path_factory.mktemp("table1_native"),
+                             load_anvil_modal_data(cfg), native_anvil=True)
+    assert fmus["ram_implementation"] == fmus["pile_soil_implementation"] == "native"
+    return cfg, fmus
+
+
+def test_native_fmus_default_experiment_is_the_systems(table1_fmus):
+    """Every FMU of the system (native anvils, Ram, PileSoil) has the SSP's DefaultExperiment:
+    from -step/2 to the blow's duration at the SSP's step."""
+    cfg, fmus = table1_fmus
+    step = fmus["ssp_step"]
+    for kind in ("Ram", "Anvil", "AnvilLumped", "PileSoil"):
+        experiment = read_model_description(str(fmus[kind])).defaultExperiment
+        assert (float(experiment.startTime), float(experiment.stopTime),
+                float(experiment.stepSize)) == (-0.5 * step, float(cfg.duration), step), kind
+
+
+@pytest.mark.parametrize("exchange", ["design", "jacobi"])
+def test_native_system_peaks_do_not_depend_on_the_start_time(table1_fmus, exchange):
+    """The native units of Table 1 (modal ram, ROM and lumped anvils) under the fmpy master
+    at the SSP's step, from the start times of START_TIMES (OMSimulator's 0 among them), with
+    the ram's contact_mid_step (the SSP's default; the master would otherwise set
+    contact_time): the peak ram-anvil and anvil-pile forces of the first 6 ms agree to 1e-9
+    (measured: the same bits for F_ram, F_pile within 3e-13 under the Jacobi order whose
+    extrapolation sees the time grid), and equal, within 0.5 %, the engine's start (-h/2, the
+    contact at contact_time 0), which a start elsewhere with contact_mid_step off misses by
+    1.5 to 5 % (measured at the SSP step).
+
+    At the SSP's step h = h_d (the DefaultExperiment's): before its first step the ram reports
+    its toe h_d / 2 before the contact, right for that step only. At another step the ROM
+    anvil's contact dashpot already acts on that position at t_s (a small gap closing at 6 m/s):
+    measured, the DESIGN-order ram peak at h = 4 h_d is 436.4 MN against 455.8 MN with the
+    engine's start (-4.3 %), the same with the pythonfmu Ram (the same numbers)."""
+    from anvilwave.fmu.fmi_master import BlowMaster
+
+    cfg, fmus = table1_fmus
+    h = fmus["ssp_step"]
+    n = int(round(6e-3 / h))
+    starts = [f * h for f in START_FRACTIONS]
+    for anvil in ("Anvil", "AnvilLumped"):
+        peaks = {}
+        for t0 in starts:
+            for mid_step in (True, False):
+                parameters = {"ram": {"contact_mid_step": mid_step, "contact_time": 0.0},
+                              "anvil": {"input_extrapolation": exchange == "jacobi"}}
+                with BlowMaster(fmus["Ram"], fmus[anvil], fmus["PileSoil"], parameters,
+                                exchange=exchange) as master:
+                    blow = master.run_blows(1, n, h, start_time=t0)[0]
+                peaks[t0, mid_step] = np.array([blow["F_ram"].max(), blow["F_pile"].max()])
+        engine = peaks[-0.5 * h, False]
+        assert engine[0] > 1e8  # the impact
+        for t0 in starts:
+            off = peaks[t0, False] / engine - 1.0
+            print(f"\n{exchange} {anvil} start {t0 / h:+.3f} h: F_ram "
+                  f"{peaks[t0, True][0] / 1e6:.3f} MN, F_pile "
+                  f"{peaks[t0, True][1] / 1e6:.3f} MN (mid step; engine start "
+                  f"{engine[0] / 1e6:.3f}, {engine[1] / 1e6:.3f} MN); contact_mid_step off: "
+                  f"{off[0]:+.2%}, {off[1]:+.2%}")
+            np.testing.assert_allclose(peaks[t0, True], peaks[starts[0], True], rtol=1e-9)
+            np.testing.assert_allclose(peaks[t0, True], engine, rtol=5e-3)
+
+
+def test_the_boolean_parameter_follows_the_fmi_rules(built):
+    """contact_mid_step through fmi2GetBoolean / fmi2SetBoolean: set before initialization,
+    fixed after it (fmi2Error, the reason logged); not a Real (fmi2GetReal refuses vr 6)."""
+    unit = Unit(built["Ram"])
+    vr = unit.vr["contact_mid_step"]
+    try:
+        unit.instantiate()
+        assert unit.fmu.getBoolean([vr]) == [True]
+        unit.fmu.setBoolean([vr], [False])
+        assert unit.fmu.getBoolean([vr]) == [False]
+        with pytest.raises(FMICallException):
+            unit.fmu.getReal([vr])
+        assert any("fmi2GetReal: unknown value reference 6" in m for m in unit.messages)
+        unit.fmu.setupExperiment(startTime=0.0)
+        unit.fmu.enterInitializationMode()
+        unit.fmu.exitInitializationMode()
+        with pytest.raises(FMICallException):
+            unit.fmu.setBoolean([vr], [True])
+        assert any("contact_mid_step is fixed after initialization" in m
+                   for m in unit.messages)
+        unit.fmu.reset()  # the build's value again
+        assert unit.fmu.getBoolean([vr]) == [True]
+    finally:
+        unit.close()
 
 
 def test_a_modal_ram_without_its_rigid_mode_is_not_native():

@@ -31,8 +31,9 @@ the engine's step h over :data:`SSP_STEP_DIVISOR`, from -step/2 (the engine's ti
 first contact at 0). Every parameter value of the SSP is also the FMUs' default (they are built
 with them, ``input_extrapolation`` included: in the DESIGN.md order of the fmpy master it
 changes no bit), so a tool that ignores the SSP's bindings runs the same system, and every
-pythonfmu FMU's DefaultExperiment is the SSP's. The ram places the first contact in the middle
-of the first step whatever the start time (:mod:`anvilwave.fmu.units.ram`). Measured on Table 1
+FMU's DefaultExperiment (native or pythonfmu) is the SSP's. The ram (native or pythonfmu)
+places the first contact in the middle of the first step whatever the start time
+(:mod:`anvilwave.fmu.units.ram`, ``anvilwave/fmu/native/ram_model.c``). Measured on Table 1
 (modal ram, ROM anvil) with libcosim at h/4: peak forces within 0.3 % of the fmpy master
 (DESIGN.md order) on the same step.
 """
@@ -195,16 +196,20 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
         if native_ram:
             result["Ram"] = build_native_ram_fmu(cfg.hammer, out_dir / "Ram.fmu",
-                                                 fmi_version=fmi_version, **parameters["Ram"])
+                                                 fmi_version=fmi_version,
+                                                 default_experiment=experiment,
+                                                 **parameters["Ram"])
         else:
             result["Ram"] = build_ram_fmu(out_dir, cfg.hammer, default_experiment=experiment,
                                           **parameters["Ram"])
         if native:
 
             result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
+                                                     default_experiment=experiment,
                                                      **parameters["Anvil"])
             result["AnvilLumped"] = build_native_anvil_fmu(modal, out_dir / "AnvilLumped.fmu",
                                                            lumped=True,
+                                                           default_experiment=experiment,
                                                            **parameters["AnvilLumped"])
         else:
             modal_file = save_modal_data(modal, Path(tmp) / f"{stem}_modes.npz")
@@ -217,6 +222,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
             result["PileSoil"] = build_native_pile_soil_fmu(cfg.pile_soil,
                                                             out_dir / "PileSoil.fmu",
                                                             fmi_version=fmi_version,
+                                                            default_experiment=experiment,
                                                             **parameters["PileSoil"])
         else:
             result["PileSoil"] = build_pile_soil_fmu(out_dir, cfg.pile_soil,

@@ -25,7 +25,7 @@ from fmpy.fmi2 import FMU2Slave
 
 
 class Unit:
-    """One FMU instance: Real variables by name."""
+    """One FMU instance: Real (and Boolean) variables by name."""
 
     def __init__(self, path: Path, name: str):
         md = read_model_description(str(path))
@@ -35,15 +35,19 @@ class Unit:
                              modelIdentifier=md.coSimulation.modelIdentifier)
         self.fmu.instantiate()
 
-    def start(self, start_time: float, **parameters: float) -> None:
+    def start(self, start_time: float, **parameters: float | bool) -> None:
         self.fmu.setupExperiment(startTime=start_time)
         self.set(**parameters)
         self.fmu.enterInitializationMode()
         self.fmu.exitInitializationMode()
 
-    def set(self, **values: float) -> None:
-        if values:
-            self.fmu.setReal([self.vr[n] for n in values], list(values.values()))
+    def set(self, **values: float | bool) -> None:
+        flags = {n: v for n, v in values.items() if isinstance(v, bool)}
+        reals = {n: v for n, v in values.items() if n not in flags}
+        if flags:
+            self.fmu.setBoolean([self.vr[n] for n in flags], list(flags.values()))
+        if reals:
+            self.fmu.setReal([self.vr[n] for n in reals], list(reals.values()))
 
     def get(self, *names: str) -> list[float]:
         return self.fmu.getReal([self.vr[n] for n in names])
@@ -65,7 +69,9 @@ def blow(ram_fmu: Path, anvil_fmu: Path, pile_fmu: Path, step: float, duration: 
         head, = pile.get("u_head")
         anvil.set(u_ram=head - 1.0, v_ram=0.0, u_pile=head, v_pile=0.0)  # ram well clear
         top, = anvil.get("u_top")
-        ram.start(t0, contact_displacement=top, contact_time=0.0)
+        # the engine's start: the first contact at 0 (contact_mid_step off; on, the ram would
+        # place it mid first step itself, from its DefaultExperiment's step before that step)
+        ram.start(t0, contact_displacement=top, contact_time=0.0, contact_mid_step=False)
         n = int(round(duration / step))
         force = np.empty(n + 1)
         for k in range(n + 1):

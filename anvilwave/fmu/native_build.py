@@ -376,6 +376,7 @@ def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeMo
 # ---------------------------------------------------------------------------- the build
 def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
                            compiler: str | None = None, validate: bool = True,
+                           default_experiment: tuple[float, float, float] | None = None,
                            **parameters) -> Path:
     """Build the native ``Anvil.fmu`` (ROM) or, with ``lumped``, ``AnvilLumped.fmu``.
 
@@ -391,6 +392,9 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
     compiler : C compiler command (default: ``$CC``, else ``cc`` or ``gcc`` on the PATH).
     validate : check the FMU with fmpy (``validate_fmu``, then instantiate, initialize and
         step it once); needs fmpy.
+    default_experiment : (start time, stop time, step) [s] of the system the FMU is built for,
+        its ``DefaultExperiment`` (as :func:`anvilwave.fmu.fmi_build.build_fmu`'s; default
+        :data:`DEFAULT_EXPERIMENT`).
     parameters : start values of the FMU parameters, SI units: ``ram_contact_stiffness``
         [N/m] and ``pile_contact_stiffness`` [N/m] (required), ``ram_contact_damping``,
         ``pile_contact_damping`` [N s/m], ``gravity`` [m/s^2], ``start_at_rest``,
@@ -408,6 +412,7 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
     data, defaults = _modal_defaults(modal, lumped, source)
     values = _start_values(variables, {**defaults, **parameters}, source, set(parameters))
     _check_physics(data, values, lumped)
+    experiment = default_experiment_values(default_experiment, source)
     cc = find_compiler(compiler)
     out_path = Path(out_path)
     target = out_path if out_path.suffix == ".fmu" else out_path / f"{model}.fmu"
@@ -422,12 +427,13 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
             (stage / "resources" / MODAL_RESOURCE).write_bytes(resource)
         for name in C_SOURCES + C_HEADERS:
             shutil.copyfile(NATIVE_DIR / name, sources / name)
-        guid = _guid(model, variables, values, resource, sources)
+        guid = _guid(model, variables, values, resource, sources,
+                     None if default_experiment is None else experiment)
         (sources / CONFIG_HEADER).write_text(config_header(model, guid, variables, values),
                                              encoding="ascii")
         (sources / "buildDescription.xml").write_bytes(build_description(model))
         (stage / "modelDescription.xml").write_bytes(
-            model_description(model, guid, variables, values))
+            model_description(model, guid, variables, values, experiment))
         binary = stage / "binaries" / PLATFORM / f"{model}.so"
         compile_binary(cc, sources, binary)
         archive = Path(scratch) / f"{model}.fmu"
@@ -439,6 +445,28 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
         shutil.copyfile(archive, part)
         part.replace(target)
     return target
+
+
+DEFAULT_EXPERIMENT = (0.0, 0.02, 1e-5)
+"""The ``DefaultExperiment`` (start, stop, step) [s] of a native FMU built without one (that of
+the pythonfmu units' classes)."""
+
+
+def default_experiment_values(default_experiment, source: str) -> tuple[float, float, float]:
+    """(start, stop, step) [s] of a ``default_experiment`` argument (None:
+    :data:`DEFAULT_EXPERIMENT`); InputError unless start is finite, stop > start and step > 0."""
+    if default_experiment is None:
+        return DEFAULT_EXPERIMENT
+    try:
+        start, stop, step = (float(x) for x in default_experiment)
+    except (TypeError, ValueError):
+        start = stop = step = math.nan
+    if not (math.isfinite(start) and math.isfinite(stop) and stop > start and
+            math.isfinite(step) and step > 0.0):
+        raise InputError(source, "default_experiment",
+                         f"must be (start, stop > start, step > 0) [s], got "
+                         f"{default_experiment!r}")
+    return start, stop, step
 
 
 def find_compiler(compiler: str | None = None) -> str:
@@ -543,10 +571,13 @@ def _check_physics(data, values: dict[str, Any], lumped: bool) -> None:
 
 
 # ---------------------------------------------------------------------------- files
-def _guid(model: str, variables, values: dict[str, Any], resource: bytes, sources: Path) -> str:
+def _guid(model: str, variables, values: dict[str, Any], resource: bytes, sources: Path,
+          experiment: tuple[float, float, float] | None = None) -> str:
     """A GUID from the content (same inputs, same GUID: reproducible builds)."""
     digest = hashlib.sha256()
     digest.update(model.encode())
+    if experiment is not None:
+        digest.update(" ".join(x.hex() for x in experiment).encode())
     digest.update(json.dumps([[v.name, v.kind, v.causality, v.unit] for v in variables]).encode())
     digest.update(json.dumps({k: (v.hex() if isinstance(v, float) else v)
                               for k, v in values.items()}, sort_keys=True).encode())
@@ -597,7 +628,8 @@ def config_header(model: str, guid: str, variables, values: dict[str, Any]) -> s
     return "\n".join(lines)
 
 
-def model_description(model: str, guid: str, variables, values: dict[str, Any]) -> bytes:
+def model_description(model: str, guid: str, variables, values: dict[str, Any],
+                      experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT) -> bytes:
     """``modelDescription.xml`` (FMI 2.0 co-simulation, source FMU)."""
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "2.0", "modelName": model, "guid": guid,
@@ -624,7 +656,8 @@ def model_description(model: str, guid: str, variables, values: dict[str, Any]) 
                        ("logStatusWarning", "Warnings (always reported)"),
                        ("logCalls", "Every FMI call, with debug logging on")):
         ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime="0.02", stepSize="1e-05")
+    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
+                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
     mv = ET.SubElement(root, "ModelVariables")
     index = {}
     for vr, v in enumerate(variables):

@@ -50,7 +50,14 @@ from typing import Any
 
 import numpy as np
 
-from anvilwave.fmu.native_build import NATIVE_DIR, UNITS, NativeBuildError, _zip
+from anvilwave.fmu.native_build import (
+    DEFAULT_EXPERIMENT,
+    NATIVE_DIR,
+    UNITS,
+    NativeBuildError,
+    _zip,
+    default_experiment_values,
+)
 from anvilwave.hammer.database import load_hammer
 from anvilwave.inputs import InputError
 from anvilwave.pile.model import PileSoil, load_pile_soil
@@ -88,13 +95,15 @@ AUTHOR = "anvilwave contributors"
 # ---------------------------------------------------------------------------- variables
 @dataclass(frozen=True)
 class UnitVariable:
-    """A Real variable of a native unit (value reference that of the pythonfmu unit)."""
+    """A variable of a native unit (value reference that of the pythonfmu unit): a Real, or a
+    Boolean parameter (``type`` "Boolean", ``unit`` None)."""
 
     name: str
     vr: int
     causality: str  # "parameter", "input" or "output"
-    unit: str
+    unit: str | None
     description: str
+    type: str = "Real"
 
 
 VARIABLES: dict[str, tuple[UnitVariable, ...]] = {
@@ -111,13 +120,17 @@ VARIABLES: dict[str, tuple[UnitVariable, ...]] = {
                      "Toe displacement at the first contact (the anvil top face at rest), "
                      "positive down [m]"),
         UnitVariable("contact_time", 5, "parameter", "s",
-                     "Time of the first contact; the ram starts at the experiment's start time "
-                     "in free flight at v_impact towards it [s]"),
-        UnitVariable("F_toe", 6, "input", "N",
+                     "Time of the first contact when contact_mid_step is off; the ram starts at "
+                     "the experiment's start time in free flight at v_impact towards it [s]"),
+        UnitVariable("contact_mid_step", 6, "parameter", None,
+                     "The first contact in the middle of the first communication step, "
+                     "whatever the start time and step (as the engine starts; contact_time is "
+                     "then unused) [-]", "Boolean"),
+        UnitVariable("F_toe", 7, "input", "N",
                      "Ram-anvil contact force on the toe, compression positive (pushes the toe "
                      "up) [N]"),
-        UnitVariable("u_toe", 7, "output", "m", "Ram toe displacement, positive down [m]"),
-        UnitVariable("v_toe", 8, "output", "m/s",
+        UnitVariable("u_toe", 8, "output", "m", "Ram toe displacement, positive down [m]"),
+        UnitVariable("v_toe", 9, "output", "m/s",
                      "Ram toe velocity (leapfrog half-step value), positive down [m/s]"),
     ),
     "PileSoil": (
@@ -288,7 +301,8 @@ def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
                       modal_participation_gravity=np.array(
                           [float(modes.participation_gravity[rigid])]))
     defaults = {"v_impact": float(hammer.impact_velocity), "mass": ram.total_mass,
-                "gravity": 9.81, "contact_displacement": 0.0, "contact_time": 0.0}
+                "gravity": 9.81, "contact_displacement": 0.0, "contact_time": 0.0,
+                "contact_mid_step": True}
     return arrays, defaults
 
 
@@ -312,33 +326,44 @@ def pile_soil_arrays(model) -> tuple[dict[str, np.ndarray], dict[str, float]]:
 
 # ---------------------------------------------------------------------------- build
 def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
-                         fmi_version: int = 2, **parameters) -> Path:
+                         fmi_version: int = 2,
+                         default_experiment: tuple[float, float, float] | None = None,
+                         **parameters) -> Path:
     """``Ram.fmu`` (native) for a :class:`anvilwave.hammer.database.Hammer` (or a name of the
     hammer database); parameters as the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg],
-    ``gravity`` [m/s^2], ``contact_displacement`` [m], ``contact_time`` [s])."""
+    ``gravity`` [m/s^2], ``contact_displacement`` [m], ``contact_time`` [s],
+    ``contact_mid_step``, default on: the first contact in the middle of the first step,
+    :mod:`anvilwave.fmu.units.ram`); ``default_experiment`` (start, stop, step) [s] as
+    :func:`build_unit_fmu`'s (its step is where the ram reports its toe before the first step,
+    as the pythonfmu Ram)."""
     if isinstance(hammer, str):
 
         hammer = load_hammer(hammer, float(parameters.get("gravity", 9.81)))
     arrays, defaults = ram_arrays(hammer)
     return build_unit_fmu("Ram", arrays, {**defaults, **parameters}, out_path,
-                          validate=validate, explicit=set(parameters), fmi_version=fmi_version)
+                          validate=validate, explicit=set(parameters), fmi_version=fmi_version,
+                          default_experiment=default_experiment)
 
 
 def build_native_pile_soil_fmu(pile_soil, out_path: str | Path, *, validate: bool = True,
-                               fmi_version: int = 2, **parameters) -> Path:
+                               fmi_version: int = 2,
+                               default_experiment: tuple[float, float, float] | None = None,
+                               **parameters) -> Path:
     """``PileSoil.fmu`` (native) for a :class:`anvilwave.pile.model.PileSoil` (or the path of
     a TOML file with ``[pile]`` and an optional ``[soil]``); parameters ``static_head_load``
-    [N] and ``gravity`` [m/s^2]."""
+    [N] and ``gravity`` [m/s^2]; ``default_experiment`` as :func:`build_unit_fmu`'s."""
 
     model = pile_soil if isinstance(pile_soil, PileSoil) else load_pile_soil(pile_soil)
     arrays, defaults = pile_soil_arrays(model)
     return build_unit_fmu("PileSoil", arrays, {**defaults, **parameters}, out_path,
-                          validate=validate, explicit=set(parameters), fmi_version=fmi_version)
+                          validate=validate, explicit=set(parameters), fmi_version=fmi_version,
+                          default_experiment=default_experiment)
 
 
 def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[str, Any],
                    out_path: str | Path, *, validate: bool = True,
-                   explicit: set[str] | None = None, fmi_version: int = 2) -> Path:
+                   explicit: set[str] | None = None, fmi_version: int = 2,
+                   default_experiment: tuple[float, float, float] | None = None) -> Path:
     """Write a native unit FMU of ``kind`` with these kernel arrays and parameter start values
     (``out_path``: the ``.fmu`` or a folder); nothing is written when the build fails.
 
@@ -346,7 +371,11 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
     (:func:`unit_binaries`) under binaries/<platform>/ and the C sources under sources/. Its
     GUID is derived from the content, and the archive has fixed timestamps and order: the same
     inputs give the same bytes. ``fmi_version`` 3: an FMI 3.0 co-simulation FMU (the same
-    binaries, which hold both APIs, under the FMI 3.0 platform folders).
+    binaries, which hold both APIs, under the FMI 3.0 platform folders). ``default_experiment``
+    (start, stop, step) [s]: the system's, the FMU's ``DefaultExperiment`` (default
+    :data:`anvilwave.fmu.native_build.DEFAULT_EXPERIMENT`); the Ram also gets it in its
+    resource (array ``default_experiment``: its toe before the first step is half that step
+    before the contact, as the pythonfmu Ram's).
     """
     source = f"native {kind} FMU build"
     if fmi_version not in (2, 3):
@@ -357,20 +386,30 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
         if explicit is None or name in explicit:
             raise InputError(source, name, f"not a parameter of the native {kind} unit "
                                            f"(parameters: {', '.join(sorted(names))})")
+    experiment = default_experiment_values(default_experiment, source)
     starts: dict[str, float] = {}
     for v in variables:
         if v.causality != "parameter":
             continue
         value = values[v.name]
+        if v.type == "Boolean":
+            if not isinstance(value, (bool, np.bool_)):
+                raise InputError(source, v.name, f"must be true or false, got {value!r}")
+            starts[v.name] = 1.0 if value else 0.0
+            continue
         if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or \
                 not math.isfinite(float(value)):
             raise InputError(source, v.name, f"must be a finite number, got {value!r}")
         starts[v.name] = float(value)
+    if kind == "Ram" and default_experiment is not None:
+        arrays = {**arrays, "default_experiment": np.array(experiment)}
     binaries = unit_binaries(kind)
     out_path = Path(out_path)
     target = out_path if out_path.suffix == ".fmu" else out_path / f"{kind}.fmu"
     content = resource_text(kind, "", starts, arrays)
     digest = hashlib.sha256(f"FMI {fmi_version}".encode())
+    if default_experiment is not None:
+        digest.update(" ".join(x.hex() for x in experiment).encode())
     digest.update(content.encode())
     digest.update(sources_digest(kind).encode())
     for platform in sorted(binaries):
@@ -391,7 +430,7 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
             folder.mkdir(parents=True)
             shutil.copyfile(path, folder / f"{kind}{PLATFORMS[platform]['suffix']}")
         describe = unit_model_description if fmi_version == 2 else unit_model_description_3
-        (stage / "modelDescription.xml").write_bytes(describe(kind, guid, starts))
+        (stage / "modelDescription.xml").write_bytes(describe(kind, guid, starts, experiment))
         archive = Path(scratch) / f"{kind}.fmu"
         _zip(stage, archive)
         if validate:
@@ -416,7 +455,8 @@ def package_version() -> str:
         return "unknown"
 
 
-def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) -> bytes:
+def unit_model_description(kind: str, guid: str, starts: Mapping[str, float],
+                           experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT) -> bytes:
     """``modelDescription.xml`` of a native unit (FMI 2.0 co-simulation, with its sources)."""
     variables = VARIABLES[kind]
     root = ET.Element("fmiModelDescription", {
@@ -435,7 +475,7 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) ->
     for name in (*COMMON_SOURCES, MODEL_SOURCES[kind]):
         ET.SubElement(files, "File", name=name)
     units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables}):
+    for name in sorted({v.unit for v in variables if v.unit is not None}):
         unit = ET.SubElement(units, "Unit", name=name)
         ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
     categories = ET.SubElement(root, "LogCategories")
@@ -443,7 +483,8 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) ->
                        ("logStatusWarning", "Warnings (always reported)"),
                        ("logCalls", "Every FMI call, with debug logging on")):
         ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime="0.02", stepSize="1e-05")
+    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
+                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
     mv = ET.SubElement(root, "ModelVariables")
     index: dict[str, int] = {}
     for position, v in enumerate(variables, start=1):
@@ -452,6 +493,9 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) ->
             "name": v.name, "valueReference": str(v.vr), "description": v.description,
             "causality": v.causality,
             "variability": "fixed" if v.causality == "parameter" else "continuous"})
+        if v.type == "Boolean":
+            ET.SubElement(sv, "Boolean", start="true" if starts[v.name] else "false")
+            continue
         typed = {"unit": v.unit}
         if v.causality == "parameter":
             typed["start"] = repr(starts[v.name])
@@ -471,7 +515,9 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float]) ->
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
 
 
-def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float]) -> bytes:
+def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
+                             experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT
+                             ) -> bytes:
     """``modelDescription.xml`` of a native unit as FMI 3.0 co-simulation (the variables and
     value references of the FMI 2.0 unit, Float64, and the independent variable ``time``)."""
     variables = VARIABLES[kind]
@@ -488,7 +534,7 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float])
         "providesIntermediateUpdate": "false", "canReturnEarlyAfterIntermediateUpdate": "false",
         "hasEventMode": "false"})
     units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables} | {"s"}):  # "s": time
+    for name in sorted({v.unit for v in variables if v.unit is not None} | {"s"}):  # "s": time
         unit = ET.SubElement(units, "Unit", name=name)
         ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
     categories = ET.SubElement(root, "LogCategories")
@@ -496,15 +542,20 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float])
                        ("logStatusWarning", "Warnings (always reported)"),
                        ("logCalls", "Every FMI call, with debug logging on")):
         ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime="0.02", stepSize="1e-05")
+    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
+                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
     mv = ET.SubElement(root, "ModelVariables")
     ET.SubElement(mv, "Float64", name="time", valueReference="0", causality="independent",
                   variability="continuous", description="Simulation time [s]", unit="s")
     for v in variables:
         attrs = {"name": v.name, "valueReference": str(v.vr), "description": v.description,
                  "causality": v.causality,
-                 "variability": "fixed" if v.causality == "parameter" else "continuous",
-                 "unit": v.unit}
+                 "variability": "fixed" if v.causality == "parameter" else "continuous"}
+        if v.type == "Boolean":
+            attrs["start"] = "true" if starts[v.name] else "false"
+            ET.SubElement(mv, "Boolean", attrs)
+            continue
+        attrs["unit"] = v.unit
         if v.causality == "parameter":
             attrs["start"] = repr(starts[v.name])
         elif v.causality == "input":

@@ -85,6 +85,7 @@ typedef struct {
     int outputs_valid; /* outputs computed from the current inputs and state */
     double time;       /* current communication point [s] */
     /* input extrapolation (input_extrapolation) */
+    double input_start;          /* the start time [s]: no acceleration across it */
     double input_time;           /* when the inputs were last set [s] */
     double input_interval;       /* from the point before to input_time [s]; 0: none */
     double previous_velocity[2]; /* v_ram, v_pile at the point before [m/s] */
@@ -275,6 +276,7 @@ static int extrapolating(const Instance *inst)
 /* Python: InputExtrapolation(time), a fresh state at the unit's time. */
 static void start_extrapolation(Instance *inst)
 {
+    inst->input_start = inst->time;
     inst->input_time = inst->time;
     inst->input_interval = 0.0;
     inst->previous_velocity[0] = inst->previous_velocity[1] = 0.0;
@@ -282,13 +284,16 @@ static void start_extrapolation(Instance *inst)
     inst->has_evaluated = inst->has_sent = 0;
 }
 
-/* Python: InputExtrapolation.note_inputs, before new inputs are stored. */
+/* Python: InputExtrapolation.note_inputs, before new inputs are stored. While the point before
+ * is the start time the interval is 0 (no acceleration): inputs there are a master's initial
+ * values (e.g. the zeros of fmpy's SSP runner), not the neighbours' states. */
 static void note_inputs(Instance *inst)
 {
     if (inst->time > inst->input_time) {
         inst->previous_velocity[0] = inst->real[ANVIL_V_RAM];
         inst->previous_velocity[1] = inst->real[ANVIL_V_PILE];
-        inst->input_interval = inst->time - inst->input_time;
+        inst->input_interval = inst->input_time > inst->input_start ?
+                               inst->time - inst->input_time : 0.0;
         inst->input_time = inst->time;
     }
 }

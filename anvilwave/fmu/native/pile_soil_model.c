@@ -38,17 +38,17 @@ enum {
 };
 
 static const UnitVariable VARIABLES[] = {
-    {1, UNIT_PARAMETER, "static_head_load", 0.0},
-    {2, UNIT_PARAMETER, "gravity", 9.81},
-    {17, UNIT_INPUT, "F_head", 0.0},
-    {18, UNIT_OUTPUT, "u_head", 0.0},
-    {19, UNIT_OUTPUT, "v_head", 0.0},
-    {20, UNIT_OUTPUT, "F_gauge", 0.0},
-    {21, UNIT_OUTPUT, "v_gauge", 0.0},
-    {22, UNIT_OUTPUT, "u_head_total", 0.0},
-    {23, UNIT_OUTPUT, "u_pile_toe", 0.0},
-    {24, UNIT_OUTPUT, "max_compression_stress", 0.0},
-    {25, UNIT_OUTPUT, "max_tension_stress", 0.0},
+    {1, UNIT_PARAMETER, "static_head_load", 0.0, UNIT_REAL},
+    {2, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL},
+    {17, UNIT_INPUT, "F_head", 0.0, UNIT_REAL},
+    {18, UNIT_OUTPUT, "u_head", 0.0, UNIT_REAL},
+    {19, UNIT_OUTPUT, "v_head", 0.0, UNIT_REAL},
+    {20, UNIT_OUTPUT, "F_gauge", 0.0, UNIT_REAL},
+    {21, UNIT_OUTPUT, "v_gauge", 0.0, UNIT_REAL},
+    {22, UNIT_OUTPUT, "u_head_total", 0.0, UNIT_REAL},
+    {23, UNIT_OUTPUT, "u_pile_toe", 0.0, UNIT_REAL},
+    {24, UNIT_OUTPUT, "max_compression_stress", 0.0, UNIT_REAL},
+    {25, UNIT_OUTPUT, "max_tension_stress", 0.0, UNIT_REAL},
 };
 
 enum { CAPACITY, TENSION, STIFFNESS, SMITH, DASHPOT };

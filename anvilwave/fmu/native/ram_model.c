@@ -13,12 +13,22 @@
  * modal_omega (m) [rad/s], the rigid-body mode 0 first, modal_participation (m) [kg^-1/2] at
  * the toe and modal_participation_gravity (1) [kg^1/2] of the rigid mode: every mode exact
  * over the step for the held force (no sub-steps); its toe sum runs in the loop's order where
- * the numba kernel may reassociate it, so the two agree to rounding.
+ * the numba kernel may reassociate it, so the two agree to rounding. Optional:
+ * default_experiment (3) [s], start, stop and step of the FMU's DefaultExperiment (its step is
+ * h_d below; without it h_d is 1e-5 s, the pythonfmu Ram's first_step_hint).
  *
  * Variables (value references of the pythonfmu Ram unit): parameters v_impact [m/s] (0: the
  * hammer's), mass [kg] (0: the hammer's; else the segment masses are scaled to it), gravity
- * [m/s^2], contact_displacement [m], contact_time [s]; input F_toe [N]; outputs u_toe [m],
- * v_toe [m/s] (states, no feedthrough).
+ * [m/s^2], contact_displacement [m], contact_time [s], contact_mid_step (Boolean, default
+ * on); input F_toe [N]; outputs u_toe [m], v_toe [m/s] (states, no feedthrough).
+ *
+ * Start (fmu/units/ram.py RamSlave.start_component and advance, the same operations): with
+ * contact_mid_step the first contact falls in the middle of the first communication step,
+ * whatever the start time and step: until the first fmi2DoStep every mass is at
+ * contact_displacement + v_impact (-0.5 h_d) (h_d: the DefaultExperiment's step), and at the
+ * first fmi2DoStep (step h) the unit starts again from contact_displacement - v_impact (0.5 h)
+ * before it steps. With it off the toe reaches contact_displacement at contact_time:
+ * u = contact_displacement + v_impact (t_s - contact_time) at the start time t_s.
  */
 #include <math.h>
 #include <stdio.h>
@@ -28,18 +38,23 @@
 #include "unit_model.h"
 
 #define MAX_SUBSTEPS 1.0e8 /* more sub-steps in one communication step: refused */
+#define FIRST_STEP_HINT 1e-5 /* h_d [s] without a DefaultExperiment (fmu/units/ram.py) */
 
-enum { V_IMPACT, MASS, GRAVITY, CONTACT_DISPLACEMENT, CONTACT_TIME, F_TOE, U_TOE, V_TOE };
+enum {
+    V_IMPACT, MASS, GRAVITY, CONTACT_DISPLACEMENT, CONTACT_TIME, CONTACT_MID_STEP, F_TOE, U_TOE,
+    V_TOE
+};
 
 static const UnitVariable VARIABLES[] = {
-    {1, UNIT_PARAMETER, "v_impact", 0.0},
-    {2, UNIT_PARAMETER, "mass", 0.0},
-    {3, UNIT_PARAMETER, "gravity", 9.81},
-    {4, UNIT_PARAMETER, "contact_displacement", 0.0},
-    {5, UNIT_PARAMETER, "contact_time", 0.0},
-    {6, UNIT_INPUT, "F_toe", 0.0},
-    {7, UNIT_OUTPUT, "u_toe", 0.0},
-    {8, UNIT_OUTPUT, "v_toe", 0.0},
+    {1, UNIT_PARAMETER, "v_impact", 0.0, UNIT_REAL},
+    {2, UNIT_PARAMETER, "mass", 0.0, UNIT_REAL},
+    {3, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL},
+    {4, UNIT_PARAMETER, "contact_displacement", 0.0, UNIT_REAL},
+    {5, UNIT_PARAMETER, "contact_time", 0.0, UNIT_REAL},
+    {6, UNIT_PARAMETER, "contact_mid_step", 1.0, UNIT_BOOLEAN},
+    {7, UNIT_INPUT, "F_toe", 0.0, UNIT_REAL},
+    {8, UNIT_OUTPUT, "u_toe", 0.0, UNIT_REAL},
+    {9, UNIT_OUTPUT, "v_toe", 0.0, UNIT_REAL},
 };
 
 typedef struct {
@@ -47,6 +62,7 @@ typedef struct {
     double *mass;      /* (n) [kg] */
     double *stiffness; /* (n - 1) [N/m] */
     double total_mass, impact_velocity;
+    double default_step; /* h_d [s] */
     /* a modal ram: its toe modes, the rigid-body mode first (n_modes 0: a rod) */
     size_t n_modes;
     double *omega, *participation; /* (n_modes) [rad/s], [kg^-1/2] */
@@ -71,6 +87,8 @@ typedef struct {
     double stable_step, h;
     double n_sub;
     ModalState *modal; /* a modal ram: this instead of the chain */
+    int placed;        /* the free flight placed for the first contact (contact_mid_step) */
+    double contact_displacement, velocity; /* [m], [m/s] */
 } RamState;
 
 static void free_model(void *p)
@@ -122,6 +140,19 @@ static void *load(const FmuResource *res, char *reason, size_t reason_size)
     m->stiffness = copy_array(stiffness, nk);
     m->total_mass = total[0];
     m->impact_velocity = velocity[0];
+    m->default_step = FIRST_STEP_HINT;
+    {
+        size_t n_experiment;
+        const double *experiment = fmu_resource_array(res, "default_experiment",
+                                                      &n_experiment);
+        if (experiment != NULL && (n_experiment != 3 || !(experiment[2] > 0.0))) {
+            free_model(m);
+            snprintf(reason, reason_size, "default_experiment must be (start, stop, step) with "
+                     "a positive step");
+            return NULL;
+        }
+        if (experiment != NULL) m->default_step = experiment[2];
+    }
     if (m->mass == NULL || m->stiffness == NULL) {
         free_model(m);
         snprintf(reason, reason_size, "out of memory");
@@ -290,14 +321,16 @@ static void free_state(void *p)
     free(s);
 }
 
+static void *start_rod(const RamModel *m, double gravity, int scale, double ratio, double u0,
+                       double velocity, char *reason, size_t reason_size);
+
 static void *start(const void *p, const double *slots, double start_time, char *reason,
                    size_t reason_size)
 {
     const RamModel *m = (const RamModel *)p;
     double gravity = slots[GRAVITY], wanted = slots[MASS], velocity = slots[V_IMPACT];
-    double ratio = 1.0, u0;
-    int scale = 0;
-    size_t i, n = m->n;
+    double ratio = 1.0, u0, offset;
+    int scale = 0, placed;
     RamState *s;
     if (!(gravity >= 0.0 && gravity <= 20.0)) {
         snprintf(reason, reason_size, "gravity: must be in [0, 20] m/s^2, got %g", gravity);
@@ -322,11 +355,30 @@ static void *start(const void *p, const double *slots, double start_time, char *
         snprintf(reason, reason_size, "v_impact: must be in (0, 50] m/s, got %g", velocity);
         return NULL;
     }
-    if (m->n_modes > 0)
-        return start_modal(m, gravity, slots[CONTACT_DISPLACEMENT] +
-                                           velocity * (start_time - slots[CONTACT_TIME]),
-                           velocity, reason, reason_size);
-    s = (RamState *)calloc(1, sizeof *s);
+    placed = slots[CONTACT_MID_STEP] == 0.0;
+    if (placed)
+        offset = start_time - slots[CONTACT_TIME];
+    else /* until the first step tells h (header) */
+        offset = -0.5 * m->default_step;
+    u0 = slots[CONTACT_DISPLACEMENT] + velocity * offset;
+    if (m->n_modes > 0) {
+        s = (RamState *)start_modal(m, gravity, u0, velocity, reason, reason_size);
+        if (s == NULL) return NULL;
+    } else {
+        s = start_rod(m, gravity, scale, ratio, u0, velocity, reason, reason_size);
+        if (s == NULL) return NULL;
+    }
+    s->placed = placed;
+    s->contact_displacement = slots[CONTACT_DISPLACEMENT];
+    s->velocity = velocity;
+    return s;
+}
+
+static void *start_rod(const RamModel *m, double gravity, int scale, double ratio, double u0,
+                       double velocity, char *reason, size_t reason_size)
+{
+    size_t i, n = m->n;
+    RamState *s = (RamState *)calloc(1, sizeof *s);
     if (s == NULL) return NULL;
     s->n = n;
     s->weight = (double *)malloc(n * sizeof(double));
@@ -348,7 +400,6 @@ static void *start(const void *p, const double *slots, double start_time, char *
         s->weight[i] = mass * gravity;
         s->inverse_mass[i] = 1.0 / mass;
     }
-    u0 = slots[CONTACT_DISPLACEMENT] + velocity * (start_time - slots[CONTACT_TIME]);
     for (i = 0; i < n; i++) {
         s->u[i] = u0;
         s->v[i] = velocity;
@@ -377,6 +428,19 @@ static int step(void *p, const double *slots, double h, char *reason, size_t rea
     double toe_force = slots[F_TOE], dt;
     size_t last, i;
     long k, n_sub;
+    if (!s->placed) { /* the first contact in the middle of this step (header) */
+        double u0 = s->contact_displacement - s->velocity * (0.5 * h);
+        if (s->modal != NULL) {
+            s->modal->start_u = s->modal->u = u0;
+            s->modal->start_v = s->modal->v = s->velocity;
+        } else {
+            for (i = 0; i < s->n; i++) {
+                s->u[i] = u0;
+                s->v[i] = s->velocity;
+            }
+        }
+        s->placed = 1;
+    }
     if (s->modal != NULL) {
         step_modal(s->modal, toe_force, h);
         return 1;

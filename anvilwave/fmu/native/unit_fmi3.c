@@ -101,11 +101,13 @@ static fmi3Status unsupported(fmi3Instance instance, const char *function)
                           STATE_NAMES[(inst)->state]);                                           \
     } while (0)
 
-static long find_slot(fmi3ValueReference vr)
+/* The slot of a variable of this type, -1 when there is none. */
+static long find_slot(fmi3ValueReference vr, UnitType type)
 {
     size_t i;
     for (i = 0; i < UNIT_MODEL.n_variables; i++)
-        if (UNIT_MODEL.variables[i].vr == vr) return (long)i;
+        if (UNIT_MODEL.variables[i].vr == vr && UNIT_MODEL.variables[i].type == type)
+            return (long)i;
     return -1;
 }
 
@@ -350,7 +352,7 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
             values[i] = inst->time;
             continue;
         }
-        slot = find_slot(valueReferences[i]);
+        slot = find_slot(valueReferences[i], UNIT_REAL);
         if (slot < 0)
             return refuse(inst, "fmi3GetFloat64: unknown value reference %u",
                           valueReferences[i]);
@@ -379,7 +381,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
         return refuse(inst, "fmi3SetFloat64: %lu values for %lu value references (scalars "
                       "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
     for (i = 0; i < nValueReferences; i++) {
-        long slot = find_slot(valueReferences[i]);
+        long slot = find_slot(valueReferences[i], UNIT_REAL);
         const UnitVariable *v;
         if (slot < 0)
             return refuse(inst, "fmi3SetFloat64: value reference %u cannot be set",
@@ -564,11 +566,20 @@ fmi3Status fmi3GetBoolean(fmi3Instance instance,
                           fmi3Boolean values[],
                           size_t nValues)
 {
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetBoolean");
+    Instance3 *inst = (Instance3 *)instance;
+    size_t i;
+    if (inst == NULL) return fmi3Error;
+    if (nValues != nValueReferences)
+        return refuse(inst, "fmi3GetBoolean: %lu values for %lu value references (scalars "
+                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
+    for (i = 0; i < nValueReferences; i++) {
+        long slot = find_slot(valueReferences[i], UNIT_BOOLEAN);
+        if (slot < 0)
+            return refuse(inst, "fmi3GetBoolean: unknown value reference %u",
+                          valueReferences[i]);
+        values[i] = inst->slots[slot] != 0.0;
+    }
+    return fmi3OK;
 }
 
 fmi3Status fmi3GetString(fmi3Instance instance,
@@ -727,17 +738,35 @@ fmi3Status fmi3SetUInt64(fmi3Instance instance,
     return unsupported(instance, "fmi3SetUInt64");
 }
 
+/* Boolean parameters (the only Booleans of the units): as fmi3SetFloat64's parameters. */
 fmi3Status fmi3SetBoolean(fmi3Instance instance,
                           const fmi3ValueReference valueReferences[],
                           size_t nValueReferences,
                           const fmi3Boolean values[],
                           size_t nValues)
 {
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetBoolean");
+    Instance3 *inst = (Instance3 *)instance;
+    size_t i;
+    if (inst == NULL) return fmi3Error;
+    REQUIRE(inst, "fmi3SetBoolean", inst->state == S3_INSTANTIATED ||
+                                        inst->state == S3_INITIALIZATION ||
+                                        inst->state == S3_STEP);
+    if (nValues != nValueReferences)
+        return refuse(inst, "fmi3SetBoolean: %lu values for %lu value references (scalars "
+                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
+    for (i = 0; i < nValueReferences; i++) {
+        long slot = find_slot(valueReferences[i], UNIT_BOOLEAN);
+        double number = values[i] ? 1.0 : 0.0;
+        if (slot < 0)
+            return refuse(inst, "fmi3SetBoolean: value reference %u cannot be set",
+                          valueReferences[i]);
+        if (inst->state == S3_STEP)
+            return refuse(inst, "fmi3SetBoolean: parameter %s is fixed after initialization",
+                          UNIT_MODEL.variables[slot].name);
+        if (inst->slots[slot] != number) drop_unit(inst);
+        inst->slots[slot] = number;
+    }
+    return fmi3OK;
 }
 
 fmi3Status fmi3SetString(fmi3Instance instance,

@@ -127,12 +127,22 @@ static const char *state_name(State state)
             return refuse((inst), "%s: null value-reference or value array", (function));      \
     } while (0)
 
-static long find_slot(fmi2ValueReference vr)
+/* The slot of a variable of this type, -1 when there is none (FMI 2.0 value references are
+ * per type). */
+static long find_slot(fmi2ValueReference vr, UnitType type)
 {
     size_t i;
     for (i = 0; i < N_VARIABLES; i++)
-        if (VARIABLES[i].vr == vr) return (long)i;
+        if (VARIABLES[i].vr == vr && VARIABLES[i].type == type) return (long)i;
     return -1;
+}
+
+static int has_type(UnitType type)
+{
+    size_t i;
+    for (i = 0; i < N_VARIABLES; i++)
+        if (VARIABLES[i].type == type) return 1;
+    return 0;
 }
 
 static void apply_start_values(Instance *inst)
@@ -370,7 +380,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     if (inst == NULL) return fmi2Error;
     REQUIRE_ARRAYS(inst, "fmi2GetReal", nvr, vr, value);
     for (i = 0; i < nvr; i++) {
-        long slot = find_slot(vr[i]);
+        long slot = find_slot(vr[i], UNIT_REAL);
         if (slot < 0) return refuse(inst, "fmi2GetReal: unknown value reference %u", vr[i]);
         if (VARIABLES[slot].causality == UNIT_OUTPUT) {
             if (inst->state == ST_INSTANTIATED || inst->state == ST_ERROR)
@@ -393,7 +403,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     REQUIRE_ARRAYS(inst, "fmi2SetReal", nvr, vr, value);
     REQUIRE_STATE(inst, "fmi2SetReal", ST_INSTANTIATED | ST_INITIALIZATION | ST_STEP_COMPLETE);
     for (i = 0; i < nvr; i++) {
-        long slot = find_slot(vr[i]);
+        long slot = find_slot(vr[i], UNIT_REAL);
         const UnitVariable *v;
         if (slot < 0) return refuse(inst, "fmi2SetReal: unknown value reference %u", vr[i]);
         v = &VARIABLES[slot];
@@ -437,17 +447,41 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[])
 {
-    (void)vr;
-    (void)value;
-    return no_variables((Instance *)c, "fmi2GetBoolean", "Boolean", nvr);
+    Instance *inst = (Instance *)c;
+    size_t i;
+    if (inst == NULL) return fmi2Error;
+    if (!has_type(UNIT_BOOLEAN)) return no_variables(inst, "fmi2GetBoolean", "Boolean", nvr);
+    REQUIRE_ARRAYS(inst, "fmi2GetBoolean", nvr, vr, value);
+    for (i = 0; i < nvr; i++) {
+        long slot = find_slot(vr[i], UNIT_BOOLEAN);
+        if (slot < 0) return refuse(inst, "fmi2GetBoolean: unknown value reference %u", vr[i]);
+        value[i] = inst->slots[slot] != 0.0 ? fmi2True : fmi2False;
+    }
+    return fmi2OK;
 }
 
+/* Boolean parameters (the only Booleans of the units): as fmi2SetReal's parameters. */
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean value[])
 {
-    (void)vr;
-    (void)value;
-    return no_variables((Instance *)c, "fmi2SetBoolean", "Boolean", nvr);
+    Instance *inst = (Instance *)c;
+    size_t i;
+    if (inst == NULL) return fmi2Error;
+    if (!has_type(UNIT_BOOLEAN)) return no_variables(inst, "fmi2SetBoolean", "Boolean", nvr);
+    REQUIRE_ARRAYS(inst, "fmi2SetBoolean", nvr, vr, value);
+    REQUIRE_STATE(inst, "fmi2SetBoolean", ST_INSTANTIATED | ST_INITIALIZATION |
+                  ST_STEP_COMPLETE);
+    for (i = 0; i < nvr; i++) {
+        long slot = find_slot(vr[i], UNIT_BOOLEAN);
+        double number = value[i] ? 1.0 : 0.0;
+        if (slot < 0) return refuse(inst, "fmi2SetBoolean: unknown value reference %u", vr[i]);
+        if (inst->state == ST_STEP_COMPLETE)
+            return refuse(inst, "fmi2SetBoolean: parameter %s is fixed after initialization",
+                          VARIABLES[slot].name);
+        if (inst->slots[slot] != number) drop_unit(inst);
+        inst->slots[slot] = number;
+    }
+    return fmi2OK;
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

@@ -3,9 +3,9 @@
  * unit_fmu.c. One binary per kind serves every build: the model data, the GUID and the
  * parameters' start values come from resources/anvilwave_unit.txt (fmu_common.h).
  *
- * All variables are Reals, held in slots (the index into the variable table). A unit
- * provides its variable table (value references as in the pythonfmu unit of the same kind)
- * and five functions:
+ * Variables are Reals or Booleans (parameters only), all held in double slots (the index
+ * into the variable table; a Boolean is 0.0 or 1.0). A unit provides its variable table (value
+ * references as in the pythonfmu unit of the same kind) and five functions:
  *   load:    the model from the resource (NULL with the reason on bad data);
  *   start:   a state from the model and the parameter slots, at the experiment's start time
  *            (NULL with the reason on a bad parameter value);
@@ -23,11 +23,14 @@
 
 typedef enum { UNIT_PARAMETER, UNIT_INPUT, UNIT_OUTPUT } UnitCausality;
 
+typedef enum { UNIT_REAL, UNIT_BOOLEAN } UnitType;
+
 typedef struct {
     fmi2ValueReference vr;
     UnitCausality causality;
     const char *name;
     double start; /* parameters: the default when the resource has none; inputs: the start */
+    UnitType type;
 } UnitVariable;
 
 typedef struct {
