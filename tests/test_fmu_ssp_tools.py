@@ -162,7 +162,7 @@ def test_fmpy_ssp_runner_runs_system_ssp(systems, model):
     F_ram series (measured +66 % ROM, +75 % lumped, native and pythonfmu anvils alike: both
     take no acceleration across the zero start inputs, anvilwave/fmu/coupling.py; +151 % with
     the native anvil before it did). Only the pile force is checked here (within 1 %); the
-    spike is an open item (README-ssp.md)."""
+    spike is an open item (docs/fmi.md)."""
     from fmpy.ssp.simulation import simulate_ssp
 
     result = simulate_ssp(str(systems["ssp"][model]), start_time=0.0,

@@ -3,7 +3,7 @@
 :func:`write_ssp` writes an SSP 1.0 archive (``SystemStructure.ssd`` plus the FMUs under
 ``resources/``): the units, their connections (DESIGN.md interface, :data:`CONNECTIONS`) and
 parameter values (``ssv:ParameterSet`` per component). The file is written for the SSP tools
-that the tests run (OMSimulator, OSP libcosim, fmpy's SSP runner; ``README-ssp.md``) to take
+that the tests run (OMSimulator, OSP libcosim, fmpy's SSP runner; ``docs/fmi.md``) to take
 as it is:
 
 - the model and system names are identifiers (:func:`ssp_identifier`: OMSimulator refuses
