@@ -41,8 +41,18 @@ def _pid_alive(pid: int) -> bool:
 
 
 def remove_stale_staging(parent: Path) -> list[Path]:
-    """Remove the staging folders in ``parent`` whose process is gone (a killed run's);
-    returns them."""
+    """Remove the staging folders in ``parent`` whose process is gone (a killed run's).
+
+    Parameters
+    ----------
+    parent : Path
+        The folder the staging folders lie in (the result folder's parent).
+
+    Returns
+    -------
+    list of Path
+        The staging folders removed.
+    """
     removed = []
     if not parent.is_dir():
         return removed
@@ -55,7 +65,18 @@ def remove_stale_staging(parent: Path) -> list[Path]:
 
 
 def result_command(directory: str | Path) -> str | None:
-    """The command whose result ``directory`` holds (its :data:`MARKER`), else None."""
+    """The command whose result a folder holds.
+
+    Parameters
+    ----------
+    directory : str or Path
+        A result folder.
+
+    Returns
+    -------
+    str or None
+        The command named by its :data:`MARKER`; None without a readable marker.
+    """
     try:
         return str(json.loads((Path(directory) / MARKER).read_text())["command"])
     except (OSError, ValueError, KeyError, TypeError):
@@ -63,9 +84,28 @@ def result_command(directory: str | Path) -> str | None:
 
 
 def check_output(directory: str | Path, command: str | None = None) -> Path:
-    """Refuse an output folder before any work: a file in the way (the folder itself or a
-    folder above it), a location that cannot be written, or a folder holding the result of
-    another command. Returns the folder as a Path."""
+    """Refuse an output folder before any work.
+
+    Refused: a file in the way (the folder itself or a folder above it), a location that
+    cannot be written, or a folder holding the result of another command.
+
+    Parameters
+    ----------
+    directory : str or Path
+        The output folder (``--out``).
+    command : str, optional
+        The command that will write it; a folder holding another command's result is refused.
+
+    Returns
+    -------
+    Path
+        The folder.
+
+    Raises
+    ------
+    anvilwave.inputs.InputError
+        Naming ``--out`` and the rule.
+    """
     directory = Path(directory)
     if directory.exists() and not directory.is_dir():
         raise _out_error(directory, "is a file, not a folder (choose a folder to write into)")
