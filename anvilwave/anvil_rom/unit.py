@@ -23,6 +23,7 @@ from numba import njit
 
 from anvilwave.anvil_rom.rings import (
     RamFace,
+    RingState,
     ring_faces,
     ring_interface,
     ring_matrix,
@@ -100,14 +101,11 @@ class AnvilUnit:
             self.rings = self._ring_arrays()
         self.set_step(1e-5)
 
-    def _ring_arrays(self) -> tuple:
-        """The ring kernels' data (:mod:`anvilwave.anvil_rom.rings`): RP, A, T, W, F, E, ring,
-        scratch, R,
-        the head's D, history, shift, rest and count, then the ram face's RQ, face, Wr, Cr, Pr,
-        pr, state and offsets; the pile contact's spring and dashpot shared by ring area (on a
-        tube head: its springs, its D[0] in A); the ram contact one port, or with the ram face
-        in annuli (:attr:`ram_face`) the ram's residual flexibility between them and its
-        dashpot shared by annulus area."""
+    def _ring_arrays(self) -> RingState:
+        """The ring kernels' data (:class:`anvilwave.anvil_rom.rings.RingState`): the pile contact's
+        spring and dashpot shared by ring area (on a tube head: its springs, its D[0] in A); the
+        ram contact one port, or with the ram face in annuli (:attr:`ram_face`) the ram's residual
+        flexibility between them and its dashpot shared by annulus area."""
         a, c = self.anvil, self.contact
         shares = a.ring_areas / a.ring_areas.sum()
         K = shares.size
@@ -143,11 +141,16 @@ class AnvilUnit:
         T = np.r_[T_ram, c.pile_damping * shares / springs]
         m = J + K
         scratch = np.zeros((m, m + 4))
-        return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(m),
-                np.zeros(m), np.zeros((2, K)), scratch, a.residual_rings, D,
-                np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2),
-                np.ascontiguousarray(RQ), np.zeros((2, J)), Wr, Cr,
-                np.ascontiguousarray(Pr), pr, np.zeros((4, pr.size)), np.zeros((3, J)))
+        return RingState(
+            participation=np.ascontiguousarray(a.participation_rings.T), flexibility=A,
+            dashpot_ratios=T, ring_shares=shares, forces=np.zeros(m), elastic_forces=np.zeros(m),
+            ring_modal=np.zeros((2, K)), scratch=scratch, residual=a.residual_rings,
+            head_kernel=D, head_history=np.zeros((D.shape[0], K)), head_shift=np.zeros((2, K)),
+            head_rest=np.zeros(K), head_count=np.zeros(2),
+            face_participation=np.ascontiguousarray(RQ), face_modal=np.zeros((2, J)),
+            annulus_shares=Wr, ram_coefficients=Cr, ram_participation=np.ascontiguousarray(Pr),
+            ram_toe_participation=pr, ram_state=np.zeros((4, pr.size)),
+            ram_offsets=np.zeros((3, J)))
 
     def set_head(self, head: tuple) -> tuple[float, float]:
         """Put the rings on a tube head (``head`` as the field) and rest on it afresh: returns
@@ -167,19 +170,20 @@ class AnvilUnit:
         self.rings = self._ring_arrays()
         return self.rest_on_pile(0.0)
 
-    def restart_head(self, rings: tuple | None = None) -> None:
+    def restart_head(self, rings: RingState | None = None) -> None:
         """Start the tube head's history afresh from the present ring forces (a blow's start):
         its changes are measured from them; the ram face's annuli start at rest (the ram's
         flexible modes are at rest at impact)."""
         rings = self.rings if rings is None else rings
-        F, D, shift, rest, count = rings[4], rings[9], rings[11], rings[12], rings[13]
-        J = rings[15].shape[1]
+        F, D, shift, rest = rings.forces, rings.head_kernel, rings.head_shift, rings.head_rest
+        count = rings.head_count
+        J = rings.face_modal.shape[1]
         rest[:] = F[J:]
         count[:] = 0.0
         shift[0] = -(D[0] @ rest)
         shift[1] = shift[0]
-        rings[20][:] = 0.0
-        rings[21][:] = 0.0
+        rings.ram_state[:] = 0.0
+        rings.ram_offsets[:] = 0.0
 
     @property
     def n_modes(self) -> int:
@@ -200,7 +204,7 @@ class AnvilUnit:
             self.P[8] = h
             self._h = h
             if self.ram_face is not None and self.rings is not None:
-                self.rings[17][:] = self.ram_face.coefficients(h)
+                self.rings.ram_coefficients[:] = self.ram_face.coefficients(h)
 
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
         """Static equilibrium on the pile under gravity (ram not yet touching).
@@ -228,7 +232,9 @@ class AnvilUnit:
         """:meth:`rest_on_pile` with the pile port split into rings (the rings' forces, and
         which of them carry the weight, from :func:`anvilwave.anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
-        RP, F, scratch, RQ = self.rings[0], self.rings[4], self.rings[7], self.rings[14]
+        rings = self.rings
+        RP, F, scratch, RQ = (rings.participation, rings.forces, rings.scratch,
+                              rings.face_participation)
         J = RQ.shape[1]
         forces, u0 = ring_static_rest(a.omega, a.participation_rings, self.ring_springs,
                                       a.residual_rings[J:, J:], weight)
@@ -279,8 +285,8 @@ class AnvilUnit:
     def _ring_forces(self, force_ram: float, force_pile: float) -> None:
         """The ring forces for a held pile force: those of the last contact problem scaled
         to ``force_pile``, or split by area when they were all zero; F_ram = ``force_ram``."""
-        F, shares = self.rings[4], self.rings[3]
-        if self.rings[15].shape[1] > 1:
+        F, shares = self.rings.forces, self.rings.ring_shares
+        if self.rings.face_modal.shape[1] > 1:
             raise ValueError("a ram face in annuli runs in the in-process engine only")
         total = F[1:].sum()
         F[1:] = F[1:] * (force_pile / total) if total > 0.0 else force_pile * shares
@@ -288,13 +294,13 @@ class AnvilUnit:
 
     def _ring_outputs(self, force_ram: float, force_pile: float):
         self._ring_forces(force_ram, force_pile)
-        ring = self.rings[6]
+        ring = self.rings.ring_modal
         ring_interface(self.C, self.S, self.rings, self.P[8])
         n = self.n_modes
         _, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
                                       self.P[8])
         u_top, u_bottom = ring_faces(self.rings)
-        return u_top, vt, u_bottom, float(self.rings[3] @ ring[1])
+        return u_top, vt, u_bottom, float(self.rings.ring_shares @ ring[1])
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:

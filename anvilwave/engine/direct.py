@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -40,6 +41,7 @@ from anvilwave.anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvilwave.anvil_rom.contact import contact_force
 from anvilwave.anvil_rom.rings import (
     RamFace,
+    RingState,
     copy_ring_state,
     ring_contact,
     ring_elastic_forces,
@@ -134,7 +136,8 @@ costs, and the balance needs no finer sampling: each row is exact, and the works
 rows are summed at every step (Table 1: a row every 0.5 ms, 51 rows)."""
 
 NO_MODAL_RAM = (np.zeros((9, 0)), np.zeros(0), np.zeros(3))
-"""run_blow's ``modal_ram`` when the ram is a chain (a unit without modes)."""
+"""The modal ram arrays (C, S, toe) of :class:`LoopRam` when the ram is a chain (a unit
+without modes)."""
 
 # the blow summary the loop fills (BlowResult fields of the same names)
 (S_MAX_COMPRESSION, S_MAX_TENSION, S_EMX_GAUGE, S_EMX_HEAD, S_MAX_HEAD_FORCE, S_MAX_TOE,
@@ -331,252 +334,490 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
     return upper
 
 
+# ----------------------------------------------------------------- the loop's state
+class LoopRam(NamedTuple):
+    """The ram as the loop steps it: its chain (:func:`anvilwave.hammer.ram.ram_advance`) or,
+    when ``modal_coefficients`` has columns, the modal ram unit
+    (:func:`anvilwave.hammer.modal_ram.modal_ram_advance`; the chain's arrays are then unused).
+    Both rams run in the one compiled loop, chosen at run time, so that a ram model does not
+    change how the compiler lays out the rest of the step."""
+
+    weight: np.ndarray
+    """(N,) the chain's weights m g [N]."""
+    inverse_mass: np.ndarray
+    """(N,) 1 / m [1/kg]."""
+    stiffness: np.ndarray
+    """(N - 1,) the chain's springs [N/m]."""
+    mass: np.ndarray
+    """(N,) [kg]."""
+    u: np.ndarray
+    """(N,) displacements [m] (written)."""
+    v: np.ndarray
+    """(N,) half-step velocities [m/s] (written)."""
+    n_sub: int
+    """The chain's sub-steps per master step."""
+    modal_coefficients: np.ndarray
+    """C of a :class:`anvilwave.hammer.modal_ram.ModalRamUnit` (no columns: the chain runs)."""
+    modal_state: np.ndarray
+    """Its S (written)."""
+    modal_toe: np.ndarray
+    """Its toe (u, v, half) [m, m/s, -] (written)."""
+
+
+class LoopModalAnvil(NamedTuple):
+    """The modal (ROM or lumped) anvil unit's kernel arrays (:mod:`anvilwave.anvil_rom.unit`)."""
+
+    parameters: np.ndarray
+    """P: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h]."""
+    coefficients: np.ndarray
+    """C (n, 8): the modes' step coefficients and participations."""
+    state: np.ndarray
+    """S (2 n): q at t_n and t_n-1 (written)."""
+    interface: np.ndarray
+    """(4,) the state's modal u_top, v_top, u_bottom, v_bottom [m, m/s] (written)."""
+
+
+class LoopClassic(NamedTuple):
+    """The classic driving system's kernel arrays (:mod:`anvilwave.hammer.driving_system`)."""
+
+    parameters: np.ndarray
+    state: np.ndarray
+    """(written)"""
+    n_sub: int
+    """Its sub-steps per master step."""
+
+
+class LoopAnvil(NamedTuple):
+    """The anvil unit: one of ``modal`` (with the pile port in ``rings`` or not), ``classic``
+    or ``direct`` (the contact [k [N/m], c [N s/m]] of ram toe and pile head, no anvil); the
+    others are None, and the compiler keeps only the code of the given one."""
+
+    modal: LoopModalAnvil | None
+    rings: RingState | None
+    """The modal unit's pile port in rings (:class:`anvilwave.anvil_rom.rings.RingState`)."""
+    classic: LoopClassic | None
+    direct: np.ndarray | None
+
+
+class LoopPile(NamedTuple):
+    """The pile and soil as :func:`anvilwave.pile.kernels.pile_advance` takes them, the blow's
+    start and the stress extremes folded at every step."""
+
+    parameters: np.ndarray
+    """The pile's parameter array (``PileSoil.arrays().pile``)."""
+    probes: np.ndarray
+    """Its probe array (gauges, head extrapolation)."""
+    pile_sweep: tuple
+    soil_sweep: tuple
+    first_soil: int
+    """:func:`anvilwave.pile.kernels.sweep_arrays`."""
+    u: np.ndarray
+    """(N,) [m] (written)."""
+    v: np.ndarray
+    """(N,) [m/s] (written)."""
+    soil_offset: np.ndarray
+    """(N + 1,) [m] (written)."""
+    energy: np.ndarray
+    """(ENERGY_SIZE,) [J] (written)."""
+    n_sub: int
+    """The pile's sub-steps per master step."""
+    start_u: np.ndarray
+    start_v: np.ndarray
+    start_energy: np.ndarray
+    """u, v and energy at the start of the blow."""
+    face0: float
+    """The head face displacement the anvil unit's pile input is measured from [m]."""
+    stress_factor: np.ndarray
+    """(N - 1,) the springs' stress factors [N/m^3]."""
+    largest: np.ndarray
+    smallest: np.ndarray
+    """(N - 1,) the largest and smallest shortening of each spring [m] (written,
+    :func:`anvilwave.pile.kernels.fold_elongations`)."""
+
+
+class LoopSettings(NamedTuple):
+    """The blow's time grid and recording."""
+
+    gravity: float
+    """[m/s^2]"""
+    t0: float
+    """The time of step 0 [s]."""
+    h: float
+    """The master step [s]."""
+    n_steps: int
+    record_every: int
+    """Steps between the rows of ``out`` (and of the sections)."""
+    energy_every: int
+    """Steps between the rows of ``energies`` (the last step is always one)."""
+
+
+class LoopRecords(NamedTuple):
+    """What the loop writes besides the states (None: not kept, its code removed)."""
+
+    out: np.ndarray | None
+    """(COLUMNS, rows) the time series."""
+    energies: np.ndarray | None
+    """(1 + ENERGY_COLUMNS, rows) the energy series."""
+    works: tuple | None
+    """The per-mass soil work sums of :func:`anvilwave.pile.kernels.pile_advance` (None: no
+    energy bookkeeping)."""
+    sections: tuple | None
+    """(spring indices, buffer (n_sections, rows)): the elongation u_i - u_i+1 [m] of chosen
+    pile springs at every record row, whether ``out`` is recorded or not."""
+    summary: np.ndarray
+    """(SUMMARY_SIZE,) the blow's summary (S_* entries)."""
+
+
 # ----------------------------------------------------------------- the loop
 @njit(cache=True)
-def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
-             soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
-             n_steps, record_every, energy_every, out, energies, works, stresses, summary,
-             sections=None, modal_ram=NO_MODAL_RAM, rings=None):
-    """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
+def run_blow(ram, anvil, pile, settings, records):
+    """Advance one blow of ``settings.n_steps`` master steps of ``settings.h`` [s] from
+    ``settings.t0`` [s], the states in place.
 
-    The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvilwave.anvil_rom.unit`),
-    ``classic`` = (P, S) (:mod:`anvilwave.hammer.driving_system`) or ``direct`` = [k, c] (one
-    contact
-    spring, no anvil); the other two are None, and the compiler keeps only the code of the
-    given one. ``ram`` = (weight, inverse mass, stiffness, mass); the pile as
-    :func:`anvilwave.pile.kernels.pile_advance` takes it, with ``pile`` and ``probes`` its
-    parameter and
-    probe arrays. ``start`` = (u, v, energy) of the pile at the start of the blow.
+    ram : :class:`LoopRam`; anvil : :class:`LoopAnvil`; pile : :class:`LoopPile`; settings :
+    :class:`LoopSettings`; records : :class:`LoopRecords`. Records every ``record_every`` steps
+    into ``records.out`` and every ``energy_every`` steps and at the last into
+    ``records.energies`` unless they are None; ``records.summary`` receives the blow's summary.
+    Returns the numbers of rows recorded (columns, energies).
 
-    Records every ``record_every`` steps into ``out`` (COLUMNS x rows) and every
-    ``energy_every`` steps and at the last into ``energies`` (time and ENERGY_COLUMNS x rows)
-    unless they are None. ``works``: the per-mass soil work sums of
-    :func:`anvilwave.pile.kernels.pile_advance` (None: no energy bookkeeping); ``stresses`` =
-    (stress
-    factors [N/m^3], largest and smallest shortening of each spring [m]), folded at every
-    step (:func:`anvilwave.pile.kernels.fold_elongations`); ``summary`` (SUMMARY_SIZE) receives the
-    blow's summary. ``face0`` is the head face displacement the anvil unit's pile input is
-    measured from. ``sections`` = (spring indices, buffer (n_sections, rows)) records the
-    elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
-    recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
-    :class:`anvilwave.hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``,
-    ``ram_v``
-    are then unused) unless C has no columns (:data:`NO_MODAL_RAM`: the chain runs). Both rams
-    run in the one compiled loop, chosen at run time, so that a ram model does not change how
-    the compiler lays out the rest of the step. ``rings`` (:mod:`anvilwave.anvil_rom.rings`: RP, A,
-    T, W,
-    F, E, ring, scratch, R) splits the modal unit's pile port into rings. Returns the numbers
-    of rows recorded (columns, energies).
+    The optional parts (the anvil's variants and the records) are handed on as arguments of
+    their own (:func:`_blow`): the compiler removes the code of those that are None only when
+    they are arguments, not fields.
     """
-    weight, inverse_mass, ram_stiffness, ram_mass = ram
-    toe = ram_u.shape[0] - 1
-    ram_is_modal = modal_ram[0].shape[1] > 0
+    return _blow(ram, anvil.modal, anvil.rings, anvil.classic, anvil.direct, pile, settings,
+                 records.out, records.energies, records.works, records.sections,
+                 records.summary)
+
+
+@njit(cache=True)
+def _blow(ram, modal, rings, classic, direct, pile, settings, out, energies, works, sections,
+          summary):
+    """:func:`run_blow` with the optional parts as arguments: the master algorithm (module
+    docstring), each unit's part of a step one inlined helper."""
+    h = settings.h
+    t0 = settings.t0
+    n_steps = settings.n_steps
+    ram_is_modal = ram.modal_coefficients.shape[1] > 0
+    pu = pile.u
     last = pu.shape[0] - 1
-    extrapolation = probes[HEAD_EXTRAPOLATION]
-    dt_ram = h / ram_nsub
-    dt_pile = h / pile_nsub
-    head_work0 = head_face_work(probes, start[2])
-    pile_mass = pile[0]
+    head_work0 = head_face_work(pile.probes, pile.start_energy)
     stored0 = 0.0
     if works is not None:  # the pile's kinetic and strain energy at the start
-        kinetic, strain, _, _, _ = pile_energies(pile_mass, pile_sweep[2], pile_sweep[0], pu,
-                                                 pv, dt_pile, pu, pv, works)
-        stored0 = kinetic + strain
-    work_gauge = 0.0
-    work_contact = 0.0  # dissipated by the contact dashpots since the blow started
+        stored0 = _pile_stored(pile, h, works)
     damped = False
     if modal is not None:
-        damped = modal[0][1] != 0.0 or modal[0][3] != 0.0
+        damped = modal.parameters[1] != 0.0 or modal.parameters[3] != 0.0
     if direct is not None:
         damped = direct[1] != 0.0
-    power_before = 0.0
-    emx_gauge = 0.0
-    emx_head = 0.0
-    max_head_force = 0.0
-    max_toe = pu[last]
+    work_contact = 0.0  # dissipated by the contact dashpots since the blow started
+    tally = (0.0, 0.0, 0.0, 0.0, 0.0, pu[last])  # see _tally
     row = 0
     countdown = 0
     energy_row = 0
     energy_countdown = 0
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
-        if ram_is_modal:
-            u_ram = modal_ram[2][0]
-            v_ram = modal_ram[2][1]
-        else:
-            u_ram = ram_u[toe]
-            v_ram = ram_v[toe]
-        u_pile = pu[0] + extrapolation * (pu[0] - pu[1]) - face0
-        v_pile = head_velocity(probes, pv)
-        # 2. contact forces at t_n (feedthrough of the anvil unit); of the three blocks the
-        # compiler keeps the one whose unit is given (an "is not None" of a None is pruned)
-        f_ram = 0.0
-        f_pile = 0.0
-        u_top = u_pile
-        u_bottom = u_pile
-        fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
-        fe_pile = 0.0
-        if modal is not None and rings is None:
-            f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
-            fe_ram = f_ram
-            fe_pile = f_pile
-            if damped:
-                fe_ram, fe_pile, power = modal_unit_dashpot_power(
-                    modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
-                work_contact += h * power
-        if modal is not None and rings is not None:
-            f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
-            fe_ram = f_ram
-            fe_pile = f_pile
-            if damped:
-                fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile,
-                                                             v_pile)
-                work_contact += h * power
-        if classic is not None:
-            f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
-                                                                   v_ram, u_pile, v_pile)
-        if direct is not None:
-            f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
-            f_pile = f_ram
-            fe_ram = f_ram
-            if damped:
-                fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
-                work_contact += h * (f_ram - fe_ram) * (v_ram - v_pile)
+        u_ram, v_ram = _ram_toe(ram, ram_is_modal)
+        u_pile, v_pile = _pile_head(pile)
+        # 2. contact forces at t_n (feedthrough of the anvil unit) and their elastic parts
+        f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated = _anvil_contact(
+            modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile)
+        if damped:
+            work_contact += dissipated
         # the blow's summary at t_n
-        f_gauge = gauge_force(pile, probes, pu, pv)
-        v_gauge = gauge_velocity(probes, pv)
-        power = f_gauge * v_gauge
-        if n > 0:
-            work_gauge += 0.5 * (power_before + power) * h
-        power_before = power
-        emx_gauge = max(emx_gauge, work_gauge)
-        emx_head = max(emx_head, head_face_work(probes, pen) - head_work0)
-        max_head_force = max(max_head_force, f_pile)
-        max_toe = max(max_toe, pu[last])
+        f_gauge, v_gauge, tally = _tally(pile, n, h, f_pile, head_work0, tally)
         if countdown == 0:
-            countdown = record_every
+            countdown = settings.record_every
             row += 1
             if sections is not None:
-                idx, buf = sections
-                for j in range(idx.size):
-                    buf[j, row - 1] = pu[idx[j]] - pu[idx[j] + 1]
+                _record_sections(sections, pu, row - 1)
             if out is not None:
                 if modal is not None and rings is None:
-                    P = modal[0]
-                    u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
-                    u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
+                    u_top, u_bottom = _modal_faces(modal, f_ram, f_pile)
                 if modal is not None and rings is not None:
                     u_top, u_bottom = ring_faces(rings)
-                out[0, row - 1] = t0 + n * h
-                out[1, row - 1] = f_ram
-                out[2, row - 1] = f_pile
-                out[3, row - 1] = v_pile
-                out[4, row - 1] = f_gauge
-                out[5, row - 1] = v_gauge
-                out[6, row - 1] = v_ram
-                out[7, row - 1] = u_top
-                out[8, row - 1] = u_bottom
-                out[9, row - 1] = u_pile + face0
-                out[10, row - 1] = pu[last]
+                _record_row(out, row - 1, t0 + n * h, f_ram, f_pile, v_pile, f_gauge, v_gauge,
+                            v_ram, u_top, u_bottom, u_pile + pile.face0, pu[last])
         if energies is not None:
             if energy_countdown == 0 or n == n_steps:
-                energy_countdown = energy_every
-                kin = 0.0
-                pot = 0.0
-                if modal is not None and rings is None:
-                    kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
-                                                    u_ram, v_ram, u_pile, v_pile, fe_ram,
-                                                    fe_pile)
-                if modal is not None and rings is not None:
-                    if not damped:  # the elastic forces are the forces
-                        rings[5][:] = rings[4]
-                    kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
-                                                   v_ram, u_pile, v_pile)
-                    pot += rings[13][1]  # handed to the tube head (0 on the 1D head)
-                if classic is not None:
-                    kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
-                                                                        u_ram, u_pile)
-                    # the cushions' restitution losses are energy the system no longer holds
-                    pot = recoverable + potential + driving_system_losses(classic[0],
-                                                                          classic[1])
-                if direct is not None:
-                    pot = 0.5 * fe_ram * fe_ram / direct[0]
-                if ram_is_modal:
-                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], modal_ram[2],
-                                                    gravity, h)
-                else:
-                    ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v,
-                                                   gravity, dt_ram)
-                kinetic, strain, grav, soil_static, soil_damping = pile_energies(
-                    pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1],
-                    works)
-                damping = _pile_damping_work(pen[WORK_HEAD] - start[2][WORK_HEAD], grav,
-                                             soil_static, soil_damping,
-                                             kinetic + strain - stored0)
-                r = energy_row
-                energies[0, r] = t0 + n * h
-                energies[1, r] = ke
-                energies[2, r] = se
-                energies[3, r] = pe
-                energies[4, r] = kin
-                energies[5, r] = pot
-                energies[6, r] = kinetic
-                energies[7, r] = strain
-                energies[8, r] = start[2][WORK_GRAVITY] + grav
-                energies[9, r] = start[2][WORK_SOIL_STATIC] + soil_static
-                energies[10, r] = start[2][WORK_SOIL_DAMPING] + soil_damping
-                energies[11, r] = start[2][WORK_PILE_DAMPING] + damping
-                energies[12, r] = pen[WORK_HEAD]
-                energies[13, r] = head_face_work(probes, pen)
-                energies[14, r] = work_contact
+                energy_countdown = settings.energy_every
+                kin, pot = _anvil_energy(modal, rings, classic, direct, damped, u_ram, v_ram,
+                                         u_pile, v_pile, fe_ram, fe_pile)
+                _energy_row(energies, energy_row, t0 + n * h, ram, ram_is_modal, pile,
+                            settings, works, stored0, kin, pot, work_contact)
                 energy_row += 1
             energy_countdown -= 1
         countdown -= 1
         if n == n_steps:
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
-        if ram_is_modal:
-            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
-        else:
-            ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
-        if modal is not None and rings is None:
-            modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
-        if modal is not None and rings is not None:
-            ring_unit_advance(modal[0], modal[1], modal[2], f_ram, rings, modal[3])
-        if classic is not None:
-            driving_system_step(classic[0], classic[1], u_ram, v_ram, u_pile, v_pile, h,
-                                classic[2])
-        fold_elongations(pu, stresses[1], stresses[2])
-        pile_advance(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, f_pile, h, pile_nsub,
-                     works, None)
-    # the end state: its stresses, energies and works
-    factor, largest, smallest = stresses
+        _ram_step(ram, ram_is_modal, f_ram, h)
+        _anvil_step(modal, rings, classic, h, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile)
+        _pile_step(pile, f_pile, h, works)
+    _finish(pile, h, works, stored0, tally, summary)
+    return row, energy_row
+
+
+@njit(cache=True, inline='always')
+def _ram_toe(ram, ram_is_modal):
+    """The ram toe's (u, v) [m, m/s] at t_n."""
+    if ram_is_modal:
+        return ram.modal_toe[0], ram.modal_toe[1]
+    toe = ram.u.shape[0] - 1
+    return ram.u[toe], ram.v[toe]
+
+
+@njit(cache=True, inline='always')
+def _ram_step(ram, ram_is_modal, f_ram, h):
+    """The ram over h [s] with its toe force f_ram [N] held."""
+    if ram_is_modal:
+        modal_ram_advance(ram.modal_coefficients, ram.modal_state, f_ram, h, ram.modal_toe)
+    else:
+        ram_advance(ram.weight, ram.inverse_mass, ram.stiffness, ram.u, ram.v, f_ram, h,
+                    ram.n_sub)
+
+
+@njit(cache=True, inline='always')
+def _ram_energies(ram, ram_is_modal, gravity, h):
+    """(kinetic, strain, gravity potential) [J] of the ram."""
+    if ram_is_modal:
+        return modal_ram_energies(ram.modal_coefficients, ram.modal_state, ram.modal_toe,
+                                  gravity, h)
+    return leapfrog_energies(ram.mass, ram.stiffness, ram.u, ram.v, gravity, h / ram.n_sub)
+
+
+@njit(cache=True, inline='always')
+def _pile_head(pile):
+    """The pile head's (u, v) [m, m/s] at t_n as the anvil unit sees them (u from ``face0``)."""
+    pu = pile.u
+    u = pu[0] + pile.probes[HEAD_EXTRAPOLATION] * (pu[0] - pu[1]) - pile.face0
+    return u, head_velocity(pile.probes, pile.v)
+
+
+@njit(cache=True, inline='always')
+def _pile_step(pile, f_pile, h, works):
+    """The pile and soil over h [s] with the head force f_pile [N] held, the springs'
+    shortenings of t_n folded into their extremes first."""
+    fold_elongations(pile.u, pile.largest, pile.smallest)
+    pile_advance(pile.pile_sweep, pile.soil_sweep, pile.first_soil, pile.u, pile.v,
+                 pile.soil_offset, pile.energy, f_pile, h, pile.n_sub, works, None)
+
+
+@njit(cache=True, inline='always')
+def _pile_energies(pile, h, works):
+    """The pile's (kinetic, strain, gravity work, soil static work, soil damping work) [J]
+    since the blow's start (:func:`anvilwave.pile.kernels.pile_energies`)."""
+    return pile_energies(pile.parameters[0], pile.pile_sweep[2], pile.pile_sweep[0], pile.u,
+                         pile.v, h / pile.n_sub, pile.start_u, pile.start_v, works)
+
+
+@njit(cache=True, inline='always')
+def _pile_stored(pile, h, works):
+    """The pile's kinetic and strain energy at the start [J] (the states are the start's)."""
+    kinetic, strain, _, _, _ = pile_energies(pile.parameters[0], pile.pile_sweep[2],
+                                             pile.pile_sweep[0], pile.u, pile.v,
+                                             h / pile.n_sub, pile.u, pile.v, works)
+    return kinetic + strain
+
+
+@njit(cache=True, inline='always')
+def _anvil_contact(modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile):
+    """The anvil unit's feedthrough at t_n: (F_ram, F_pile, their elastic parts, u_top,
+    u_bottom, the dashpots' work over the step [J]) [N, N, N, N, m, m, J]; u_top and u_bottom
+    are the classic driving system's (the modal units' are evaluated when recorded,
+    :func:`_modal_faces`, :func:`anvilwave.anvil_rom.rings.ring_faces`). Of the four blocks
+    the compiler keeps the one whose unit is given."""
+    f_ram = 0.0
+    f_pile = 0.0
+    u_top = u_pile
+    u_bottom = u_pile
+    fe_ram = 0.0
+    fe_pile = 0.0
+    dissipated = 0.0
+    if modal is not None and rings is None:
+        P = modal.parameters
+        f_ram, f_pile = modal_unit_contact(P, modal.interface, u_ram, v_ram, u_pile, v_pile)
+        fe_ram = f_ram
+        fe_pile = f_pile
+        if damped:
+            fe_ram, fe_pile, power = modal_unit_dashpot_power(
+                P, modal.interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+            dissipated = h * power
+    if modal is not None and rings is not None:
+        f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
+        fe_ram = f_ram
+        fe_pile = f_pile
+        if damped:
+            fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile)
+            dissipated = h * power
+    if classic is not None:
+        f_ram, f_pile, u_top, u_bottom = driving_system_forces(
+            classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile)
+    if direct is not None:
+        f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
+        f_pile = f_ram
+        fe_ram = f_ram
+        if damped:
+            fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
+            dissipated = h * (f_ram - fe_ram) * (v_ram - v_pile)
+    return f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated
+
+
+@njit(cache=True, inline='always')
+def _modal_faces(modal, f_ram, f_pile):
+    """(u_top, u_bottom) [m] of the modal unit, static correction included."""
+    P = modal.parameters
+    u_top = modal.interface[0] + P[4] * f_ram - P[5] * f_pile
+    u_bottom = modal.interface[2] + P[5] * f_ram - P[6] * f_pile
+    return u_top, u_bottom
+
+
+@njit(cache=True, inline='always')
+def _anvil_step(modal, rings, classic, h, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile):
+    """The anvil unit over h [s] with the contact forces held (no anvil: nothing)."""
+    if modal is not None and rings is None:
+        modal_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, f_pile,
+                           modal.interface)
+    if modal is not None and rings is not None:
+        ring_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, rings,
+                          modal.interface)
+    if classic is not None:
+        driving_system_step(classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile, h,
+                            classic.n_sub)
+
+
+@njit(cache=True, inline='always')
+def _anvil_energy(modal, rings, classic, direct, damped, u_ram, v_ram, u_pile, v_pile, fe_ram,
+                  fe_pile):
+    """(kinetic, potential) [J] of the anvil unit at t_n (the contacts' stored energy in the
+    potential; the classic cushions' restitution losses too: energy the system no longer
+    holds)."""
+    kin = 0.0
+    pot = 0.0
+    if modal is not None and rings is None:
+        kin, pot = modal_unit_energy_at(modal.parameters, modal.coefficients, modal.state,
+                                        modal.interface, u_ram, v_ram, u_pile, v_pile, fe_ram,
+                                        fe_pile)
+    if modal is not None and rings is not None:
+        if not damped:  # the elastic forces are the forces
+            rings.elastic_forces[:] = rings.forces
+        kin, pot = ring_unit_energy_at(modal.parameters, modal.coefficients, modal.state, rings,
+                                       u_ram, v_ram, u_pile, v_pile)
+        pot += rings.head_count[1]  # handed to the tube head (0 on the 1D head)
+    if classic is not None:
+        kin, recoverable, potential = driving_system_energy(classic.parameters, classic.state,
+                                                            u_ram, u_pile)
+        pot = recoverable + potential + driving_system_losses(classic.parameters,
+                                                              classic.state)
+    if direct is not None:
+        pot = 0.5 * fe_ram * fe_ram / direct[0]
+    return kin, pot
+
+
+@njit(cache=True, inline='always')
+def _tally(pile, n, h, f_pile, head_work0, tally):
+    """The gauge's force and velocity at t_n [N, m/s] and the blow's running summary
+    ``tally`` = (gauge work, gauge power at t_n-1, EMX at the gauge, EMX at the head, peak
+    head force, largest toe displacement) [J, W, J, J, N, m] updated to t_n."""
+    work_gauge, power_before, emx_gauge, emx_head, max_head_force, max_toe = tally
+    f_gauge = gauge_force(pile.parameters, pile.probes, pile.u, pile.v)
+    v_gauge = gauge_velocity(pile.probes, pile.v)
+    power = f_gauge * v_gauge
+    if n > 0:
+        work_gauge += 0.5 * (power_before + power) * h
+    emx_gauge = max(emx_gauge, work_gauge)
+    emx_head = max(emx_head, head_face_work(pile.probes, pile.energy) - head_work0)
+    max_head_force = max(max_head_force, f_pile)
+    max_toe = max(max_toe, pile.u[pile.u.shape[0] - 1])
+    return f_gauge, v_gauge, (work_gauge, power, emx_gauge, emx_head, max_head_force, max_toe)
+
+
+@njit(cache=True, inline='always')
+def _record_sections(sections, pu, row):
+    """The chosen springs' elongations u_i - u_i+1 [m] into their buffer's ``row``."""
+    idx, buf = sections
+    for j in range(idx.size):
+        buf[j, row] = pu[idx[j]] - pu[idx[j] + 1]
+
+
+@njit(cache=True, inline='always')
+def _record_row(out, row, t, f_ram, f_pile, v_pile, f_gauge, v_gauge, v_ram, u_top, u_bottom,
+                u_head, u_toe):
+    """One row of the time series (COLUMNS)."""
+    out[0, row] = t
+    out[1, row] = f_ram
+    out[2, row] = f_pile
+    out[3, row] = v_pile
+    out[4, row] = f_gauge
+    out[5, row] = v_gauge
+    out[6, row] = v_ram
+    out[7, row] = u_top
+    out[8, row] = u_bottom
+    out[9, row] = u_head
+    out[10, row] = u_toe
+
+
+@njit(cache=True, inline='always')
+def _energy_row(energies, r, t, ram, ram_is_modal, pile, settings, works, stored0, kin, pot,
+                work_contact):
+    """Row ``r`` of the energy series (ENERGY_COLUMNS) at t [s], with the anvil unit's
+    (kinetic, potential) ``kin``, ``pot`` [J]."""
+    h = settings.h
+    ke, se, pe = _ram_energies(ram, ram_is_modal, settings.gravity, h)
+    kinetic, strain, grav, soil_static, soil_damping = _pile_energies(pile, h, works)
+    start = pile.start_energy
+    damping = _pile_damping_work(pile.energy[WORK_HEAD] - start[WORK_HEAD], grav, soil_static,
+                                 soil_damping, kinetic + strain - stored0)
+    energies[0, r] = t
+    energies[1, r] = ke
+    energies[2, r] = se
+    energies[3, r] = pe
+    energies[4, r] = kin
+    energies[5, r] = pot
+    energies[6, r] = kinetic
+    energies[7, r] = strain
+    energies[8, r] = start[WORK_GRAVITY] + grav
+    energies[9, r] = start[WORK_SOIL_STATIC] + soil_static
+    energies[10, r] = start[WORK_SOIL_DAMPING] + soil_damping
+    energies[11, r] = start[WORK_PILE_DAMPING] + damping
+    energies[12, r] = pile.energy[WORK_HEAD]
+    energies[13, r] = head_face_work(pile.probes, pile.energy)
+    energies[14, r] = work_contact
+
+
+@njit(cache=True, inline='always')
+def _finish(pile, h, works, stored0, tally, summary):
+    """The end state: the stress extremes, the pile's energies and works, the summary."""
+    pu = pile.u
+    last = pu.shape[0] - 1
+    factor, largest, smallest = pile.stress_factor, pile.largest, pile.smallest
     fold_elongations(pu, largest, smallest)
     compression = 0.0
     tension = 0.0
     for i in range(last):
         compression = max(compression, factor[i] * largest[i])
         tension = min(tension, factor[i] * smallest[i])
-    update_energy(pile, pu, pv, pen, dt_pile)
+    pen = pile.energy
+    start = pile.start_energy
+    update_energy(pile.parameters, pu, pile.v, pen, h / pile.n_sub)
     if works is not None:
-        kinetic, strain, grav, soil_static, soil_damping = pile_energies(
-            pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1], works)
-        pen[WORK_GRAVITY] = start[2][WORK_GRAVITY] + grav
-        pen[WORK_SOIL_STATIC] = start[2][WORK_SOIL_STATIC] + soil_static
-        pen[WORK_SOIL_DAMPING] = start[2][WORK_SOIL_DAMPING] + soil_damping
-        pen[WORK_PILE_DAMPING] = start[2][WORK_PILE_DAMPING] + _pile_damping_work(
-            pen[WORK_HEAD] - start[2][WORK_HEAD], grav, soil_static, soil_damping,
+        kinetic, strain, grav, soil_static, soil_damping = _pile_energies(pile, h, works)
+        pen[WORK_GRAVITY] = start[WORK_GRAVITY] + grav
+        pen[WORK_SOIL_STATIC] = start[WORK_SOIL_STATIC] + soil_static
+        pen[WORK_SOIL_DAMPING] = start[WORK_SOIL_DAMPING] + soil_damping
+        pen[WORK_PILE_DAMPING] = start[WORK_PILE_DAMPING] + _pile_damping_work(
+            pen[WORK_HEAD] - start[WORK_HEAD], grav, soil_static, soil_damping,
             kinetic + strain - stored0)
+    _, _, emx_gauge, emx_head, max_head_force, max_toe = tally
     summary[S_MAX_COMPRESSION] = compression
     summary[S_MAX_TENSION] = tension
     summary[S_EMX_GAUGE] = emx_gauge
     summary[S_EMX_HEAD] = emx_head
     summary[S_MAX_HEAD_FORCE] = max_head_force
     summary[S_MAX_TOE] = max_toe
-    summary[S_TOE_START] = start[0][last]
+    summary[S_TOE_START] = pile.start_u[last]
     summary[S_TOE_END] = pu[last]
-    summary[S_TOE_VELOCITY_END] = pv[last]
-    return row, energy_row
+    summary[S_TOE_VELOCITY_END] = pile.v[last]
 
 
 @njit(cache=True)
@@ -817,7 +1058,7 @@ class Engine:
         interval = cfg.output_interval if record_interval is None else record_interval
         n_steps = int(round(duration / h))
         rings = getattr(self.anvil.unit, "rings", None)
-        head = None if rings is None else rings[9]  # the tube head's correction
+        head = None if rings is None else rings.head_kernel  # the tube head's correction
         if head is not None and head.shape[0] > 1 and n_steps >= head.shape[0]:
             raise ValueError(f"duration {duration:g} s is longer than the tube head's kernel "
                              f"({(head.shape[0] - 1) * h:g} s, [anvil] pile_head = 'tube'): "
@@ -847,19 +1088,20 @@ class Engine:
             unit = self.ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
+        ram = LoopRam(*self._ram, ram_u, ram_v, self._ram_nsub, *modal_ram)
         modal = classic = direct = rings = None
         if anvil.kind in ("rom", "lumped"):
             S = anvil.S.copy()
             interface = np.empty(4)
             modal_unit_interface(anvil.P, anvil.C, S, interface)
-            modal = (anvil.P, anvil.C, S, interface)
+            modal = LoopModalAnvil(anvil.P, anvil.C, S, interface)
             if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
                 rings = copy_ring_state(anvil.unit.rings)
                 # the tube head's history and the ram face's modes start with the blow
                 anvil.unit.restart_head(rings)
                 ring_interface(anvil.C, S, rings, h)
         elif anvil.kind == "classic":
-            classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
+            classic = LoopClassic(anvil.P, anvil.S.copy(), anvil.n_sub)
         else:
             direct = anvil.P
         n_rows = n_steps // record_every + 1
@@ -872,9 +1114,9 @@ class Engine:
             works = self._works
             for w in works:
                 w.fill(0.0)
-        stresses = self._stresses
-        stresses[1].fill(0.0)
-        stresses[2].fill(0.0)
+        factor, largest, smallest = self._stresses
+        largest.fill(0.0)
+        smallest.fill(0.0)
         summary = np.zeros(SUMMARY_SIZE)
         section_args = None
         if sections is not None:
@@ -883,14 +1125,15 @@ class Engine:
                 raise ValueError("sections: spring indices out of range")
             section_args = (idx, np.full((idx.size, n_rows), np.nan))
         pile_sweep, soil_sweep, first_soil = self._sweep
-        args = [modal, classic, direct, self._ram, ram_u, ram_v, self._ram_nsub,
-                self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
-                pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
-                h, n_steps, record_every, energy_every, out, energies, works, stresses,
-                summary, section_args, modal_ram, rings]
-        _warm_up(args, anvil.kind, record, energy, section_args is not None)
+        loop = (ram, LoopAnvil(modal, rings, classic, direct),
+                LoopPile(self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu,
+                         pv, poff, pen, self._pile_nsub, start.u, start.v, start.energy, face0,
+                         factor, largest, smallest),
+                LoopSettings(cfg.gravity, t0, h, n_steps, record_every, energy_every),
+                LoopRecords(out, energies, works, section_args, summary))
+        _warm_up(loop, anvil.kind, record, energy, section_args is not None)
         begin = time.perf_counter()
-        rows, energy_rows = run_blow(*args)
+        rows, energy_rows = run_blow(*loop)
         wall = time.perf_counter() - begin
         columns = {} if out is None else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
         series = {}
@@ -937,8 +1180,6 @@ class Engine:
 
 WARM_UP_STEPS = 200
 """Steps of the trial run that compiles or loads a loop variant (on copies of the states)."""
-_STATE_ARGUMENTS = (4, 5, 12, 13, 14, 15, 25, 26, 27, 28, 29)
-"""Positions in run_blow's arguments of what the loop writes (the others are read only)."""
 
 
 def probes_springs(arrays) -> int:
@@ -946,41 +1187,45 @@ def probes_springs(arrays) -> int:
     return int(arrays.pile.shape[1] - 1)
 
 
-def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
+def _copied(a):
+    """A copy of ``a``, an array or None."""
+    return None if a is None else a.copy()
+
+
+def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
     """Compile (or load from numba's cache) this variant of the loop, once per process, and
     run it for a few steps on copies of the states, so that the blow's timing excludes the
-    compilation and the first touch of the code and of the parameter arrays."""
+    compilation and the first touch of the code and of the parameter arrays.
+
+    ``loop`` is :func:`run_blow`'s (ram, anvil, pile, settings, records); the trial copies,
+    field by field, what the loop writes and shares the rest."""
+    ram, anvil, pile, settings, records = loop
     key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
-           args[32] is not None)
+           anvil.rings is not None)
     if key in _WARM:
         return
     from anvilwave.engine.compilation import announce_compilation
 
-    announce_compilation((run_blow,))
-
-    def copy(a):
-        if isinstance(a, np.ndarray):
-            return a.copy()
-        if isinstance(a, tuple):
-            return tuple(copy(x) for x in a)
-        return a
-
-    trial = list(args)
-    for i in _STATE_ARGUMENTS:
-        trial[i] = copy(trial[i])
-    modal, classic = trial[0], trial[1]
-    if modal is not None:  # (P, C, S, interface): the last two change
-        trial[0] = (modal[0], modal[1], modal[2].copy(), modal[3].copy())
-    if classic is not None:  # (P, S, n_sub)
-        trial[1] = (classic[0], classic[1].copy(), classic[2])
-    trial[22] = min(trial[22], WARM_UP_STEPS)  # n_steps
-    if trial[30] is not None:  # the sections' buffer is written
-        trial[30] = (trial[30][0], trial[30][1].copy())
-    # the modal ram's (C, S, toe): the last two change
-    trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
-    if trial[32] is not None:  # the rings' state changes
-        trial[32] = copy_ring_state(trial[32])
-    run_blow(*trial)
+    announce_compilation((run_blow, _blow))
+    modal, classic = anvil.modal, anvil.classic
+    trial_anvil = anvil._replace(
+        modal=None if modal is None else modal._replace(state=modal.state.copy(),
+                                                        interface=modal.interface.copy()),
+        rings=None if anvil.rings is None else copy_ring_state(anvil.rings),
+        classic=None if classic is None else classic._replace(state=classic.state.copy()))
+    trial_ram = ram._replace(u=ram.u.copy(), v=ram.v.copy(), modal_state=ram.modal_state.copy(),
+                             modal_toe=ram.modal_toe.copy())
+    trial_pile = pile._replace(u=pile.u.copy(), v=pile.v.copy(),
+                               soil_offset=pile.soil_offset.copy(), energy=pile.energy.copy(),
+                               largest=pile.largest.copy(), smallest=pile.smallest.copy())
+    trial_records = records._replace(
+        out=_copied(records.out), energies=_copied(records.energies),
+        works=None if records.works is None else tuple(w.copy() for w in records.works),
+        sections=(None if records.sections is None
+                  else (records.sections[0], records.sections[1].copy())),
+        summary=records.summary.copy())
+    trial_settings = settings._replace(n_steps=min(settings.n_steps, WARM_UP_STEPS))
+    run_blow(trial_ram, trial_anvil, trial_pile, trial_settings, trial_records)
     _WARM.add(key)
 
 
