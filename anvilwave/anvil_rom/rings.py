@@ -340,9 +340,10 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True)
-def ring_interface(C, S, rings, h):
+def ring_interface(coefficients, state, rings, h):
     """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state into
     ``rings`` ring (2, K) and face (2, J)."""
+    C, S = coefficients, state
     _port_sums(C.shape[0], S, rings.participation, h, rings.ring_modal)
     _port_sums(C.shape[0], S, rings.face_participation, h, rings.face_modal)
 
@@ -415,7 +416,7 @@ def ram_face_energy(rings, h):
 
 
 @njit(cache=True, inline='always')
-def ring_unit_advance(P, C, S, force_ram, rings, interface):
+def ring_unit_advance(parameters, coefficients, state, force_ram, rings, interface):
     """Advance the modes over h with the ram force and the ring forces (``rings`` F) held
     (:func:`anvilwave.anvil_rom.unit.modal_unit_advance` with the pile load split over the rings
     and,
@@ -423,6 +424,7 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
     interface sums of the new state: ``interface`` (u_top, v_top, u_bottom, v_bottom; the
     bottom as the whole ring's mean), ``rings`` ring and face; then the ram face's annuli
     (:func:`ram_face_advance`) and the tube head (:func:`head_push`)."""
+    P, C, S = parameters, coefficients, state
     RP, F, ring = rings.participation, rings.forces, rings.ring_modal
     RQ, face = rings.face_participation, rings.face_modal
     n = C.shape[0]
@@ -473,7 +475,7 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
 
 
 @njit(cache=True)
-def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
+def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
     """(kinetic, potential) [J] of the ring unit in the conserved (shadow) form of the
     two-step scheme (:func:`anvilwave.anvil_rom.unit.modal_unit_energy_at`): the modes' kinetic and
     strain energies and gravity potential, and the complementary energy of the contacts and
@@ -481,6 +483,7 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     :func:`ring_elastic_forces`) and F_n-1 those one step earlier (neighbours moved back by
     h v, modes at q_n-1); with the ram face in annuli also what they add to the ram unit's
     energy (:func:`ram_face_energy`)."""
+    P, C, S = parameters, coefficients, state
     RP, A, E, scratch = rings.participation, rings.flexibility, rings.elastic_forces, rings.scratch
     RQ, offsets = rings.face_participation, rings.ram_offsets
     n = C.shape[0]
@@ -596,10 +599,11 @@ def ring_faces(rings):
 
 
 @njit(cache=True)
-def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
+def ring_unit_outputs(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
     """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour
     states, from its state alone (the anvil FMU's feedthrough): the faces' modal sums, the
     rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
+    P, C, S = parameters, coefficients, state
     ring_interface(C, S, rings, P[8])
     force_ram, force_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
     u_top, u_bottom = ring_faces(rings)

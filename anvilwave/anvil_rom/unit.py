@@ -12,6 +12,9 @@ of them through the same signature):
 - ``C`` (n, 8) per-mode table: step coefficients a, b, c, m_e for the step h
   (:func:`anvilwave.anvil_rom.rom.modal_transition`), then p_ram, p_pile, p_grav, omega
 - ``S`` state: [q (n) at t_n, q (n) at t_n-1]
+
+The kernels take them as ``parameters``, ``coefficients`` and ``state`` and call them P, C, S
+in their formulas.
 """
 
 from __future__ import annotations
@@ -316,7 +319,8 @@ class AnvilUnit:
 
 
 @njit(cache=True)
-def modal_unit_outputs(P, C, S, force_ram, force_pile):
+def modal_unit_outputs(parameters, coefficients, state, force_ram, force_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     ut += P[4] * force_ram - P[5] * force_pile
@@ -325,7 +329,8 @@ def modal_unit_outputs(P, C, S, force_ram, force_pile):
 
 
 @njit(cache=True)
-def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_forces(parameters, coefficients, state, u_ram, v_ram, u_pile, v_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, ut, vt, ub, vb,
@@ -333,13 +338,14 @@ def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True)
-def modal_unit_step(P, C, S, force_ram, force_pile):
+def modal_unit_step(parameters, coefficients, state, force_ram, force_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     modal_step(C, C[:, 4], C[:, 5], C[:, 6], S[:n], S[n:], force_ram, force_pile, P[7])
 
 
 @njit(cache=True)
-def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_energy(parameters, coefficients, state, u_ram, v_ram, u_pile, v_pile):
     """(kinetic, potential) [J] in the conserved (shadow) form of the two-step scheme.
 
     kinetic = sum m_e ((q_n - q_n-1) / h)^2 / 2; potential = sum w^2 q_n q_n-1 / 2
@@ -347,6 +353,7 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
     correction: F_n^T (K_c^-1 + R) F_n-1 / 2, contacts and residual flexibility together). The
     contact dashpots, if any, are not counted.
     """
+    P, C, S = parameters, coefficients, state
     interface = np.empty(4)
     modal_unit_interface(P, C, S, interface)
     f_ram, f_pile = modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile)
@@ -354,11 +361,13 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True, fastmath={"reassoc"})
-def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+def modal_unit_energy_at(parameters, coefficients, state, interface, u_ram, v_ram, u_pile, v_pile,
+                         f_ram, f_pile):
     """:func:`modal_unit_energy` in one sweep over the modes, given the interface
     displacements of the state (``interface[0]``, ``interface[2]``, :func:`modal_unit_interface`)
     and the contact forces of these neighbour states.
     The sums may be added in any order (fastmath reassociation only: their last bits)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     h = P[8]
     inverse_step = 1.0 / h
@@ -401,9 +410,10 @@ def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram
 # forces from those sums: the in-process engine's loop and the FMU give the same numbers as
 # modal_unit_step / modal_unit_forces / modal_unit_outputs, with one pass over the modes a step.
 @njit(cache=True)
-def modal_unit_interface(P, C, S, interface):
+def modal_unit_interface(parameters, coefficients, state, interface):
     """Modal parts (u_top, v_top, u_bottom, v_bottom) [m, m/s] of the state into
     ``interface`` (4,) (:func:`anvilwave.anvil_rom.rom.modal_interface`)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     inverse_step = 1.0 / P[8]
     ut = 0.0
@@ -423,9 +433,10 @@ def modal_unit_interface(P, C, S, interface):
 
 
 @njit(cache=True, inline='always')
-def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
+def modal_unit_advance(parameters, coefficients, state, force_ram, force_pile, interface):
     """:func:`modal_unit_step`, then :func:`modal_unit_interface` of the new state, in one
     sweep over the modes (the same arithmetic)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     gravity = P[7]
     inverse_step = 1.0 / P[8]
@@ -453,7 +464,7 @@ def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
 
 
 @njit(cache=True, inline='always')
-def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+def modal_unit_dashpot_power(parameters, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
     """(F_e,ram, F_e,pile, power): the contact forces without the dashpots [N] (the elastic
     parts, whose complementary energy the contacts store) and the power [W] the dashpots
     dissipate at the contact forces ``f_ram``, ``f_pile`` of :func:`modal_unit_contact`.
@@ -462,6 +473,7 @@ def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, 
     anvil_contact_forces`) the force is F = A^-1 (d + T d') with T = diag(c / k): its elastic
     part A^-1 d stores d^T A^-1 d / 2, whose rate is F_e . d', so the rest, (F - F_e) . d',
     is dissipated (d' the relative velocities of the modal faces, rest to the contacts)."""
+    P = parameters
     fe_ram, fe_pile = anvil_contact_forces(u_ram, 0.0, u_pile, 0.0, interface[0], 0.0,
                                            interface[2], 0.0, P[0], 0.0, P[2], 0.0, P[4], P[5],
                                            P[6])
@@ -471,8 +483,9 @@ def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, 
 
 
 @njit(cache=True, inline='always')
-def modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_contact(parameters, interface, u_ram, v_ram, u_pile, v_pile):
     """Contact forces (F_ram, F_pile) [N] from the interface sums (:func:`modal_unit_forces`)."""
+    P = parameters
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, interface[0], interface[1],
                                 interface[2], interface[3], P[0], P[1], P[2], P[3], P[4], P[5],
                                 P[6])
