@@ -19,9 +19,9 @@ def _main_kernels():
     import importlib
 
     found = []
-    for module, names in (("anvilwave.engine", ("run_blow",)),
+    for module, names in (("anvilwave.engine.direct", ("run_blow",)),
                           ("anvilwave.fea.solver", ("_advance",)),
-                          ("fmu.fmi_master", ("_design_loop",))):
+                          ("anvilwave.fmu.fmi_master", ("_design_loop",))):
         mod = importlib.import_module(module)
         found += [getattr(mod, n) for n in names if hasattr(getattr(mod, n, None), "_cache")]
     return tuple(found)
