@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 from anvilwave.analyses.compare import ModelRun, band_levels, fea_config, metrics, without_soil
 from anvilwave.analyses.impact import total_energy
 from anvilwave.anvil_rom.fem.modalfile import ModalData
-from anvilwave.anvil_rom.rings import RamFace, ram_face_advance
+from anvilwave.anvil_rom.rings import RamFace, RingState, ram_face_advance
 from anvilwave.config.cache import cached_modal_data
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
@@ -97,23 +97,20 @@ def test_offsets_are_the_rams_annulus_displacements(table1):
     unit.start(0.0, 0.0, h)
     J = face.n_annuli
     m = J + 1
-    rings = [None] * 22
-    rings[4] = np.zeros(m)
-    rings[17] = face.coefficients(h)
-    rings[18] = np.ascontiguousarray(face.participation.T)
-    rings[19] = face.toe
-    rings[20] = np.zeros((4, face.toe.size))
-    rings[21] = np.zeros((3, J))
-    rings = tuple(np.zeros(1) if a is None else a for a in rings)
+    rings = RingState(*(np.zeros(1) for _ in RingState._fields))._replace(
+        forces=np.zeros(m), ram_coefficients=face.coefficients(h),
+        ram_participation=np.ascontiguousarray(face.participation.T),
+        ram_toe_participation=face.toe, ram_state=np.zeros((4, face.toe.size)),
+        ram_offsets=np.zeros((3, J)))
     toe = np.zeros(steps + 1)
     offsets = np.zeros((J, steps + 1))
     for s in range(steps):
         f = forces(s * h)
-        rings[4][:J] = f
+        rings.forces[:J] = f
         unit.step(float(f.sum()))
         ram_face_advance(rings, h)
         toe[s + 1] = unit.toe[0]
-        offsets[:, s + 1] = rings[21][0]
+        offsets[:, s + 1] = rings.ram_offsets[0]
     reference = truth - toe
     assert np.abs(offsets - reference).max() <= 5e-4 * np.abs(reference).max()
 

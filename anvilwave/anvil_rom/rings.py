@@ -40,22 +40,16 @@ starts from the previous step's active set, which is nearly always the answer. W
 this is the one-port problem.
 
 Kernel data (float64, besides the one-port unit's P, C, S of :mod:`anvilwave.anvil_rom.unit`), m =
-J + K:
-``RP`` (n, K) ring participations; ``A`` (m, m); ``T`` (m) dashpot ratios c / k; ``W`` (K)
-ring area shares; ``F`` (m) the contact forces at t_n (written); ``E`` (m) their elastic parts;
-``ring`` (2, K) the rings' modal (u, v) of the state; ``scratch`` (m, m + 4) for the solvers
-(the active sets of the forces and of their elastic parts, overlaps, elimination); ``R`` (m, m)
-the residual flexibility; the tube head's ``D``, ``history``, ``shift``, ``rest``, ``count``
-(:func:`head_push`); the ram face's ``RQ`` (n, J) the anvil's annulus participations, ``face``
-(2, J) their modal (u, v), ``Wr`` (J) their area shares, ``Cr`` (n_r, 5), ``Pr`` (n_r, J),
-``pr`` (n_r) the ram's flexible modes (:class:`RamFace`), ``state`` (4, n_r) T and U now and a
-step before, ``offsets`` (3, J) now, a step before and their rate. The engine passes them as
-one tuple in this order (:data:`STATE` are the arrays that change).
+J + K: one :class:`RingState`, whose fields carry the names above (``A`` is ``flexibility``,
+``F`` is ``forces``, ...; the short names stay inside the formulas, as in the text).
+:data:`STATE` names the fields that change as the unit runs; :func:`copy_ring_state` copies
+them and shares the rest.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -66,14 +60,70 @@ MAX_PIVOTS_PER_CONTACT = 50
 """Murty's pivoting is finite for a positive definite A; this bounds it all the same."""
 
 
-STATE = (4, 5, 6, 7, 10, 11, 12, 13, 15, 20, 21)
-"""Which of the ring unit's arrays change as it runs (F, E, ring, scratch, the tube head's
-history, shift, rest and count, the ram face's face, state and offsets); the rest is data."""
+class RingState(NamedTuple):
+    """The ring unit's arrays (float64), m = J + K contacts: the ram face's J annuli, then the
+    pile port's K rings. A NamedTuple: the compiled kernels read its fields by name (numba
+    compiles and caches functions taking it like any tuple of arrays)."""
+
+    participation: np.ndarray
+    """RP (n, K): the rings' modal participations p_k [kg^-1/2]."""
+    flexibility: np.ndarray
+    """A (m, m): the complementarity problem's matrix C + D R D [m/N] (module docstring)."""
+    dashpot_ratios: np.ndarray
+    """T (m): the contacts' dashpot over spring ratios c / k [s]."""
+    ring_shares: np.ndarray
+    """W (K): the rings' area shares [-]."""
+    forces: np.ndarray
+    """F (m): the contact forces at t_n [N] (written)."""
+    elastic_forces: np.ndarray
+    """E (m): their elastic parts (without the dashpots) [N] (written)."""
+    ring_modal: np.ndarray
+    """ring (2, K): the rings' modal (u, v) of the state [m, m/s] (written)."""
+    scratch: np.ndarray
+    """(m, m + 4): the solvers' scratch: the active sets of the forces and of their elastic
+    parts, the overlaps, the elimination."""
+    residual: np.ndarray
+    """R (m, m): the residual flexibility between the ram annuli and the rings [m/N]."""
+    head_kernel: np.ndarray
+    """D (L, K, K): the tube head's correction at each lag [m/N] (:func:`head_push`; one lag
+    of zeros on the 1D head)."""
+    head_history: np.ndarray
+    """(L, K): the ring forces' changes since the rest [N] (written)."""
+    head_shift: np.ndarray
+    """(2, K): the head's shift of the rings' pile side, now and a step before [m] (written)."""
+    head_rest: np.ndarray
+    """(K): the ring forces at the blow's start [N] (written)."""
+    head_count: np.ndarray
+    """(2): the steps in the history and the work handed to the tube head [J] (written)."""
+    face_participation: np.ndarray
+    """RQ (n, J): the anvil's participations on the ram face's annuli [kg^-1/2]."""
+    face_modal: np.ndarray
+    """face (2, J): their modal (u, v) of the state [m, m/s] (written)."""
+    annulus_shares: np.ndarray
+    """Wr (J): the annuli's area shares [-]."""
+    ram_coefficients: np.ndarray
+    """Cr (n_r, 5): the ram's flexible modes' step coefficients a, b, c, m_e, omega^2
+    (:meth:`RamFace.coefficients`)."""
+    ram_participation: np.ndarray
+    """Pr (n_r, J): the ram's flexible modes on its annuli [kg^-1/2]."""
+    ram_toe_participation: np.ndarray
+    """pr (n_r): the same on the whole toe [kg^-1/2]."""
+    ram_state: np.ndarray
+    """(4, n_r): the ram modes T and U now and a step before (:func:`ram_face_advance`)
+    (written)."""
+    ram_offsets: np.ndarray
+    """(3, J): the annuli's offsets from the ram unit's toe now, a step before [m] and their
+    rate [m/s] (written)."""
 
 
-def copy_ring_state(rings: tuple) -> tuple:
+STATE = ("forces", "elastic_forces", "ring_modal", "scratch", "head_history", "head_shift",
+         "head_rest", "head_count", "face_modal", "ram_state", "ram_offsets")
+"""The fields of :class:`RingState` that change as the unit runs; the rest is data."""
+
+
+def copy_ring_state(rings: RingState) -> RingState:
     """``rings`` with its changing arrays (:data:`STATE`) copied and its data shared."""
-    return tuple(a.copy() if i in STATE else a for i, a in enumerate(rings))
+    return rings._replace(**{name: getattr(rings, name).copy() for name in STATE})
 
 
 @dataclass(frozen=True, eq=False)
@@ -208,9 +258,9 @@ def head_push(rings):
     rectangle F_n over the next change booked +1.8 % of the Table 1 blow at fmax 10 kHz and
     10 us, where the rings chatter: the kernel's tube is loaded by forces that vary linearly
     over a step). A kernel of one step (the 1D head: D = 0) leaves the shift at zero."""
-    F, D, history, shift, rest, count = (rings[4], rings[9], rings[10], rings[11], rings[12],
-                                         rings[13])
-    J = rings[15].shape[1]
+    F, D, history = rings.forces, rings.head_kernel, rings.head_history
+    shift, rest, count = rings.head_shift, rings.head_rest, rings.head_count
+    J = rings.face_modal.shape[1]
     L = D.shape[0]
     K = D.shape[1]
     n = int(count[0])
@@ -240,14 +290,14 @@ def ring_contact(rings, u_ram, v_ram, u_pile, v_pile):
     """Contact forces (F_ram, F_pile) [N] of the neighbour states: the sums over the ram
     face's annuli and over the rings, whose forces are left in ``rings`` F (the faces' modal
     states are ``rings`` ring and face)."""
-    A, T, F, ring, scratch, face, offsets = (rings[1], rings[2], rings[4], rings[6], rings[7],
-                                             rings[15], rings[21])
+    A, T, F, ring = rings.flexibility, rings.dashpot_ratios, rings.forces, rings.ring_modal
+    scratch, face, offsets = rings.scratch, rings.face_modal, rings.ram_offsets
     m = F.shape[0]
     J = face.shape[1]
     active = scratch[:, 0]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, False, rings[11][0],
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, False, rings.head_shift[0],
                   offsets[0], offsets[2])
     contact_lcp(A, g, F, active, work)
     ram = 0.0
@@ -266,14 +316,15 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
     forces ``rings`` F (:func:`anvilwave.anvil_rom.unit.modal_unit_dashpot_power` for rings).
     Returns
     (elastic F_ram, elastic sum of the ring forces, power)."""
-    A, T, F, E, ring, scratch, face, offsets = (rings[1], rings[2], rings[4], rings[5],
-                                                rings[6], rings[7], rings[15], rings[21])
+    A, T, F, E = rings.flexibility, rings.dashpot_ratios, rings.forces, rings.elastic_forces
+    ring, scratch = rings.ring_modal, rings.scratch
+    face, offsets = rings.face_modal, rings.ram_offsets
     m = F.shape[0]
     J = face.shape[1]
     active = scratch[:, 1]
     g = scratch[:, 2]
     work = scratch[:, 3:]
-    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, True, rings[11][0],
+    ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, True, rings.head_shift[0],
                   offsets[0], offsets[2])
     contact_lcp(A, g, E, active, work)
     power = 0.0
@@ -289,11 +340,12 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True)
-def ring_interface(C, S, rings, h):
+def ring_interface(coefficients, state, rings, h):
     """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state into
     ``rings`` ring (2, K) and face (2, J)."""
-    _port_sums(C.shape[0], S, rings[0], h, rings[6])
-    _port_sums(C.shape[0], S, rings[14], h, rings[15])
+    C, S = coefficients, state
+    _port_sums(C.shape[0], S, rings.participation, h, rings.ring_modal)
+    _port_sums(C.shape[0], S, rings.face_participation, h, rings.face_modal)
 
 
 @njit(cache=True, inline='always')
@@ -319,7 +371,8 @@ def ram_face_advance(rings, h):
     from the toe, sum_j P_aj T_j - p_j U_j (the ram unit's toe is sum p_j U_j + the rigid
     mode, which moves every annulus alike), into ``rings`` offsets (now, before, rate). With
     one port (no modes) the offsets stay zero."""
-    F, Cr, Pr, pr, state, offsets = rings[4], rings[17], rings[18], rings[19], rings[20], rings[21]
+    F, Cr, Pr = rings.forces, rings.ram_coefficients, rings.ram_participation
+    pr, state, offsets = rings.ram_toe_participation, rings.ram_state, rings.ram_offsets
     nr = Cr.shape[0]
     J = Pr.shape[1]
     total = 0.0
@@ -350,7 +403,7 @@ def ram_face_energy(rings, h):
     form of :func:`anvilwave.hammer.modal_ram.modal_ram_energies`: E(T) - E(U)
     (:func:`ram_face_advance`:
     the ram's true flexible state is T, the unit's U)."""
-    Cr, state = rings[17], rings[20]
+    Cr, state = rings.ram_coefficients, rings.ram_state
     kinetic = 0.0
     strain = 0.0
     inverse_step = 1.0 / h
@@ -363,7 +416,7 @@ def ram_face_energy(rings, h):
 
 
 @njit(cache=True, inline='always')
-def ring_unit_advance(P, C, S, force_ram, rings, interface):
+def ring_unit_advance(parameters, coefficients, state, force_ram, rings, interface):
     """Advance the modes over h with the ram force and the ring forces (``rings`` F) held
     (:func:`anvilwave.anvil_rom.unit.modal_unit_advance` with the pile load split over the rings
     and,
@@ -371,7 +424,9 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
     interface sums of the new state: ``interface`` (u_top, v_top, u_bottom, v_bottom; the
     bottom as the whole ring's mean), ``rings`` ring and face; then the ram face's annuli
     (:func:`ram_face_advance`) and the tube head (:func:`head_push`)."""
-    RP, F, ring, RQ, face = rings[0], rings[4], rings[6], rings[14], rings[15]
+    P, C, S = parameters, coefficients, state
+    RP, F, ring = rings.participation, rings.forces, rings.ring_modal
+    RQ, face = rings.face_participation, rings.face_modal
     n = C.shape[0]
     K = RP.shape[1]
     J = RQ.shape[1]
@@ -420,7 +475,7 @@ def ring_unit_advance(P, C, S, force_ram, rings, interface):
 
 
 @njit(cache=True)
-def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
+def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
     """(kinetic, potential) [J] of the ring unit in the conserved (shadow) form of the
     two-step scheme (:func:`anvilwave.anvil_rom.unit.modal_unit_energy_at`): the modes' kinetic and
     strain energies and gravity potential, and the complementary energy of the contacts and
@@ -428,7 +483,9 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
     :func:`ring_elastic_forces`) and F_n-1 those one step earlier (neighbours moved back by
     h v, modes at q_n-1); with the ram face in annuli also what they add to the ram unit's
     energy (:func:`ram_face_energy`)."""
-    RP, A, E, scratch, RQ, offsets = rings[0], rings[1], rings[5], rings[7], rings[14], rings[21]
+    P, C, S = parameters, coefficients, state
+    RP, A, E, scratch = rings.participation, rings.flexibility, rings.elastic_forces, rings.scratch
+    RQ, offsets = rings.face_participation, rings.ram_offsets
     n = C.shape[0]
     K = RP.shape[1]
     J = RQ.shape[1]
@@ -449,7 +506,7 @@ def ring_unit_energy_at(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
             previous[0, k] += RP[j, k] * qp
     g = np.empty(m)
     ring_overlaps(g, u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0, face, previous,
-                  rings[2], True, rings[11][1], offsets[1], offsets[2])
+                  rings.dashpot_ratios, True, rings.head_shift[1], offsets[1], offsets[2])
     F0 = np.zeros(m)
     active = scratch[:, 0].copy()
     contact_lcp(A, g, F0, active, np.empty((m, m + 1)))
@@ -517,8 +574,9 @@ def ring_faces(rings):
     """(u_top, u_bottom) [m] with the static correction at the forces ``rings`` F: the ram
     face's and the rings' area-weighted means (the whole face's and the whole ring's
     displacements), from their modal parts (``rings`` face and ring) and the residual
-    flexibility ``rings`` R (its 9th entry)."""
-    W, F, ring, R, face, Wr = rings[3], rings[4], rings[6], rings[8], rings[15], rings[16]
+    flexibility ``rings`` R (``residual``)."""
+    W, F, ring, R = rings.ring_shares, rings.forces, rings.ring_modal, rings.residual
+    face, Wr = rings.face_modal, rings.annulus_shares
     m = F.shape[0]
     J = face.shape[1]
     u_top = 0.0
@@ -541,10 +599,11 @@ def ring_faces(rings):
 
 
 @njit(cache=True)
-def ring_unit_outputs(P, C, S, rings, u_ram, v_ram, u_pile, v_pile):
+def ring_unit_outputs(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
     """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour
     states, from its state alone (the anvil FMU's feedthrough): the faces' modal sums, the
     rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
+    P, C, S = parameters, coefficients, state
     ring_interface(C, S, rings, P[8])
     force_ram, force_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
     u_top, u_bottom = ring_faces(rings)

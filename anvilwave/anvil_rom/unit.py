@@ -12,6 +12,9 @@ of them through the same signature):
 - ``C`` (n, 8) per-mode table: step coefficients a, b, c, m_e for the step h
   (:func:`anvilwave.anvil_rom.rom.modal_transition`), then p_ram, p_pile, p_grav, omega
 - ``S`` state: [q (n) at t_n, q (n) at t_n-1]
+
+The kernels take them as ``parameters``, ``coefficients`` and ``state`` and call them P, C, S
+in their formulas.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from numba import njit
 
 from anvilwave.anvil_rom.rings import (
     RamFace,
+    RingState,
     ring_faces,
     ring_interface,
     ring_matrix,
@@ -100,14 +104,11 @@ class AnvilUnit:
             self.rings = self._ring_arrays()
         self.set_step(1e-5)
 
-    def _ring_arrays(self) -> tuple:
-        """The ring kernels' data (:mod:`anvilwave.anvil_rom.rings`): RP, A, T, W, F, E, ring,
-        scratch, R,
-        the head's D, history, shift, rest and count, then the ram face's RQ, face, Wr, Cr, Pr,
-        pr, state and offsets; the pile contact's spring and dashpot shared by ring area (on a
-        tube head: its springs, its D[0] in A); the ram contact one port, or with the ram face
-        in annuli (:attr:`ram_face`) the ram's residual flexibility between them and its
-        dashpot shared by annulus area."""
+    def _ring_arrays(self) -> RingState:
+        """The ring kernels' data (:class:`anvilwave.anvil_rom.rings.RingState`): the pile contact's
+        spring and dashpot shared by ring area (on a tube head: its springs, its D[0] in A); the
+        ram contact one port, or with the ram face in annuli (:attr:`ram_face`) the ram's residual
+        flexibility between them and its dashpot shared by annulus area."""
         a, c = self.anvil, self.contact
         shares = a.ring_areas / a.ring_areas.sum()
         K = shares.size
@@ -143,11 +144,16 @@ class AnvilUnit:
         T = np.r_[T_ram, c.pile_damping * shares / springs]
         m = J + K
         scratch = np.zeros((m, m + 4))
-        return (np.ascontiguousarray(a.participation_rings.T), A, T, shares, np.zeros(m),
-                np.zeros(m), np.zeros((2, K)), scratch, a.residual_rings, D,
-                np.zeros((D.shape[0], K)), np.zeros((2, K)), np.zeros(K), np.zeros(2),
-                np.ascontiguousarray(RQ), np.zeros((2, J)), Wr, Cr,
-                np.ascontiguousarray(Pr), pr, np.zeros((4, pr.size)), np.zeros((3, J)))
+        return RingState(
+            participation=np.ascontiguousarray(a.participation_rings.T), flexibility=A,
+            dashpot_ratios=T, ring_shares=shares, forces=np.zeros(m), elastic_forces=np.zeros(m),
+            ring_modal=np.zeros((2, K)), scratch=scratch, residual=a.residual_rings,
+            head_kernel=D, head_history=np.zeros((D.shape[0], K)), head_shift=np.zeros((2, K)),
+            head_rest=np.zeros(K), head_count=np.zeros(2),
+            face_participation=np.ascontiguousarray(RQ), face_modal=np.zeros((2, J)),
+            annulus_shares=Wr, ram_coefficients=Cr, ram_participation=np.ascontiguousarray(Pr),
+            ram_toe_participation=pr, ram_state=np.zeros((4, pr.size)),
+            ram_offsets=np.zeros((3, J)))
 
     def set_head(self, head: tuple) -> tuple[float, float]:
         """Put the rings on a tube head (``head`` as the field) and rest on it afresh: returns
@@ -167,19 +173,20 @@ class AnvilUnit:
         self.rings = self._ring_arrays()
         return self.rest_on_pile(0.0)
 
-    def restart_head(self, rings: tuple | None = None) -> None:
+    def restart_head(self, rings: RingState | None = None) -> None:
         """Start the tube head's history afresh from the present ring forces (a blow's start):
         its changes are measured from them; the ram face's annuli start at rest (the ram's
         flexible modes are at rest at impact)."""
         rings = self.rings if rings is None else rings
-        F, D, shift, rest, count = rings[4], rings[9], rings[11], rings[12], rings[13]
-        J = rings[15].shape[1]
+        F, D, shift, rest = rings.forces, rings.head_kernel, rings.head_shift, rings.head_rest
+        count = rings.head_count
+        J = rings.face_modal.shape[1]
         rest[:] = F[J:]
         count[:] = 0.0
         shift[0] = -(D[0] @ rest)
         shift[1] = shift[0]
-        rings[20][:] = 0.0
-        rings[21][:] = 0.0
+        rings.ram_state[:] = 0.0
+        rings.ram_offsets[:] = 0.0
 
     @property
     def n_modes(self) -> int:
@@ -200,7 +207,7 @@ class AnvilUnit:
             self.P[8] = h
             self._h = h
             if self.ram_face is not None and self.rings is not None:
-                self.rings[17][:] = self.ram_face.coefficients(h)
+                self.rings.ram_coefficients[:] = self.ram_face.coefficients(h)
 
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
         """Static equilibrium on the pile under gravity (ram not yet touching).
@@ -228,7 +235,9 @@ class AnvilUnit:
         """:meth:`rest_on_pile` with the pile port split into rings (the rings' forces, and
         which of them carry the weight, from :func:`anvilwave.anvil_rom.rings.ring_static_rest`)."""
         a = self.anvil
-        RP, F, scratch, RQ = self.rings[0], self.rings[4], self.rings[7], self.rings[14]
+        rings = self.rings
+        RP, F, scratch, RQ = (rings.participation, rings.forces, rings.scratch,
+                              rings.face_participation)
         J = RQ.shape[1]
         forces, u0 = ring_static_rest(a.omega, a.participation_rings, self.ring_springs,
                                       a.residual_rings[J:, J:], weight)
@@ -279,8 +288,8 @@ class AnvilUnit:
     def _ring_forces(self, force_ram: float, force_pile: float) -> None:
         """The ring forces for a held pile force: those of the last contact problem scaled
         to ``force_pile``, or split by area when they were all zero; F_ram = ``force_ram``."""
-        F, shares = self.rings[4], self.rings[3]
-        if self.rings[15].shape[1] > 1:
+        F, shares = self.rings.forces, self.rings.ring_shares
+        if self.rings.face_modal.shape[1] > 1:
             raise ValueError("a ram face in annuli runs in the in-process engine only")
         total = F[1:].sum()
         F[1:] = F[1:] * (force_pile / total) if total > 0.0 else force_pile * shares
@@ -288,13 +297,13 @@ class AnvilUnit:
 
     def _ring_outputs(self, force_ram: float, force_pile: float):
         self._ring_forces(force_ram, force_pile)
-        ring = self.rings[6]
+        ring = self.rings.ring_modal
         ring_interface(self.C, self.S, self.rings, self.P[8])
         n = self.n_modes
         _, vt, _, _ = modal_interface(self.C[:, 4], self.C[:, 5], self.S[:n], self.S[n:],
                                       self.P[8])
         u_top, u_bottom = ring_faces(self.rings)
-        return u_top, vt, u_bottom, float(self.rings[3] @ ring[1])
+        return u_top, vt, u_bottom, float(self.rings.ring_shares @ ring[1])
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
@@ -310,7 +319,8 @@ class AnvilUnit:
 
 
 @njit(cache=True)
-def modal_unit_outputs(P, C, S, force_ram, force_pile):
+def modal_unit_outputs(parameters, coefficients, state, force_ram, force_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     ut += P[4] * force_ram - P[5] * force_pile
@@ -319,7 +329,8 @@ def modal_unit_outputs(P, C, S, force_ram, force_pile):
 
 
 @njit(cache=True)
-def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_forces(parameters, coefficients, state, u_ram, v_ram, u_pile, v_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, ut, vt, ub, vb,
@@ -327,13 +338,14 @@ def modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True)
-def modal_unit_step(P, C, S, force_ram, force_pile):
+def modal_unit_step(parameters, coefficients, state, force_ram, force_pile):
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     modal_step(C, C[:, 4], C[:, 5], C[:, 6], S[:n], S[n:], force_ram, force_pile, P[7])
 
 
 @njit(cache=True)
-def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_energy(parameters, coefficients, state, u_ram, v_ram, u_pile, v_pile):
     """(kinetic, potential) [J] in the conserved (shadow) form of the two-step scheme.
 
     kinetic = sum m_e ((q_n - q_n-1) / h)^2 / 2; potential = sum w^2 q_n q_n-1 / 2
@@ -341,6 +353,7 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
     correction: F_n^T (K_c^-1 + R) F_n-1 / 2, contacts and residual flexibility together). The
     contact dashpots, if any, are not counted.
     """
+    P, C, S = parameters, coefficients, state
     interface = np.empty(4)
     modal_unit_interface(P, C, S, interface)
     f_ram, f_pile = modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile)
@@ -348,11 +361,13 @@ def modal_unit_energy(P, C, S, u_ram, v_ram, u_pile, v_pile):
 
 
 @njit(cache=True, fastmath={"reassoc"})
-def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+def modal_unit_energy_at(parameters, coefficients, state, interface, u_ram, v_ram, u_pile, v_pile,
+                         f_ram, f_pile):
     """:func:`modal_unit_energy` in one sweep over the modes, given the interface
     displacements of the state (``interface[0]``, ``interface[2]``, :func:`modal_unit_interface`)
     and the contact forces of these neighbour states.
     The sums may be added in any order (fastmath reassociation only: their last bits)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     h = P[8]
     inverse_step = 1.0 / h
@@ -395,9 +410,10 @@ def modal_unit_energy_at(P, C, S, interface, u_ram, v_ram, u_pile, v_pile, f_ram
 # forces from those sums: the in-process engine's loop and the FMU give the same numbers as
 # modal_unit_step / modal_unit_forces / modal_unit_outputs, with one pass over the modes a step.
 @njit(cache=True)
-def modal_unit_interface(P, C, S, interface):
+def modal_unit_interface(parameters, coefficients, state, interface):
     """Modal parts (u_top, v_top, u_bottom, v_bottom) [m, m/s] of the state into
     ``interface`` (4,) (:func:`anvilwave.anvil_rom.rom.modal_interface`)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     inverse_step = 1.0 / P[8]
     ut = 0.0
@@ -417,9 +433,10 @@ def modal_unit_interface(P, C, S, interface):
 
 
 @njit(cache=True, inline='always')
-def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
+def modal_unit_advance(parameters, coefficients, state, force_ram, force_pile, interface):
     """:func:`modal_unit_step`, then :func:`modal_unit_interface` of the new state, in one
     sweep over the modes (the same arithmetic)."""
+    P, C, S = parameters, coefficients, state
     n = C.shape[0]
     gravity = P[7]
     inverse_step = 1.0 / P[8]
@@ -447,7 +464,7 @@ def modal_unit_advance(P, C, S, force_ram, force_pile, interface):
 
 
 @njit(cache=True, inline='always')
-def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
+def modal_unit_dashpot_power(parameters, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
     """(F_e,ram, F_e,pile, power): the contact forces without the dashpots [N] (the elastic
     parts, whose complementary energy the contacts store) and the power [W] the dashpots
     dissipate at the contact forces ``f_ram``, ``f_pile`` of :func:`modal_unit_contact`.
@@ -456,6 +473,7 @@ def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, 
     anvil_contact_forces`) the force is F = A^-1 (d + T d') with T = diag(c / k): its elastic
     part A^-1 d stores d^T A^-1 d / 2, whose rate is F_e . d', so the rest, (F - F_e) . d',
     is dissipated (d' the relative velocities of the modal faces, rest to the contacts)."""
+    P = parameters
     fe_ram, fe_pile = anvil_contact_forces(u_ram, 0.0, u_pile, 0.0, interface[0], 0.0,
                                            interface[2], 0.0, P[0], 0.0, P[2], 0.0, P[4], P[5],
                                            P[6])
@@ -465,8 +483,9 @@ def modal_unit_dashpot_power(P, interface, u_ram, v_ram, u_pile, v_pile, f_ram, 
 
 
 @njit(cache=True, inline='always')
-def modal_unit_contact(P, interface, u_ram, v_ram, u_pile, v_pile):
+def modal_unit_contact(parameters, interface, u_ram, v_ram, u_pile, v_pile):
     """Contact forces (F_ram, F_pile) [N] from the interface sums (:func:`modal_unit_forces`)."""
+    P = parameters
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, interface[0], interface[1],
                                 interface[2], interface[3], P[0], P[1], P[2], P[3], P[4], P[5],
                                 P[6])

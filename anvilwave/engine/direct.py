@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -40,6 +41,7 @@ from anvilwave.anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvilwave.anvil_rom.contact import contact_force
 from anvilwave.anvil_rom.rings import (
     RamFace,
+    RingState,
     copy_ring_state,
     ring_contact,
     ring_elastic_forces,
@@ -134,7 +136,8 @@ costs, and the balance needs no finer sampling: each row is exact, and the works
 rows are summed at every step (Table 1: a row every 0.5 ms, 51 rows)."""
 
 NO_MODAL_RAM = (np.zeros((9, 0)), np.zeros(0), np.zeros(3))
-"""run_blow's ``modal_ram`` when the ram is a chain (a unit without modes)."""
+"""The modal ram arrays (C, S, toe) of :class:`LoopRam` when the ram is a chain (a unit
+without modes)."""
 
 # the blow summary the loop fills (BlowResult fields of the same names)
 (S_MAX_COMPRESSION, S_MAX_TENSION, S_EMX_GAUGE, S_EMX_HEAD, S_MAX_HEAD_FORCE, S_MAX_TOE,
@@ -331,44 +334,183 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
     return upper
 
 
+# ----------------------------------------------------------------- the loop's state
+class LoopRam(NamedTuple):
+    """The ram as the loop steps it: its chain (:func:`anvilwave.hammer.ram.ram_advance`) or,
+    when ``modal_coefficients`` has columns, the modal ram unit
+    (:func:`anvilwave.hammer.modal_ram.modal_ram_advance`; the chain's arrays are then unused).
+    Both rams run in the one compiled loop, chosen at run time, so that a ram model does not
+    change how the compiler lays out the rest of the step."""
+
+    weight: np.ndarray
+    """(N,) the chain's weights m g [N]."""
+    inverse_mass: np.ndarray
+    """(N,) 1 / m [1/kg]."""
+    stiffness: np.ndarray
+    """(N - 1,) the chain's springs [N/m]."""
+    mass: np.ndarray
+    """(N,) [kg]."""
+    u: np.ndarray
+    """(N,) displacements [m] (written)."""
+    v: np.ndarray
+    """(N,) half-step velocities [m/s] (written)."""
+    n_sub: int
+    """The chain's sub-steps per master step."""
+    modal_coefficients: np.ndarray
+    """C of a :class:`anvilwave.hammer.modal_ram.ModalRamUnit` (no columns: the chain runs)."""
+    modal_state: np.ndarray
+    """Its S (written)."""
+    modal_toe: np.ndarray
+    """Its toe (u, v, half) [m, m/s, -] (written)."""
+
+
+class LoopModalAnvil(NamedTuple):
+    """The modal (ROM or lumped) anvil unit's kernel arrays (:mod:`anvilwave.anvil_rom.unit`)."""
+
+    parameters: np.ndarray
+    """P: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h]."""
+    coefficients: np.ndarray
+    """C (n, 8): the modes' step coefficients and participations."""
+    state: np.ndarray
+    """S (2 n): q at t_n and t_n-1 (written)."""
+    interface: np.ndarray
+    """(4,) the state's modal u_top, v_top, u_bottom, v_bottom [m, m/s] (written)."""
+
+
+class LoopClassic(NamedTuple):
+    """The classic driving system's kernel arrays (:mod:`anvilwave.hammer.driving_system`)."""
+
+    parameters: np.ndarray
+    state: np.ndarray
+    """(written)"""
+    n_sub: int
+    """Its sub-steps per master step."""
+
+
+class LoopAnvil(NamedTuple):
+    """The anvil unit: one of ``modal`` (with the pile port in ``rings`` or not), ``classic``
+    or ``direct`` (the contact [k [N/m], c [N s/m]] of ram toe and pile head, no anvil); the
+    others are None, and the compiler keeps only the code of the given one."""
+
+    modal: LoopModalAnvil | None
+    rings: RingState | None
+    """The modal unit's pile port in rings (:class:`anvilwave.anvil_rom.rings.RingState`)."""
+    classic: LoopClassic | None
+    direct: np.ndarray | None
+
+
+class LoopPile(NamedTuple):
+    """The pile and soil as :func:`anvilwave.pile.kernels.pile_advance` takes them, the blow's
+    start and the stress extremes folded at every step."""
+
+    parameters: np.ndarray
+    """The pile's parameter array (``PileSoil.arrays().pile``)."""
+    probes: np.ndarray
+    """Its probe array (gauges, head extrapolation)."""
+    pile_sweep: tuple
+    soil_sweep: tuple
+    first_soil: int
+    """:func:`anvilwave.pile.kernels.sweep_arrays`."""
+    u: np.ndarray
+    """(N,) [m] (written)."""
+    v: np.ndarray
+    """(N,) [m/s] (written)."""
+    soil_offset: np.ndarray
+    """(N + 1,) [m] (written)."""
+    energy: np.ndarray
+    """(ENERGY_SIZE,) [J] (written)."""
+    n_sub: int
+    """The pile's sub-steps per master step."""
+    start_u: np.ndarray
+    start_v: np.ndarray
+    start_energy: np.ndarray
+    """u, v and energy at the start of the blow."""
+    face0: float
+    """The head face displacement the anvil unit's pile input is measured from [m]."""
+    stress_factor: np.ndarray
+    """(N - 1,) the springs' stress factors [N/m^3]."""
+    largest: np.ndarray
+    smallest: np.ndarray
+    """(N - 1,) the largest and smallest shortening of each spring [m] (written,
+    :func:`anvilwave.pile.kernels.fold_elongations`)."""
+
+
+class LoopSettings(NamedTuple):
+    """The blow's time grid and recording."""
+
+    gravity: float
+    """[m/s^2]"""
+    t0: float
+    """The time of step 0 [s]."""
+    h: float
+    """The master step [s]."""
+    n_steps: int
+    record_every: int
+    """Steps between the rows of ``out`` (and of the sections)."""
+    energy_every: int
+    """Steps between the rows of ``energies`` (the last step is always one)."""
+
+
+class LoopRecords(NamedTuple):
+    """What the loop writes besides the states (None: not kept, its code removed)."""
+
+    out: np.ndarray | None
+    """(COLUMNS, rows) the time series."""
+    energies: np.ndarray | None
+    """(1 + ENERGY_COLUMNS, rows) the energy series."""
+    works: tuple | None
+    """The per-mass soil work sums of :func:`anvilwave.pile.kernels.pile_advance` (None: no
+    energy bookkeeping)."""
+    sections: tuple | None
+    """(spring indices, buffer (n_sections, rows)): the elongation u_i - u_i+1 [m] of chosen
+    pile springs at every record row, whether ``out`` is recorded or not."""
+    summary: np.ndarray
+    """(SUMMARY_SIZE,) the blow's summary (S_* entries)."""
+
+
 # ----------------------------------------------------------------- the loop
 @njit(cache=True)
-def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, pile_sweep,
-             soil_sweep, first_soil, pu, pv, poff, pen, pile_nsub, start, face0, gravity, t0, h,
-             n_steps, record_every, energy_every, out, energies, works, stresses, summary,
-             sections=None, modal_ram=NO_MODAL_RAM, rings=None):
-    """Advance one blow of ``n_steps`` master steps of ``h`` [s] from t0 [s] (states in place).
+def run_blow(ram, anvil, pile, settings, records):
+    """Advance one blow of ``settings.n_steps`` master steps of ``settings.h`` [s] from
+    ``settings.t0`` [s], the states in place.
 
-    The anvil unit is one of ``modal`` = (P, C, S, interface) (:mod:`anvilwave.anvil_rom.unit`),
-    ``classic`` = (P, S) (:mod:`anvilwave.hammer.driving_system`) or ``direct`` = [k, c] (one
-    contact
-    spring, no anvil); the other two are None, and the compiler keeps only the code of the
-    given one. ``ram`` = (weight, inverse mass, stiffness, mass); the pile as
-    :func:`anvilwave.pile.kernels.pile_advance` takes it, with ``pile`` and ``probes`` its
-    parameter and
-    probe arrays. ``start`` = (u, v, energy) of the pile at the start of the blow.
+    ram : :class:`LoopRam`; anvil : :class:`LoopAnvil`; pile : :class:`LoopPile`; settings :
+    :class:`LoopSettings`; records : :class:`LoopRecords`. Records every ``record_every`` steps
+    into ``records.out`` and every ``energy_every`` steps and at the last into
+    ``records.energies`` unless they are None; ``records.summary`` receives the blow's summary.
+    Returns the numbers of rows recorded (columns, energies).
 
-    Records every ``record_every`` steps into ``out`` (COLUMNS x rows) and every
-    ``energy_every`` steps and at the last into ``energies`` (time and ENERGY_COLUMNS x rows)
-    unless they are None. ``works``: the per-mass soil work sums of
-    :func:`anvilwave.pile.kernels.pile_advance` (None: no energy bookkeeping); ``stresses`` =
-    (stress
-    factors [N/m^3], largest and smallest shortening of each spring [m]), folded at every
-    step (:func:`anvilwave.pile.kernels.fold_elongations`); ``summary`` (SUMMARY_SIZE) receives the
-    blow's summary. ``face0`` is the head face displacement the anvil unit's pile input is
-    measured from. ``sections`` = (spring indices, buffer (n_sections, rows)) records the
-    elongation u_i - u_i+1 [m] of chosen pile springs at every record row, whether ``out`` is
-    recorded or not (stress histories for fatigue). ``modal_ram`` = (C, S, toe) of a
-    :class:`anvilwave.hammer.modal_ram.ModalRamUnit` replaces the ram chain (``ram``, ``ram_u``,
-    ``ram_v``
-    are then unused) unless C has no columns (:data:`NO_MODAL_RAM`: the chain runs). Both rams
-    run in the one compiled loop, chosen at run time, so that a ram model does not change how
-    the compiler lays out the rest of the step. ``rings`` (:mod:`anvilwave.anvil_rom.rings`: RP, A,
-    T, W,
-    F, E, ring, scratch, R) splits the modal unit's pile port into rings. Returns the numbers
-    of rows recorded (columns, energies).
+    The optional parts (the anvil's variants and the records) are handed on as arguments of
+    their own (:func:`_blow`): the compiler removes the code of those that are None only when
+    they are arguments, not fields.
     """
-    weight, inverse_mass, ram_stiffness, ram_mass = ram
+    return _blow(ram, anvil.modal, anvil.rings, anvil.classic, anvil.direct, pile, settings,
+                 records.out, records.energies, records.works, records.sections,
+                 records.summary)
+
+
+@njit(cache=True)
+def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energies, works,
+          sections, summary):
+    """:func:`run_blow` with the optional parts as arguments: the master algorithm (module
+    docstring). The bundles' fields are read into locals once, before the loop (measured: with
+    the step's parts as inlined helpers reading the bundles' fields at every step, the Table 1
+    blow ran 1.3 to 1.7 times slower; presumably the reference counts of those reads)."""
+    weight, inverse_mass, ram_stiffness, ram_mass = (ram.weight, ram.inverse_mass,
+                                                     ram.stiffness, ram.mass)
+    ram_u, ram_v, ram_nsub = ram.u, ram.v, ram.n_sub
+    modal_ram = (ram.modal_coefficients, ram.modal_state, ram.modal_toe)
+    pile, probes, pile_sweep, soil_sweep, first_soil = (pile_bundle.parameters,
+                                                        pile_bundle.probes,
+                                                        pile_bundle.pile_sweep,
+                                                        pile_bundle.soil_sweep,
+                                                        pile_bundle.first_soil)
+    pu, pv, poff, pen, pile_nsub = (pile_bundle.u, pile_bundle.v, pile_bundle.soil_offset,
+                                    pile_bundle.energy, pile_bundle.n_sub)
+    start = (pile_bundle.start_u, pile_bundle.start_v, pile_bundle.start_energy)
+    face0 = pile_bundle.face0
+    stresses = (pile_bundle.stress_factor, pile_bundle.largest, pile_bundle.smallest)
+    gravity, t0, h, n_steps, record_every, energy_every = settings
     toe = ram_u.shape[0] - 1
     ram_is_modal = modal_ram[0].shape[1] > 0
     last = pu.shape[0] - 1
@@ -386,7 +528,7 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
     work_contact = 0.0  # dissipated by the contact dashpots since the blow started
     damped = False
     if modal is not None:
-        damped = modal[0][1] != 0.0 or modal[0][3] != 0.0
+        damped = modal.parameters[1] != 0.0 or modal.parameters[3] != 0.0
     if direct is not None:
         damped = direct[1] != 0.0
     power_before = 0.0
@@ -417,12 +559,13 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
         fe_pile = 0.0
         if modal is not None and rings is None:
-            f_ram, f_pile = modal_unit_contact(modal[0], modal[3], u_ram, v_ram, u_pile, v_pile)
+            f_ram, f_pile = modal_unit_contact(modal.parameters, modal.interface, u_ram, v_ram,
+                                               u_pile, v_pile)
             fe_ram = f_ram
             fe_pile = f_pile
             if damped:
                 fe_ram, fe_pile, power = modal_unit_dashpot_power(
-                    modal[0], modal[3], u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+                    modal.parameters, modal.interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
                 work_contact += h * power
         if modal is not None and rings is not None:
             f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
@@ -433,8 +576,8 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                                                              v_pile)
                 work_contact += h * power
         if classic is not None:
-            f_ram, f_pile, u_top, u_bottom = driving_system_forces(classic[0], classic[1], u_ram,
-                                                                   v_ram, u_pile, v_pile)
+            f_ram, f_pile, u_top, u_bottom = driving_system_forces(
+                classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile)
         if direct is not None:
             f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
             f_pile = f_ram
@@ -462,9 +605,9 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                     buf[j, row - 1] = pu[idx[j]] - pu[idx[j] + 1]
             if out is not None:
                 if modal is not None and rings is None:
-                    P = modal[0]
-                    u_top = modal[3][0] + P[4] * f_ram - P[5] * f_pile
-                    u_bottom = modal[3][2] + P[5] * f_ram - P[6] * f_pile
+                    P = modal.parameters
+                    u_top = modal.interface[0] + P[4] * f_ram - P[5] * f_pile
+                    u_bottom = modal.interface[2] + P[5] * f_ram - P[6] * f_pile
                 if modal is not None and rings is not None:
                     u_top, u_bottom = ring_faces(rings)
                 out[0, row - 1] = t0 + n * h
@@ -484,21 +627,22 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
                 kin = 0.0
                 pot = 0.0
                 if modal is not None and rings is None:
-                    kin, pot = modal_unit_energy_at(modal[0], modal[1], modal[2], modal[3],
-                                                    u_ram, v_ram, u_pile, v_pile, fe_ram,
-                                                    fe_pile)
+                    kin, pot = modal_unit_energy_at(modal.parameters, modal.coefficients,
+                                                    modal.state, modal.interface, u_ram, v_ram,
+                                                    u_pile, v_pile, fe_ram, fe_pile)
                 if modal is not None and rings is not None:
                     if not damped:  # the elastic forces are the forces
-                        rings[5][:] = rings[4]
-                    kin, pot = ring_unit_energy_at(modal[0], modal[1], modal[2], rings, u_ram,
-                                                   v_ram, u_pile, v_pile)
-                    pot += rings[13][1]  # handed to the tube head (0 on the 1D head)
+                        rings.elastic_forces[:] = rings.forces
+                    kin, pot = ring_unit_energy_at(modal.parameters, modal.coefficients,
+                                                   modal.state, rings, u_ram, v_ram, u_pile,
+                                                   v_pile)
+                    pot += rings.head_count[1]  # handed to the tube head (0 on the 1D head)
                 if classic is not None:
-                    kin, recoverable, potential = driving_system_energy(classic[0], classic[1],
-                                                                        u_ram, u_pile)
+                    kin, recoverable, potential = driving_system_energy(
+                        classic.parameters, classic.state, u_ram, u_pile)
                     # the cushions' restitution losses are energy the system no longer holds
-                    pot = recoverable + potential + driving_system_losses(classic[0],
-                                                                          classic[1])
+                    pot = recoverable + potential + driving_system_losses(classic.parameters,
+                                                                          classic.state)
                 if direct is not None:
                     pot = 0.5 * fe_ram * fe_ram / direct[0]
                 if ram_is_modal:
@@ -540,12 +684,14 @@ def run_blow(modal, classic, direct, ram, ram_u, ram_v, ram_nsub, pile, probes, 
         else:
             ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
         if modal is not None and rings is None:
-            modal_unit_advance(modal[0], modal[1], modal[2], f_ram, f_pile, modal[3])
+            modal_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, f_pile,
+                               modal.interface)
         if modal is not None and rings is not None:
-            ring_unit_advance(modal[0], modal[1], modal[2], f_ram, rings, modal[3])
+            ring_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, rings,
+                              modal.interface)
         if classic is not None:
-            driving_system_step(classic[0], classic[1], u_ram, v_ram, u_pile, v_pile, h,
-                                classic[2])
+            driving_system_step(classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile, h,
+                                classic.n_sub)
         fold_elongations(pu, stresses[1], stresses[2])
         pile_advance(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, f_pile, h, pile_nsub,
                      works, None)
@@ -817,7 +963,7 @@ class Engine:
         interval = cfg.output_interval if record_interval is None else record_interval
         n_steps = int(round(duration / h))
         rings = getattr(self.anvil.unit, "rings", None)
-        head = None if rings is None else rings[9]  # the tube head's correction
+        head = None if rings is None else rings.head_kernel  # the tube head's correction
         if head is not None and head.shape[0] > 1 and n_steps >= head.shape[0]:
             raise ValueError(f"duration {duration:g} s is longer than the tube head's kernel "
                              f"({(head.shape[0] - 1) * h:g} s, [anvil] pile_head = 'tube'): "
@@ -847,19 +993,20 @@ class Engine:
             unit = self.ram_unit
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
+        ram = LoopRam(*self._ram, ram_u, ram_v, self._ram_nsub, *modal_ram)
         modal = classic = direct = rings = None
         if anvil.kind in ("rom", "lumped"):
             S = anvil.S.copy()
             interface = np.empty(4)
             modal_unit_interface(anvil.P, anvil.C, S, interface)
-            modal = (anvil.P, anvil.C, S, interface)
+            modal = LoopModalAnvil(anvil.P, anvil.C, S, interface)
             if anvil.unit.rings is not None:  # the state's parts copied, the rest shared
                 rings = copy_ring_state(anvil.unit.rings)
                 # the tube head's history and the ram face's modes start with the blow
                 anvil.unit.restart_head(rings)
                 ring_interface(anvil.C, S, rings, h)
         elif anvil.kind == "classic":
-            classic = (anvil.P, anvil.S.copy(), anvil.n_sub)
+            classic = LoopClassic(anvil.P, anvil.S.copy(), anvil.n_sub)
         else:
             direct = anvil.P
         n_rows = n_steps // record_every + 1
@@ -872,9 +1019,9 @@ class Engine:
             works = self._works
             for w in works:
                 w.fill(0.0)
-        stresses = self._stresses
-        stresses[1].fill(0.0)
-        stresses[2].fill(0.0)
+        factor, largest, smallest = self._stresses
+        largest.fill(0.0)
+        smallest.fill(0.0)
         summary = np.zeros(SUMMARY_SIZE)
         section_args = None
         if sections is not None:
@@ -883,14 +1030,15 @@ class Engine:
                 raise ValueError("sections: spring indices out of range")
             section_args = (idx, np.full((idx.size, n_rows), np.nan))
         pile_sweep, soil_sweep, first_soil = self._sweep
-        args = [modal, classic, direct, self._ram, ram_u, ram_v, self._ram_nsub,
-                self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu, pv, poff,
-                pen, self._pile_nsub, (start.u, start.v, start.energy), face0, cfg.gravity, t0,
-                h, n_steps, record_every, energy_every, out, energies, works, stresses,
-                summary, section_args, modal_ram, rings]
-        _warm_up(args, anvil.kind, record, energy, section_args is not None)
+        loop = (ram, LoopAnvil(modal, rings, classic, direct),
+                LoopPile(self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu,
+                         pv, poff, pen, self._pile_nsub, start.u, start.v, start.energy, face0,
+                         factor, largest, smallest),
+                LoopSettings(cfg.gravity, t0, h, n_steps, record_every, energy_every),
+                LoopRecords(out, energies, works, section_args, summary))
+        _warm_up(loop, anvil.kind, record, energy, section_args is not None)
         begin = time.perf_counter()
-        rows, energy_rows = run_blow(*args)
+        rows, energy_rows = run_blow(*loop)
         wall = time.perf_counter() - begin
         columns = {} if out is None else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
         series = {}
@@ -937,8 +1085,6 @@ class Engine:
 
 WARM_UP_STEPS = 200
 """Steps of the trial run that compiles or loads a loop variant (on copies of the states)."""
-_STATE_ARGUMENTS = (4, 5, 12, 13, 14, 15, 25, 26, 27, 28, 29)
-"""Positions in run_blow's arguments of what the loop writes (the others are read only)."""
 
 
 def probes_springs(arrays) -> int:
@@ -946,41 +1092,45 @@ def probes_springs(arrays) -> int:
     return int(arrays.pile.shape[1] - 1)
 
 
-def _warm_up(args, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
+def _copied(a):
+    """A copy of ``a``, an array or None."""
+    return None if a is None else a.copy()
+
+
+def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
     """Compile (or load from numba's cache) this variant of the loop, once per process, and
     run it for a few steps on copies of the states, so that the blow's timing excludes the
-    compilation and the first touch of the code and of the parameter arrays."""
+    compilation and the first touch of the code and of the parameter arrays.
+
+    ``loop`` is :func:`run_blow`'s (ram, anvil, pile, settings, records); the trial copies,
+    field by field, what the loop writes and shares the rest."""
+    ram, anvil, pile, settings, records = loop
     key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
-           args[32] is not None)
+           anvil.rings is not None)
     if key in _WARM:
         return
     from anvilwave.engine.compilation import announce_compilation
 
-    announce_compilation((run_blow,))
-
-    def copy(a):
-        if isinstance(a, np.ndarray):
-            return a.copy()
-        if isinstance(a, tuple):
-            return tuple(copy(x) for x in a)
-        return a
-
-    trial = list(args)
-    for i in _STATE_ARGUMENTS:
-        trial[i] = copy(trial[i])
-    modal, classic = trial[0], trial[1]
-    if modal is not None:  # (P, C, S, interface): the last two change
-        trial[0] = (modal[0], modal[1], modal[2].copy(), modal[3].copy())
-    if classic is not None:  # (P, S, n_sub)
-        trial[1] = (classic[0], classic[1].copy(), classic[2])
-    trial[22] = min(trial[22], WARM_UP_STEPS)  # n_steps
-    if trial[30] is not None:  # the sections' buffer is written
-        trial[30] = (trial[30][0], trial[30][1].copy())
-    # the modal ram's (C, S, toe): the last two change
-    trial[31] = (trial[31][0], trial[31][1].copy(), trial[31][2].copy())
-    if trial[32] is not None:  # the rings' state changes
-        trial[32] = copy_ring_state(trial[32])
-    run_blow(*trial)
+    announce_compilation((run_blow, _blow))
+    modal, classic = anvil.modal, anvil.classic
+    trial_anvil = anvil._replace(
+        modal=None if modal is None else modal._replace(state=modal.state.copy(),
+                                                        interface=modal.interface.copy()),
+        rings=None if anvil.rings is None else copy_ring_state(anvil.rings),
+        classic=None if classic is None else classic._replace(state=classic.state.copy()))
+    trial_ram = ram._replace(u=ram.u.copy(), v=ram.v.copy(), modal_state=ram.modal_state.copy(),
+                             modal_toe=ram.modal_toe.copy())
+    trial_pile = pile._replace(u=pile.u.copy(), v=pile.v.copy(),
+                               soil_offset=pile.soil_offset.copy(), energy=pile.energy.copy(),
+                               largest=pile.largest.copy(), smallest=pile.smallest.copy())
+    trial_records = records._replace(
+        out=_copied(records.out), energies=_copied(records.energies),
+        works=None if records.works is None else tuple(w.copy() for w in records.works),
+        sections=(None if records.sections is None
+                  else (records.sections[0], records.sections[1].copy())),
+        summary=records.summary.copy())
+    trial_settings = settings._replace(n_steps=min(settings.n_steps, WARM_UP_STEPS))
+    run_blow(trial_ram, trial_anvil, trial_pile, trial_settings, trial_records)
     _WARM.add(key)
 
 

@@ -398,10 +398,11 @@ class ModalRamUnit:
 
 
 @njit(cache=True, fastmath={"reassoc"})
-def modal_ram_advance(C, S, toe_force, h, toe):
+def modal_ram_advance(coefficients, state, toe_force, h, toe):
     """Advance every toe mode over h [s] with ``toe_force`` [N] (compression positive, pushes
-    the toe up) held, in place; writes the new modal (u_toe, v_toe) into ``toe`` [m, m/s] and
-    flips its ``half`` (:class:`ModalRamUnit`).
+    the toe up) held, in place (``coefficients``, ``state``: the unit's C and S, so called in
+    the formulas, :class:`ModalRamUnit`); writes the new modal (u_toe, v_toe) into ``toe``
+    [m, m/s] and flips its ``half``.
 
     eta_j,n+1 = a eta_j,n - eta_j,n-1 + c (p_grav,j g - p_toe,j F): exact per undamped mode
     for a held force, at any h (unconditionally stable; no sub-steps); gravity loads the rigid
@@ -412,6 +413,7 @@ def modal_ram_advance(C, S, toe_force, h, toe):
     1e-14 of the terms' magnitudes of the exactly rounded sum, tested): the engine and the Ram
     FMU, which both run this kernel, agree to rounding, not necessarily bit for bit. Not
     inlined: an inlined copy would take its caller's IEEE rules and lose the vectorisation."""
+    C, S = coefficients, state
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n
     old = n - now
@@ -432,11 +434,12 @@ def modal_ram_advance(C, S, toe_force, h, toe):
 
 
 @njit(cache=True)
-def modal_ram_energies(C, S, toe, gravity, h):
+def modal_ram_energies(coefficients, state, toe, gravity, h):
     """(kinetic, strain, gravity potential) [J] of the modal ram in the conserved (shadow) form
     of the two-step scheme, as the anvil's (:func:`anvilwave.anvil_rom.unit.modal_unit_energy`):
     sum m_e ((q_n - q_n-1) / h)^2 / 2, sum w^2 q_n q_n-1 / 2 and -g sum p_grav (q_n + q_n-1) / 2.
     The residual flexibility is the contact's series spring: its energy is the contact's."""
+    C, S = coefficients, state
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n
     old = n - now
