@@ -38,10 +38,10 @@ from anvilwave.config.schema import describe
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmus import build_system_fmus
-from anvilwave.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.fea.impact import run_impact_fea
 from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
+from anvilwave.output.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.output.plots import plot_columns, plot_modes
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter, check_output

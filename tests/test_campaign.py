@@ -165,7 +165,7 @@ def test_campaign_completes_with_every_case_exactly_once(finished):
                       "max_compression_stress [Pa]", "max_tension_stress [Pa]",
                       "driving_time [s]", "wall_time [s]", "error"]
     for r in rows:
-        assert r["status"] == "ok" and r.error == ""
+        assert r["status"] == "ok" and r["error"] == ""
         assert r["total_blows [-]"] > 0 and r["max_blow_count [1/m]"] > 0
         assert r["max_compression_stress [Pa]"] > 0 >= r["max_tension_stress [Pa]"]
         folder = out / "cases" / r["case"]
@@ -234,8 +234,8 @@ def test_a_worker_killed_mid_case_still_gives_a_complete_campaign(tmp_path, clus
     def executing(dask_worker):  # run on each worker (a local function: sent by value)
         return os.getpid(), [str(ts.key) for ts in dask_worker.state.executing]
 
-    result: dict = {}
-    runner = threading.Thread(target=lambda: result.update(run_campaign(
+    results: list = []
+    runner = threading.Thread(target=lambda: results.append(run_campaign(
         path, out, scheduler=cluster.scheduler_address, progress=False, plots=False)))
     killed = None
     with Client(cluster.scheduler_address) as client:
@@ -261,6 +261,7 @@ def test_a_worker_killed_mid_case_still_gives_a_complete_campaign(tmp_path, clus
     assert killed is not None, "no case was caught running"
     assert not runner.is_alive()
     assert killed[1] not in alive  # that worker process is gone (its nanny started another)
+    (result,) = results
     assert result.ok == len(names) and result.error == 0
     assert _names_of(out) == names  # complete, every case once
     summary = json.loads((out / "cases" / killed[0] / "summary.json").read_text())

@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 from numba import njit
 
-from anvilwave.examples import EXAMPLES_DIR
 from anvilwave.hammer import (
     Cushion,
     DrivingSystem,
@@ -56,6 +55,7 @@ from anvilwave.hammer.driving_system import (
     S_HELMET_V,
 )
 from anvilwave.inputs import InputError, Table
+from anvilwave.output.examples import EXAMPLES_DIR
 
 G = 9.81  # GRLWEAP's gravity in the benchmark [m/s^2]
 KN_PER_MM = 1e6  # [N/m] per [kN/mm]

@@ -39,6 +39,8 @@ from numba import njit
 
 from anvilwave.anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.fem.geometry import STEEL, Material
+from anvilwave.anvil_rom.fem.pipeline import solid_mass
 from anvilwave.anvil_rom.rings import (
     RamFace,
     RingState,
@@ -60,7 +62,9 @@ from anvilwave.anvil_rom.unit import (
     modal_unit_energy_at,
     modal_unit_interface,
 )
+from anvilwave.config.cache import cached_chain, cached_modal_data, cached_ring_kernel
 from anvilwave.config.system import SystemConfig
+from anvilwave.engine.compilation import announce_compilation
 from anvilwave.hammer.driving_system import (
     driving_system_energy,
     driving_system_forces,
@@ -69,10 +73,21 @@ from anvilwave.hammer.driving_system import (
     driving_system_step,
     interface_time_step,
 )
-from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram_advance, modal_ram_energies
+from anvilwave.hammer.modal_ram import (
+    ModalRamUnit,
+    modal_ram_advance,
+    modal_ram_chain,
+    modal_ram_energies,
+)
 from anvilwave.hammer.ram import leapfrog_energies, ram_advance
 from anvilwave.hammer.ram import stable_time_step as ram_stable_time_step
 from anvilwave.inputs import InputError
+from anvilwave.pile.head_kernel import (
+    echo_free_length,
+    head_correction,
+    rod_head_response,
+    tube_contact_stiffness,
+)
 from anvilwave.pile.kernels import (
     HEAD_EXTRAPOLATION,
     PILE_STIFFNESS,
@@ -1109,7 +1124,6 @@ def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool 
            anvil.rings is not None)
     if key in _WARM:
         return
-    from anvilwave.engine.compilation import announce_compilation
 
     announce_compilation((run_blow, _blow))
     modal, classic = anvil.modal, anvil.classic
@@ -1249,7 +1263,6 @@ def _contact(cfg: SystemConfig) -> ContactParameters:
 def anvil_modal_data(cfg: SystemConfig):
     """The modal data of the system's anvil, from the modal-data cache
     (:func:`anvilwave.config.cache.cached_modal_data`: computed once per machine)."""
-    from anvilwave.config.cache import cached_modal_data
 
     try:
         return cached_modal_data(cfg.anvil.spec, fmax=cfg.anvil.fmax)
@@ -1261,8 +1274,6 @@ def anvil_modal_data(cfg: SystemConfig):
 
 def _modal_ram_as_chain(cfg: SystemConfig):
     """The system's modal-unit ram as its equivalent chain (cached)."""
-    from anvilwave.config.cache import cached_chain
-    from anvilwave.hammer.modal_ram import modal_ram_chain
 
     try:
         return modal_ram_chain(cfg.hammer.ram, cfg.hammer.ram.modes, cached_chain)
@@ -1310,7 +1321,6 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
         elif modal is not None:
             mass = modal.total_mass
         else:
-            from anvilwave.anvil_rom.fem.pipeline import solid_mass
 
             mass = solid_mass(cfg.anvil.spec)
     anvil = _anvil_kernels(cfg, ram_mass, arrays, modal, mass, ram_modes)
@@ -1351,15 +1361,6 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     the step ``h`` [s] over the longest blow the file sets (``[simulation]`` or
     ``[driveability] duration``), the rings' contact springs the tube's; the anvil rests on it
     afresh."""
-    from anvilwave.anvil_rom.fem.geometry import STEEL, Material
-    from anvilwave.config.cache import cached_ring_kernel
-    from anvilwave.pile.head_kernel import (
-        echo_free_length,
-        head_correction,
-        rod_head_response,
-        tube_contact_stiffness,
-    )
-    from anvilwave.pile.model import substeps
 
     unit = anvil.unit
     pile = cfg.pile_soil.pile

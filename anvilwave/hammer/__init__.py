@@ -45,7 +45,6 @@ from anvilwave.hammer.ram import (
     gravity_potential_energy,
     kinetic_energy,
     momentum,
-    ram_from_table,
     ram_step,
     required_substeps,
     spring_forces,
@@ -53,6 +52,7 @@ from anvilwave.hammer.ram import (
     strain_energy,
     toe_spring_force,
 )
+from anvilwave.hammer.ram_table import ram_from_table
 
 __all__ = [
     "GRAVITY",

@@ -9,7 +9,7 @@ A hammer file (or a ``[hammer]`` table of a configuration) holds::
     efficiency = 0.95              # [-] hammer efficiency
     stroke = 2.04                  # [m] optional; default the equivalent stroke E / (m g)
     # impact_velocity = 6.0        # [m/s] instead of rated_energy / stroke and efficiency
-    [ram]                          # see hammer.ram.ram_from_table
+    [ram]                          # see hammer.ram_table.ram_from_table
     [source]                       # document, year, optional url, estimates, checked
 
 The impact velocity comes from, in this order: ``impact_velocity``; ``rated_energy`` with
@@ -28,7 +28,8 @@ from anvilwave.hammer.impact import (
     impact_velocity_from_energy,
     impact_velocity_from_stroke,
 )
-from anvilwave.hammer.ram import RamRod, ram_from_table
+from anvilwave.hammer.ram import RamRod
+from anvilwave.hammer.ram_table import ram_from_table
 from anvilwave.inputs import InputError, Table
 
 DATA_DIR = Path(__file__).with_name("data")

@@ -46,6 +46,7 @@ from anvilwave.anvil_rom.arrays import aligned_zeros
 from anvilwave.anvil_rom.chain import chain_from_modes
 from anvilwave.anvil_rom.fem.geometry import AnvilSpec, Interfaces, Material, validate_outline
 from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 from anvilwave.anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.hammer.ram import RamRod
 from anvilwave.inputs import InputError
@@ -285,7 +286,6 @@ def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax:
     spec = AnvilSpec("ram", material, outline=outline, interfaces=toe, mesh_size=mesh_size,
                      fmax=fmax, source=source)
     if modes is None:
-        from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 
         data = compute_anvil_modes(spec, fmax=fmax).modal_data
     else:
