@@ -13,8 +13,8 @@ Positions A01 and B07 are the two of examples/campaign_small.toml (inline there,
 layers as their _srd.toml files); C03, D11, E05 and F09 complete the six of
 examples/campaign_farm.toml.
 
-Run from the repository root: ``python examples/make_synthetic_campaign_cpts.py`` (well under
-a second; the files are deterministic).
+Run from the repository root: ``python anvilwave/examples/make_synthetic_campaign_cpts.py``
+(well under a second; the files are deterministic).
 """
 
 from __future__ import annotations
@@ -102,7 +102,7 @@ def write_cpt(name: str, profile: dict) -> Path:
 def write_srd(name: str, profile: dict) -> Path:
     path = SOIL / f"campaign_{name.lower()}_srd.toml"
     lines = [f"# [srd] of position {name} for the campaign examples: ILLUSTRATIVE, synthetic",
-             "# (examples/make_synthetic_campaign_cpts.py), the layers of its CPT file:",
+             "# (anvilwave/examples/make_synthetic_campaign_cpts.py), the layers of its CPT file:",
              f"# {profile['description']}.",
              "# Paths are relative to this file.",
              "",
