@@ -55,7 +55,9 @@ MODULES_PHYSICS_AND_OUTPUT = (
 )
 MODULES_SYSTEM = ()
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
-MODULES_FMU = ()
+MODULES_FMU = (
+    "anvilwave.fmu.units.base",
+)
 """The FMI package."""
 MODULES_KERNELS = ()
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
