@@ -57,6 +57,7 @@ MODULES_SYSTEM = ()
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
 MODULES_FMU = (
     "anvilwave.fmu.fmi_master",
+    "anvilwave.fmu.native_build",
     "anvilwave.fmu.units.anvil",
     "anvilwave.fmu.units.base",
 )
