@@ -60,6 +60,7 @@ MODULES_FMU = (
     "anvilwave.fmu.native_build",
     "anvilwave.fmu.units.anvil",
     "anvilwave.fmu.units.base",
+    "anvilwave.fmu.units.ram",
 )
 """The FMI package."""
 MODULES_KERNELS = ()
