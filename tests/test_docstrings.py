@@ -61,6 +61,7 @@ MODULES_FMU = (
     "anvilwave.fmu.native_build",
     "anvilwave.fmu.units.anvil",
     "anvilwave.fmu.units.base",
+    "anvilwave.fmu.units.pile_soil",
     "anvilwave.fmu.units.ram",
 )
 """The FMI package."""
