@@ -56,6 +56,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
 MODULES_SYSTEM = ()
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
 MODULES_FMU = (
+    "anvilwave.fmu.coupling",
     "anvilwave.fmu.fmi_build",
     "anvilwave.fmu.fmi_master",
     "anvilwave.fmu.native_build",
