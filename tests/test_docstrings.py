@@ -60,6 +60,7 @@ MODULES_FMU = (
     "anvilwave.fmu.fmi_build",
     "anvilwave.fmu.fmi_master",
     "anvilwave.fmu.native_build",
+    "anvilwave.fmu.native_units",
     "anvilwave.fmu.ssp",
     "anvilwave.fmu.units.anvil",
     "anvilwave.fmu.units.base",
