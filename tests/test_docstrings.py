@@ -55,7 +55,22 @@ MODULES_PHYSICS_AND_OUTPUT = (
 )
 MODULES_SYSTEM = ()
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
-MODULES_FMU = ()
+MODULES_FMU = (
+    "anvilwave.fmu.coupling",
+    "anvilwave.fmu.fmi_build",
+    "anvilwave.fmu.fmi_master",
+    "anvilwave.fmu.native_build",
+    "anvilwave.fmu.native_units",
+    "anvilwave.fmu.ssp",
+    "anvilwave.fmu.units.anvil",
+    "anvilwave.fmu.units.anvilwave_anvil_lumped",
+    "anvilwave.fmu.units.anvilwave_anvil_rom",
+    "anvilwave.fmu.units.anvilwave_pile_soil",
+    "anvilwave.fmu.units.anvilwave_ram",
+    "anvilwave.fmu.units.base",
+    "anvilwave.fmu.units.pile_soil",
+    "anvilwave.fmu.units.ram",
+)
 """The FMI package."""
 MODULES_KERNELS = ()
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""

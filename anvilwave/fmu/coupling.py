@@ -50,15 +50,31 @@ INPUT_EXTRAPOLATION_DESCRIPTION = (
 
 def extrapolated_input(displacement: float, velocity: float, previous_velocity: float,
                        age: float, interval: float) -> tuple[float, float]:
-    """A neighbour's (displacement [m], velocity [m/s]) ``age`` [s] after it was received.
+    """A neighbour's displacement and velocity ``age`` after they were received.
 
-    ``velocity`` [m/s] is the neighbour's half-step value (its mean velocity over its last step),
-    ``previous_velocity`` [m/s] the one received ``interval`` [s] earlier: a = (velocity -
-    previous_velocity) / interval (0 for interval 0). Returns u + age (v + a interval / 2)
-    + a age^2 / 2 and v + a age; exactly (u, v) at age 0. The native anvil
-    (``anvilwave/fmu/native/anvil_fmu.c``, ``extrapolated_input``) does the same operations in the
-    same
-    order.
+    a = (velocity - previous_velocity) / interval (0 for interval 0). The native anvil
+    (``anvilwave/fmu/native/anvil_fmu.c``, ``extrapolated_input``) does the same operations in
+    the same order.
+
+    Parameters
+    ----------
+    displacement : float
+        The neighbour's displacement u as received [m].
+    velocity : float
+        The neighbour's half-step velocity v (its mean velocity over its last step) [m/s].
+    previous_velocity : float
+        The velocity received ``interval`` earlier [m/s].
+    age : float
+        Time since the values were received [s].
+    interval : float
+        Time between the two velocities [s]; 0: no acceleration.
+
+    Returns
+    -------
+    displacement : float
+        u + age (v + a interval / 2) + a age^2 / 2 [m]; exactly u at age 0.
+    velocity : float
+        v + a age [m/s]; exactly v at age 0.
     """
     if age == 0.0:
         return displacement, velocity
@@ -70,7 +86,10 @@ def extrapolated_input(displacement: float, velocity: float, previous_velocity: 
 class InputExtrapolation:
     """State of the input extrapolation of an anvil unit (module docstring, steps 1-3).
 
-    time : the unit's communication point [s]: the start time, then the end of each step
+    Parameters
+    ----------
+    time : float
+        The unit's communication point [s]: the start time, then the end of each step
         (current communication point + step size).
     """
 
@@ -85,14 +104,31 @@ class InputExtrapolation:
         self.sent = None  # ... of the last output read since the last step [N]
 
     def note_inputs(self, inputs) -> None:
-        """Before new inputs are stored: at a new point keep the velocities of the last one."""
+        """Before new inputs are stored: at a new point keep the velocities of the last one.
+
+        Parameters
+        ----------
+        inputs : list of float
+            The inputs still held, (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        """
         if self.time > self.input_time:
             self.previous_velocity = (inputs[1], inputs[3])
             self.interval = self.time - self.input_time if self.input_time > self.start else 0.0
             self.input_time = self.time
 
     def extrapolated(self, inputs) -> tuple[float, float, float, float]:
-        """(u_ram, v_ram, u_pile, v_pile) at the unit's time (:func:`extrapolated_input`)."""
+        """(u_ram, v_ram, u_pile, v_pile) at the unit's time (:func:`extrapolated_input`).
+
+        Parameters
+        ----------
+        inputs : list of float
+            The inputs as set, (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+
+        Returns
+        -------
+        tuple of float
+            The extrapolated (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        """
         age = self.time - self.input_time
         u_ram, v_ram = extrapolated_input(inputs[0], inputs[1], self.previous_velocity[0], age,
                                           self.interval)
@@ -101,8 +137,18 @@ class InputExtrapolation:
         return u_ram, v_ram, u_pile, v_pile
 
     def stepped(self, force_ram: float, force_pile: float) -> None:
-        """The step applies these forces [N]: the correction is their difference to the forces
-        read since the last step (none read: no correction)."""
+        """The step applies these forces: the impulse correction follows from them.
+
+        The correction is their difference to the forces read since the last step (none read:
+        no correction).
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram-anvil contact force the step applies [N].
+        force_pile : float
+            Anvil-pile contact force the step applies [N].
+        """
         if self.sent is None:
             self.correction[:] = (0.0, 0.0)
         else:

@@ -117,19 +117,43 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
 
     Parameters
     ----------
-    kind : an FMU type of :data:`KINDS` (``"Anvil"``, ``"AnvilLumped"``) or the path of a slave
+    kind : str or pathlib.Path
+        An FMU type of :data:`KINDS` (``"Anvil"``, ``"AnvilLumped"``) or the path of a slave
         script (a :class:`anvilwave.fmu.units.base.UnitSlave` subclass in a module with a unique
         name).
-    out_dir : folder for the ``.fmu`` (created).
-    parameters : parameter defaults of this build, ``{name: value}`` (SI units, see the slave).
-    resources : files embedded in the FMU's ``resources`` folder; a string parameter may name
-        them (relative names are looked up there at run time).
-    status_shim : install the fmi2Error status shim: ``None`` when possible (Linux with a C
-        compiler), ``True`` required, ``False`` never.
-    validate : run ``fmpy.validation.validate_fmu`` on the result (needs fmpy).
-    default_experiment : (start time, stop time, step) [s] of the system the FMU is built for:
-        its ``DefaultExperiment`` (default: the slave class's), and the step the ram places its
+    out_dir : str or pathlib.Path
+        Folder for the ``.fmu`` (created).
+    parameters : dict of str to Any, optional
+        Parameter defaults of this build, ``{name: value}`` (SI units, see the slave).
+    resources : iterable of str or pathlib.Path, default ()
+        Files embedded in the FMU's ``resources`` folder; a string parameter may name them
+        (relative names are looked up there at run time).
+    status_shim : bool or None, optional
+        Install the fmi2Error status shim: ``None`` when possible (Linux with a C compiler),
+        ``True`` required, ``False`` never.
+    validate : bool, default True
+        Run ``fmpy.validation.validate_fmu`` on the result (needs fmpy).
+    default_experiment : tuple of float or None, optional
+        (start time, stop time, step) [s] of the system the FMU is built for: its
+        ``DefaultExperiment`` (default: the slave class's), and the step the ram places its
         first contact with before the first ``fmi2DoStep`` (:mod:`anvilwave.fmu.units.ram`).
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu``, ``out_dir/<kind>.fmu``.
+
+    Raises
+    ------
+    InputError
+        If ``kind``, a parameter, a resource or ``default_experiment`` is invalid.
+    RuntimeError
+        If the status shim is required but cannot be built, or the FMU does not validate.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
     script = _script(kind)
     parameters = dict(parameters or {})
@@ -177,8 +201,26 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
     """``Anvil.fmu`` (modal ROM) or, with ``lumped``, ``AnvilLumped.fmu`` from a modal-data file.
 
     The ROM embeds the file and defaults ``fmax`` [Hz] and ``damping_ratio`` [-] to the file's;
-    the lumped anvil defaults its ``mass`` [kg] to the file's total mass. Other parameters
-    (``ram_contact_stiffness`` [N/m], ``pile_contact_stiffness`` [N/m], ...) as keywords.
+    the lumped anvil defaults its ``mass`` [kg] to the file's total mass.
+
+    Parameters
+    ----------
+    modal_data_file : str or pathlib.Path
+        The modal-data file (``.npz``).
+    out_dir : str or pathlib.Path
+        Folder for the ``.fmu`` (created).
+    lumped : bool, default False
+        Build ``AnvilLumped.fmu`` (the rigid lumped-mass anvil) instead of ``Anvil.fmu``.
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] of the system the FMU is built for (:func:`build_fmu`).
+    **parameters
+        Other parameters (``ram_contact_stiffness`` [N/m], ``pile_contact_stiffness`` [N/m],
+        ...) as keywords.
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu`` (``out_dir/<kind>.fmu``).
     """
 
     path = Path(modal_data_file)
@@ -201,16 +243,32 @@ def build_ram_fmu(out_dir: str | Path, hammer=None, *,
                   **parameters) -> Path:
     """``Ram.fmu`` for a hammer.
 
-    hammer : a :class:`anvilwave.hammer.database.Hammer` (its ram is embedded as
-    ``hammer.toml``, the
+    Parameters
+    ----------
+    out_dir : str or pathlib.Path
+        Folder for the ``.fmu`` (created).
+    hammer : Hammer, str, pathlib.Path or None, optional
+        A :class:`anvilwave.hammer.database.Hammer` (its ram is embedded as ``hammer.toml``, the
         segment masses [kg] and springs [N/m] written exactly; ``v_impact`` [m/s] and ``mass``
         [kg] default to the hammer's), the name of a database hammer (nothing embedded), the
         path of a hammer TOML file (embedded), or None (the default database hammer).
-    parameters : further parameters of the Ram FMU (``v_impact`` [m/s], ``gravity`` [m/s^2],
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] of the system (:func:`build_fmu`); the same keyword for the
+        other helpers.
+    **parameters
+        Further parameters of the Ram FMU (``v_impact`` [m/s], ``gravity`` [m/s^2],
         ``contact_displacement`` [m], ``contact_mid_step``, ``contact_time`` [s], ``mass``
         [kg]).
-    default_experiment : (start, stop, step) [s] of the system (:func:`build_fmu`); the same
-        keyword for the other helpers.
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu`` (``out_dir/<kind>.fmu``).
+
+    Raises
+    ------
+    InputError
+        If ``hammer`` is neither a database hammer nor a ``.toml`` file.
     """
 
     with tempfile.TemporaryDirectory(prefix="anvilwave_ram_") as tmp:
@@ -243,12 +301,25 @@ def build_pile_soil_fmu(out_dir: str | Path, pile_soil, *,
                         **parameters) -> Path:
     """``PileSoil.fmu`` for a pile with its soil.
 
-    pile_soil : a :class:`anvilwave.pile.model.PileSoil` (written exactly as ``pile_soil.toml``; the
+    Parameters
+    ----------
+    out_dir : str or pathlib.Path
+        Folder for the ``.fmu`` (created).
+    pile_soil : PileSoil, str or pathlib.Path
+        A :class:`anvilwave.pile.model.PileSoil` (written exactly as ``pile_soil.toml``; the
         scalar settings become the parameter defaults) or the path of a TOML file with
         ``[pile]`` and an optional ``[soil]`` table (embedded; its scalar settings become the
         defaults likewise).
-    parameters : further parameters (``static_head_load`` [N], ``gravity`` [m/s^2],
-        ``soil_model``, ``gauge_depth`` [m], ...; see :mod:`anvilwave.fmu.units.pile_soil`).
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] of the system the FMU is built for (:func:`build_fmu`).
+    **parameters
+        Further parameters (``static_head_load`` [N], ``gravity`` [m/s^2], ``soil_model``,
+        ``gauge_depth`` [m], ...; see :mod:`anvilwave.fmu.units.pile_soil`).
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu`` (``out_dir/<kind>.fmu``).
     """
 
     with tempfile.TemporaryDirectory(prefix="anvilwave_pile_") as tmp:
@@ -265,8 +336,18 @@ def build_pile_soil_fmu(out_dir: str | Path, pile_soil, *,
 
 
 def pile_soil_parameters(model) -> dict[str, Any]:
-    """The scalar settings of a :class:`anvilwave.pile.model.PileSoil` as PileSoil FMU
-    parameters."""
+    """The scalar settings of a :class:`anvilwave.pile.model.PileSoil` as PileSoil FMU parameters.
+
+    Parameters
+    ----------
+    model : PileSoil
+        The pile with its soil.
+
+    Returns
+    -------
+    dict of str to Any
+        FMU parameter name -> value [SI].
+    """
     pile, soil = model.pile, model.soil
     values: dict[str, Any] = {"segment_length": pile.segment_length,
                               "gauge_depth": pile.gauge_depth,
@@ -286,8 +367,19 @@ def pile_soil_parameters(model) -> dict[str, Any]:
 
 # ---------------------------------------------------------------------------- TOML resources
 def hammer_toml(hammer) -> str:
-    """A hammer file (TOML) that reads back as ``hammer``'s ram exactly: its segment masses
-    [kg] and springs [N/m] (or a modal ram's toe modes) and its impact velocity [m/s]."""
+    """A hammer file (TOML) that reads back as ``hammer``'s ram exactly.
+
+    Parameters
+    ----------
+    hammer : Hammer
+        The hammer (:class:`anvilwave.hammer.database.Hammer`).
+
+    Returns
+    -------
+    str
+        The TOML text: the segment masses [kg] and springs [N/m] (or a modal ram's toe modes)
+        and the impact velocity [m/s].
+    """
     ram = hammer.ram
     if ram.is_modal_unit:  # the toe modes of a modal ram (hammer.modal_ram)
 
@@ -306,7 +398,23 @@ def hammer_toml(hammer) -> str:
 
 
 def pile_soil_toml(model) -> str:
-    """A pile/soil file (``[pile]``, ``[soil]``) that reads back as ``model`` exactly."""
+    """A pile/soil file (``[pile]``, ``[soil]``) that reads back as ``model`` exactly.
+
+    Parameters
+    ----------
+    model : PileSoil
+        The pile with its soil.
+
+    Returns
+    -------
+    str
+        The TOML text.
+
+    Raises
+    ------
+    ValueError
+        If the soil is given by capacities per segment (it has no SRD table to embed).
+    """
     pile, soil = model.pile, model.soil
     sections = [{"length": s.length, "outer_diameter": s.outer_diameter,
                  "wall_thickness": s.wall_thickness, "youngs_modulus": s.youngs_modulus,
@@ -348,6 +456,11 @@ def python_runtime() -> dict[str, Any]:
     libpython (``sysconfig`` ``LIBDIR`` / ``INSTSONAME``; None for a Python without one, whose
     FMUs run in Python hosts only); ``version``: ``"3.X"``; ``site``: its site-packages folders
     and the folder holding the ``anvilwave.fmu`` package (for a checkout that is not installed).
+
+    Returns
+    -------
+    dict of str to Any
+        ``executable``, ``library``, ``version`` and ``site``, as above.
     """
     import site
     import sysconfig
@@ -370,7 +483,18 @@ def python_runtime() -> dict[str, Any]:
 
 
 def python_runtime_text(runtime: dict[str, Any] | None = None) -> str:
-    """``resources/anvilwave_python.txt``: :func:`python_runtime` as ``key = value`` lines."""
+    """``resources/anvilwave_python.txt``: :func:`python_runtime` as ``key = value`` lines.
+
+    Parameters
+    ----------
+    runtime : dict of str to Any or None, optional
+        A :func:`python_runtime` result (default: this Python's).
+
+    Returns
+    -------
+    str
+        Content of the file.
+    """
     runtime = python_runtime() if runtime is None else runtime
     lines = ["# anvilwave: the Python that built this FMU. A host that is not Python loads its",
              "# library and runs the unit in it (anvilwave/fmu/units/fmi2_status_shim.c).",
@@ -576,9 +700,29 @@ def _exact_start_values(root: ET.Element, values: dict[str, Any]) -> None:
 
 
 def content_guid(model_description: bytes, files: dict[str, bytes]) -> str:
-    """The GUID of an FMU from its content: a name-based UUID (RFC 4122 version 5 layout) of the
-    SHA-256 of the model description (its ``guid`` empty) and of every other file (name and
-    bytes), so that identical builds get identical GUIDs and any change a new one."""
+    """The GUID of an FMU from its content.
+
+    A name-based UUID (RFC 4122 version 5 layout) of the SHA-256 of the model description (its
+    ``guid`` empty) and of every other file (name and bytes), so that identical builds get
+    identical GUIDs and any change a new one.
+
+    Parameters
+    ----------
+    model_description : bytes
+        ``modelDescription.xml`` with an empty ``guid``.
+    files : dict of str to bytes
+        Every other file of the FMU: name -> content.
+
+    Returns
+    -------
+    str
+        The GUID, in braces.
+
+    References
+    ----------
+    Leach, P., Mealling, M. and Salz, R. (2005). A Universally Unique IDentifier (UUID) URN
+    Namespace. RFC 4122, IETF.
+    """
     digest = hashlib.sha256(model_description)
     for name in sorted(files):
         digest.update(b"\0" + name.encode() + b"\0" + len(files[name]).to_bytes(8, "little"))
@@ -587,7 +731,13 @@ def content_guid(model_description: bytes, files: dict[str, bytes]) -> str:
 
 
 def anvilwave_version() -> str:
-    """The installed anvilwave's version (``0+unknown`` for a checkout that is not installed)."""
+    """The installed anvilwave's version.
+
+    Returns
+    -------
+    str
+        The version (``0+unknown`` for a checkout that is not installed).
+    """
     try:
         return importlib.metadata.version("anvilwave")
     except importlib.metadata.PackageNotFoundError:
@@ -598,9 +748,26 @@ def complete_model_description(root: ET.Element, units: dict[str, str],
                                dependencies: dict[str, tuple[str, ...]]) -> None:
     """Add what pythonfmu leaves out of a modelDescription.xml (in place).
 
-    units : variable name -> unit name (a key of :data:`UNIT_DEFINITIONS`).
-    dependencies : output name -> names of the inputs it depends on directly (feedthrough).
     At initialization each output may depend on its inputs and on every parameter.
+
+    Parameters
+    ----------
+    root : xml.etree.ElementTree.Element
+        Root of the model description, completed in place.
+    units : dict of str to str
+        Variable name -> unit name (a key of :data:`UNIT_DEFINITIONS`).
+    dependencies : dict of str to tuple of str
+        Output name -> names of the inputs it depends on directly (feedthrough).
+
+    Raises
+    ------
+    ValueError
+        If a unit has no definition.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
     variables = root.find("ModelVariables").findall("ScalarVariable")
     index = {v.get("name"): i + 1 for i, v in enumerate(variables)}

@@ -84,6 +84,21 @@ class ChainResult:
     """Time series of a chain run: ``data[:, j]`` is column ``names[j]`` (units in ``units``).
 
     ``result["ram_anvil_force"]`` gives one column [SI unit of the column].
+
+    Parameters
+    ----------
+    data : numpy.ndarray
+        The time series, shape (rows, columns) [SI unit of each column].
+    names : tuple of str, default the names of ``COLUMNS``
+        Column names.
+    units : tuple of str, default the units of ``COLUMNS``
+        Column units.
+    wall_time : float, default 0.0
+        Wall time of the stepping loop [s].
+    n_steps : int, default 0
+        Number of communication steps run [-].
+    messages : dict of str to list of str, default {}
+        Log messages of each unit (by role).
     """
 
     data: np.ndarray
@@ -98,17 +113,35 @@ class ChainResult:
 
     @property
     def time(self) -> np.ndarray:
-        """[s]"""
+        """Time column [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            The ``time`` column [s].
+        """
         return self["time"]
 
     @property
     def header(self) -> list[str]:
-        """CSV header ``name [unit]``."""
+        """CSV header ``name [unit]``.
+
+        Returns
+        -------
+        list of str
+            One ``name [unit]`` entry per column.
+        """
         return [f"{n} [{u}]" for n, u in zip(self.names, self.units, strict=True)]
 
     @property
     def microseconds_per_step(self) -> float:
-        """Wall time of the stepping loop per 3-unit step [us]."""
+        """Wall time of the stepping loop per 3-unit step [us].
+
+        Returns
+        -------
+        float
+            Wall time per step [us].
+        """
         return 1e6 * self.wall_time / max(self.n_steps, 1)
 
 
@@ -163,15 +196,32 @@ class _Unit:
 class ChainMaster:
     """Co-simulation of Ram, Anvil and PileSoil FMUs at a fixed communication step.
 
-    Parameters
-    ----------
-    ram_fmu, anvil_fmu, pile_fmu : paths of the three ``.fmu`` files (DESIGN.md interfaces).
-    parameters : ``{"ram": {...}, "anvil": {...}, "pile": {...}}`` parameter values set on each
-        unit before initialization (SI units; see each FMU's modelDescription).
-    debug_logging : forward the units' informational messages too (errors always are).
-
     Use as a context manager (or call :meth:`close`): the units stay loaded between runs; each
     :meth:`run` after the first resets them (``fmi2Reset``) and starts again.
+
+    Parameters
+    ----------
+    ram_fmu : str or pathlib.Path
+        Path of the Ram ``.fmu`` file (DESIGN.md interface).
+    anvil_fmu : str or pathlib.Path
+        Path of the Anvil ``.fmu`` file (DESIGN.md interface).
+    pile_fmu : str or pathlib.Path
+        Path of the PileSoil ``.fmu`` file (DESIGN.md interface).
+    parameters : dict of str to dict, optional
+        ``{"ram": {...}, "anvil": {...}, "pile": {...}}`` parameter values set on each unit
+        before initialization (SI units; see each FMU's modelDescription).
+    debug_logging : bool, default False
+        Forward the units' informational messages too (errors always are).
+
+    Raises
+    ------
+    CosimulationError
+        If ``parameters`` names an unknown unit.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
 
     def __init__(self, ram_fmu: str | Path, anvil_fmu: str | Path, pile_fmu: str | Path,
@@ -236,7 +286,20 @@ class ChainMaster:
 
     # ------------------------------------------------------------------ run
     def initialize(self, start_time: float, stop_time: float | None) -> None:
-        """Reset (after a run), set the parameters and initialize the three units."""
+        """Reset (after a run), set the parameters and initialize the three units.
+
+        Parameters
+        ----------
+        start_time : float
+            Start time of the experiment [s].
+        stop_time : float or None
+            Stop time of the experiment [s]; ``None``: not set.
+
+        Raises
+        ------
+        CosimulationError
+            If a unit returns fmi2Discard, fmi2Error or fmi2Fatal.
+        """
         from fmpy.fmi1 import FMICallException
 
         for role in UNITS:
@@ -254,11 +317,32 @@ class ChainMaster:
 
     def run(self, n_steps: int, step_size: float, start_time: float = 0.0,
             progress: bool | None = None, record_every: int = 1) -> ChainResult:
-        """Initialize and run ``n_steps`` communication steps of ``step_size`` [s].
+        """Initialize and run ``n_steps`` communication steps of ``step_size``.
 
-        progress : show a tqdm progress bar (default: when ``n_steps`` >= 100000).
-        record_every : keep every k-th step (the first and the last row are always kept).
-        Returns the time series (``n_steps // record_every + 1`` rows, plus the last step).
+        Parameters
+        ----------
+        n_steps : int
+            Number of communication steps [-], non-negative.
+        step_size : float
+            Communication step h [s], positive.
+        start_time : float, default 0.0
+            Start time [s].
+        progress : bool or None, optional
+            Show a tqdm progress bar (default: when ``n_steps`` >= 100000).
+        record_every : int, default 1
+            Keep every k-th step (the first and the last row are always kept).
+
+        Returns
+        -------
+        ChainResult
+            The time series (``n_steps // record_every + 1`` rows, plus the last step).
+
+        Raises
+        ------
+        ValueError
+            If ``n_steps``, ``step_size`` or ``record_every`` is out of range.
+        CosimulationError
+            If a unit returns fmi2Discard, fmi2Error or fmi2Fatal.
         """
         _check_run(n_steps, step_size, record_every)
         for log in self.messages.values():
@@ -351,11 +435,23 @@ class ChainMaster:
 class BlowRecord:
     """One blow of :meth:`BlowMaster.run`: ``data[:, j]`` is ``BLOW_ROW[j]`` [SI] at ``time``.
 
-    time : the blow's own time [s] (t0 + n h, the first contact at 0); ``global_time`` adds the
+    Parameters
+    ----------
+    time : numpy.ndarray
+        The blow's own time (t0 + n h, the first contact at 0) [s]; ``global_start`` is the
         start of the blow in the FMUs' continuous time.
-    pile_head_start : ``u_head`` at the start of the blow [m] (the anvil rested there).
-    contact_displacement : the anvil top face at rest, where the ram's toe first touches [m].
-    wall_time : wall time of the stepping loop alone [s]; n_steps : steps of the blow.
+    data : numpy.ndarray
+        The exchange rows, shape (rows, ``len(BLOW_ROW)``) [SI].
+    global_start : float
+        Start of the blow in the FMUs' continuous time [s].
+    pile_head_start : float
+        ``u_head`` at the start of the blow (the anvil rested there) [m].
+    contact_displacement : float
+        The anvil top face at rest, where the ram's toe first touches [m].
+    wall_time : float
+        Wall time of the stepping loop alone [s].
+    n_steps : int
+        Steps of the blow [-].
     """
 
     time: np.ndarray
@@ -371,7 +467,13 @@ class BlowRecord:
 
     @property
     def microseconds_per_step(self) -> float:
-        """Wall time of the stepping loop per 3-unit step [us]."""
+        """Wall time of the stepping loop per 3-unit step [us].
+
+        Returns
+        -------
+        float
+            Wall time per step [us].
+        """
         return 1e6 * self.wall_time / max(self.n_steps, 1)
 
 
@@ -390,17 +492,34 @@ class BlowMaster(ChainMaster):
     continuously over the blows in the FMUs, T = t0 + (k N + n) h for step n of blow k (from
     the step count); each blow's own time is t0 + n h with the first contact at 0, as in the engine.
 
-    Parameters as :class:`ChainMaster`; the master sets ``initial_pile_head_displacement``
-    (anvil), ``contact_displacement``, ``contact_time`` and ``contact_mid_step`` (ram) itself
-    unless given.
+    The master sets ``initial_pile_head_displacement`` (anvil), ``contact_displacement``,
+    ``contact_time`` and ``contact_mid_step`` (ram) itself unless given.
 
-    exchange : ``"design"`` (default), the DESIGN.md step order above; ``"jacobi"``, the
-        exchange of the common fixed-step masters (libcosim's): every unit steps, then every
-        output is read and passed on, so the anvil's forces, read right after its step, are
-        those of its inputs of the step before (a one-step lag through its feedthrough). Only
-        for comparing with such masters: the lag makes the stiff contacts lose accuracy (and
-        energy balance) at the engine's step; the anvil's ``input_extrapolation`` parameter
+    Parameters
+    ----------
+    ram_fmu : str or pathlib.Path
+        Path of the Ram ``.fmu`` file, as :class:`ChainMaster`.
+    anvil_fmu : str or pathlib.Path
+        Path of the Anvil ``.fmu`` file, as :class:`ChainMaster`.
+    pile_fmu : str or pathlib.Path
+        Path of the PileSoil ``.fmu`` file, as :class:`ChainMaster`.
+    parameters : dict of str to dict, optional
+        Parameter values of each unit, as :class:`ChainMaster`.
+    debug_logging : bool, default False
+        Forward the units' informational messages too, as :class:`ChainMaster`.
+    exchange : {"design", "jacobi"}, default "design"
+        ``"design"``, the DESIGN.md step order above; ``"jacobi"``, the exchange of the common
+        fixed-step masters (libcosim's): every unit steps, then every output is read and passed
+        on, so the anvil's forces, read right after its step, are those of its inputs of the
+        step before (a one-step lag through its feedthrough). Only for comparing with such
+        masters: the lag makes the stiff contacts lose accuracy (and energy balance) at the
+        engine's step; the anvil's ``input_extrapolation`` parameter
         (:mod:`anvilwave.fmu.coupling`, set by ``system.ssp``) makes up for it.
+
+    Raises
+    ------
+    ValueError
+        If ``exchange`` is not one of ``EXCHANGES``.
     """
 
     EXCHANGES = ("design", "jacobi")
@@ -489,12 +608,35 @@ class BlowMaster(ChainMaster):
     def run_blows(self, blows: int, n_steps: int, step_size: float,
                   start_time: float | None = None, record_every: int = 1,
                   progress: bool | None = None) -> list[BlowRecord]:
-        """Run ``blows`` consecutive blows of ``n_steps`` steps of ``step_size`` [s].
+        """Run ``blows`` consecutive blows of ``n_steps`` steps of ``step_size``.
 
-        start_time : t0 of each blow's own time [s] (default -h/2, the engine's: the first
-            contact half a step after the start).
-        record_every : keep the rows n with n % record_every == 0 (the engine's records).
-        progress : tqdm bar over all steps (default: when blows x n_steps >= 100000).
+        Parameters
+        ----------
+        blows : int
+            Number of blows [-], positive.
+        n_steps : int
+            Communication steps per blow [-], non-negative.
+        step_size : float
+            Communication step h [s], positive.
+        start_time : float or None, optional
+            t0 of each blow's own time [s] (default -h/2, the engine's: the first contact half
+            a step after the start).
+        record_every : int, default 1
+            Keep the rows n with n % record_every == 0 (the engine's records).
+        progress : bool or None, optional
+            tqdm bar over all steps (default: when blows x n_steps >= 100000).
+
+        Returns
+        -------
+        list of BlowRecord
+            One record per blow.
+
+        Raises
+        ------
+        ValueError
+            If ``blows``, ``n_steps``, ``step_size`` or ``record_every`` is out of range.
+        CosimulationError
+            If a unit returns fmi2Discard, fmi2Error or fmi2Fatal.
         """
         if not (isinstance(blows, int) and blows >= 1):
             raise ValueError(f"blows must be a positive integer, got {blows!r}")

@@ -92,8 +92,11 @@ GRAVITY = 9.81  # [m/s^2], anvil_rom.unit.GRAVITY
 
 
 class NativeBuildError(RuntimeError):
-    """The native FMU cannot be built here (no C compiler, unsupported platform, the compiler
-    failed, or the built FMU does not pass its check)."""
+    """The native FMU cannot be built here.
+
+    No C compiler, an unsupported platform, the compiler failed, or the built FMU does not pass
+    its check.
+    """
 
 
 # ---------------------------------------------------------------------------- variables
@@ -101,10 +104,20 @@ class NativeBuildError(RuntimeError):
 class Variable:
     """An FMI variable of the native anvil FMUs.
 
-    slot : the ``AnvilSlot`` of ``anvilwave/fmu/native/anvil_fmu.h`` without its ``ANVIL_`` prefix.
-    kind : ``"Real"``, ``"Boolean"`` or ``"String"``.
-    causality : ``"parameter"`` (variability fixed), ``"input"`` or ``"output"`` (continuous).
-    unit : a unit of :data:`UNITS` or None.
+    Parameters
+    ----------
+    name : str
+        FMI variable name.
+    slot : str
+        The ``AnvilSlot`` of ``anvilwave/fmu/native/anvil_fmu.h`` without its ``ANVIL_`` prefix.
+    kind : {"Real", "Boolean", "String"}
+        FMI type.
+    causality : {"parameter", "input", "output"}
+        ``"parameter"`` (variability fixed), ``"input"`` or ``"output"`` (continuous).
+    unit : str or None
+        A unit of :data:`UNITS` or None.
+    description : str
+        FMI variable description.
     """
 
     name: str
@@ -196,24 +209,59 @@ DESCRIPTIONS = {
 
 
 def anvil_variables(lumped: bool = False) -> tuple[Variable, ...]:
-    """The variables of the native Anvil (or AnvilLumped) FMU; the value reference of each is
-    its position (as in the pythonfmu units)."""
+    """The variables of the native Anvil (or AnvilLumped) FMU.
+
+    Parameters
+    ----------
+    lumped : bool, default False
+        The AnvilLumped FMU's variables instead of the Anvil (ROM) FMU's.
+
+    Returns
+    -------
+    tuple of Variable
+        The variables; the value reference of each is its position (as in the pythonfmu units).
+    """
     return (_LUMPED_PARAMETERS if lumped else _ROM_PARAMETERS) + _COMMON
 
 
 # ---------------------------------------------------------------------------- modal data
 @dataclass(frozen=True)
 class NativeModalData:
-    """The content of the ``anvilwave-modal`` binary resource
-    (``anvilwave/fmu/native/anvil_model.h``).
+    """The content of the ``anvilwave-modal`` binary resource.
 
-    frequencies [Hz], omega [rad/s] (= 2 pi frequencies), participation_ram,
-    participation_pile [kg^-1/2], participation_gravity [kg^1/2]: (n,) arrays, mode 0 the
-    rigid-body mode; elastic_flexibility: (2, 2) [m/N]; total_mass [kg]; fmax [Hz];
-    damping_ratio [-]. With a pile port in K rings (version 2): participation_rings (K, n),
-    ring_flexibility (K + 1, K + 1) [m/N], ring_areas (K,) [m^2]; None for one port. It has
-    the attributes :func:`anvilwave.anvil_rom.fem.modalfile.check_modal_data` and
-    :meth:`anvilwave.anvil_rom.rom.ModalAnvil.from_modal_data` read.
+    The layout is in ``anvilwave/fmu/native/anvil_model.h``. It has the attributes
+    :func:`anvilwave.anvil_rom.fem.modalfile.check_modal_data` and
+    :meth:`anvilwave.anvil_rom.rom.ModalAnvil.from_modal_data` read. The (n,) arrays have mode
+    0 the rigid-body mode.
+
+    Parameters
+    ----------
+    frequencies : numpy.ndarray
+        Natural frequencies, shape (n,) [Hz].
+    omega : numpy.ndarray
+        Circular frequencies (= 2 pi frequencies), shape (n,) [rad/s].
+    participation_ram : numpy.ndarray
+        Participation of the ram port, shape (n,) [kg^-1/2].
+    participation_pile : numpy.ndarray
+        Participation of the pile port, shape (n,) [kg^-1/2].
+    participation_gravity : numpy.ndarray
+        Participation of gravity, shape (n,) [kg^1/2].
+    elastic_flexibility : numpy.ndarray
+        Elastic flexibility of the ports, shape (2, 2) [m/N].
+    total_mass : float
+        Total mass [kg].
+    fmax : float
+        Frequency content of the data [Hz].
+    damping_ratio : float
+        Modal damping ratio [-].
+    participation_rings : numpy.ndarray or None, default None
+        With a pile port in K rings (version 2): participation of the rings, shape (K, n)
+        [kg^-1/2]; None for one port.
+    ring_flexibility : numpy.ndarray or None, default None
+        With rings: flexibility of the ram port and the rings, shape (K + 1, K + 1) [m/N];
+        None for one port.
+    ring_areas : numpy.ndarray or None, default None
+        With rings: ring areas, shape (K,) [m^2]; None for one port.
     """
 
     frequencies: np.ndarray
@@ -231,13 +279,37 @@ class NativeModalData:
 
     @property
     def n_modes(self) -> int:
+        """Number of modes n.
+
+        Returns
+        -------
+        int
+            Number of modes n [-].
+        """
         return len(self.frequencies)
 
 
 def modal_resource_bytes(data: NativeModalData) -> bytes:
-    """The ``anvilwave-modal`` file of ``data``: 80-byte header + 40 bytes per mode,
-    little-endian, version 1; with rings version 2, the rings after the modes (layout in
-    ``anvilwave/fmu/native/anvil_model.h``)."""
+    """The ``anvilwave-modal`` file of ``data``.
+
+    An 80-byte header + 40 bytes per mode, little-endian, version 1; with rings version 2, the
+    rings after the modes (layout in ``anvilwave/fmu/native/anvil_model.h``).
+
+    Parameters
+    ----------
+    data : NativeModalData
+        The modal data.
+
+    Returns
+    -------
+    bytes
+        Content of the file.
+
+    Raises
+    ------
+    ValueError
+        If a per-mode array does not have shape (n,).
+    """
     n = data.n_modes
     scalars = [data.total_mass, data.fmax, data.damping_ratio,
                *np.asarray(data.elastic_flexibility, dtype=float).reshape(4)]
@@ -261,10 +333,25 @@ def modal_resource_bytes(data: NativeModalData) -> bytes:
 
 
 def read_modal_resource(source: str | Path | bytes) -> NativeModalData:
-    """Read an ``anvilwave-modal`` file (a path or its bytes); :class:`InputError` if malformed.
+    """Read an ``anvilwave-modal`` file (a path or its bytes).
 
     Only the layout is checked here; the physical rules are checked by the FMU at
     initialization and by :func:`anvilwave.anvil_rom.fem.modalfile.check_modal_data`.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path or bytes
+        Path of the file, or its content.
+
+    Returns
+    -------
+    NativeModalData
+        The modal data of the file.
+
+    Raises
+    ------
+    InputError
+        If the file is malformed.
     """
     name = "<bytes>" if isinstance(source, bytes | bytearray) else str(source)
     raw = bytes(source) if isinstance(source, bytes | bytearray) else Path(source).read_bytes()
@@ -299,8 +386,26 @@ def read_modal_resource(source: str | Path | bytes) -> NativeModalData:
 
 
 def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeModalData:
-    """The modal data of a ROM build from a ModalData, a ModalAnvil, a mapping of plain arrays
-    (ModalData names) or a modal-data ``.npz`` path; checked like a modal-data file."""
+    """The modal data of a ROM build, checked like a modal-data file.
+
+    Parameters
+    ----------
+    modal : ModalData, ModalAnvil, mapping or path
+        A ModalData, a ModalAnvil, a mapping of plain arrays (ModalData names) or a modal-data
+        ``.npz`` path.
+    source : str, default "native Anvil FMU build"
+        Name of the source in error messages.
+
+    Returns
+    -------
+    NativeModalData
+        The modal data.
+
+    Raises
+    ------
+    InputError
+        If the data are missing, of the wrong kind or fail the checks of a modal-data file.
+    """
 
     if isinstance(modal, str | os.PathLike):
         modal = load_modal_data(modal)
@@ -382,29 +487,52 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
 
     Parameters
     ----------
-    modal : the anvil's modal data: a :class:`~anvilwave.anvil_rom.fem.modalfile.ModalData`, a
-        :class:`~anvilwave.anvil_rom.rom.ModalAnvil`, a mapping of plain arrays with the ModalData
-        names,
-        or a modal-data ``.npz`` path (module docstring); for ``lumped`` also a mass [kg].
-    out_path : the ``.fmu`` file to write, or a folder (then ``<folder>/Anvil.fmu`` or
+    modal : ModalData, ModalAnvil, mapping, path or float
+        The anvil's modal data: a :class:`~anvilwave.anvil_rom.fem.modalfile.ModalData`, a
+        :class:`~anvilwave.anvil_rom.rom.ModalAnvil`, a mapping of plain arrays with the
+        ModalData names, or a modal-data ``.npz`` path (module docstring); for ``lumped`` also
+        a mass [kg].
+    out_path : str or pathlib.Path
+        The ``.fmu`` file to write, or a folder (then ``<folder>/Anvil.fmu`` or
         ``AnvilLumped.fmu``). Written in one step; nothing is written when the build fails.
-    lumped : the rigid lumped-mass anvil (mass default: the modal data's total mass [kg]).
-    compiler : C compiler command (default: ``$CC``, else ``cc`` or ``gcc`` on the PATH).
-    validate : check the FMU with fmpy (``validate_fmu``, then instantiate, initialize and
-        step it once); needs fmpy.
-    default_experiment : (start time, stop time, step) [s] of the system the FMU is built for,
-        its ``DefaultExperiment`` (as :func:`anvilwave.fmu.fmi_build.build_fmu`'s; default
+    lumped : bool, default False
+        The rigid lumped-mass anvil (mass default: the modal data's total mass [kg]).
+    compiler : str or None, optional
+        C compiler command (default: ``$CC``, else ``cc`` or ``gcc`` on the PATH).
+    validate : bool, default True
+        Check the FMU with fmpy (``validate_fmu``, then instantiate, initialize and step it
+        once); needs fmpy.
+    default_experiment : tuple of float or None, optional
+        (start time, stop time, step) [s] of the system the FMU is built for, its
+        ``DefaultExperiment`` (as :func:`anvilwave.fmu.fmi_build.build_fmu`'s; default
         :data:`DEFAULT_EXPERIMENT`).
-    parameters : start values of the FMU parameters, SI units: ``ram_contact_stiffness``
-        [N/m] and ``pile_contact_stiffness`` [N/m] (required), ``ram_contact_damping``,
+    **parameters
+        Start values of the FMU parameters, SI units: ``ram_contact_stiffness`` [N/m] and
+        ``pile_contact_stiffness`` [N/m] (required), ``ram_contact_damping``,
         ``pile_contact_damping`` [N s/m], ``gravity`` [m/s^2], ``start_at_rest``,
         ``initial_pile_head_displacement`` [m], ``input_extrapolation`` (default off; on for
-        Jacobi-type masters, see :mod:`anvilwave.fmu.coupling`); ROM: ``fmax`` [Hz] (default the
-        data's; 0
-        keeps all modes), ``damping_ratio`` [-] (default the data's), ``static_correction``
-        (default off, on for a ModalAnvil that has one); lumped: ``mass`` [kg].
+        Jacobi-type masters, see :mod:`anvilwave.fmu.coupling`); ROM: ``fmax`` [Hz] (default
+        the data's; 0 keeps all modes), ``damping_ratio`` [-] (default the data's),
+        ``static_correction`` (default off, on for a ModalAnvil that has one); lumped: ``mass``
+        [kg].
 
-    Returns the path of the ``.fmu``.
+    Returns
+    -------
+    pathlib.Path
+        The path of the ``.fmu``.
+
+    Raises
+    ------
+    InputError
+        If the modal data, a parameter or ``default_experiment`` is invalid.
+    NativeBuildError
+        If no C compiler is found, the platform is not supported, the compiler fails or the
+        built FMU does not pass its check.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
     model = "AnvilLumped" if lumped else "Anvil"
     source = f"native {model} FMU build"
@@ -453,8 +581,25 @@ the pythonfmu units' classes)."""
 
 
 def default_experiment_values(default_experiment, source: str) -> tuple[float, float, float]:
-    """(start, stop, step) [s] of a ``default_experiment`` argument (None:
-    :data:`DEFAULT_EXPERIMENT`); InputError unless start is finite, stop > start and step > 0."""
+    """(start, stop, step) of a ``default_experiment`` argument.
+
+    Parameters
+    ----------
+    default_experiment : tuple of float or None
+        (start, stop, step) [s]; None: :data:`DEFAULT_EXPERIMENT`.
+    source : str
+        Name of the source in error messages.
+
+    Returns
+    -------
+    tuple of float
+        (start, stop, step) [s].
+
+    Raises
+    ------
+    InputError
+        Unless start is finite, stop > start and step > 0.
+    """
     if default_experiment is None:
         return DEFAULT_EXPERIMENT
     try:
@@ -470,8 +615,23 @@ def default_experiment_values(default_experiment, source: str) -> tuple[float, f
 
 
 def find_compiler(compiler: str | None = None) -> str:
-    """The C compiler command: ``compiler``, else ``$CC``, else ``cc`` or ``gcc`` on the PATH;
-    :class:`NativeBuildError` naming what is missing."""
+    """The C compiler command: ``compiler``, else ``$CC``, else ``cc`` or ``gcc`` on the PATH.
+
+    Parameters
+    ----------
+    compiler : str or None, optional
+        C compiler command to use.
+
+    Returns
+    -------
+    str
+        The compiler command.
+
+    Raises
+    ------
+    NativeBuildError
+        Naming what is missing (the compiler, or a supported platform).
+    """
     if not (sys.platform.startswith("linux") and sys.maxsize > 2**32):
         raise NativeBuildError(f"the native anvil FMU is built for {PLATFORM} only (this is "
                                f"{sys.platform}); its sources/ can be compiled by the importing "
@@ -492,7 +652,27 @@ def find_compiler(compiler: str | None = None) -> str:
 
 
 def compile_binary(compiler: str, sources: Path, binary: Path) -> Path:
-    """Compile the ``.c`` files of ``sources`` into the shared library ``binary``."""
+    """Compile the ``.c`` files of ``sources`` into the shared library ``binary``.
+
+    Parameters
+    ----------
+    compiler : str
+        C compiler command.
+    sources : pathlib.Path
+        Folder of the C sources and headers.
+    binary : pathlib.Path
+        The shared library to write.
+
+    Returns
+    -------
+    pathlib.Path
+        ``binary``.
+
+    Raises
+    ------
+    NativeBuildError
+        If the compiler cannot run or fails.
+    """
     binary.parent.mkdir(parents=True, exist_ok=True)
     files = sorted(str(p) for p in sources.glob("*.c"))
     cmd = [*compiler.split(), *CFLAGS, "-I", str(sources), "-o", str(binary), *files, "-lm",
@@ -589,7 +769,24 @@ def _guid(model: str, variables, values: dict[str, Any], resource: bytes, source
 
 
 def config_header(model: str, guid: str, variables, values: dict[str, Any]) -> str:
-    """``anvil_config.h``: model identifier, GUID and the variable table with start values."""
+    """``anvil_config.h``: model identifier, GUID and the variable table with start values.
+
+    Parameters
+    ----------
+    model : str
+        Model identifier, ``"Anvil"`` or ``"AnvilLumped"``.
+    guid : str
+        GUID of the FMU.
+    variables : sequence of Variable
+        The FMU's variables, in value-reference order.
+    values : dict of str to Any
+        Start values of the parameters [SI].
+
+    Returns
+    -------
+    str
+        Content of the header.
+    """
     lines = [
         f"/* anvil_config.h -- the {model} FMU of this build: model identifier, GUID and its",
         " * variables (value reference, type, causality, slot, name, start value). Written by",
@@ -630,7 +827,31 @@ def config_header(model: str, guid: str, variables, values: dict[str, Any]) -> s
 
 def model_description(model: str, guid: str, variables, values: dict[str, Any],
                       experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT) -> bytes:
-    """``modelDescription.xml`` (FMI 2.0 co-simulation, source FMU)."""
+    """``modelDescription.xml`` (FMI 2.0 co-simulation, source FMU).
+
+    Parameters
+    ----------
+    model : str
+        Model identifier, ``"Anvil"`` or ``"AnvilLumped"``.
+    guid : str
+        GUID of the FMU.
+    variables : sequence of Variable
+        The FMU's variables, in value-reference order.
+    values : dict of str to Any
+        Start values of the parameters [SI].
+    experiment : tuple of float, default DEFAULT_EXPERIMENT
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    bytes
+        Content of the file (UTF-8).
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
+    """
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "2.0", "modelName": model, "guid": guid,
         "description": DESCRIPTIONS[model], "generationTool": "anvilwave fmu.native_build",
@@ -691,7 +912,23 @@ def model_description(model: str, guid: str, variables, values: dict[str, Any],
 
 
 def build_description(model: str) -> bytes:
-    """``sources/buildDescription.xml`` (FMI 3.0 format, optional in an FMI 2.0.4 source FMU)."""
+    """``sources/buildDescription.xml`` (FMI 3.0 format, optional in an FMI 2.0.4 source FMU).
+
+    Parameters
+    ----------
+    model : str
+        Model identifier, ``"Anvil"`` or ``"AnvilLumped"``.
+
+    Returns
+    -------
+    bytes
+        Content of the file (UTF-8).
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4 and FMI 3.0. https://fmi-standard.org
+    """
     root = ET.Element("fmiBuildDescription", fmiVersion="3.0")
     config = ET.SubElement(root, "BuildConfiguration", modelIdentifier=model,
                            description="Compile the files into one shared library; keep "

@@ -95,8 +95,23 @@ AUTHOR = "anvilwave contributors"
 # ---------------------------------------------------------------------------- variables
 @dataclass(frozen=True)
 class UnitVariable:
-    """A variable of a native unit (value reference that of the pythonfmu unit): a Real, or a
-    Boolean parameter (``type`` "Boolean", ``unit`` None)."""
+    """A variable of a native unit: a Real, or a Boolean parameter.
+
+    Parameters
+    ----------
+    name : str
+        FMI variable name.
+    vr : int
+        Value reference (that of the pythonfmu unit).
+    causality : {"parameter", "input", "output"}
+        FMI causality.
+    unit : str or None
+        FMI unit; None for a Boolean parameter.
+    description : str
+        FMI variable description.
+    type : {"Real", "Boolean"}, default "Real"
+        FMI type (``"Boolean"`` for a Boolean parameter, ``unit`` None).
+    """
 
     name: str
     vr: int
@@ -177,7 +192,18 @@ _UNIT_EXPONENTS = {**UNITS, "s": {"s": 1}, "Pa": {"kg": 1, "m": -1, "s": -2}}
 
 # ---------------------------------------------------------------------------- binaries
 def sources_digest(kind: str) -> str:
-    """SHA-256 of the C sources and headers of a unit kind (names and bytes, sorted)."""
+    """SHA-256 of the C sources and headers of a unit kind (names and bytes, sorted).
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+
+    Returns
+    -------
+    str
+        Hexadecimal digest.
+    """
     digest = hashlib.sha256()
     for name in sorted((*COMMON_SOURCES, MODEL_SOURCES[kind], *UNIT_HEADERS)):
         digest.update(name.encode())
@@ -186,7 +212,18 @@ def sources_digest(kind: str) -> str:
 
 
 def platform_compiler(platform: str) -> str | None:
-    """The compiler of a platform found on the PATH, None when there is none."""
+    """The compiler of a platform found on the PATH.
+
+    Parameters
+    ----------
+    platform : str
+        A platform of :data:`PLATFORMS`.
+
+    Returns
+    -------
+    str or None
+        The compiler command, None when there is none.
+    """
     for name in PLATFORMS[platform]["compilers"]:
         if shutil.which(name):
             return name
@@ -194,7 +231,29 @@ def platform_compiler(platform: str) -> str | None:
 
 
 def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = None) -> Path:
-    """Compile the unit kind for a platform into ``binary`` (warnings are errors)."""
+    """Compile the unit kind for a platform into ``binary`` (warnings are errors).
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    platform : str
+        A platform of :data:`PLATFORMS`.
+    binary : pathlib.Path
+        The shared library to write.
+    compiler : str or None, optional
+        Compiler command (default: the platform's, found on the PATH).
+
+    Returns
+    -------
+    pathlib.Path
+        ``binary``, resolved.
+
+    Raises
+    ------
+    NativeBuildError
+        If no compiler is found or the compilation fails.
+    """
     spec = PLATFORMS[platform]
     compiler = compiler or platform_compiler(platform)
     if compiler is None:
@@ -218,11 +277,24 @@ def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = 
 
 def rebuild_binaries(platforms: tuple[str, ...] | None = None,
                      out_dir: Path = BINARIES_DIR) -> dict[str, dict[str, Path]]:
-    """Compile the shipped binaries of every unit kind for ``platforms`` (default: every
-    platform whose compiler is found) into ``out_dir`` and record the sources' digests.
+    """Compile the shipped binaries of every unit kind and record the sources' digests.
 
-    Returns ``{platform: {kind: path}}``; NativeBuildError when a platform asked for has no
-    compiler.
+    Parameters
+    ----------
+    platforms : tuple of str or None, optional
+        Platforms to build for (default: every platform whose compiler is found).
+    out_dir : pathlib.Path, default BINARIES_DIR
+        Folder of the binaries.
+
+    Returns
+    -------
+    dict of str to dict of str to pathlib.Path
+        ``{platform: {kind: path}}``.
+
+    Raises
+    ------
+    NativeBuildError
+        When a platform asked for has no compiler, or a compilation fails.
     """
     out_dir = Path(out_dir)
     if platforms is None:
@@ -241,8 +313,20 @@ def rebuild_binaries(platforms: tuple[str, ...] | None = None,
 
 
 def compiler_version(platform: str) -> str | None:
-    """The first line of ``--version`` of the platform's compiler (None without one): the
-    shipped binaries are byte-reproducible with the same compiler version."""
+    """The first line of ``--version`` of the platform's compiler.
+
+    The shipped binaries are byte-reproducible with the same compiler version.
+
+    Parameters
+    ----------
+    platform : str
+        A platform of :data:`PLATFORMS`.
+
+    Returns
+    -------
+    str or None
+        The version line; None without a compiler.
+    """
     compiler = platform_compiler(platform)
     if compiler is None:
         return None
@@ -251,8 +335,23 @@ def compiler_version(platform: str) -> str | None:
 
 
 def unit_binaries(kind: str) -> dict[str, Path]:
-    """The shipped binaries of a unit kind, ``{platform: path}``; NativeBuildError when none
-    is shipped or they were built from other sources than the current ones."""
+    """The shipped binaries of a unit kind.
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        ``{platform: path}``.
+
+    Raises
+    ------
+    NativeBuildError
+        When none is shipped or they were built from other sources than the current ones.
+    """
     digests_path = BINARIES_DIR / DIGEST_FILE
     found = {p: BINARIES_DIR / p / f"{kind}{spec['suffix']}" for p, spec in PLATFORMS.items()}
     found = {p: path for p, path in found.items() if path.is_file()}
@@ -270,7 +369,24 @@ def unit_binaries(kind: str) -> dict[str, Path]:
 # ---------------------------------------------------------------------------- resources
 def resource_text(kind: str, guid: str, starts: Mapping[str, float],
                   arrays: Mapping[str, np.ndarray]) -> str:
-    """The ``anvilwave-unit`` resource (``fmu_common.h``): exact hexadecimal floats."""
+    """The ``anvilwave-unit`` resource (``fmu_common.h``): exact hexadecimal floats.
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    guid : str
+        GUID of the FMU (empty for the content digest).
+    starts : mapping of str to float
+        Parameter start values [SI] (Booleans as 0.0 or 1.0).
+    arrays : mapping of str to numpy.ndarray
+        Kernel arrays [SI].
+
+    Returns
+    -------
+    str
+        Content of the resource.
+    """
     lines = [RESOURCE_MAGIC, f"kind {kind}", f"guid {guid}"]
     lines += [f"start {name} {float(value).hex()}" for name, value in starts.items()]
     for name, values in arrays.items():
@@ -283,8 +399,27 @@ def resource_text(kind: str, guid: str, starts: Mapping[str, float],
 
 
 def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
-    """(arrays, parameter defaults) of a Ram unit for a
-    :class:`anvilwave.hammer.database.Hammer` (the rod, rigid or modal ram of its ``ram``)."""
+    """The arrays and parameter defaults of a Ram unit for a hammer.
+
+    Parameters
+    ----------
+    hammer : Hammer
+        A :class:`anvilwave.hammer.database.Hammer` (the rod, rigid or modal ram of its
+        ``ram``).
+
+    Returns
+    -------
+    arrays : dict of str to numpy.ndarray
+        Kernel arrays (masses [kg], springs [N/m], total mass [kg], impact velocity [m/s];
+        a modal ram's toe modes too).
+    defaults : dict of str to float
+        Parameter defaults [SI].
+
+    Raises
+    ------
+    InputError
+        If the native Ram does not run this ram (:func:`native_ram_support`).
+    """
     ram = hammer.ram
     supported, reason = native_ram_support(ram)
     if not supported:
@@ -307,17 +442,41 @@ def ram_arrays(hammer) -> tuple[dict[str, np.ndarray], dict[str, float]]:
 
 
 def native_ram_support(ram) -> tuple[bool, str]:
-    """Whether the native Ram runs this :class:`anvilwave.hammer.ram.RamRod` ((True, "") or
-    (False, the reason))."""
+    """Whether the native Ram runs this :class:`anvilwave.hammer.ram.RamRod`.
+
+    Parameters
+    ----------
+    ram : RamRod
+        The ram.
+
+    Returns
+    -------
+    supported : bool
+        True when the native Ram runs it.
+    reason : str
+        Why not; ``""`` when supported.
+    """
     if ram.is_modal_unit and not np.any(ram.modes.omega == 0.0):
         return False, "a modal ram without its rigid-body mode (omega = 0)"
     return True, ""
 
 
 def pile_soil_arrays(model) -> tuple[dict[str, np.ndarray], dict[str, float]]:
-    """(arrays, parameter defaults) of a PileSoil unit for a
-    :class:`anvilwave.pile.model.PileSoil`: its kernel arrays as the pythonfmu unit builds them
-    (``PileSoil.arrays()``, ``stress_factors()``)."""
+    """The arrays and parameter defaults of a PileSoil unit for a pile with its soil.
+
+    Parameters
+    ----------
+    model : PileSoil
+        A :class:`anvilwave.pile.model.PileSoil`.
+
+    Returns
+    -------
+    arrays : dict of str to numpy.ndarray
+        Its kernel arrays as the pythonfmu unit builds them (``PileSoil.arrays()``,
+        ``stress_factors()``).
+    defaults : dict of str to float
+        Parameter defaults (``static_head_load`` [N], ``gravity`` [m/s^2]).
+    """
     arrays = model.arrays()
     return ({"pile": arrays.pile, "soil": arrays.soil, "probes": arrays.probes,
              "stress_factor": model.stress_factors()},
@@ -329,13 +488,31 @@ def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
                          fmi_version: int = 2,
                          default_experiment: tuple[float, float, float] | None = None,
                          **parameters) -> Path:
-    """``Ram.fmu`` (native) for a :class:`anvilwave.hammer.database.Hammer` (or a name of the
-    hammer database); parameters as the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg],
-    ``gravity`` [m/s^2], ``contact_displacement`` [m], ``contact_time`` [s],
-    ``contact_mid_step``, default on: the first contact in the middle of the first step,
-    :mod:`anvilwave.fmu.units.ram`); ``default_experiment`` (start, stop, step) [s] as
-    :func:`build_unit_fmu`'s (its step is where the ram reports its toe before the first step,
-    as the pythonfmu Ram)."""
+    """``Ram.fmu`` (native) for a hammer.
+
+    Parameters
+    ----------
+    hammer : Hammer or str
+        A :class:`anvilwave.hammer.database.Hammer` (or a name of the hammer database).
+    out_path : str or pathlib.Path
+        The ``.fmu`` or a folder (:func:`build_unit_fmu`).
+    validate : bool, default True
+        Check the FMU with fmpy (:func:`build_unit_fmu`).
+    fmi_version : {2, 3}, default 2
+        FMI version of the FMU (:func:`build_unit_fmu`).
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] as :func:`build_unit_fmu`'s (its step is where the ram reports
+        its toe before the first step, as the pythonfmu Ram).
+    **parameters
+        As the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg], ``gravity`` [m/s^2],
+        ``contact_displacement`` [m], ``contact_time`` [s], ``contact_mid_step``, default on:
+        the first contact in the middle of the first step, :mod:`anvilwave.fmu.units.ram`).
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu``.
+    """
     if isinstance(hammer, str):
 
         hammer = load_hammer(hammer, float(parameters.get("gravity", 9.81)))
@@ -349,9 +526,29 @@ def build_native_pile_soil_fmu(pile_soil, out_path: str | Path, *, validate: boo
                                fmi_version: int = 2,
                                default_experiment: tuple[float, float, float] | None = None,
                                **parameters) -> Path:
-    """``PileSoil.fmu`` (native) for a :class:`anvilwave.pile.model.PileSoil` (or the path of
-    a TOML file with ``[pile]`` and an optional ``[soil]``); parameters ``static_head_load``
-    [N] and ``gravity`` [m/s^2]; ``default_experiment`` as :func:`build_unit_fmu`'s."""
+    """``PileSoil.fmu`` (native) for a pile with its soil.
+
+    Parameters
+    ----------
+    pile_soil : PileSoil, str or pathlib.Path
+        A :class:`anvilwave.pile.model.PileSoil` (or the path of a TOML file with ``[pile]``
+        and an optional ``[soil]``).
+    out_path : str or pathlib.Path
+        The ``.fmu`` or a folder (:func:`build_unit_fmu`).
+    validate : bool, default True
+        Check the FMU with fmpy (:func:`build_unit_fmu`).
+    fmi_version : {2, 3}, default 2
+        FMI version of the FMU (:func:`build_unit_fmu`).
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] as :func:`build_unit_fmu`'s.
+    **parameters
+        ``static_head_load`` [N] and ``gravity`` [m/s^2].
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu``.
+    """
 
     model = pile_soil if isinstance(pile_soil, PileSoil) else load_pile_soil(pile_soil)
     arrays, defaults = pile_soil_arrays(model)
@@ -364,18 +561,54 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
                    out_path: str | Path, *, validate: bool = True,
                    explicit: set[str] | None = None, fmi_version: int = 2,
                    default_experiment: tuple[float, float, float] | None = None) -> Path:
-    """Write a native unit FMU of ``kind`` with these kernel arrays and parameter start values
-    (``out_path``: the ``.fmu`` or a folder); nothing is written when the build fails.
+    """Write a native unit FMU of ``kind`` with these kernel arrays and parameter start values.
 
-    The FMU holds modelDescription.xml, resources/anvilwave_unit.txt, the shipped binaries
-    (:func:`unit_binaries`) under binaries/<platform>/ and the C sources under sources/. Its
-    GUID is derived from the content, and the archive has fixed timestamps and order: the same
-    inputs give the same bytes. ``fmi_version`` 3: an FMI 3.0 co-simulation FMU (the same
-    binaries, which hold both APIs, under the FMI 3.0 platform folders). ``default_experiment``
-    (start, stop, step) [s]: the system's, the FMU's ``DefaultExperiment`` (default
-    :data:`anvilwave.fmu.native_build.DEFAULT_EXPERIMENT`); the Ram also gets it in its
-    resource (array ``default_experiment``: its toe before the first step is half that step
-    before the contact, as the pythonfmu Ram's).
+    Nothing is written when the build fails. The FMU holds modelDescription.xml,
+    resources/anvilwave_unit.txt, the shipped binaries (:func:`unit_binaries`) under
+    binaries/<platform>/ and the C sources under sources/. Its GUID is derived from the
+    content, and the archive has fixed timestamps and order: the same inputs give the same
+    bytes.
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    arrays : mapping of str to numpy.ndarray
+        Kernel arrays [SI].
+    values : mapping of str to Any
+        Parameter start values [SI].
+    out_path : str or pathlib.Path
+        The ``.fmu`` or a folder (then ``<folder>/<kind>.fmu``).
+    validate : bool, default True
+        Check the FMU with fmpy (:func:`check_unit_fmu`, :func:`check_unit_fmu_3`).
+    explicit : set of str or None, optional
+        Names of ``values`` given by the caller: an unknown one among them is an error (None:
+        every name of ``values``).
+    fmi_version : {2, 3}, default 2
+        3: an FMI 3.0 co-simulation FMU (the same binaries, which hold both APIs, under the
+        FMI 3.0 platform folders).
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s]: the system's, the FMU's ``DefaultExperiment`` (default
+        :data:`anvilwave.fmu.native_build.DEFAULT_EXPERIMENT`); the Ram also gets it in its
+        resource (array ``default_experiment``: its toe before the first step is half that
+        step before the contact, as the pythonfmu Ram's).
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu``.
+
+    Raises
+    ------
+    InputError
+        If ``fmi_version``, a parameter or ``default_experiment`` is invalid.
+    NativeBuildError
+        If no current binary is shipped or the FMU does not pass its check.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
     source = f"native {kind} FMU build"
     if fmi_version not in (2, 3):
@@ -446,7 +679,13 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
 
 
 def package_version() -> str:
-    """The installed anvilwave version ("unknown" when not installed)."""
+    """The installed anvilwave version.
+
+    Returns
+    -------
+    str
+        The version ("unknown" when not installed).
+    """
     from importlib.metadata import PackageNotFoundError, version
 
     try:
@@ -457,7 +696,29 @@ def package_version() -> str:
 
 def unit_model_description(kind: str, guid: str, starts: Mapping[str, float],
                            experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT) -> bytes:
-    """``modelDescription.xml`` of a native unit (FMI 2.0 co-simulation, with its sources)."""
+    """``modelDescription.xml`` of a native unit (FMI 2.0 co-simulation, with its sources).
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    guid : str
+        GUID of the FMU.
+    starts : mapping of str to float
+        Parameter start values [SI] (Booleans as 0.0 or 1.0).
+    experiment : tuple of float, default DEFAULT_EXPERIMENT
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    bytes
+        Content of the file (UTF-8).
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
+    """
     variables = VARIABLES[kind]
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "2.0", "modelName": kind, "guid": guid, "description": DESCRIPTIONS[kind],
@@ -518,8 +779,31 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float],
 def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
                              experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT
                              ) -> bytes:
-    """``modelDescription.xml`` of a native unit as FMI 3.0 co-simulation (the variables and
-    value references of the FMI 2.0 unit, Float64, and the independent variable ``time``)."""
+    """``modelDescription.xml`` of a native unit as FMI 3.0 co-simulation.
+
+    The variables and value references of the FMI 2.0 unit, Float64, and the independent
+    variable ``time``.
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    token : str
+        Instantiation token of the FMU.
+    starts : mapping of str to float
+        Parameter start values [SI] (Booleans as 0.0 or 1.0).
+    experiment : tuple of float, default DEFAULT_EXPERIMENT
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    bytes
+        Content of the file (UTF-8).
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface, FMI 3.0. https://fmi-standard.org
+    """
     variables = VARIABLES[kind]
     root = ET.Element("fmiModelDescription", {
         "fmiVersion": "3.0", "modelName": kind, "instantiationToken": token,
@@ -573,8 +857,22 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
 
 
 def check_unit_fmu_3(archive: Path, kind: str) -> None:
-    """fmpy's validation of an FMI 3.0 unit and one short simulation (skipped without fmpy or
-    off linux64)."""
+    """fmpy's validation of an FMI 3.0 unit and one short simulation.
+
+    Skipped without fmpy; the simulation is skipped off linux64.
+
+    Parameters
+    ----------
+    archive : pathlib.Path
+        The ``.fmu``.
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+
+    Raises
+    ------
+    NativeBuildError
+        If the FMU does not validate or simulate, or its outputs are not finite.
+    """
     try:
         from fmpy import simulate_fmu
         from fmpy.validation import validate_fmu
@@ -596,8 +894,27 @@ def check_unit_fmu_3(archive: Path, kind: str) -> None:
 
 
 def check_unit_fmu(archive: Path, stage: Path, kind: str, guid: str) -> None:
-    """fmpy's validation, then instantiate, initialize and step the staged FMU once (skipped
-    without fmpy, or when the build machine is not linux64)."""
+    """fmpy's validation, then instantiate, initialize and step the staged FMU once.
+
+    Skipped without fmpy; the run is skipped when the build machine is not linux64.
+
+    Parameters
+    ----------
+    archive : pathlib.Path
+        The ``.fmu``.
+    stage : pathlib.Path
+        The unpacked FMU (the folder the archive was made from).
+    kind : {"Ram", "PileSoil"}
+        Unit kind.
+    guid : str
+        GUID of the FMU.
+
+    Raises
+    ------
+    NativeBuildError
+        If the FMU does not validate, instantiate or initialize, or its outputs are not
+        finite.
+    """
     try:
         from fmpy.fmi1 import FMICallException
         from fmpy.fmi2 import (

@@ -60,9 +60,21 @@ NS = {
 
 
 def ssp_identifier(name: str) -> str:
-    """``name`` as an identifier (letters, digits, ``_``; not starting with a digit), the form
-    OMSimulator requires of model, system and component names: ``"anvilwave table1"`` ->
-    ``"anvilwave_table1"``."""
+    """``name`` as an identifier (letters, digits, ``_``; not starting with a digit).
+
+    The form OMSimulator requires of model, system and component names: ``"anvilwave table1"``
+    -> ``"anvilwave_table1"``.
+
+    Parameters
+    ----------
+    name : str
+        Any name.
+
+    Returns
+    -------
+    str
+        The identifier (``"system"`` for a name with no letter or digit).
+    """
     ident = re.sub(r"\W", "_", str(name), flags=re.ASCII).strip("_") or "system"
     return f"_{ident}" if ident[0].isdigit() else ident
 
@@ -73,15 +85,44 @@ def write_ssp(path: str | Path, fmus: dict[str, Path], parameters: dict[str, dic
               step_size: float | None = None, require_defaults: bool = True) -> Path:
     """Write an SSP 1.0 archive of the Ram - Anvil - PileSoil system.
 
-    fmus : component name ("Ram", "Anvil", "PileSoil") -> FMU file (copied into the archive's
-        ``resources/``). parameters : component name -> parameter values of the
-        component's ``ssv:ParameterSet``. name : of the model and its system (made an
-        identifier, :func:`ssp_identifier`). start_time, stop_time [s]: the default
-        experiment; step_size [s]: the fixed master step of the OMSimulator and OSP
-        annotations (rounded to whole nanoseconds in both).
-    require_defaults : every bound value must be the FMU's own start value (InputError
-        otherwise), so that a tool ignoring the bindings runs the same system (module
-        docstring). String values must always be the FMU's.
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.ssp`` file to write.
+    fmus : dict of str to pathlib.Path
+        Component name ("Ram", "Anvil", "PileSoil") -> FMU file (copied into the archive's
+        ``resources/``).
+    parameters : dict of str to dict
+        Component name -> parameter values of the component's ``ssv:ParameterSet`` [SI].
+    name : str, default "anvilwave"
+        Name of the model and its system (made an identifier, :func:`ssp_identifier`).
+    start_time : float, default 0.0
+        Start time of the default experiment [s].
+    stop_time : float or None, optional
+        Stop time of the default experiment [s].
+    step_size : float or None, optional
+        The fixed master step of the OMSimulator and OSP annotations [s] (rounded to whole
+        nanoseconds in both).
+    require_defaults : bool, default True
+        Every bound value must be the FMU's own start value, so that a tool ignoring the
+        bindings runs the same system (module docstring). String values must always be the
+        FMU's.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InputError
+        If a parameter is not one of its FMU, or a value differs from the FMU's start value
+        where it must not.
+
+    References
+    ----------
+    Modelica Association. System Structure and Parameterization (SSP), version 1.0.
+    https://ssp-standard.org
     """
     from fmpy import read_model_description
 
@@ -207,7 +248,22 @@ def _ssv_value(var, value) -> dict[str, str]:
 
 
 def extract_ssp(path: str | Path, out_dir: str | Path) -> Path:
-    """Unpack an SSP archive into ``out_dir`` (for tools that want a folder); returns it."""
+    """Unpack an SSP archive into ``out_dir`` (for tools that want a folder).
+
+    An existing ``out_dir`` is replaced.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.ssp`` archive.
+    out_dir : str or pathlib.Path
+        Folder to unpack into.
+
+    Returns
+    -------
+    pathlib.Path
+        ``out_dir``.
+    """
     out_dir = Path(out_dir)
     if out_dir.exists():
         shutil.rmtree(out_dir)

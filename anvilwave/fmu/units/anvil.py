@@ -58,15 +58,54 @@ INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
 
 @njit(cache=True)
 def anvil_outputs(P, C, S, u_ram, v_ram, u_pile, v_pile):
-    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] in one call: the contact forces of
-    :meth:`AnvilUnit.forces` and the interface displacements of :meth:`AnvilUnit.outputs`."""
+    """The anvil's four outputs in one call.
+
+    The contact forces of :meth:`AnvilUnit.forces` and the interface displacements of
+    :meth:`AnvilUnit.outputs`.
+
+    Parameters
+    ----------
+    P : numpy.ndarray
+        Scalar data of the unit, ``AnvilUnit.P``: contact stiffnesses and dashpots, residual
+        flexibility, gravity, step [SI].
+    C : numpy.ndarray
+        Per-mode data of the unit, ``AnvilUnit.C``, shape (n, 8) [SI].
+    S : numpy.ndarray
+        Modal state of the unit, ``AnvilUnit.S``, shape (2 n,) [m].
+    u_ram : float
+        Ram toe displacement, positive down [m].
+    v_ram : float
+        Ram toe velocity, positive down [m/s].
+    u_pile : float
+        Pile head displacement, positive down [m].
+    v_pile : float
+        Pile head velocity, positive down [m/s].
+
+    Returns
+    -------
+    F_ram : float
+        Ram-anvil contact force, compression positive [N].
+    F_pile : float
+        Anvil-pile contact force, compression positive [N].
+    u_top : float
+        Anvil top face displacement, positive down [m].
+    u_bottom : float
+        Anvil bottom ring displacement, positive down [m].
+    """
     force_ram, force_pile = modal_unit_forces(P, C, S, u_ram, v_ram, u_pile, v_pile)
     u_top, _, u_bottom, _ = modal_unit_outputs(P, C, S, force_ram, force_pile)
     return force_ram, force_pile, u_top, u_bottom
 
 
 class AnvilSlaveBase(UnitSlave):
-    """Variables and mapping shared by the ROM anvil and the lumped (rigid) anvil."""
+    """Variables and mapping shared by the ROM anvil and the lumped (rigid) anvil.
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
 
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.02, step_size=1e-5)
     extrapolation: InputExtrapolation | None = None  # with input_extrapolation, once built
@@ -87,6 +126,7 @@ class AnvilSlaveBase(UnitSlave):
     }
 
     def register_variables(self) -> None:
+        """Register the anvil's parameters, inputs and outputs (module docstring)."""
         self.register_anvil_parameters()
         p = self.add_parameter
         p("ram_contact_stiffness", "N/m", "Ram-anvil compression-only contact spring [N/m]")
@@ -115,13 +155,44 @@ class AnvilSlaveBase(UnitSlave):
           self.feedthrough["u_bottom"])
 
     def register_anvil_parameters(self) -> None:
+        """Register the parameters of the anvil model itself.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it.
+        """
         raise NotImplementedError
 
     def make_anvil(self) -> ModalAnvil:
+        """The anvil model from the parameters.
+
+        Returns
+        -------
+        ModalAnvil
+            The modal (or rigid) anvil.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it.
+        """
         raise NotImplementedError
 
     # ------------------------------------------------------------------ mapping
     def build_component(self) -> AnvilUnit:
+        """The anvil unit: the anvil model with its contacts and gravity.
+
+        Returns
+        -------
+        AnvilUnit
+            The anvil with its ram and pile contacts.
+
+        Raises
+        ------
+        InputError
+            If ``gravity`` is not finite.
+        """
         par = self.parameters
         contact = ContactParameters(
             ram_stiffness=par["ram_contact_stiffness"],
@@ -134,6 +205,12 @@ class AnvilSlaveBase(UnitSlave):
         return AnvilUnit(self.make_anvil(), contact, gravity)
 
     def start_component(self) -> None:
+        """Initial state: at rest on the pile, the step kernel compiled, extrapolation set up.
+
+        With ``start_at_rest`` the anvil is put in static equilibrium on the pile head at
+        ``initial_pile_head_displacement`` [m]; with ``input_extrapolation`` an
+        :class:`~anvilwave.fmu.coupling.InputExtrapolation` starts at the start time.
+        """
         if self.parameters["start_at_rest"]:
             self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
         # compile (or load) the step kernel now, on copies, not inside the first doStep
@@ -143,6 +220,18 @@ class AnvilSlaveBase(UnitSlave):
                               if self.parameters["input_extrapolation"] else None)
 
     def compute_outputs(self, inputs, outputs) -> None:
+        """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] from the current inputs.
+
+        With input extrapolation the inputs are extrapolated to the unit's time and the impulse
+        correction is added to the forces.
+
+        Parameters
+        ----------
+        inputs : list of float
+            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        outputs : list of float
+            (F_ram, F_pile, u_top, u_bottom) [N, N, m, m], filled in place.
+        """
         unit = self.component
         x = self.extrapolation
         if unit.rings is not None:  # the pile port in rings: F_pile their sum
@@ -160,6 +249,13 @@ class AnvilSlaveBase(UnitSlave):
         outputs[1] += x.correction[1]
 
     def advance(self, h: float) -> None:
+        """Advance the anvil over one step with the contact forces held (``AnvilUnit.step``).
+
+        Parameters
+        ----------
+        h : float
+            Communication step [s].
+        """
         x = self.extrapolation
         if x is None:
             self.component.step(self.outputs[0], self.outputs[1], h)
@@ -171,11 +267,37 @@ class AnvilSlaveBase(UnitSlave):
 
     # input extrapolation: the unit's time, the inputs' time, the forces read
     def set_real(self, vrs, values):
+        """Set Real variables (fmi2SetReal), noting the inputs' time for the extrapolation.
+
+        Parameters
+        ----------
+        vrs : list of int
+            Value references.
+        values : list of float
+            The values [SI].
+
+        Returns
+        -------
+        None
+            What :meth:`UnitSlave.set_real` returns (nothing).
+        """
         if self.extrapolation is not None:
             self.extrapolation.note_inputs(self.inputs)
         return super().set_real(vrs, values)
 
     def get_real(self, vrs):
+        """Values of Real variables (fmi2GetReal), noting the forces read for the extrapolation.
+
+        Parameters
+        ----------
+        vrs : list of int
+            Value references.
+
+        Returns
+        -------
+        list of float
+            The values [SI].
+        """
         values = super().get_real(vrs)
         x = self.extrapolation
         if x is not None and x.evaluated is not None:
@@ -183,6 +305,20 @@ class AnvilSlaveBase(UnitSlave):
         return values
 
     def do_step(self, current_time: float, step_size: float) -> bool:
+        """Advance over one communication step (fmi2DoStep), then move the extrapolation's time.
+
+        Parameters
+        ----------
+        current_time : float
+            Communication point at the step start [s].
+        step_size : float
+            Communication step h [s].
+
+        Returns
+        -------
+        bool
+            ``True`` on success; ``False`` (fmi2Discard) after an error, which is logged.
+        """
         done = super().do_step(current_time, step_size)
         if done and self.extrapolation is not None:
             self.extrapolation.time = current_time + step_size
@@ -190,7 +326,14 @@ class AnvilSlaveBase(UnitSlave):
 
 
 class AnvilROMSlave(AnvilSlaveBase):
-    """The Mode Displacement Method anvil from an embedded modal-data file (``Anvil.fmu``)."""
+    """The Mode Displacement Method anvil from an embedded modal-data file (``Anvil.fmu``).
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
 
     kind = "Anvil"
     description = ("anvilwave anvil: Mode Displacement Method ROM with compression-only ram and "
@@ -204,6 +347,7 @@ class AnvilROMSlave(AnvilSlaveBase):
     }
 
     def register_anvil_parameters(self) -> None:
+        """Register ``modal_data_file``, ``fmax``, ``damping_ratio`` and ``static_correction``."""
         p = self.add_parameter
         p("modal_data_file", None, "Modal-data file (.npz); a relative name is looked up in the "
                                    "FMU resources, where the build embeds it [-]", str)
@@ -214,6 +358,13 @@ class AnvilROMSlave(AnvilSlaveBase):
                                      "(static correction) [-]", bool)
 
     def make_anvil(self) -> ModalAnvil:
+        """The ROM from the modal-data file, modes up to ``fmax`` [Hz] (0: all).
+
+        Returns
+        -------
+        ModalAnvil
+            The Mode Displacement Method anvil.
+        """
         par = self.parameters
         path = self.resource_path(par["modal_data_file"])
         data = load_modal_data(path)
@@ -224,7 +375,14 @@ class AnvilROMSlave(AnvilSlaveBase):
 
 
 class AnvilLumpedSlave(AnvilSlaveBase):
-    """The rigid lumped-mass anvil of the classic programs (``AnvilLumped.fmu``)."""
+    """The rigid lumped-mass anvil of the classic programs (``AnvilLumped.fmu``).
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
 
     kind = "AnvilLumped"
     description = ("anvilwave anvil: rigid lumped mass with compression-only ram and pile "
@@ -236,7 +394,15 @@ class AnvilLumpedSlave(AnvilSlaveBase):
     }
 
     def register_anvil_parameters(self) -> None:
+        """Register ``mass`` [kg]."""
         self.add_parameter("mass", "kg", "Anvil mass (the FE model's total mass) [kg]")
 
     def make_anvil(self) -> ModalAnvil:
+        """The rigid anvil of mass ``mass`` [kg].
+
+        Returns
+        -------
+        ModalAnvil
+            The rigid anvil.
+        """
         return ModalAnvil.rigid(self.parameters["mass"])

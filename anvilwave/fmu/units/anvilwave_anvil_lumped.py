@@ -12,5 +12,14 @@ pin_namespace(globals())  # pythonfmu 0.7.0 loader work-around (see pin_namespac
 
 
 class AnvilLumped(AnvilLumpedSlave):
-    """AnvilLumped: inputs u_ram [m], v_ram [m/s], u_pile [m], v_pile [m/s]; outputs F_ram [N],
-    F_pile [N], u_top [m], u_bottom [m]."""
+    """The ``AnvilLumped.fmu`` slave: the rigid lumped-mass anvil.
+
+    Inputs u_ram [m], v_ram [m/s], u_pile [m], v_pile [m/s]; outputs F_ram [N], F_pile [N],
+    u_top [m], u_bottom [m].
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """

@@ -13,5 +13,14 @@ pin_namespace(globals())  # pythonfmu 0.7.0 loader work-around (see pin_namespac
 
 
 class PileSoil(PileSoilSlave):
-    """PileSoil: input F_head [N]; outputs u_head [m], v_head [m/s], F_gauge [N],
-    v_gauge [m/s], u_head_total [m], u_pile_toe [m]."""
+    """The ``PileSoil.fmu`` slave: the pile with its soil.
+
+    Input F_head [N]; outputs u_head [m], v_head [m/s], F_gauge [N], v_gauge [m/s],
+    u_head_total [m], u_pile_toe [m], max_compression_stress [Pa], max_tension_stress [Pa].
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """

@@ -12,4 +12,11 @@ pin_namespace(globals())  # pythonfmu 0.7.0 loader work-around (see pin_namespac
 
 
 class Ram(RamSlave):
-    """Ram: input F_toe [N]; outputs u_toe [m], v_toe [m/s]."""
+    """Ram: input F_toe [N]; outputs u_toe [m], v_toe [m/s].
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """

@@ -64,6 +64,11 @@ def pin_namespace(namespace: dict) -> None:
     functions soon has its namespace freed under the loaded module and the host crashes at the
     second or third instantiation. Each execution of a script that calls this adds the
     reference the loader will take away.
+
+    Parameters
+    ----------
+    namespace : dict
+        The slave script's module namespace (``globals()``).
     """
     _PINNED_NAMESPACES.append(namespace)
 
@@ -86,6 +91,17 @@ class UnitSlave(Fmi2Slave):
 
     ``kind`` names the FMU type (e.g. ``"Anvil"``); ``parameter_fallbacks`` gives the default of
     each parameter when the build does not set it (``None``: the build must set it).
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
+    FMI 2.0.4. https://fmi-standard.org
     """
 
     kind: ClassVar[str] = ""
@@ -118,18 +134,64 @@ class UnitSlave(Fmi2Slave):
 
     # ------------------------------------------------------------------ subclass interface
     def register_variables(self) -> None:
+        """Register the unit's variables with ``add_parameter``, ``add_input``, ``add_output``.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it.
+        """
         raise NotImplementedError
 
     def build_component(self):
+        """The component (ram, anvil, pile/soil) built from ``self.parameters``.
+
+        Returns
+        -------
+        object
+            The component the slave maps its variables onto.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it (and raises
+            :class:`~anvilwave.inputs.InputError` on a bad parameter value).
+        """
         raise NotImplementedError
 
     def start_component(self) -> None:
         """Initial state of the component (default: as built)."""
 
     def compute_outputs(self, inputs: list[float], outputs: list[float]) -> None:
+        """Fill ``outputs`` from the current inputs, at the current time.
+
+        Parameters
+        ----------
+        inputs : list of float
+            Input values, in registration order [SI].
+        outputs : list of float
+            Output values, in registration order, filled in place [SI].
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it.
+        """
         raise NotImplementedError
 
     def advance(self, h: float) -> None:
+        """Advance the component over one communication step with the current inputs held.
+
+        Parameters
+        ----------
+        h : float
+            Communication step [s].
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a subclass implements it.
+        """
         raise NotImplementedError
 
     # ------------------------------------------------------------------ registration
@@ -138,6 +200,17 @@ class UnitSlave(Fmi2Slave):
         """A fixed parameter (set before or during initialization) of type float, bool or str.
 
         Its default is the build's value, else ``parameter_fallbacks[name]``.
+
+        Parameters
+        ----------
+        name : str
+            FMI variable name.
+        unit : str or None
+            FMI unit (e.g. ``"N/m"``); ``None`` for none.
+        description : str
+            FMI variable description.
+        kind : type, default float
+            Python type of the value: ``float``, ``bool`` or ``str``.
         """
         value = self._defaults.get(name, self.parameter_fallbacks.get(name))
         if value is None:
@@ -158,7 +231,19 @@ class UnitSlave(Fmi2Slave):
         self._register(var, unit)
 
     def add_input(self, name: str, unit: str, description: str, start: float = 0.0) -> None:
-        """A continuous Real input."""
+        """A continuous Real input.
+
+        Parameters
+        ----------
+        name : str
+            FMI variable name.
+        unit : str
+            FMI unit (e.g. ``"m/s"``).
+        description : str
+            FMI variable description.
+        start : float, default 0.0
+            Start value [SI unit of the input].
+        """
         index = len(self.inputs)
         self.input_names.append(name)
         self.inputs.append(float(start))
@@ -175,7 +260,24 @@ class UnitSlave(Fmi2Slave):
 
     def add_output(self, name: str, unit: str, description: str,
                    depends_on: tuple[str, ...] = ()) -> None:
-        """A continuous Real output; ``depends_on``: the inputs that feed through to it."""
+        """A continuous Real output.
+
+        Parameters
+        ----------
+        name : str
+            FMI variable name.
+        unit : str
+            FMI unit (e.g. ``"N"``).
+        description : str
+            FMI variable description.
+        depends_on : tuple of str, default ()
+            The (registered) inputs that feed through to it directly.
+
+        Raises
+        ------
+        ValueError
+            If ``depends_on`` names an input that is not registered.
+        """
         index = len(self.outputs)
         self.output_names.append(name)
         self.outputs.append(math.nan)
@@ -196,15 +298,42 @@ class UnitSlave(Fmi2Slave):
 
     # ------------------------------------------------------------------ FMI calls
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):
-        """Record the start time [s] (``self.start_time``); the component starts there."""
+        """Record the start time (``self.start_time``): the component starts there.
+
+        Called by fmi2SetupExperiment.
+
+        Parameters
+        ----------
+        start_time : float
+            Start time of the experiment [s].
+        stop_time : float or None, optional
+            Stop time [s] (unused).
+        tolerance : float or None, optional
+            Tolerance [-] (unused).
+        """
         if not self._initialized:
             self.start_time = self._time = float(start_time)
             self.component = None  # its initial state may depend on the start time
 
     def exit_initialization_mode(self):
+        """Build and start the component (fmi2ExitInitializationMode); an error is logged."""
         self._guard("initialization", self._initialize)
 
     def do_step(self, current_time: float, step_size: float) -> bool:
+        """Advance the unit over one communication step (fmi2DoStep).
+
+        Parameters
+        ----------
+        current_time : float
+            Communication point at the step start [s].
+        step_size : float
+            Communication step h [s], positive.
+
+        Returns
+        -------
+        bool
+            ``True`` on success; ``False`` (fmi2Discard) after an error, which is logged.
+        """
         if self.failed:
             self._fail("failed earlier (see the previous error): reset or free it")
             return False
@@ -218,6 +347,18 @@ class UnitSlave(Fmi2Slave):
     # fmi2SetReal): all outputs or all inputs go straight to the lists, anything else takes
     # pythonfmu's general route through the variables' getters and setters.
     def get_real(self, vrs):
+        """Values of Real variables (fmi2GetReal); only outputs: straight from the output list.
+
+        Parameters
+        ----------
+        vrs : list of int
+            Value references.
+
+        Returns
+        -------
+        list of float
+            The values [SI]; NaN where the outputs could not be evaluated (the error logged).
+        """
         key = tuple(vrs)
         plan = self._get_plans.get(key, False)
         if plan is False:
@@ -242,6 +383,22 @@ class UnitSlave(Fmi2Slave):
         return values
 
     def set_real(self, vrs, values):
+        """Set Real variables (fmi2SetReal); only inputs: straight into the input list.
+
+        A value that is not finite is rejected and logged as an error.
+
+        Parameters
+        ----------
+        vrs : list of int
+            Value references.
+        values : list of float
+            The values [SI].
+
+        Returns
+        -------
+        None
+            Nothing (as pythonfmu's ``Fmi2Slave.set_real``).
+        """
         key = tuple(vrs)
         plan = self._set_plans.get(key, False)
         if plan is False:
@@ -273,7 +430,13 @@ class UnitSlave(Fmi2Slave):
             self._outputs_current = False
 
     def time_now(self) -> float:
-        """The unit's communication point [s] (start time, then the end of the last step)."""
+        """The unit's communication point (start time, then the end of the last step).
+
+        Returns
+        -------
+        float
+            Communication point [s].
+        """
         return self._time
 
     def _step(self, h: float) -> None:
@@ -332,7 +495,18 @@ class UnitSlave(Fmi2Slave):
             return {}
 
     def resource_path(self, name: str) -> Path:
-        """A file named by a parameter: relative names are inside this FMU's resources."""
+        """A file named by a parameter: relative names are inside this FMU's resources.
+
+        Parameters
+        ----------
+        name : str
+            File name, absolute or relative to the FMU's ``resources`` folder.
+
+        Returns
+        -------
+        pathlib.Path
+            Path of the file.
+        """
         path = Path(name)
         if not path.is_absolute() and self.resources:
             path = Path(self.resources) / path

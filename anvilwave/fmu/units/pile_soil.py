@@ -72,7 +72,17 @@ SMITH_TOE_ONLY = ("quake_toe", "damping_toe")
 
 
 class PileSoilState:
-    """Kernel arrays and state of a pile with its soil, resting under a head load."""
+    """Kernel arrays and state of a pile with its soil, resting under a head load.
+
+    Parameters
+    ----------
+    model : PileSoil
+        The validated pile with its soil.
+    head_load : float
+        Static head load the pile rests under at the start, compression positive [N].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    """
 
     def __init__(self, model: PileSoil, head_load: float, gravity: float):
         self.arrays = model.arrays()
@@ -93,8 +103,18 @@ class PileSoilState:
                      self.energy.copy(), 0.0, 1e-9, 1, None)
 
     def step(self, head_force: float, h: float) -> None:
-        """Advance over h [s] (:func:`anvilwave.pile.kernels.pile_advance`; the head works of
-        ``energy`` are kept, the other works are not summed: the FMU does not output them)."""
+        """Advance over h with the head force held (:func:`anvilwave.pile.kernels.pile_advance`).
+
+        The head works of ``energy`` are kept, the other works are not summed: the FMU does not
+        output them. The running stress extremes are updated after the step.
+
+        Parameters
+        ----------
+        head_force : float
+            Anvil-pile contact force on the head, compression positive [N].
+        h : float
+            Communication step [s].
+        """
         if h != self._h:
             self._n_sub = substeps(h, self.stable_step)
             self._h = h
@@ -104,7 +124,14 @@ class PileSoilState:
 
 
 class PileSoilSlave(UnitSlave):
-    """The pile with its soil (``PileSoil.fmu``)."""
+    """The pile with its soil (``PileSoil.fmu``).
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
 
     kind = "PileSoil"
     description = ("anvilwave pile and soil: Smith lumped pile with soil springs (leapfrog, "
@@ -132,6 +159,7 @@ class PileSoilSlave(UnitSlave):
     }
 
     def register_variables(self) -> None:
+        """Register the pile/soil parameters, input ``F_head`` and the eight outputs."""
         p = self.add_parameter
         p("pile_soil_file", None, "Pile and soil file (TOML: [pile] with its [[pile.sections]], "
                                   "optional [soil] with its srd table); a relative name is "
@@ -176,6 +204,19 @@ class PileSoilSlave(UnitSlave):
 
     # ------------------------------------------------------------------ mapping
     def build_component(self) -> PileSoilState:
+        """The pile with its soil at rest under ``static_head_load`` [N] and gravity.
+
+        Returns
+        -------
+        PileSoilState
+            Kernel arrays and state of the pile with its soil.
+
+        Raises
+        ------
+        InputError
+            If ``static_head_load`` or ``gravity`` is out of range, or the pile/soil file or
+            the parameters are invalid.
+        """
         par = self.parameters
         name = self.instance_name
         for key in ("static_head_load", "gravity"):
@@ -190,7 +231,18 @@ class PileSoilSlave(UnitSlave):
         return PileSoilState(model, par["static_head_load"], par["gravity"])
 
     def pile_soil_model(self) -> PileSoil:
-        """The validated pile and soil: the file's tables with the parameters applied."""
+        """The validated pile and soil: the file's tables with the parameters applied.
+
+        Returns
+        -------
+        PileSoil
+            The pile with its soil.
+
+        Raises
+        ------
+        InputError
+            If the file has an unknown or malformed table, or a value is invalid.
+        """
         par = self.parameters
         path = self.resource_path(par["pile_soil_file"])
         root = read_toml(path)
@@ -213,18 +265,63 @@ class PileSoilSlave(UnitSlave):
                                     None if soil is None else Table(soil, source, "soil"))
 
     def compute_outputs(self, inputs, outputs) -> None:
+        """The eight outputs from the pile state (all states: no feedthrough).
+
+        Parameters
+        ----------
+        inputs : list of float
+            (F_head,) [N] (unused: the outputs are states).
+        outputs : list of float
+            (u_head, v_head, F_gauge, v_gauge, u_head_total, u_pile_toe,
+            max_compression_stress, max_tension_stress) [SI], filled in place.
+        """
         c = self.component
         outputs[:6] = pile_outputs(c.arrays.pile, c.arrays.probes, c.u, c.v, c.face0)
         outputs[6:] = c.extremes
 
     def advance(self, h: float) -> None:
+        """Advance the pile over ``h`` with ``F_head`` held.
+
+        Parameters
+        ----------
+        h : float
+            Communication step [s].
+        """
         self.component.step(self.inputs[0], h)
 
 
 @njit(cache=True)
 def pile_outputs(pile, probes, u, v, face0):
-    """The outputs (u_head, v_head, F_gauge, v_gauge, u_head_total, u_pile_toe) [SI] in one
-    call: the engine's output kernels; u_head relative to the static head position face0."""
+    """The six kinematic and gauge outputs in one call: the engine's output kernels.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        Pile kernel arrays (``PileSoilArrays.pile``).
+    probes : numpy.ndarray
+        Probe data of the head and gauge (``PileSoilArrays.probes``).
+    u : numpy.ndarray
+        Mass displacements, positive down [m].
+    v : numpy.ndarray
+        Mass velocities, positive down [m/s].
+    face0 : float
+        Static head position at the start [m].
+
+    Returns
+    -------
+    u_head : float
+        Head displacement relative to the static head position face0, positive down [m].
+    v_head : float
+        Head velocity, positive down [m/s].
+    F_gauge : float
+        Axial force at the gauge depth, compression positive [N].
+    v_gauge : float
+        Velocity at the gauge depth, positive down [m/s].
+    u_head_total : float
+        Head displacement from the undeformed pile, positive down [m].
+    u_pile_toe : float
+        Toe displacement, positive down [m].
+    """
     face = head_displacement(probes, u)
     return (face - face0, head_velocity(probes, v), gauge_force(pile, probes, u, v),
             gauge_velocity(probes, v), face, toe_displacement(u))

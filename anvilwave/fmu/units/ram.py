@@ -58,7 +58,17 @@ DEFAULT_HAMMER = "illustrative_5500kj"
 
 
 class RamState:
-    """The ram's arrays and state (the kernel's arguments), built from the parameters."""
+    """The ram's arrays and state (the kernel's arguments), built from the parameters.
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        Lumped masses, shape (n,), top first, the toe last [kg].
+    stiffness : numpy.ndarray
+        The n - 1 springs between the masses [N/m].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    """
 
     def __init__(self, mass: np.ndarray, stiffness: np.ndarray, gravity: float):
         self.mass = np.ascontiguousarray(mass, dtype=np.float64)
@@ -77,10 +87,28 @@ class RamState:
                     self.v.copy(), 0.0, 1e-9, 1)
 
     def start(self, displacement: float, velocity: float) -> None:
+        """Start every mass at ``displacement`` with ``velocity``, undeformed.
+
+        Parameters
+        ----------
+        displacement : float
+            Displacement of every mass, positive down [m].
+        velocity : float
+            Velocity of every mass, positive down [m/s].
+        """
         self.u[:] = displacement
         self.v[:] = velocity
 
     def step(self, toe_force: float, h: float) -> None:
+        """Advance over ``h`` with ``toe_force`` held, sub-stepped within the stable limit.
+
+        Parameters
+        ----------
+        toe_force : float
+            Ram-anvil contact force on the toe, compression positive [N].
+        h : float
+            Communication step [s].
+        """
         if h != self._h:
             self._n_sub = substeps(h, self.stable_step)
             self._h = h
@@ -89,8 +117,17 @@ class RamState:
 
 
 class ModalRamState:
-    """A modal ram's unit (the engine's :class:`anvilwave.hammer.modal_ram.ModalRamUnit`) behind the
-    interface of :class:`RamState`."""
+    """A modal ram's unit behind the interface of :class:`RamState`.
+
+    The unit is the engine's :class:`anvilwave.hammer.modal_ram.ModalRamUnit`.
+
+    Parameters
+    ----------
+    toe_modes : object
+        The hammer's toe modes (``hammer.ram.modes``), as ``ModalRamUnit`` takes them.
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    """
 
     def __init__(self, toe_modes, gravity: float):
         self.unit = ModalRamUnit(toe_modes, gravity)
@@ -103,12 +140,30 @@ class ModalRamState:
         self.unit.step(0.0)
 
     def start(self, displacement: float, velocity: float) -> None:
+        """Start the toe at ``displacement`` with ``velocity``; the state is set at the first step.
+
+        Parameters
+        ----------
+        displacement : float
+            Toe displacement, positive down [m].
+        velocity : float
+            Toe velocity, positive down [m/s].
+        """
         # the two-step state needs the step: it is set up at the first step
         self._start = (displacement, velocity)
         self.u[0] = displacement
         self.v[0] = velocity
 
     def step(self, toe_force: float, h: float) -> None:
+        """Advance over ``h`` with ``toe_force`` held (every mode exact over the step).
+
+        Parameters
+        ----------
+        toe_force : float
+            Ram-anvil contact force on the toe, compression positive [N].
+        h : float
+            Communication step [s].
+        """
         unit = self.unit
         if self._start is not None:
             unit.start(self._start[0], self._start[1], h)
@@ -119,7 +174,14 @@ class ModalRamState:
 
 
 class RamSlave(UnitSlave):
-    """The ram (``Ram.fmu``): a lumped rod of the hammer database or an embedded hammer file."""
+    """The ram (``Ram.fmu``): a lumped rod of the hammer database or an embedded hammer file.
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
 
     kind = "Ram"
     description = ("anvilwave ram: lumped-mass rod (leapfrog, sub-stepped within its stable "
@@ -139,6 +201,7 @@ class RamSlave(UnitSlave):
     """h_d [s] when the build gives no DefaultExperiment step (module docstring)."""
 
     def register_variables(self) -> None:
+        """Register the ram's parameters, input ``F_toe`` and outputs ``u_toe``, ``v_toe``."""
         p = self.add_parameter
         p("hammer", None, "Hammer: a name of the hammer database (anvilwave/hammer/data) "
                           "or a hammer TOML "
@@ -166,6 +229,19 @@ class RamSlave(UnitSlave):
 
     # ------------------------------------------------------------------ mapping
     def build_component(self) -> RamState:
+        """The ram from the hammer, scaled to ``mass`` [kg], with its impact velocity.
+
+        Returns
+        -------
+        RamState or ModalRamState
+            The lumped ram, or the modal ram of a hammer with ``kind = "modal"``.
+
+        Raises
+        ------
+        InputError
+            If ``gravity``, ``mass``, ``v_impact``, ``contact_displacement`` or
+            ``contact_time`` is out of range, or ``hammer`` names no hammer.
+        """
         par = self.parameters
         name = self.instance_name
         gravity = par["gravity"]
@@ -208,6 +284,7 @@ class RamSlave(UnitSlave):
         return load_hammer(path, gravity)
 
     def start_component(self) -> None:
+        """Free flight at ``v_impact`` towards the anvil, placed as the module docstring says."""
         par = self.parameters
         self.placed = not par["contact_mid_step"]
         if self.placed:
@@ -218,11 +295,27 @@ class RamSlave(UnitSlave):
                              self.velocity)
 
     def compute_outputs(self, inputs, outputs) -> None:
+        """(u_toe, v_toe) [m, m/s]: the toe state (no feedthrough).
+
+        Parameters
+        ----------
+        inputs : list of float
+            (F_toe,) [N] (unused: the outputs are states).
+        outputs : list of float
+            (u_toe, v_toe) [m, m/s], filled in place.
+        """
         ram = self.component
         outputs[0] = ram.u[-1]
         outputs[1] = ram.v[-1]
 
     def advance(self, h: float) -> None:
+        """Advance the ram over ``h`` with ``F_toe`` held (first contact mid-step if asked).
+
+        Parameters
+        ----------
+        h : float
+            Communication step [s].
+        """
         if not self.placed:  # the first contact in the middle of this step
             self.component.start(self.parameters["contact_displacement"]
                                  - self.velocity * (0.5 * h), self.velocity)
