@@ -53,7 +53,9 @@ MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.pile.soil.srd",
     "anvilwave.pile.static",
 )
-MODULES_SYSTEM = ()
+MODULES_SYSTEM = (
+    "anvilwave.pile.soil.profile",
+)
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
 MODULES_FMU = ()
 """The FMI package."""
