@@ -54,6 +54,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.pile.static",
 )
 MODULES_SYSTEM = (
+    "anvilwave.analyses.batch",
     "anvilwave.pile.soil.profile",
 )
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
