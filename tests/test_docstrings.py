@@ -56,6 +56,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
 MODULES_SYSTEM = (
     "anvilwave.analyses.batch",
     "anvilwave.pile.soil.profile",
+    "anvilwave.pile.soil.srd_methods",
 )
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
 MODULES_FMU = ()
