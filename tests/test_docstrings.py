@@ -55,6 +55,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
 )
 MODULES_SYSTEM = (
     "anvilwave.analyses.batch",
+    "anvilwave.analyses.drive",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
 )
