@@ -56,6 +56,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
 MODULES_SYSTEM = (
     "anvilwave.analyses.batch",
     "anvilwave.analyses.drive",
+    "anvilwave.analyses.impact",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
