@@ -87,7 +87,7 @@ def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
     ValueError
         If ``engine`` is unknown.
     InputError
-        If the anvil model does not fit the system.
+        If the FMI engine is asked for an anvil model other than ``"rom"`` or ``"lumped"``.
     """
 
     cfg = system if isinstance(system, SystemConfig) else _load_system(system)
