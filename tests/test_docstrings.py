@@ -57,6 +57,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.batch",
     "anvilwave.analyses.drive",
     "anvilwave.analyses.impact",
+    "anvilwave.analyses.pda",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
