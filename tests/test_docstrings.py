@@ -58,6 +58,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.drive",
     "anvilwave.analyses.impact",
     "anvilwave.analyses.pda",
+    "anvilwave.config.drive",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
