@@ -59,6 +59,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.impact",
     "anvilwave.analyses.pda",
     "anvilwave.config.drive",
+    "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
