@@ -58,6 +58,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.drive",
     "anvilwave.analyses.impact",
     "anvilwave.analyses.pda",
+    "anvilwave.config.cache",
     "anvilwave.config.drive",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
