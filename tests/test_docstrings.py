@@ -60,6 +60,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.pda",
     "anvilwave.config.cache",
     "anvilwave.config.drive",
+    "anvilwave.config.install",
     "anvilwave.config.system",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
