@@ -57,6 +57,7 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.batch",
     "anvilwave.analyses.drive",
     "anvilwave.analyses.impact",
+    "anvilwave.analyses.install",
     "anvilwave.analyses.pda",
     "anvilwave.config.budget",
     "anvilwave.config.cache",
