@@ -59,6 +59,8 @@ MODULES_SYSTEM = (
     "anvilwave.analyses.impact",
     "anvilwave.analyses.install",
     "anvilwave.analyses.pda",
+    "anvilwave.api",
+    "anvilwave.cli",
     "anvilwave.config.budget",
     "anvilwave.config.cache",
     "anvilwave.config.drive",
