@@ -72,6 +72,7 @@ MODULES_SYSTEM = (
     "anvilwave.engine.fmus",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
+    "anvilwave.pile.soil.models",
     "anvilwave.pile.soil.profile",
     "anvilwave.pile.soil.srd_methods",
 )
