@@ -72,8 +72,10 @@ MODULES_SYSTEM = (
     "anvilwave.engine.fmus",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
+    "anvilwave.pile.soil.cpt",
     "anvilwave.pile.soil.models",
     "anvilwave.pile.soil.profile",
+    "anvilwave.pile.soil.setup",
     "anvilwave.pile.soil.srd_methods",
 )
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
