@@ -70,6 +70,7 @@ MODULES_SYSTEM = (
     "anvilwave.engine.compilation",
     "anvilwave.engine.fmi",
     "anvilwave.engine.fmus",
+    "anvilwave.examples",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.cpt",

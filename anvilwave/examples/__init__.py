@@ -18,8 +18,25 @@ EXAMPLES_DIR = Path(__file__).resolve().parent
 _SKIP = shutil.ignore_patterns("__init__.py", "__pycache__", "*.pyc")
 
 def copy_examples(dest: str | Path) -> list[Path]:
-    """Copy the example files into ``dest`` (created; existing files are kept, never
-    overwritten: a file already there raises FileExistsError). Returns the copied files."""
+    """Copy the example files into ``dest``.
+
+    ``dest`` is created; existing files are kept, never overwritten.
+
+    Parameters
+    ----------
+    dest : str or pathlib.Path
+        The destination folder.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The copied files.
+
+    Raises
+    ------
+    FileExistsError
+        If a file to copy is already there (nothing is copied then).
+    """
     dest = Path(dest)
     sources = [p for p in sorted(EXAMPLES_DIR.rglob("*"))
                if p.is_file() and p.name != "__init__.py" and "__pycache__" not in p.parts
