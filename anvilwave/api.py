@@ -55,6 +55,7 @@ def load_system(path: str | Path) -> SystemConfig:
     Returns
     -------
     SystemConfig
+        The validated system.
 
     Raises
     ------
@@ -103,15 +104,20 @@ def drive(system: SystemConfig | str | Path, *, anvil: str | None = None,
 def compare_anvils(system: SystemConfig | str | Path, *, bound: str | None = None,
                    workers: int | None = None, progress: bool = False
                    ) -> dict[str, DriveResult]:
-    """Driveability with every anvil model the system has (``drive --compare-anvils``): the
-    Mode Displacement Method anvil, the rigid lumped anvil and the classic driving system.
+    """Driveability with every anvil model the system has (``drive --compare-anvils``).
+
+    The Mode Displacement Method anvil, the rigid lumped anvil and the classic driving system.
 
     Parameters
     ----------
     system : SystemConfig, str or Path
         A system (or its file) with a ``[driveability]`` table.
-    bound, workers, progress
-        As for :func:`drive`.
+    bound : str, optional
+        The SRD bound, as for :func:`drive`.
+    workers : int, optional
+        Processes over the depths, as for :func:`drive`.
+    progress : bool, default False
+        A progress bar, as for :func:`drive`.
 
     Returns
     -------
@@ -124,8 +130,7 @@ def compare_anvils(system: SystemConfig | str | Path, *, bound: str | None = Non
 
 def install(system: SystemConfig | str | Path, *, anvil: str | None = None,
             progress: bool = False) -> InstallResult:
-    """Blow-by-blow installation with residual stresses, fatigue and spectra
-    (``anvilwave install``).
+    """Blow-by-blow installation with residual stresses, fatigue and spectra (``install``).
 
     Parameters
     ----------
@@ -148,8 +153,9 @@ def install(system: SystemConfig | str | Path, *, anvil: str | None = None,
 
 def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = None,
           scheduler=None, progress: bool = False) -> BatchResult:
-    """A campaign: the driveability of many foundation positions, hammers and anvils on dask
-    (``anvilwave batch``). Resumable: cases finished in ``out_dir`` are not run again.
+    """A campaign: the driveability of many positions, hammers and anvils (``anvilwave batch``).
+
+    Run on dask. Resumable: cases finished in ``out_dir`` are not run again.
 
     Parameters
     ----------
@@ -167,6 +173,7 @@ def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = No
     Returns
     -------
     BatchResult
+        The counts of cases run, skipped and by status, the timings and the campaign.csv rows.
     """
     return run_campaign(campaign, out_dir, workers=workers, scheduler=scheduler,
                         progress=progress)

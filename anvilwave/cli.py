@@ -354,6 +354,13 @@ def _say(i: int, steps: list[str]) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``anvilwave`` command and its sub-commands.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser; each sub-command sets ``func``, the function that runs it.
+    """
     parser = argparse.ArgumentParser(
         prog="anvilwave",
         description="Impact pile driving with a Mode Displacement Method anvil.",
@@ -762,6 +769,23 @@ def _user_error(exc: Exception) -> bool:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the ``anvilwave`` command line.
+
+    A user error (an input error, a modal analysis that cannot be solved, or a native build
+    that fails) prints one line ``anvilwave: error: ...`` to stderr instead of a traceback; any
+    other exception propagates.
+
+    Parameters
+    ----------
+    argv : list of str or None, default None
+        The arguments (None: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status: the sub-command's, 0 on a broken pipe, 130 on Ctrl-C, 2 on a user
+        error.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     try:

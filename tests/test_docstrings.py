@@ -53,7 +53,32 @@ MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.pile.soil.srd",
     "anvilwave.pile.static",
 )
-MODULES_SYSTEM = ()
+MODULES_SYSTEM = (
+    "anvilwave.analyses.batch",
+    "anvilwave.analyses.drive",
+    "anvilwave.analyses.impact",
+    "anvilwave.analyses.install",
+    "anvilwave.analyses.pda",
+    "anvilwave.api",
+    "anvilwave.cli",
+    "anvilwave.config.budget",
+    "anvilwave.config.cache",
+    "anvilwave.config.drive",
+    "anvilwave.config.install",
+    "anvilwave.config.schema",
+    "anvilwave.config.system",
+    "anvilwave.engine.compilation",
+    "anvilwave.engine.fmi",
+    "anvilwave.engine.fmus",
+    "anvilwave.examples",
+    "anvilwave.pile.model",
+    "anvilwave.pile.pda.case_method",
+    "anvilwave.pile.soil.cpt",
+    "anvilwave.pile.soil.models",
+    "anvilwave.pile.soil.profile",
+    "anvilwave.pile.soil.setup",
+    "anvilwave.pile.soil.srd_methods",
+)
 """The system layer (config, engine, analyses, api, cli) and the soil and PDA modules."""
 MODULES_FMU = (
     "anvilwave.fmu.coupling",

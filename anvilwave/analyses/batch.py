@@ -183,9 +183,20 @@ CAMPAIGN_KEYS: dict[str, tuple[str, object, str]] = {
 class HammerEntry:
     """A value of the hammers axis.
 
-    name : label; table : the cases' [hammer] table (None: the base file's);
-    anvil : keys replacing the base's [anvil] keys; energy : (n, 2) schedule [m, J] or None;
-    rated_energy : [J] (NaN if the hammer has none); key : its key in the campaign file.
+    Parameters
+    ----------
+    name : str
+        Label of the hammer.
+    table : dict or None
+        The cases' [hammer] table (None: the base file's).
+    anvil : dict
+        Keys replacing the base's [anvil] keys.
+    energy : numpy.ndarray or None
+        (n, 2) energy schedule, rows [tip depth [m], energy [J]], or None.
+    rated_energy : float
+        Rated energy of the hammer [J] (NaN if the hammer has none).
+    key : str
+        Its key in the campaign file.
     """
 
     name: str
@@ -198,15 +209,36 @@ class HammerEntry:
 
 @dataclass(frozen=True)
 class EnergySchedule:
-    """A value of the energy-schedule axis: rows [tip depth [m], energy [J]] (``energy``) or
-    [tip depth [m], fraction of the rated energy [-]] (``fraction``)."""
+    """A value of the energy-schedule axis.
+
+    Parameters
+    ----------
+    name : str
+        Label of the schedule.
+    rows : numpy.ndarray
+        (n, 2) rows [tip depth [m], energy [J]] (``energy``) or [tip depth [m], fraction of the
+        rated energy [-]] (``fraction``).
+    relative : bool
+        True when the rows are fractions of the rated energy.
+    """
 
     name: str
     rows: np.ndarray
     relative: bool
 
     def for_hammer(self, hammer: HammerEntry) -> np.ndarray:
-        """The schedule [m, J] for a hammer."""
+        """The schedule for a hammer.
+
+        Parameters
+        ----------
+        hammer : HammerEntry
+            The hammer (its rated energy scales a relative schedule).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, 2) rows [tip depth [m], energy [J]].
+        """
         if not self.relative:
             return self.rows
         return np.column_stack([self.rows[:, 0], self.rows[:, 1] * hammer.rated_energy])
@@ -214,8 +246,25 @@ class EnergySchedule:
 
 @dataclass(frozen=True)
 class Position:
-    """A foundation position: its validated [pile], [soil] and [srd] tables (paths absolute)
-    or the error that makes its cases fail."""
+    """A foundation position: its validated tables or the error that makes its cases fail.
+
+    Parameters
+    ----------
+    name : str
+        Label of the position.
+    water_depth : float
+        Water depth (the CPT's sea-level reference) [m].
+    target_penetration : float
+        Last tip depth analysed [m].
+    pile : dict
+        The validated [pile] table (paths absolute).
+    soil : dict
+        The validated [soil] table.
+    srd : dict
+        The validated [srd] table (paths absolute).
+    error : str or None, default None
+        The error that makes the position's cases fail (None: valid).
+    """
 
     name: str
     water_depth: float
@@ -230,10 +279,22 @@ class Position:
 class Case:
     """One driveability of the campaign.
 
-    axes : {"position", "bound", "hammer", "anvil_model"[, "energy_schedule"]: value};
-    system_text : its system file (TOML); input_sha256 : the hash of that text;
-    error : set when its position failed its checks (the case is recorded, not run);
-    cost : estimated work (depths x blows x pile segments), the order cases start in.
+    Parameters
+    ----------
+    name : str
+        Case name, ``<position>_<bound>_<hammer>_<anvil model>[_<energy schedule>]``.
+    axes : dict
+        {"position", "bound", "hammer", "anvil_model"[, "energy_schedule"]: value}.
+    system_text : str
+        Its system file (TOML).
+    input_sha256 : str
+        The hash of that text.
+    hammer_index : int
+        Index of its hammer in the campaign's hammers.
+    error : str or None, default None
+        Set when its position failed its checks (the case is recorded, not run).
+    cost : float, default 0.0
+        Estimated work (depths x blows x pile segments) [-], the order cases start in.
     """
 
     name: str
@@ -247,7 +308,29 @@ class Case:
 
 @dataclass(frozen=True)
 class Campaign:
-    """A validated campaign file and its cases (in file order)."""
+    """A validated campaign file and its cases (in file order).
+
+    Parameters
+    ----------
+    source : str
+        The campaign file, for messages.
+    name : str
+        Label of the campaign (plot titles).
+    base_path : pathlib.Path
+        The base system file.
+    positions : tuple of Position
+        The positions.
+    hammers : tuple of HammerEntry
+        The values of the hammers axis.
+    bounds : tuple of str
+        The SRD bounds.
+    anvil_models : tuple of str
+        The anvil models.
+    energy_schedules : tuple of EnergySchedule
+        The values of the energy-schedule axis (empty when the axis is not given).
+    cases : tuple of Case, default ()
+        The cases.
+    """
 
     source: str
     name: str
@@ -267,7 +350,24 @@ class Campaign:
 
 
 def load_campaign(path: str | Path) -> Campaign:
-    """Read and check a campaign file (module docstring) and compose its cases."""
+    """Read and check a campaign file (module docstring) and compose its cases.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The campaign file (TOML).
+
+    Returns
+    -------
+    Campaign
+        The validated campaign and its cases.
+
+    Raises
+    ------
+    InputError
+        If the campaign file or its base system file breaks a rule (the message names the file,
+        the key and the rule).
+    """
 
     path = Path(path)
     root = Table.from_file(path)
@@ -597,10 +697,21 @@ def _case(campaign, base, p: Position, bound, j, h: HammerEntry, model, schedule
 
 # ----------------------------------------------------------------------------- one case
 def run_case(spec: dict) -> dict:
-    """Run one case in this process and write its folder (the dask task; module
-    docstring). ``spec``: ``name``, ``dir``, ``axes``, ``system_text``, ``input_sha256``,
-    ``plots``. Returns its campaign.csv row. Never raises for a failing case: the error is
-    written to the case's ``error.json`` and returned in the row."""
+    """Run one case in this process and write its folder (the dask task; module docstring).
+
+    Never raises for a failing case: the error is written to the case's ``error.json`` and
+    returned in the row.
+
+    Parameters
+    ----------
+    spec : dict
+        ``name``, ``dir``, ``axes``, ``system_text``, ``input_sha256``, ``plots``.
+
+    Returns
+    -------
+    dict
+        Its campaign.csv row.
+    """
     start = time.perf_counter()
     folder = Path(spec["dir"])
     done = _read_record(folder / "summary.json", spec["input_sha256"])
@@ -629,17 +740,47 @@ def run_case(spec: dict) -> dict:
 
 
 def error_message(exc: BaseException) -> str:
-    """One line for campaign.csv: an input error as it reads (file: key: rule), anything
-    else with its type."""
+    """One line for campaign.csv describing an exception.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception.
+
+    Returns
+    -------
+    str
+        An input error as it reads (file: key: rule), anything else with its type.
+    """
     text = str(exc) if isinstance(exc, InputError) else f"{type(exc).__name__}: {exc}"
     return " ".join(text.split())[:1000]
 
 
 def record_error(folder: Path, spec: dict, message: str, trace: str = "",
                  wall_time: float = float("nan"), in_worker: bool = True) -> dict:
-    """Write a case's ``error.json`` atomically (unless it finished meanwhile); returns
-    the record. ``in_worker``: recorded by the case's worker (with its host and memory),
-    else by the driver (a case not run, or whose worker died)."""
+    """Write a case's ``error.json`` atomically (unless it finished meanwhile).
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        The case folder.
+    spec : dict
+        The case spec (:func:`run_case`).
+    message : str
+        The error message.
+    trace : str, default ""
+        The traceback.
+    wall_time : float, default nan
+        Wall time of the case [s].
+    in_worker : bool, default True
+        Recorded by the case's worker (with its host and memory), else by the driver (a case not
+        run, or whose worker died).
+
+    Returns
+    -------
+    dict
+        The record.
+    """
     record = {**_identity(spec), "status": STATUS_ERROR, "error": message,
               "wall_time [s]": wall_time,
               **(_worker_info() if in_worker else {"recorded_by": "driver"})}
@@ -743,18 +884,24 @@ def _jsonable(x):
 class BatchResult:
     """A campaign run (``anvilwave batch``).
 
-    Attributes
+    Parameters
     ----------
     cases : int
         Cases of the campaign [-].
-    ran, skipped : int
-        Cases run now, and cases finished in the folder before (not run again) [-].
-    ok, error, pending : int
-        Cases by status in ``campaign.csv`` [-].
+    ran : int
+        Cases run now [-].
+    skipped : int
+        Cases finished in the folder before (not run again) [-].
+    ok : int
+        Cases of status ok in ``campaign.csv`` [-].
+    error : int
+        Cases of status error in ``campaign.csv`` [-].
+    pending : int
+        Cases of status pending in ``campaign.csv`` [-].
     workers : int
         Dask workers used (0: nothing to run) [-].
     wall_time : float
-        [s].
+        Wall time of the run [s].
     campaign_csv : str
         The campaign table (one row per case: its axes, status, summary and timings).
     rows : list of dict
@@ -777,16 +924,33 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
                  scheduler=None, progress: bool = True, plots: bool = True) -> BatchResult:
     """Run every case of a campaign not finished yet in ``out_dir`` (module docstring).
 
-    campaign_path : the campaign file (TOML).
-    out_dir : the campaign folder: ``cases/<case>/``, ``campaign.csv``, ``plots/``.
-    workers : worker processes of the LocalCluster [-] (default: the machine's cores; at
-        most the cases to run). Ignored with ``scheduler``.
-    scheduler : an existing dask scheduler: its address (``"tcp://host:8786"``), a cluster
-        object (e.g. dask-jobqueue's ``SLURMCluster``) or a ``distributed.Client``.
-    progress : a progress bar over the cases (stderr).
-    plots : each case's driveability.png and the campaign plots.
+    Parameters
+    ----------
+    campaign_path : str or pathlib.Path
+        The campaign file (TOML).
+    out_dir : str or pathlib.Path
+        The campaign folder: ``cases/<case>/``, ``campaign.csv``, ``plots/``.
+    workers : int or None, default None
+        Worker processes of the LocalCluster [-] (default: the machine's cores; at most the cases
+        to run). Ignored with ``scheduler``.
+    scheduler : str, cluster or distributed.Client, optional
+        An existing dask scheduler: its address (``"tcp://host:8786"``), a cluster object (e.g.
+        dask-jobqueue's ``SLURMCluster``) or a ``distributed.Client``.
+    progress : bool, default True
+        A progress bar over the cases (stderr).
+    plots : bool, default True
+        Each case's driveability.png and the campaign plots.
 
-    Returns a :class:`BatchResult`.
+    Returns
+    -------
+    BatchResult
+        The counts, timings and rows of the run.
+
+    Raises
+    ------
+    InputError
+        If ``workers`` is not a whole number of at least 1, the campaign file breaks a rule, or
+        no dask scheduler answers at ``scheduler``.
     """
     start = time.perf_counter()
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
@@ -985,8 +1149,20 @@ def _remove_partials(cases_dir: Path) -> None:
 
 
 def collect(campaign: Campaign, out_dir: str | Path) -> list[dict]:
-    """The campaign.csv rows from the case folders: one per case, in the campaign's order
-    (the summary of the case's current input, else its error record, else pending)."""
+    """The campaign.csv rows from the case folders, one per case, in the campaign's order.
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign.
+    out_dir : str or pathlib.Path
+        The campaign folder.
+
+    Returns
+    -------
+    list of dict
+        Per case the summary of its current input, else its error record, else pending.
+    """
     cases_dir = Path(out_dir) / "cases"
     rows = []
     for c in campaign.cases:
@@ -999,11 +1175,36 @@ def collect(campaign: Campaign, out_dir: str | Path) -> list[dict]:
 
 
 def campaign_csv_columns(campaign: Campaign) -> list[str]:
+    """The columns of campaign.csv: case, the axes, status, the result columns and error.
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign (its axes).
+
+    Returns
+    -------
+    list of str
+        The column names.
+    """
     return ["case", *campaign.axes, "status", *RESULT_COLUMNS, "error"]
 
 
 def campaign_csv_text(campaign: Campaign, rows: list[dict]) -> str:
-    """campaign.csv (module docstring): empty cells for missing numbers."""
+    """campaign.csv (module docstring): empty cells for missing numbers.
+
+    Parameters
+    ----------
+    campaign : Campaign
+        The campaign (its columns).
+    rows : list of dict
+        The rows (:func:`collect`).
+
+    Returns
+    -------
+    str
+        The CSV text.
+    """
     columns = campaign_csv_columns(campaign)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -1023,7 +1224,18 @@ def campaign_csv_text(campaign: Campaign, rows: list[dict]) -> str:
 
 
 def read_campaign_csv(path: str | Path) -> list[dict]:
-    """The rows of a campaign.csv (numbers as floats, empty cells as None)."""
+    """The rows of a campaign.csv (numbers as floats, empty cells as None).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The campaign.csv file.
+
+    Returns
+    -------
+    list of dict
+        One dict per row, keyed by column.
+    """
     with open(path, newline="") as fh:
         rows = list(csv.DictReader(fh))
     for row in rows:

@@ -109,7 +109,7 @@ COLUMNS = ("depth [m]", "srd [N]", "srd_shaft [N]", "srd_toe [N]", "blow_count [
 class DriveResult:
     """A driveability analysis of one anvil model (``anvilwave drive``).
 
-    Attributes
+    Parameters
     ----------
     model : str
         The anvil model analysed (``"rom"``, ``"lumped"``, ``"classic"`` or ``"none"``).
@@ -123,7 +123,7 @@ class DriveResult:
         ``"total_blows [-]"``, ``"driving_time [s]"``, ``"self_weight_penetration [m]"``,
         ``"pile_run_depths [m]"``, ``"max_compression_stress [Pa]"``,
         ``"max_tension_stress [Pa]"`` (negative), the settings used and ``"wall_time [s]"``.
-    time_series : dict
+    time_series : dict, optional
         ``{tip depth [m]: columns of the blow (as impact.csv), or None where the pile runs
         under its own weight}`` for the ``time_series_depths`` of the settings.
     """
@@ -135,13 +135,31 @@ class DriveResult:
     time_series: dict = field(default_factory=dict)
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The rows as columns ``{name [unit]: array}`` (the columns of driveability.csv)."""
+        """The rows as columns (the columns of driveability.csv).
+
+        Returns
+        -------
+        dict
+            ``{name [unit]: numpy.ndarray}``, one entry per column of :data:`COLUMNS`.
+        """
         return {name: np.array([r.get(name, math.nan) for r in self.rows], dtype=float)
                 for name in COLUMNS}
 
     def write(self, out, title: str = "", prefix: str = "") -> None:
-        """``driveability.csv``, ``summary.json``, ``driveability.png`` and a
-        ``blow_<depth>m.csv`` per time series into a ResultWriter ``out``, under ``prefix``."""
+        """Write the results into a ResultWriter.
+
+        Writes ``driveability.csv``, ``summary.json``, ``driveability.png`` and a
+        ``blow_<depth>m.csv`` per time series.
+
+        Parameters
+        ----------
+        out : ResultWriter
+            The writer (:mod:`anvilwave.output.writer`).
+        title : str, default ""
+            Title of the plot.
+        prefix : str, default ""
+            Folder inside ``out`` the files go under.
+        """
         columns = self.columns()
         write_csv(columns, out.part(prefix + "driveability.csv"))
         summary = dict(self.summary)
@@ -157,7 +175,15 @@ class DriveResult:
 # ----------------------------------------------------------------------------- analysis
 @dataclass
 class DepthResult:
-    """One analysed depth (the columns of :data:`COLUMNS`) and its last blow."""
+    """One analysed depth (the columns of :data:`COLUMNS`) and its last blow.
+
+    Parameters
+    ----------
+    row : dict
+        The row of the depth, keyed by :data:`COLUMNS`.
+    blow : BlowResult or None, default None
+        Its last blow (None where the pile runs under its own weight).
+    """
 
     row: dict
     blow: object = None
@@ -168,10 +194,11 @@ TOE_MOVING = 1e-6
 
 
 def toe_rebound_time(blow) -> float:
-    """The instant the toe first moves up after moving down [s] (its first maximum of
-    displacement, the end of a "toe-rebound" window): the first recorded sample after the toe
-    has moved :data:`TOE_MOVING` down whose successor is not lower; the blow's end if the toe
-    never turns.
+    """The instant the toe first moves up after moving down [s].
+
+    Its first maximum of displacement, the end of a "toe-rebound" window: the first recorded
+    sample after the toe has moved :data:`TOE_MOVING` down whose successor is not lower; the
+    blow's end if the toe never turns.
 
     Parameters
     ----------
@@ -197,21 +224,70 @@ def toe_rebound_time(blow) -> float:
 
 
 def set_of_blow(blow, rule: str, toe_quake: float) -> float:
-    """The blow's set [m] by the rule (module docstring)."""
+    """The blow's set [m] by the rule (module docstring).
+
+    Parameters
+    ----------
+    blow : BlowResult
+        A simulated blow.
+    rule : {"permanent", "grlweap"}
+        ``"permanent"``: the permanent set; ``"grlweap"``: the maximum toe displacement minus the
+        toe quake.
+    toe_quake : float
+        Toe quake [m] (rule ``"grlweap"``).
+
+    Returns
+    -------
+    float
+        The set, not negative [m].
+    """
     if rule == "grlweap":
         return max(float(blow.max_toe_displacement) - toe_quake, 0.0)
     return max(float(blow.permanent_set), 0.0)
 
 
 def blow_count(set_m: float) -> float:
-    """Blows per metre from the set [m] (infinite below :data:`MIN_SET`)."""
+    """Blows per metre from the set (infinite below :data:`MIN_SET`).
+
+    Parameters
+    ----------
+    set_m : float
+        The set of a blow [m].
+
+    Returns
+    -------
+    float
+        Blow count [1/m].
+    """
     return 1.0 / set_m if set_m > MIN_SET else math.inf
 
 
 def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float,
                   record: bool = False, restrike: tuple | None = None) -> DepthResult:
-    """Simulate the blows of one tip depth and summarise them (one CSV row); ``restrike``
-    = (InstallSettings, pause [s]) adds the restrike blow count (module docstring)."""
+    """Simulate the blows of one tip depth and summarise them (one CSV row).
+
+    Parameters
+    ----------
+    engine : Engine
+        A built :class:`~anvilwave.engine.direct.Engine` for ``cfg``.
+    cfg : SystemConfig
+        The system (its hammer, anvil, pile and soil model).
+    srd : SrdSource
+        The SRD of the tip depths (:func:`~anvilwave.config.drive.load_srd_source`).
+    settings : DriveSettings
+        The driveability settings (``[driveability]``).
+    depth : float
+        Tip depth below the mudline [m].
+    record : bool, default False
+        Record the time series of the blows.
+    restrike : tuple or None, default None
+        (InstallSettings, pause [s]): adds the restrike blow count (module docstring).
+
+    Returns
+    -------
+    DepthResult
+        The row of the depth and its last blow.
+    """
     ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, depth, settings.multiplier)
     energy, velocity = impact_at(settings, depth, cfg)
     weight = driving_weight(cfg, engine.static_head_force, settings.weight_on_soil)
@@ -315,13 +391,29 @@ def _work(depth: float) -> dict:
 def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, *,
                      workers: int | None = None, progress: bool = False,
                      restrike: tuple | None = None) -> DriveResult:
-    """Analyse every depth of ``settings``; returns a :class:`DriveResult` (no time series).
+    """Analyse every depth of ``settings`` (no time series).
 
-    cfg : the :class:`~anvilwave.config.system.SystemConfig` (its hammer, anvil, pile and soil
-    model).
-    engine : a built :class:`~anvilwave.engine.direct.Engine` for ``cfg`` (default: built here).
-    workers : processes over the depths (default: the machine's cores; 1 runs in-process).
-    restrike : (InstallSettings, pause [s]) for the restrike columns (module docstring).
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (its hammer, anvil, pile and soil model).
+    srd : SrdSource
+        The SRD of the tip depths (:func:`~anvilwave.config.drive.load_srd_source`).
+    settings : DriveSettings
+        The driveability settings (``[driveability]``).
+    engine : Engine, optional
+        A built :class:`~anvilwave.engine.direct.Engine` for ``cfg`` (default: built here).
+    workers : int or None, default None
+        Processes over the depths (default: the machine's cores; 1 runs in-process).
+    progress : bool, default False
+        A progress bar over the depths.
+    restrike : tuple or None, default None
+        (InstallSettings, pause [s]) for the restrike columns (module docstring).
+
+    Returns
+    -------
+    DriveResult
+        The rows and the summary.
     """
 
     start = time.perf_counter()
@@ -378,10 +470,17 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
 
 
 def die_with_parent(parent: int) -> None:
-    """Worker initializer: the worker is killed when its parent dies, even by SIGKILL (Linux
-    ``prctl(PR_SET_PDEATHSIG, SIGKILL)``; elsewhere a daemon thread polls the parent's pid),
-    so no orphan keeps running. A Ctrl-C (SIGINT to the process group) ends a worker quietly,
-    so the parent prints one line, not a traceback per worker."""
+    """Worker initializer: the worker is killed when its parent dies, even by SIGKILL.
+
+    On Linux by ``prctl(PR_SET_PDEATHSIG, SIGKILL)``; elsewhere a daemon thread polls the
+    parent's pid, so no orphan keeps running. A Ctrl-C (SIGINT to the process group) ends a
+    worker quietly, so the parent prints one line, not a traceback per worker.
+
+    Parameters
+    ----------
+    parent : int
+        Process id of the parent.
+    """
     import signal
     import threading
 
@@ -406,9 +505,26 @@ def die_with_parent(parent: int) -> None:
 
 
 def driving_weight(cfg, head_load: float, rule: str = "all") -> float:
-    """Weight resting on the soil before driving [N]: the pile's, plus ``head_load`` [N], the
-    anvil's (or the helmet's and hammer assembly's) weight on the pile head, plus the ram's
-    with ``rule = "all"`` (not with ``"grlweap"``: module docstring)."""
+    """Weight resting on the soil before driving [N].
+
+    The pile's, plus ``head_load``, the anvil's (or the helmet's and hammer assembly's) weight on
+    the pile head, plus the ram's with ``rule = "all"`` (not with ``"grlweap"``: module
+    docstring).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    head_load : float
+        Static load on the pile head [N].
+    rule : {"all", "grlweap"}
+        Whether the ram's weight is included.
+
+    Returns
+    -------
+    float
+        The weight on the soil [N].
+    """
     seg = cfg.pile_soil.pile.discretise()
     pile = float(np.sum(seg.area * seg.length * seg.density))
     ram = float(np.sum(cfg.hammer.ram.mass)) if rule == "all" else 0.0
@@ -416,7 +532,24 @@ def driving_weight(cfg, head_load: float, rule: str = "all") -> float:
 
 
 def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) -> dict:
-    """Refusal depth, total blows, driving time, self-weight penetration and pile runs."""
+    """Refusal depth, total blows, driving time, self-weight penetration and pile runs.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of the depths (:data:`COLUMNS`).
+    cfg : SystemConfig
+        The system (its hammer, anvil, pile and soil model).
+    settings : DriveSettings
+        The driveability settings (``[driveability]``).
+    head_load : float
+        Static load on the pile head [N].
+
+    Returns
+    -------
+    dict
+        The entries of ``summary.json`` (:class:`DriveResult`).
+    """
     depth = np.array([r["depth [m]"] for r in rows])
     count = np.array([r["blow_count [1/m]"] for r in rows])
     srd = np.array([r["srd [N]"] for r in rows])
@@ -467,7 +600,18 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
 
 
 def jsonable(x):
-    """``x`` with numpy scalars as Python numbers and non-finite floats as None (JSON)."""
+    """``x`` with numpy scalars as Python numbers and non-finite floats as None (JSON).
+
+    Parameters
+    ----------
+    x : object
+        A value, dict, list or tuple (converted recursively).
+
+    Returns
+    -------
+    object
+        The converted value.
+    """
     if isinstance(x, dict):
         return {k: jsonable(v) for k, v in x.items()}
     if isinstance(x, list | tuple):
@@ -481,9 +625,30 @@ def jsonable(x):
 
 def bearing_graph(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float,
                   multipliers=(0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0)) -> list[dict]:
-    """Blow count against the ultimate resistance Rut at one tip depth (for back-analysis):
-    the SRD distribution of ``depth`` [m] scaled by each multiplier [-]; rows as
-    :func:`analyse_depth`'s."""
+    """Blow count against the ultimate resistance Rut at one tip depth (for back-analysis).
+
+    The SRD distribution of ``depth`` scaled by each multiplier.
+
+    Parameters
+    ----------
+    engine : Engine
+        A built :class:`~anvilwave.engine.direct.Engine` for ``cfg``.
+    cfg : SystemConfig
+        The system (its hammer, anvil, pile and soil model).
+    srd : SrdSource
+        The SRD of the tip depths (:func:`~anvilwave.config.drive.load_srd_source`).
+    settings : DriveSettings
+        The driveability settings (``[driveability]``).
+    depth : float
+        Tip depth below the mudline [m].
+    multipliers : sequence of float, default (0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0)
+        Factors on the SRD [-].
+
+    Returns
+    -------
+    list of dict
+        One row per multiplier, as :func:`analyse_depth`'s.
+    """
     rows = []
     for m in multipliers:
         s = replace(settings, multipliers={**settings.multipliers, settings.bound: float(m)})
@@ -492,8 +657,26 @@ def bearing_graph(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
 
 
 def time_series(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: float):
-    """The last blow at a tip depth with its time series (``.columns`` as impact.csv); None
-    where the pile runs under its own weight (no blow)."""
+    """The last blow at a tip depth with its time series (``.columns`` as impact.csv).
+
+    Parameters
+    ----------
+    engine : Engine
+        A built :class:`~anvilwave.engine.direct.Engine` for ``cfg``.
+    cfg : SystemConfig
+        The system (its hammer, anvil, pile and soil model).
+    srd : SrdSource
+        The SRD of the tip depths (:func:`~anvilwave.config.drive.load_srd_source`).
+    settings : DriveSettings
+        The driveability settings (``[driveability]``).
+    depth : float
+        Tip depth below the mudline [m].
+
+    Returns
+    -------
+    BlowResult or None
+        The recorded blow; None where the pile runs under its own weight (no blow).
+    """
     return analyse_depth(engine, cfg, srd, settings, depth, record=True).blow
 
 
@@ -539,8 +722,21 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
 
 
 def available_anvil_models(cfg) -> list[str]:
-    """The anvil models a system can be driven with: its own, the ROM and the lumped anvil
-    where it has an anvil file, the classic driving system where it has one."""
+    """The anvil models a system can be driven with.
+
+    Its own, the ROM and the lumped anvil where it has an anvil file, the classic driving system
+    where it has one.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    list of str
+        The anvil model names.
+    """
     return [m for m in ("rom", "lumped", "classic")
             if m == cfg.anvil.model or (m in ("rom", "lumped") and cfg.anvil.spec)
             or (m == "classic" and cfg.anvil.classic is not None)]
@@ -549,6 +745,17 @@ def available_anvil_models(cfg) -> list[str]:
 def compare_anvils(cfg, *, bound: str | None = None, workers: int | None = None,
                    progress: bool = False) -> dict[str, DriveResult]:
     """:func:`drive` with every anvil model of :func:`available_anvil_models`.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        A system with a ``[driveability]`` table.
+    bound : str, optional
+        SRD bound ``"lower"``, ``"best"`` or ``"upper"`` instead of the table's.
+    workers : int, optional
+        Processes over the depths (default: the machine's cores; 1 runs in-process).
+    progress : bool, default False
+        A progress bar over the depths.
 
     Returns
     -------
@@ -561,8 +768,20 @@ def compare_anvils(cfg, *, bound: str | None = None, workers: int | None = None,
 
 
 def write_anvil_comparison(results: dict[str, DriveResult], out, title: str = "") -> None:
-    """Every model's results (the first at the top, the others in ``<model>/``), the
-    driveability curves of all models in one figure and ``anvil_comparison.json``."""
+    """Write every model's results and their comparison.
+
+    The first model's results at the top, the others in ``<model>/``, the driveability curves of
+    all models in one figure and ``anvil_comparison.json``.
+
+    Parameters
+    ----------
+    results : dict
+        ``{model: DriveResult}`` (:func:`compare_anvils`).
+    out : ResultWriter
+        The writer (:mod:`anvilwave.output.writer`).
+    title : str, default ""
+        Title of the plots.
+    """
     for k, (model, result) in enumerate(results.items()):
         result.write(out, title=f"{title}: {model} anvil, {result.summary['bound']} SRD",
                      prefix="" if k == 0 else f"{model}/")
@@ -579,8 +798,29 @@ def write_anvil_comparison(results: dict[str, DriveResult], out, title: str = ""
 
 def drive_bearing_graph(cfg, depth: float, *, anvil: str | None = None,
                         bound: str | None = None) -> DriveResult:
-    """Blow count against the ultimate resistance at one tip depth [m] (the SRD of that
-    depth scaled, :func:`bearing_graph`): a DriveResult whose rows are the multipliers'."""
+    """Blow count against the ultimate resistance at one tip depth (:func:`bearing_graph`).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        A system with a ``[driveability]`` table.
+    depth : float
+        Tip depth below the mudline [m].
+    anvil : str, optional
+        Analyse with this anvil model instead of the system's.
+    bound : str, optional
+        SRD bound ``"lower"``, ``"best"`` or ``"upper"`` instead of the table's.
+
+    Returns
+    -------
+    DriveResult
+        A result whose rows are the multipliers'.
+
+    Raises
+    ------
+    InputError
+        If ``depth`` is not above 0 m and within the SRD.
+    """
     settings = _settings(cfg, bound)
     limit, what = depth_limit(cfg.pile_soil, _srd(cfg))
     if not (0.0 < depth <= limit + 1e-9):

@@ -39,12 +39,15 @@ ENGINES = ("direct", "fmi")
 class Blow:
     """One simulated blow.
 
-    Attributes
+    Parameters
     ----------
-    columns : time series ``{"name [unit]": array}`` (the columns of ``impact.csv``).
-    summary : the blow's ``summary.json`` entries (peaks [N], stresses [Pa], transferred
-        energy [J], permanent set [m], energy balance, wall time [s] ...).
-    energies : energy bookkeeping time series [J] (in-process engine only; empty otherwise).
+    columns : dict
+        Time series ``{"name [unit]": array}`` (the columns of ``impact.csv``).
+    summary : dict
+        The blow's ``summary.json`` entries (peaks [N], stresses [Pa], transferred energy [J],
+        permanent set [m], energy balance, wall time [s] ...).
+    energies : dict, optional
+        Energy bookkeeping time series [J] (in-process engine only; empty otherwise).
     """
 
     columns: dict[str, np.ndarray]
@@ -61,13 +64,30 @@ def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
 
     Parameters
     ----------
-    system : a :class:`SystemConfig` (from :func:`load_system`) or the path of a system file.
-    engine : ``"direct"`` (in-process numba engine) or ``"fmi"`` (FMUs through fmpy; the
-        FMUs are built in a temporary folder).
-    anvil : override the anvil model: ``"rom"``, ``"lumped"``, ``"classic"`` or ``"none"``.
-    modal_data : precomputed modal data of the anvil (``ModalData`` or a ``modes.npz`` path),
-        to skip the eigenvalue problem.
-    progress : show a progress bar over the blows.
+    system : SystemConfig, str or pathlib.Path
+        A :class:`SystemConfig` (from :func:`load_system`) or the path of a system file.
+    engine : {"direct", "fmi"}
+        ``"direct"`` (in-process numba engine) or ``"fmi"`` (FMUs through fmpy; the FMUs
+        are built in a temporary folder).
+    anvil : str, optional
+        Override the anvil model: ``"rom"``, ``"lumped"``, ``"classic"`` or ``"none"``.
+    modal_data : ModalData or path, optional
+        Precomputed modal data of the anvil (``ModalData`` or a ``modes.npz`` path), to
+        skip the eigenvalue problem.
+    progress : bool, default False
+        Show a progress bar over the blows.
+
+    Returns
+    -------
+    list of Blow
+        The blows, in order.
+
+    Raises
+    ------
+    ValueError
+        If ``engine`` is unknown.
+    InputError
+        If the FMI engine is asked for an anvil model other than ``"rom"`` or ``"lumped"``.
     """
 
     cfg = system if isinstance(system, SystemConfig) else _load_system(system)
@@ -96,12 +116,19 @@ def simulate(system: SystemConfig | str | Path, *, engine: str = "direct",
 def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
     """Free-free modes and the modal ROM data of an anvil (or any axisymmetric body).
 
-    anvil : an anvil file (TOML, see the README) or an ``AnvilSpec``.
-    fmax : frequency content [Hz] (default: the file's ``[modes] fmax``).
+    Parameters
+    ----------
+    anvil : str, pathlib.Path or AnvilSpec
+        An anvil file (TOML, see the README) or an ``AnvilSpec``.
+    fmax : float or None, default None
+        Frequency content [Hz] (default: the file's ``[modes] fmax``).
 
-    Returns an ``AnvilModes`` with ``.modes.frequencies`` [Hz] (rigid-body mode first),
-    ``.modal_data`` (the ROM's data; save it with :func:`save_modal_data`), ``.model`` (the
-    FE model: ``.total_mass()`` [kg], ``.n_dof``) and ``.wall_time`` [s].
+    Returns
+    -------
+    AnvilModes
+        With ``.modes.frequencies`` [Hz] (rigid-body mode first), ``.modal_data`` (the ROM's
+        data; save it with :func:`save_modal_data`), ``.model`` (the FE model:
+        ``.total_mass()`` [kg], ``.n_dof``) and ``.wall_time`` [s].
     """
 
     spec = anvil if isinstance(anvil, AnvilSpec) else load_anvil(anvil)
@@ -111,8 +138,9 @@ def compute_anvil_modes(anvil: str | Path | Any, fmax: float | None = None):
 def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
                anvil: str | None = None, modal_data=None, native_anvil: bool = True,
                native_units: bool | None = None, fmi_version: int = 2) -> dict[str, Any]:
-    """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
-    ``system.ssp`` of a system into ``out_dir`` (co-simulation FMUs).
+    """Write the co-simulation FMUs and ``system.ssp`` of a system into ``out_dir``.
+
+    ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and ``system.ssp``.
 
     Parameters
     ----------
@@ -149,9 +177,22 @@ def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
 
 
 def write_blows(blows: list[Blow], out, system: str, title: str = "") -> None:
-    """``impact.csv`` (``impact_blow<k>.csv`` for several blows), ``summary.json`` (the first
-    blow's summary, with every blow's under ``"blows"``) and ``impact.png`` into a
-    ResultWriter ``out``."""
+    """Write the blows into a ResultWriter ``out``.
+
+    ``impact.csv`` (``impact_blow<k>.csv`` for several blows), ``summary.json`` (the first
+    blow's summary, with every blow's under ``"blows"``) and ``impact.png``.
+
+    Parameters
+    ----------
+    blows : list of Blow
+        The blows (:func:`simulate`).
+    out : ResultWriter
+        The writer (:mod:`anvilwave.output.writer`).
+    system : str
+        The system file, recorded in the summary.
+    title : str, default ""
+        Title of the plot.
+    """
     for i, blow in enumerate(blows):
         name = "impact.csv" if len(blows) == 1 else f"impact_blow{i + 1}.csv"
         write_csv(blow.columns, out.part(name))
@@ -164,7 +205,18 @@ def write_blows(blows: list[Blow], out, system: str, title: str = "") -> None:
 
 
 def gauge_steel_area(config) -> float:
-    """Steel area of the pile section at the gauge depth [m^2] of a system configuration."""
+    """Steel area of the pile section at the gauge depth of a system configuration.
+
+    Parameters
+    ----------
+    config : SystemConfig
+        The system.
+
+    Returns
+    -------
+    float
+        Steel area at the gauges [m^2].
+    """
     depth = 0.0
     for section in config.pile_soil.pile.sections:
         depth += section.length
@@ -175,7 +227,26 @@ def gauge_steel_area(config) -> float:
 
 def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge: float
               ) -> dict:
-    """The summary.json content of one blow."""
+    """The summary.json content of one blow.
+
+    Parameters
+    ----------
+    result : BlowResult
+        The simulated blow.
+    config : SystemConfig
+        The system simulated.
+    engine : str
+        The engine that ran it (``"direct"`` or ``"fmi"``).
+    anvil_model : str
+        The anvil model.
+    pile_area_at_gauge : float
+        Steel area at the gauges [m^2], for the stresses.
+
+    Returns
+    -------
+    dict
+        The summary entries, named ``name [unit]``.
+    """
     c = result.columns
     t = c["time [s]"]
     summary = {
@@ -226,6 +297,16 @@ def energy_balance(result) -> dict[str, float]:
     Every term is the change from the start of the blow; gravity's work on ram, anvil and pile
     enters as the change of their potential energy. residual = final - initial total; relative
     to the ram's impact energy.
+
+    Parameters
+    ----------
+    result : BlowResult
+        A blow of the in-process engine (with its energy time series).
+
+    Returns
+    -------
+    dict
+        ``{name [J]: value}`` and the residual.
     """
     E = result.energies
 
@@ -256,7 +337,18 @@ def energy_balance(result) -> dict[str, float]:
 
 
 def total_energy(E: dict[str, np.ndarray]) -> np.ndarray:
-    """Total mechanical energy plus the work dissipated or stored in the soil [J] over time."""
+    """Total mechanical energy plus the work dissipated or stored in the soil [J] over time.
+
+    Parameters
+    ----------
+    E : dict
+        Energy bookkeeping time series ``{name: array}`` [J].
+
+    Returns
+    -------
+    numpy.ndarray
+        The total energy at each sample [J].
+    """
     return (E["ram_kinetic [J]"] + E["ram_strain [J]"] + E["ram_gravity_potential [J]"]
             + E["anvil_kinetic [J]"] + E["anvil_potential [J]"]
             + E["pile_kinetic [J]"] + E["pile_strain [J]"] - E["pile_gravity_work [J]"]
@@ -265,10 +357,23 @@ def total_energy(E: dict[str, np.ndarray]) -> np.ndarray:
 
 
 def case_damping_of_soil(cfg) -> float:
-    """Case damping Jc [-] equivalent to a system's soil damping: the sum of the soil dashpots
-    (Smith-viscous J R_u, a radiation dashpot, or Smith J R_u at full mobilisation) over the
-    pile impedance at the gauges, i.e. Jc Z v = the soil's damping force when every spring
-    moves with the same velocity v (the Case method lumps all damping at the toe)."""
+    """Case damping Jc [-] equivalent to a system's soil damping.
+
+    The sum of the soil dashpots (Smith-viscous J R_u, a radiation dashpot, or Smith J R_u at
+    full mobilisation) over the pile impedance at the gauges, i.e. Jc Z v = the soil's damping
+    force when every spring moves with the same velocity v (the Case method lumps all damping at
+    the toe).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+
+    Returns
+    -------
+    float
+        Case damping Jc [-].
+    """
     arrays = cfg.pile_soil.arrays()
     dashpots = float(np.sum(arrays.soil[SOIL_DASHPOT]
                             + arrays.soil[SOIL_SMITH] * arrays.soil[SOIL_CAPACITY]))
@@ -278,6 +383,18 @@ def case_damping_of_soil(cfg) -> float:
 
 
 def gauge_section(cfg):
+    """The pile section holding the gauges (the last section when they lie below it).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (its pile and gauge depth).
+
+    Returns
+    -------
+    Section
+        The section at the gauge depth (:class:`anvilwave.pile.pile.Section`).
+    """
     pile = cfg.pile_soil.pile
     depth = 0.0
     for section in pile.sections:
@@ -291,16 +408,24 @@ def pda_summary(columns: dict[str, np.ndarray], cfg, *, case_damping: float | No
                 ) -> dict:
     """EMX, FMX and RMX of a simulated blow, as a PDA would report them.
 
-    columns : the blow's time series (``time [s]``, ``gauge_force [N]``,
-        ``gauge_velocity [m/s]``).
-    cfg : the ``SystemConfig`` simulated (pile, gauge depth, soil).
-    case_damping : Jc [-] (default :func:`case_damping_of_soil`).
-
     The gauges are zeroed at rest as a PDA's are: the force at the first sample (the hammer
     and pile weights at rest) is subtracted. L is the pile length below the gauges, Z and c
     those of the section at the gauges. RMX needs the record to reach t1 + 2L/c; it is None
-    when the blow is shorter. Returns ``{"EMX [J]", "FMX [N]", "RMX [N]",
-    "case_damping [-]"}``.
+    when the blow is shorter.
+
+    Parameters
+    ----------
+    columns : dict
+        The blow's time series (``time [s]``, ``gauge_force [N]``, ``gauge_velocity [m/s]``).
+    cfg : SystemConfig
+        The ``SystemConfig`` simulated (pile, gauge depth, soil).
+    case_damping : float or None, default None
+        Jc [-] (default :func:`case_damping_of_soil`).
+
+    Returns
+    -------
+    dict
+        ``{"EMX [J]", "FMX [N]", "RMX [N]", "case_damping [-]"}``.
     """
     t = np.asarray(columns["time [s]"], dtype=float)
     force = np.asarray(columns["gauge_force [N]"], dtype=float)

@@ -65,7 +65,7 @@ SPECTRA_COLUMNS = ("tip_depth [m]", "band_centre [Hz]", "band_energy_level [dB]"
 class InstallResult:
     """A blow-by-blow installation (``anvilwave install``).
 
-    Attributes
+    Parameters
     ----------
     source : str
         The system file.
@@ -90,8 +90,19 @@ class InstallResult:
     summary: dict
 
     def write(self, out, title: str = "", driveability: dict | None = None) -> None:
-        """blows.csv, fatigue.csv, spectra.csv, summary.json and installation.png into a
-        ResultWriter ``out``."""
+        """Write the results into a ResultWriter ``out``.
+
+        blows.csv, fatigue.csv, spectra.csv, summary.json and installation.png.
+
+        Parameters
+        ----------
+        out : ResultWriter
+            The writer (:mod:`anvilwave.output.writer`).
+        title : str, default ""
+            Title of the plot.
+        driveability : dict or None, default None
+            Driveability CSV columns overlaid on the blow count (one blow per depth).
+        """
         write_csv({c: np.array([r[c] for r in self.blows], dtype=float) for c in BLOW_COLUMNS},
                   out.part("blows.csv"))
         write_dict_rows(self.fatigue, FATIGUE_COLUMNS, out.part("fatigue.csv"))
@@ -105,8 +116,9 @@ class InstallResult:
 
 
 def install(cfg, *, anvil: str | None = None, progress: bool = False) -> InstallResult:
-    """Drive the pile blow by blow from the self-weight penetration to the target depth or
-    refusal, with the residual stresses, fatigue and spectra of ``[installation]``.
+    """Drive the pile blow by blow from the self-weight penetration to the target or refusal.
+
+    With the residual stresses, fatigue and spectra of ``[installation]``.
 
     Parameters
     ----------
@@ -115,12 +127,19 @@ def install(cfg, *, anvil: str | None = None, progress: bool = False) -> Install
         ``[installation]`` (defaults: :class:`~anvilwave.config.install.InstallSettings`).
     anvil : str, optional
         Install with this anvil model instead of the system's.
-    progress : bool
+    progress : bool, default False
         A progress bar over the penetration.
 
     Returns
     -------
     InstallResult
+        The blow rows, fatigue rows, spectra rows and summary.
+
+    Raises
+    ------
+    InputError
+        If the system has no ``[driveability]`` table, or the target depth or the pauses break
+        a rule (:func:`run_installation`).
     """
     if anvil is not None:
         cfg = cfg.with_anvil_model(anvil)
@@ -134,8 +153,24 @@ def install(cfg, *, anvil: str | None = None, progress: bool = False) -> Install
 
 
 def fatigue_sections(pile_soil, settings: InstallSettings):
-    """(spring index, depth below head [m], wall thickness [m]) of the fatigue sections: the
-    pile spring nearest each weld depth, or every spring."""
+    """The fatigue sections: the pile spring nearest each weld depth, or every spring.
+
+    Parameters
+    ----------
+    pile_soil : PileSoil
+        The pile and its soil.
+    settings : InstallSettings
+        The ``[installation]`` settings (weld depths).
+
+    Returns
+    -------
+    index : numpy.ndarray
+        Spring index of each section.
+    depth : numpy.ndarray
+        Depth below the pile head [m].
+    thickness : numpy.ndarray
+        Wall thickness [m].
+    """
     seg = pile_soil.pile.discretise()
     springs = seg.bottom[:-1]  # spring i joins segment i and i + 1 at this depth
     if settings.weld_depths is None:
@@ -147,7 +182,26 @@ def fatigue_sections(pile_soil, settings: InstallSettings):
 
 
 def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0.1) -> float:
-    """First tip depth (on a ``step`` [m] grid) where the SRD carries the driving weight."""
+    """First tip depth (on a ``step`` grid) where the SRD carries the driving weight.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    srd : SrdSource
+        The SRD source.
+    engine : Engine
+        The built engine (its static head force).
+    multiplier : float
+        SRD factor of the bound [-].
+    step : float, default 0.1
+        Spacing of the depth grid [m].
+
+    Returns
+    -------
+    float
+        The self-weight penetration [m].
+    """
 
     weight = driving_weight(cfg, engine.static_head_force)
     length = cfg.pile_soil.pile.length
@@ -162,9 +216,36 @@ def self_weight_penetration(cfg, srd, engine, multiplier: float, step: float = 0
 
 def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                      progress: bool = False, energy_check: bool = False) -> InstallResult:
-    """Simulate every blow; returns the blow rows, fatigue rows, spectra rows and summary
-    (:class:`InstallResult`). ``energy_check``: book every blow's energies and give its relative
-    energy residual (``energy_residual_relative [-]``; NaN without)."""
+    """Simulate every blow of an installation.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    srd : SrdSource
+        The SRD source.
+    drive : DriveSettings
+        The ``[driveability]`` settings (energy schedule, refusal).
+    settings : InstallSettings
+        The ``[installation]`` settings.
+    engine : Engine
+        The built engine for ``cfg``.
+    progress : bool, default False
+        A progress bar over the penetration.
+    energy_check : bool, default False
+        Book every blow's energies and give its relative energy residual
+        (``energy_residual_relative [-]``; NaN without).
+
+    Returns
+    -------
+    InstallResult
+        The blow rows, fatigue rows, spectra rows and summary.
+
+    Raises
+    ------
+    InputError
+        If the target depth lies beyond the pile, or pauses need a soil type the SRD lacks.
+    """
 
     start_wall = time.perf_counter()
     multiplier = drive.multiplier

@@ -72,13 +72,35 @@ def load_record(path: str | Path, *, area: float | None = None,
                 clip_run: int = CLIP_RUN) -> tuple[GaugeRecord, list[str], str]:
     """Read a gauge record or a raw-channel record (module notes).
 
-    path : the CSV file.
-    area : steel area at the gauges [m^2] (raw channels: force = E A mean strain).
-    elastic_modulus : E [Pa] (raw channels).
-    strain_calibration, acceleration_calibration : factors on the raw channels [-].
-    clip_run : see :mod:`anvilwave.pile.pda.records` [-].
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+    area : float or None, default None
+        Steel area at the gauges [m^2] (raw channels: force = E A mean strain).
+    elastic_modulus : float, default STEEL_YOUNGS_MODULUS
+        E [Pa] (raw channels).
+    strain_calibration : tuple of float, default (1.0, 1.0)
+        Factors on the two raw strain channels [-].
+    acceleration_calibration : tuple of float, default (1.0, 1.0)
+        Factors on the two raw acceleration channels [-].
+    clip_run : int, default CLIP_RUN
+        See :mod:`anvilwave.pile.pda.records` [-].
 
-    Returns (record, comment lines, ``"gauge"`` or ``"raw"``).
+    Returns
+    -------
+    record : GaugeRecord
+        The gauge record.
+    comments : list of str
+        The comment lines of the file.
+    kind : str
+        ``"gauge"`` or ``"raw"``.
+
+    Raises
+    ------
+    InputError
+        If a raw-channel record comes without ``area``, or the file breaks a rule of
+        :mod:`anvilwave.pile.pda.records`.
     """
     path = Path(path)
     lines = read_text(path).splitlines(keepends=True)
@@ -119,7 +141,7 @@ def _finite(value):
 class PdaResult:
     """The Case method of one record (``anvilwave pda``).
 
-    Attributes
+    Parameters
     ----------
     record : str
         The record file.
@@ -134,7 +156,7 @@ class PdaResult:
         [J].
     jc : float
         The Case damping used [-].
-    case : object
+    case : object, optional
         The Case method's full result (:func:`anvilwave.pile.pda.case_method.case_method`).
     """
 
@@ -146,7 +168,13 @@ class PdaResult:
     case: object = None
 
     def write(self, out_dir: str | Path) -> None:
-        """``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``."""
+        """Write ``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``.
+
+        Parameters
+        ----------
+        out_dir : str or pathlib.Path
+            The result folder.
+        """
         with ResultWriter(out_dir, command="pda") as out:
             out.part("pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("pda.csv"))
@@ -161,18 +189,40 @@ def pda(record_path: str | Path, *, length: float, area: float,
             acceleration_calibration: tuple[float, float] = (1.0, 1.0)) -> PdaResult:
     """The Case method of a record (``anvilwave pda``).
 
-    record_path : gauge record or raw channels CSV.
-    length : pile length below the gauges L [m].
-    area : steel area at the gauges A [m^2].
-    elastic_modulus : E [Pa] (default steel, 210 GPa).
-    wave_speed : c [m/s] (default sqrt(E / 7850 kg/m^3): 5172.2 m/s for steel).
-    jc : Case damping factor Jc [-].
-    t1_signal, rmx_window : see :func:`anvilwave.pile.pda.case_method.case_method` (rmx_window [s]).
-    strain_calibration, acceleration_calibration : raw-channel factors [-].
+    Parameters
+    ----------
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV.
+    length : float
+        Pile length below the gauges L [m].
+    area : float
+        Steel area at the gauges A [m^2].
+    elastic_modulus : float, default STEEL_YOUNGS_MODULUS
+        E [Pa] (default steel, 210 GPa).
+    wave_speed : float or None, default None
+        c [m/s] (default sqrt(E / 7850 kg/m^3): 5172.2 m/s for steel).
+    jc : float
+        Case damping factor Jc [-].
+    t1_signal : {"velocity", "force"}
+        See :func:`anvilwave.pile.pda.case_method.case_method`.
+    rmx_window : float or None, default None
+        See :func:`anvilwave.pile.pda.case_method.case_method` [s].
+    strain_calibration : tuple of float, default (1.0, 1.0)
+        Raw-channel strain factors [-].
+    acceleration_calibration : tuple of float, default (1.0, 1.0)
+        Raw-channel acceleration factors [-].
 
-    Returns a :class:`PdaResult`: its ``summary`` ``{"RTL [N]", "RSP [N]", "RMX [N]",
-    "EMX [J]", "FMX [N]", "CSX [Pa]", "TSX [Pa]", "BTA [-]"}``; ``content`` (pda.json) holds it
-    plus ``details`` and ``inputs``.
+    Returns
+    -------
+    PdaResult
+        Its ``summary`` ``{"RTL [N]", "RSP [N]", "RMX [N]", "EMX [J]", "FMX [N]", "CSX [Pa]",
+        "TSX [Pa]", "BTA [-]"}``; ``content`` (pda.json) holds it plus ``details`` and ``inputs``.
+
+    Raises
+    ------
+    InputError
+        If ``wave_speed``, ``length`` or ``area`` is not a positive number, ``jc`` is not a
+        number >= 0, or the record cannot be analysed.
     """
     for name, value in (("length", length), ("area", area),
                         ("elastic_modulus", elastic_modulus)):
@@ -216,8 +266,22 @@ def pda(record_path: str | Path, *, length: float, area: float,
 
 
 def run_pda(record_path: str | Path, out_dir: str | Path, **options) -> dict:
-    """:func:`pda` written to ``out_dir`` (``pda.json``, ``pda.csv``, ``pda.png``); returns
-    the summary."""
+    """:func:`pda` written to ``out_dir`` (``pda.json``, ``pda.csv``, ``pda.png``).
+
+    Parameters
+    ----------
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV.
+    out_dir : str or pathlib.Path
+        The result folder.
+    **options
+        Keyword arguments of :func:`pda`.
+
+    Returns
+    -------
+    dict
+        The summary.
+    """
     result = pda(record_path, **options)
     result.write(out_dir)
     return result.summary
@@ -230,7 +294,7 @@ def run_pda(record_path: str | Path, out_dir: str | Path, **options) -> dict:
 class MatchResult:
     """Signal matching of one record (``anvilwave match``).
 
-    Attributes
+    Parameters
     ----------
     record : str
         The record file.
@@ -251,8 +315,16 @@ class MatchResult:
     config: object
 
     def write(self, out_dir: str | Path) -> None:
-        """``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
-        ``static_load_test.png`` into the result folder ``out_dir``."""
+        """Write the match files into the result folder ``out_dir``.
+
+        ``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
+        ``static_load_test.png``.
+
+        Parameters
+        ----------
+        out_dir : str or pathlib.Path
+            The result folder.
+        """
         result = self.match
         with ResultWriter(out_dir, command="match") as out:
             out.part("match.json").write_text(json.dumps(self.content, indent=2) + "\n")
@@ -272,21 +344,36 @@ def match(record_path: str | Path, system_path: str | Path, *,
 
     Parameters
     ----------
-    record_path : gauge record or raw channels CSV (raw: converted with the area and modulus
-        of the system's pile at the gauges).
-    system_path : system file (pile, gauge depth, soil model and starting SRD, gravity, and
-        the hammer and anvil resting on the pile).
-    shaft_zones : number of shaft resistance zones [-].
-    imposed : ``"velocity"`` or ``"wave_down"``.
-    segment_length : segment length of the matching model [m] (default: the system's).
-    fit_quakes, fit_dampings : fit them, or keep the system's.
-    preload : force on the gauges at rest [N] (default from the system file).
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV (raw: converted with the area and modulus of the
+        system's pile at the gauges).
+    system_path : str or pathlib.Path
+        System file (pile, gauge depth, soil model and starting SRD, gravity, and the hammer
+        and anvil resting on the pile).
+    shaft_zones : int, default 3
+        Number of shaft resistance zones [-].
+    imposed : {"velocity", "wave_down"}
+        The measured signal imposed at the gauges.
+    segment_length : float or None, default None
+        Segment length of the matching model [m] (default: the system's).
+    fit_quakes : bool, default True
+        Fit the quakes, or keep the system's.
+    fit_dampings : bool, default True
+        Fit the dampings, or keep the system's.
+    preload : float or None, default None
+        Force on the gauges at rest [N] (default from the system file).
 
     Returns
     -------
     MatchResult
         Its ``content`` is match.json (``rut [N]``, ``rut_shaft [N]``, ``rut_toe [N]``,
         ``match_quality [-]``, the fitted parameters ...).
+
+    Raises
+    ------
+    InputError
+        If ``imposed`` is unknown, ``shaft_zones`` is not an integer >= 1, or the record
+        cannot be matched.
     """
 
     if imposed not in IMPOSED:
@@ -316,8 +403,27 @@ def match(record_path: str | Path, system_path: str | Path, *,
 
 def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | Path,
               **options) -> dict:
-    """:func:`match` written to ``out_dir`` (``match.json``, ``match.csv``, ``match.png``,
-    ``static_load_test.csv``, ``static_load_test.png``); returns the match.json content."""
+    """:func:`match` written to ``out_dir``.
+
+    ``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv``,
+    ``static_load_test.png``.
+
+    Parameters
+    ----------
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV.
+    system_path : str or pathlib.Path
+        The system file.
+    out_dir : str or pathlib.Path
+        The result folder.
+    **options
+        Keyword arguments of :func:`match`.
+
+    Returns
+    -------
+    dict
+        The match.json content.
+    """
     result = match(record_path, system_path, **options)
     result.write(out_dir)
     return result.content
@@ -325,7 +431,20 @@ def run_match(record_path: str | Path, system_path: str | Path, out_dir: str | P
 
 # ---------------------------------------------------------------------------------- Fig. 4, 5
 def onset_time(time, force) -> float:
-    """First time [s] a force exceeds ONSET_FRACTION of its peak (NaN if never)."""
+    """First time a force exceeds ONSET_FRACTION of its peak [s] (NaN if never).
+
+    Parameters
+    ----------
+    time : array_like
+        t [s].
+    force : array_like
+        F [N].
+
+    Returns
+    -------
+    float
+        The onset time [s], NaN if the force never exceeds the fraction.
+    """
     f = np.asarray(force, dtype=float)
     above = np.flatnonzero(f > ONSET_FRACTION * float(np.max(f)))
     return float(np.asarray(time)[above[0]]) if above.size else math.nan
@@ -335,7 +454,7 @@ def onset_time(time, force) -> float:
 class ComparePdaResult:
     """The paper's Fig. 4 and 5 for one record (``anvilwave compare-pda``).
 
-    Attributes
+    Parameters
     ----------
     record : str
         The record file.
@@ -353,7 +472,13 @@ class ComparePdaResult:
     columns: dict
 
     def write(self, out_dir: str | Path) -> None:
-        """The json, csv and the two figures into the result folder ``out_dir``."""
+        """Write the json, csv and the two figures into the result folder ``out_dir``.
+
+        Parameters
+        ----------
+        out_dir : str or pathlib.Path
+            The result folder.
+        """
         name = Path(self.record).name
         with ResultWriter(out_dir, command="compare-pda") as out:
             out.part("compare_pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
@@ -372,15 +497,33 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
     The system is simulated with the ROM anvil and with the lumped (rigid) anvil of its anvil
     file, over its ``[simulation] duration``; the gauge signals are compared with the record.
     The simulated force has its value at rest (the weights of the anvil and the pile above
-    the gauges) removed, as gauges zeroed at rest do. ``align``: the record's time is shifted
-    so that its force arrival (:func:`onset_time`) coincides with the ``"rom"`` or
-    ``"lumped"`` model's, or kept (``"none"``: a record whose t = 0 is the ram impact). The
-    arrival of the aligned model then says nothing; the other's difference to it is the
-    anvil's wave travel the lumped model lacks.
+    the gauges) removed, as gauges zeroed at rest do. The arrival of the aligned model says
+    nothing; the other's difference to it is the anvil's wave travel the lumped model lacks.
 
-    Returns a :class:`ComparePdaResult`: ``content`` (compare_pda.json) and ``columns``
-    (compare_pda.csv: record and models on the record's samples within the simulated
-    window).
+    Parameters
+    ----------
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV.
+    system_path : str or pathlib.Path
+        The system file.
+    align : {"rom", "lumped", "none"}
+        The record's time is shifted so that its force arrival (:func:`onset_time`)
+        coincides with the ``"rom"`` or ``"lumped"`` model's, or kept (``"none"``: a record
+        whose t = 0 is the ram impact).
+    modal_data : ModalData or path, optional
+        Precomputed modal data of the anvil (default: from the cache or computed).
+
+    Returns
+    -------
+    ComparePdaResult
+        ``content`` (compare_pda.json) and ``columns`` (compare_pda.csv: record and models on
+        the record's samples within the simulated window).
+
+    Raises
+    ------
+    InputError
+        If ``align`` is unknown, the system has no anvil file, the record is shorter than 2L/c
+        or its time does not overlap the simulated window.
     """
 
     if align not in ALIGNMENTS:
@@ -456,9 +599,27 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
 
 def run_compare_pda(record_path: str | Path, system_path: str | Path, out_dir: str | Path,
                     **options) -> dict:
-    """:func:`compare_pda` written to ``out_dir`` (``fig4_pile_top_force.png``,
-    ``fig5_pile_top_velocity.png``, ``compare_pda.json``, ``compare_pda.csv``); returns the
-    compare_pda.json content."""
+    """:func:`compare_pda` written to ``out_dir``.
+
+    ``fig4_pile_top_force.png``, ``fig5_pile_top_velocity.png``, ``compare_pda.json``,
+    ``compare_pda.csv``.
+
+    Parameters
+    ----------
+    record_path : str or pathlib.Path
+        Gauge record or raw channels CSV.
+    system_path : str or pathlib.Path
+        The system file.
+    out_dir : str or pathlib.Path
+        The result folder.
+    **options
+        Keyword arguments of :func:`compare_pda`.
+
+    Returns
+    -------
+    dict
+        The compare_pda.json content.
+    """
     result = compare_pda(record_path, system_path, **options)
     result.write(out_dir)
     return result.content

@@ -24,9 +24,20 @@ RECORDED_COLUMNS = 24
 
 
 def run_estimate(config) -> dict[str, float]:
-    """Estimated size of a system's run: ``segments``, ``pile_step [s]``, ``steps`` (master
-    steps of all blows, a lower bound when the step is automatic), ``segment_updates``,
-    ``memory [B]`` of the recorded series, ``wall_time [s]``."""
+    """Estimated size of a system's run.
+
+    Parameters
+    ----------
+    config : SystemConfig
+        The system.
+
+    Returns
+    -------
+    dict
+        ``segments``, ``pile_step [s]``, ``steps`` (master steps of all blows, a lower bound
+        when the step is automatic), ``segment_updates``, ``memory [B]`` of the recorded series,
+        ``wall_time [s]``.
+    """
     pile = config.pile_soil.pile
     length = sum(s.length for s in pile.sections)
     segments = sum(max(1, -(-s.length // pile.segment_length)) for s in pile.sections)
@@ -49,8 +60,23 @@ def run_estimate(config) -> dict[str, float]:
 
 
 def check_run_budget(config) -> dict[str, float]:
-    """Raise :class:`InputError` naming the key to change if the run of a system exceeds
-    :data:`MAX_MEMORY` or :data:`MAX_WALL_TIME`; return the estimate otherwise."""
+    """Check a system's run against :data:`MAX_MEMORY` and :data:`MAX_WALL_TIME`.
+
+    Parameters
+    ----------
+    config : SystemConfig
+        The system.
+
+    Returns
+    -------
+    dict
+        The estimate (:func:`run_estimate`).
+
+    Raises
+    ------
+    InputError
+        Naming the key to change, if the run exceeds a limit.
+    """
     est = run_estimate(config)
     too_big = est["memory [B]"] > MAX_MEMORY or est["wall_time [s]"] > MAX_WALL_TIME
     if not too_big:
@@ -81,11 +107,29 @@ MATCH_ITERATIONS = 30
 
 def match_estimate(zones: int, segments: int, samples: int, max_evaluations: int,
                    extra_parameters: int = 4) -> dict[str, float]:
-    """Estimated size of a signal match: ``parameters`` (the zones, the toe and
-    ``extra_parameters`` quakes and dampings), ``evaluations`` (forward runs: the
-    iterations' Jacobians by forward differences and their steps, at most
-    ``max_evaluations`` steps), ``run [s]`` (one forward run: ``segments`` x ``samples``
-    updates) and ``wall_time [s]``."""
+    """Estimated size of a signal match.
+
+    Parameters
+    ----------
+    zones : int
+        Shaft resistance zones of the match [-].
+    segments : int
+        Segments of the matching model's pile [-].
+    samples : int
+        Samples of the record, the steps of one forward run [-].
+    max_evaluations : int
+        Largest number of iteration steps [-].
+    extra_parameters : int, default 4
+        Quakes and dampings fitted besides the zones and the toe [-].
+
+    Returns
+    -------
+    dict
+        ``parameters`` (the zones, the toe and ``extra_parameters`` quakes and dampings),
+        ``evaluations`` (forward runs: the iterations' Jacobians by forward differences and their
+        steps, at most ``max_evaluations`` steps), ``run [s]`` (one forward run: ``segments`` x
+        ``samples`` updates) and ``wall_time [s]``.
+    """
     parameters = zones + 1 + extra_parameters
     iterations = min(MATCH_ITERATIONS, max_evaluations)
     evaluations = iterations * (parameters + 1)
@@ -96,9 +140,34 @@ def match_estimate(zones: int, segments: int, samples: int, max_evaluations: int
 
 def check_match_budget(zones: int, segments: int, samples: int, max_evaluations: int,
                        extra_parameters: int = 4) -> dict[str, float]:
-    """Refuse ``--zones`` before any work: more zones than the matching model's segments
-    (``segments``), or an estimated wall time (:func:`match_estimate`) above
-    :data:`MAX_MATCH_TIME`; return the estimate otherwise."""
+    """Refuse ``--zones`` before any work.
+
+    Refused: fewer than one zone, more zones than the matching model's segments (``segments``),
+    or an estimated wall time (:func:`match_estimate`) above :data:`MAX_MATCH_TIME`.
+
+    Parameters
+    ----------
+    zones : int
+        Shaft resistance zones of the match [-].
+    segments : int
+        Segments of the matching model's pile [-].
+    samples : int
+        Samples of the record, the steps of one forward run [-].
+    max_evaluations : int
+        Largest number of iteration steps [-].
+    extra_parameters : int, default 4
+        Quakes and dampings fitted besides the zones and the toe [-].
+
+    Returns
+    -------
+    dict
+        The estimate (:func:`match_estimate`).
+
+    Raises
+    ------
+    InputError
+        If ``--zones`` is refused.
+    """
     if zones < 1:
         raise InputError("--zones", "", f"must be at least 1, got {zones}")
     if zones > segments:

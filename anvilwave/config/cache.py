@@ -63,7 +63,13 @@ SUFFIX = ".npz"
 
 
 def cache_dir() -> Path:
-    """The cache directory (module docstring); not created here."""
+    """The cache directory (module docstring); not created here.
+
+    Returns
+    -------
+    pathlib.Path
+        The directory.
+    """
     override = os.environ.get(ENVIRONMENT_VARIABLE)
     if override:
         return Path(override).expanduser()
@@ -74,8 +80,15 @@ def cache_dir() -> Path:
 
 @lru_cache(maxsize=1)
 def code_version() -> str:
-    """What the modal data depends on besides its inputs: package, format and mesher versions
-    and a hash of the modal analysis's source files."""
+    """What the modal data depends on besides its inputs.
+
+    Package, format and mesher versions and a hash of the modal analysis's source files.
+
+    Returns
+    -------
+    str
+        The version string.
+    """
     from importlib import metadata
 
 
@@ -96,7 +109,20 @@ def code_version() -> str:
 
 
 def modal_key(spec, fmax: float) -> str:
-    """Cache key (hex SHA-256) of the modal data of ``spec`` (an AnvilSpec) up to fmax [Hz]."""
+    """Cache key (hex SHA-256) of the modal data of ``spec`` up to ``fmax``.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil spec.
+    fmax : float
+        Frequency content [Hz].
+
+    Returns
+    -------
+    str
+        The key, 64 hex digits.
+    """
     itf = spec.interfaces
     description = {
         "geometry": spec.geometry_hash(),  # outline or mesh file, material, mesh size
@@ -113,10 +139,23 @@ def modal_key(spec, fmax: float) -> str:
 
 
 def cached_modal_data(spec, fmax: float | None = None):
-    """The modal data (``ModalData``) of an anvil spec up to ``fmax`` [Hz] (default: the
-    spec's), from the cache or computed
-    (:func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`) and
-    stored. The spec needs its interfaces (the ROM is projected on them)."""
+    """The modal data of an anvil spec up to ``fmax``, from the cache or computed and stored.
+
+    Computed by :func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`. The spec needs its
+    interfaces (the ROM is projected on them).
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The anvil spec.
+    fmax : float or None, default None
+        Frequency content [Hz] (default: the spec's).
+
+    Returns
+    -------
+    ModalData
+        The modal data.
+    """
 
     fmax = float(spec.fmax if fmax is None else fmax)
     path = cache_dir() / (modal_key(spec, fmax) + SUFFIX)
@@ -151,7 +190,7 @@ MASS_TOLERANCE = 1e-6
 
 
 def modal_data_mismatch(data, spec, fmax: float) -> str | None:
-    """Why cached modal data does not belong to ``spec`` at ``fmax`` [Hz], else None.
+    """Why cached modal data does not belong to ``spec`` at ``fmax``, else None.
 
     Checked: fmax, the damping ratio and the geometry hash against the key's; the frequencies
     finite, increasing, within fmax; the total mass against the spec's solid mass
@@ -160,6 +199,20 @@ def modal_data_mismatch(data, spec, fmax: float) -> str | None:
     eigenvalues of (K, M) below a shift) at the middle of the middle gap of the cached
     frequencies must equal the cached modes below it (one factorisation, no eigensolve). The
     mode shapes are not kept in the modal data, so their orthonormality is not checked here.
+
+    Parameters
+    ----------
+    data : ModalData
+        The cached modal data.
+    spec : AnvilSpec
+        The anvil spec.
+    fmax : float
+        Frequency content [Hz].
+
+    Returns
+    -------
+    str or None
+        The reason, or None when the data belongs to the spec.
     """
     f = np.asarray(data.frequencies, dtype=float)
     if not math.isclose(float(data.fmax), float(fmax), rel_tol=1e-12):
@@ -191,8 +244,22 @@ CHAIN_SUFFIX = ".chain.npz"
 
 
 def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`anvilwave.anvil_rom.chain.chain_from_modes` of ``omega`` [rad/s] and ``participation``
-    [kg^-1/2], from the cache or realised and stored: (masses [kg], springs [N/m])."""
+    """:func:`anvilwave.anvil_rom.chain.chain_from_modes`, from the cache or realised and stored.
+
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Angular frequencies of the modes [rad/s].
+    participation : numpy.ndarray
+        Participation of the modes [kg^-1/2].
+
+    Returns
+    -------
+    masses : numpy.ndarray
+        Chain masses [kg].
+    springs : numpy.ndarray
+        Chain springs [N/m].
+    """
     omega = np.ascontiguousarray(omega, dtype=float)
     participation = np.ascontiguousarray(participation, dtype=float)
     h = hashlib.sha256(b"chain")
@@ -219,8 +286,32 @@ KERNEL_SUFFIX = ".head.npz"
 
 def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step: float,
                        steps: int, rings: int) -> np.ndarray:
-    """:func:`anvilwave.pile.head_kernel.ring_kernel` of a tube (its arguments), from the cache or
-    computed and stored (it takes tens of seconds for a long tube)."""
+    """:func:`anvilwave.pile.head_kernel.ring_kernel` of a tube, from the cache or computed.
+
+    Stored when computed (it takes tens of seconds for a long tube).
+
+    Parameters
+    ----------
+    material : Material
+        The tube's material.
+    r_in : float
+        Inner radius [m].
+    r_out : float
+        Outer radius [m].
+    length : float
+        Tube length [m].
+    step : float
+        Time step of the kernel [s].
+    steps : int
+        Number of kernel steps [-].
+    rings : int
+        Number of equal-width rings across the wall [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        G, shape (``steps``, ``rings``, ``rings``) [m/N].
+    """
 
     description = [material.youngs_modulus, material.poisson_ratio, material.density, r_in,
                    r_out, length, step, int(steps), int(rings), code_version(),
@@ -265,10 +356,16 @@ def _store(data, path: Path) -> None:
 
 
 def cache_info() -> dict:
-    """``{"directory": str, "entries": int, "bytes": int, "files": [...]}`` of the cache; each
-    file ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
-    data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain), ``"head_kernel_steps",
-    "rings"`` (a tube head's ring kernel) or ``"unreadable"``."""
+    """The contents of the cache.
+
+    Returns
+    -------
+    dict
+        ``{"directory": str, "entries": int, "bytes": int, "files": [...]}``; each file
+        ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
+        data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain),
+        ``"head_kernel_steps", "rings"`` (a tube head's ring kernel) or ``"unreadable"``.
+    """
     directory = cache_dir()
     files = sorted(directory.glob("*" + SUFFIX)) if directory.is_dir() else []
     rows = []
@@ -296,7 +393,15 @@ def cache_info() -> dict:
 
 
 def clear_cache() -> tuple[int, int]:
-    """Delete every cache entry (and stale temporary files); returns (files, bytes) removed."""
+    """Delete every cache entry (and stale temporary files).
+
+    Returns
+    -------
+    files : int
+        Files removed [-].
+    bytes : int
+        Bytes removed [B].
+    """
     directory = cache_dir()
     if not directory.is_dir():
         return 0, 0

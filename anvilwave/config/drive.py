@@ -66,20 +66,40 @@ DEFAULT_BLOW_RATE = 30.0
 class DriveSettings:
     """The ``[driveability]`` table of a system file.
 
-    depths : tip depths below the mudline to analyse [m], increasing.
-    blows_per_depth : blows per depth; > 1 is the residual-stress analysis [-].
-    refusal : refusal blow count [blows / 0.25 m].
-    blow_rate : hammer blow rate [blows/min].
-    set_rule : "permanent" or "grlweap" (module docstring).
-    enthru_location : "gauge" or "head".
-    energy_schedule : (n, 2) rows [tip depth [m], blow energy [J]], linear between rows and
-        constant beyond; None = the hammer's energy of the system file.
-    stroke_schedule : (n, 2) rows [tip depth [m], stroke [m]] instead of energies (the
-        energy is m g stroke).
-    efficiency_schedule : (n, 2) rows [tip depth [m], efficiency [-]]; None = the hammer's.
-    bound : "lower", "best" or "upper"; multipliers : SRD factor of each bound [-].
-    time_series_depths : depths whose blow time series are written [m].
-    duration : blow window [s] (default: the system's duration).
+    Parameters
+    ----------
+    depths : numpy.ndarray
+        Tip depths below the mudline to analyse [m], increasing.
+    blows_per_depth : int, default 1
+        Blows per depth; > 1 is the residual-stress analysis [-].
+    refusal : float, default DEFAULT_REFUSAL
+        Refusal blow count [blows / 0.25 m].
+    blow_rate : float, default DEFAULT_BLOW_RATE
+        Hammer blow rate [blows/min].
+    set_rule : {"permanent", "grlweap"}
+        The set rule (module docstring of :mod:`anvilwave.analyses.drive`).
+    enthru_location : {"gauge", "head"}
+        Where ENTHRU is taken.
+    energy_schedule : numpy.ndarray or None, default None
+        (n, 2) rows [tip depth [m], blow energy [J]], linear between rows and constant
+        beyond; None = the hammer's energy of the system file.
+    bound : {"lower", "best", "upper"}
+        The SRD bound.
+    multipliers : dict, optional
+        SRD factor of each bound [-] (default lower 0.8, best 1.0, upper 1.25).
+    time_series_depths : tuple, default ()
+        Depths whose blow time series are written [m].
+    duration : float or None, default None
+        Blow window [s] (default: the system's duration).
+    stroke_schedule : numpy.ndarray or None, default None
+        (n, 2) rows [tip depth [m], stroke [m]] instead of energies (the energy is
+        m g stroke).
+    efficiency_schedule : numpy.ndarray or None, default None
+        (n, 2) rows [tip depth [m], efficiency [-]]; None = the hammer's.
+    weight_on_soil : {"all", "grlweap"}
+        The weight resting on the soil before driving (:mod:`anvilwave.analyses.drive`).
+    window : str, default "fixed"
+        The blow window, one of :data:`WINDOWS` (:mod:`anvilwave.analyses.drive`).
     """
 
     depths: np.ndarray
@@ -101,23 +121,34 @@ class DriveSettings:
 
     @property
     def multiplier(self) -> float:
+        """SRD factor of the bound analysed [-]."""
         return float(self.multipliers[self.bound])
 
 @dataclass(frozen=True)
 class SrdSource:
     """Where the SRD of each tip depth comes from (the ``[srd]`` table).
 
-    method : one of :data:`SRD_METHODS`: "table" (the ``[soil] srd`` rows against depth,
-        no friction fatigue), "tip-table" (a table per tip depth, as GRLWEAP takes them),
+    Parameters
+    ----------
+    method : str
+        One of :data:`SRD_METHODS`: "table" (the ``[soil] srd`` rows against depth, no
+        friction fatigue), "tip-table" (a table per tip depth, as GRLWEAP takes them),
         "alm-hamre-2001" (CPT and layers), "stevens-1982" (layers).
-    profile : the soil profile (layers and CPT) of the CPT/layer methods.
-    method_object : the method with its options (:mod:`anvilwave.pile.soil.profile`).
-    pile_mode : "coring" or "plugged"; faces : friction faces override (None: the mode's).
-    tip_layers : quakes and dampings per layer of each tip table, a tuple of
+    profile : SoilProfile, optional
+        The soil profile (layers and CPT) of the CPT/layer methods.
+    method_object : object, optional
+        The method with its options (:mod:`anvilwave.pile.soil.profile`).
+    pile_mode : {"coring", "plugged"}
+        The pile mode.
+    faces : str or None, default None
+        Friction faces override (None: the mode's).
+    tip_layers : tuple or None, default None
+        Quakes and dampings per layer of each tip table, a tuple of
         :class:`~anvilwave.pile.soil.models.SoilLayers` (one per table, from a GRLWEAP file's
         columns with ``layer_parameters = "file"``), or None (the [soil] table's).
-    layers : quakes and dampings per layer for every tip (``layer_parameters = "soil-type"``
-        of the CPT and layer methods: by each layer's soil type), or None.
+    layers : SoilLayers or None, default None
+        Quakes and dampings per layer for every tip (``layer_parameters = "soil-type"`` of the
+        CPT and layer methods: by each layer's soil type), or None.
     """
 
     method: str
@@ -129,7 +160,25 @@ class SrdSource:
     layers: SoilLayers | None = None
 
 def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
-    """Read and validate the ``[driveability]`` table."""
+    """Read and validate the ``[driveability]`` table.
+
+    Parameters
+    ----------
+    table : Table or None
+        The table (None when the file has none).
+    source : str
+        The system file, for messages.
+
+    Returns
+    -------
+    DriveSettings
+        The settings.
+
+    Raises
+    ------
+    InputError
+        If the table is missing or a key breaks its rule.
+    """
     if table is None:
         raise InputError(source, "driveability", "the drive analysis needs a [driveability] "
                                                  "table (depths, refusal, energy schedule ...)")
@@ -199,9 +248,27 @@ def _schedule(table: Table, key: str, what: str, upper: float):
     return rows
 
 def impact_at(settings: DriveSettings, depth: float, cfg) -> tuple[float, float]:
-    """(blow energy [J], impact velocity [m/s]) of the schedules at a tip depth: energy or
-    stroke, and efficiency, each linear between rows and constant beyond; the system's blow
-    energy and the hammer's efficiency where no schedule is given."""
+    """Blow energy and impact velocity of the schedules at a tip depth.
+
+    Energy or stroke, and efficiency, each linear between rows and constant beyond; the system's
+    blow energy and the hammer's efficiency where no schedule is given.
+
+    Parameters
+    ----------
+    settings : DriveSettings
+        The driveability settings.
+    depth : float
+        Tip depth below the mudline [m].
+    cfg : SystemConfig
+        The system (its hammer).
+
+    Returns
+    -------
+    energy : float
+        Blow energy [J].
+    velocity : float
+        Impact velocity [m/s].
+    """
 
     mass = float(np.sum(cfg.hammer.ram.mass))
     eff = cfg.hammer.efficiency
@@ -218,16 +285,52 @@ def impact_at(settings: DriveSettings, depth: float, cfg) -> tuple[float, float]
     return energy, impact_velocity_from_energy(energy, mass, eff)
 
 def energy_at(settings: DriveSettings, depth: float, default: float) -> float:
-    """Blow energy of the schedule at a tip depth [J] (linear between rows, constant
-    beyond); ``default`` [J] without a schedule."""
+    """Blow energy of the schedule at a tip depth [J].
+
+    Linear between rows, constant beyond.
+
+    Parameters
+    ----------
+    settings : DriveSettings
+        The driveability settings.
+    depth : float
+        Tip depth below the mudline [m].
+    default : float
+        Energy without a schedule [J].
+
+    Returns
+    -------
+    float
+        Blow energy [J].
+    """
     s = settings.energy_schedule
     if s is None:
         return float(default)
     return float(np.interp(depth, s[:, 0], s[:, 1]))
 
 def segment_capacities(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float):
-    """Shaft resistance per segment [N], toe resistance [N] for the tip at ``tip_depth`` [m]
-    below the mudline (the pile head ``L - tip_depth`` above it)."""
+    """Shaft resistance per segment and toe resistance for the tip at ``tip_depth``.
+
+    The pile head lies ``L - tip_depth`` above the mudline.
+
+    Parameters
+    ----------
+    pile_soil : PileSoil
+        The system's pile and soil model.
+    srd : SrdSource
+        The SRD source.
+    tip_depth : float
+        Tip depth below the mudline [m].
+    multiplier : float
+        SRD factor of the bound [-].
+
+    Returns
+    -------
+    shaft : numpy.ndarray
+        Shaft resistance per segment [N].
+    toe : float
+        Toe resistance [N].
+    """
 
     pile = pile_soil.pile
     seg = pile.discretise()
@@ -243,7 +346,28 @@ def segment_capacities(pile_soil, srd: SrdSource, tip_depth: float, multiplier: 
     return np.asarray(dist.shaft, dtype=float), float(dist.toe)
 
 def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float):
-    """The system's PileSoil embedded to ``tip_depth`` [m] with the SRD of that tip."""
+    """The system's PileSoil embedded to ``tip_depth`` with the SRD of that tip.
+
+    Parameters
+    ----------
+    pile_soil : PileSoil
+        The system's pile and soil model.
+    srd : SrdSource
+        The SRD source.
+    tip_depth : float
+        Tip depth below the mudline [m].
+    multiplier : float
+        SRD factor of the bound [-].
+
+    Returns
+    -------
+    pile_soil : PileSoil
+        The embedded pile and soil.
+    shaft : float
+        Total shaft resistance [N].
+    toe : float
+        Toe resistance [N].
+    """
     shaft, toe = segment_capacities(pile_soil, srd, tip_depth, multiplier)
     soil = replace(pile_soil.soil, penetration=float(tip_depth), capacities=(shaft, toe))
     if srd.layers is not None:
@@ -255,7 +379,27 @@ def pile_soil_at(pile_soil, srd: SrdSource, tip_depth: float, multiplier: float)
     return replace(pile_soil, soil=soil), float(shaft.sum()), float(toe)
 
 def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
-    """Read the ``[srd]`` table (default: the ``[soil] srd`` rows, method "table")."""
+    """Read the ``[srd]`` table (default: the ``[soil] srd`` rows, method "table").
+
+    Parameters
+    ----------
+    table : Table or None
+        The table (None when the file has none).
+    source : str
+        The system file, for messages.
+    pile_soil : PileSoil
+        The system's pile and soil model.
+
+    Returns
+    -------
+    SrdSource
+        The SRD source.
+
+    Raises
+    ------
+    InputError
+        If no SRD is given or a key of the table breaks its rule.
+    """
 
     if table is None:
         if pile_soil.soil is None or pile_soil.soil.srd is None:
@@ -329,9 +473,24 @@ def load_srd_source(table: Table | None, source: str, pile_soil) -> SrdSource:
 
 
 def soil_type_layers(profile, soil) -> SoilLayers:
-    """Quakes and dampings per layer of a soil profile by its layers' soil types: the Smith
-    shaft and toe dampings of :func:`anvilwave.pile.soil.models.smith_damping_by_soil_type`,
-    the quakes of the [soil] table (``soil``); the last layer extended 1 km down."""
+    """Quakes and dampings per layer of a soil profile by its layers' soil types.
+
+    The Smith shaft and toe dampings of
+    :func:`anvilwave.pile.soil.models.smith_damping_by_soil_type`, the quakes of the [soil]
+    table (``soil``); the last layer extended 1 km down.
+
+    Parameters
+    ----------
+    profile : SoilProfile
+        The soil profile.
+    soil : SoilSpec
+        The [soil] table's model (its quakes).
+
+    Returns
+    -------
+    SoilLayers
+        One layer per layer of the profile.
+    """
     rows = []
     for k, layer in enumerate(profile.layers):
         shaft, toe = smith_damping_by_soil_type(layer.soil_type)
@@ -400,8 +559,25 @@ def grlweap_rows_to_layers(rows: np.ndarray) -> SoilLayers:
 
 
 def read_grlweap_tip_layers(path: Path) -> tuple:
-    """The quakes and dampings of every tip table of a GRLWEAP input decoded to JSON, sorted
-    by tip depth (:func:`grlweap_rows_to_layers`)."""
+    """The quakes and dampings of every tip table of a GRLWEAP input decoded to JSON.
+
+    Sorted by tip depth (:func:`grlweap_rows_to_layers`).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The JSON file.
+
+    Returns
+    -------
+    tuple of SoilLayers
+        One per tip table.
+
+    Raises
+    ------
+    InputError
+        If a table's rows cannot be read.
+    """
     runs = json.loads(Path(path).read_text())["soil_model"]["srd_tables_by_run"]
     items = []
     for key, run in runs.items():
@@ -418,11 +594,34 @@ def read_grlweap_tip_layers(path: Path) -> tuple:
     return tuple(x[1] for x in items)
 
 def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
-    """The SRD tables by tip depth of a GRLWEAP input decoded to JSON (``soil_model.
-    srd_tables_by_run``: rows soil depth [m], unit shaft [kPa], toe resistance [kN]).
+    """The SRD tables by tip depth of a GRLWEAP input decoded to JSON.
 
+    ``soil_model.srd_tables_by_run``: rows soil depth [m], unit shaft [kPa], toe resistance [kN].
     The toe force is turned into a unit resistance on the pile's toe annulus, so the
     distribution gives it back on the same area.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The JSON file.
+    pile_soil : PileSoil
+        The system's pile and soil model.
+    source : str
+        The system file, for messages.
+    fmt : str
+        Format of the file (``"grlweap-model-json"``).
+
+    Returns
+    -------
+    tip_depths : list of float
+        The tip depths of the tables [m], increasing.
+    tables : list of numpy.ndarray
+        Rows [depth [m], unit shaft friction [Pa], unit toe resistance [Pa]].
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read or a run breaks a rule.
     """
     try:
         data = json.loads(Path(path).read_text())

@@ -25,22 +25,46 @@ SETUP_METHODS = ("skov-denver-1988",)
 class InstallSettings:
     """The ``[installation]`` table.
 
-    start_depth : tip depth of the first blow [m] (None: the self-weight penetration).
-    target_depth : final tip depth [m] (None: the last depth of ``[driveability]``).
-    max_blows : safety limit on the number of blows [-].
-    srd_update : tip movement that triggers a rebuild of the SRD distribution [m].
-    weld_depths : sections for fatigue, depth below the pile head [m] (None: every spring).
-    sn_curve, environment, edition, scf : DNV-RP-C203 S-N curve of the sections.
-    spectra_depths : tip depths whose first blow's head force spectrum is written [m].
-    record_interval : sampling of the stress histories and head force [s] (None: every step).
-    pauses : ((tip depth [m], duration [s]), ...): driving stops when the tip reaches each
-        depth and restarts after the duration; sorted by depth.
-    setup : the set-up method of the shaft during a pause ("skov-denver-1988").
-    setup_soil : soil type of the set-up ("sand", "clay") where the SRD has no soil layers
-        (None: the layers' types; required without layers when pauses are given).
-    remoulding_length : e-folding penetration of the set-up gain after a restart [m].
-    setup_a, setup_t0 : A [-] and t0 [s] of the set-up for every soil, overriding the soil
-        types' values (site-specific, e.g. from restrike records); None: by soil type.
+    Parameters
+    ----------
+    start_depth : float or None, default None
+        Tip depth of the first blow [m] (None: the self-weight penetration).
+    target_depth : float or None, default None
+        Final tip depth [m] (None: the last depth of ``[driveability]``).
+    max_blows : int, default 20000
+        Safety limit on the number of blows [-].
+    srd_update : float, default 0.05
+        Tip movement that triggers a rebuild of the SRD distribution [m].
+    weld_depths : tuple or None, default None
+        Sections for fatigue, depth below the pile head [m] (None: every spring).
+    sn_curve : str, default "D"
+        DNV-RP-C203 S-N curve of the sections.
+    environment : str, default "seawater-cp"
+        Environment of the S-N curve (:data:`anvilwave.pile.post.fatigue.ENVIRONMENTS`).
+    edition : str, default "2016"
+        Edition of DNV-RP-C203.
+    scf : float, default 1.0
+        Stress concentration factor of the sections [-].
+    spectra_depths : tuple, default ()
+        Tip depths whose first blow's head force spectrum is written [m].
+    record_interval : float or None, default None
+        Sampling of the stress histories and head force [s] (None: every step).
+    pauses : tuple, default ()
+        ((tip depth [m], duration [s]), ...): driving stops when the tip reaches each depth
+        and restarts after the duration; sorted by depth.
+    setup : str, default "skov-denver-1988"
+        The set-up method of the shaft during a pause.
+    setup_soil : {"sand", "clay"} or None, default None
+        Soil type of the set-up where the SRD has no soil layers (None: the layers' types;
+        required without layers when pauses are given).
+    remoulding_length : float, default DEFAULT_REMOULDING_LENGTH
+        E-folding penetration of the set-up gain after a restart [m].
+    setup_a : float or None, default None
+        A [-] of the set-up for every soil, overriding the soil types' values
+        (site-specific, e.g. from restrike records); None: by soil type.
+    setup_t0 : float or None, default None
+        t0 [s] of the set-up for every soil, overriding the soil types' values; None: by
+        soil type.
     """
 
     start_depth: float | None = None
@@ -64,16 +88,31 @@ class InstallSettings:
 
 def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depths,
                         pause_depth: float, penetration: float, soil_types=None) -> np.ndarray:
-    """Set-up factor [-] of each shaft segment after a pause, remoulded by the penetration
-    since the restart (:func:`anvilwave.pile.soil.setup.remoulded_setup`).
+    """Set-up factor [-] of each shaft segment after a pause.
 
-    settings : the ``[installation]`` settings (method, soil type, remoulding length).
-    duration : the pause [s].
-    middle_depths : (N,) depth of each segment's embedded middle below the mudline [m]
-        (negative or NaN above it).
-    pause_depth : tip depth at the pause [m]: segments embedded above it gain, deeper not.
-    penetration : the penetration since the restart [m].
-    soil_types : (N,) soil type of each segment (None: ``settings.setup_soil``).
+    Remoulded by the penetration since the restart
+    (:func:`anvilwave.pile.soil.setup.remoulded_setup`).
+
+    Parameters
+    ----------
+    settings : InstallSettings
+        The ``[installation]`` settings (method, soil type, remoulding length).
+    duration : float
+        The pause [s].
+    middle_depths : array_like
+        (N,) depth of each segment's embedded middle below the mudline [m] (negative or NaN
+        above it).
+    pause_depth : float
+        Tip depth at the pause [m]: segments embedded above it gain, deeper not.
+    penetration : float
+        The penetration since the restart [m].
+    soil_types : sequence of str or None, default None
+        (N,) soil type of each segment (None: ``settings.setup_soil``).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N,) set-up factor of each segment [-].
     """
     z = np.asarray(middle_depths, dtype=float)
     out = np.ones(z.shape)
@@ -93,8 +132,20 @@ def shaft_setup_factors(settings: InstallSettings, duration: float, middle_depth
 
 
 def segment_middles(pile, tip: float) -> np.ndarray:
-    """Depth below the mudline of each segment's embedded middle for the tip at ``tip`` [m]
-    (NaN for a segment above the mudline)."""
+    """Depth below the mudline of each segment's embedded middle for the tip at ``tip``.
+
+    Parameters
+    ----------
+    pile : PileSpec
+        The pile.
+    tip : float
+        Tip depth below the mudline [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        (N,) depths [m], NaN for a segment above the mudline.
+    """
     seg = pile.discretise()
     mudline = pile.length - tip
     low = np.clip(seg.top - mudline, 0.0, tip)
@@ -103,8 +154,22 @@ def segment_middles(pile, tip: float) -> np.ndarray:
 
 
 def segment_soil_types(srd, middles: np.ndarray):
-    """The soil type at each depth [m] from the SRD's soil layers (the deepest layer's below
-    them), or None where the SRD has no layers."""
+    """The soil type at each depth from the SRD's soil layers.
+
+    Below the layers, the deepest layer's type.
+
+    Parameters
+    ----------
+    srd : SrdSource
+        The SRD source.
+    middles : numpy.ndarray
+        Depths below the mudline [m] (:func:`segment_middles`).
+
+    Returns
+    -------
+    list of str or None
+        The soil type at each depth, or None where the SRD has no layers.
+    """
     layers = getattr(getattr(srd, "profile", None), "layers", None)
     if not layers:
         return None
@@ -121,10 +186,39 @@ def segment_soil_types(srd, middles: np.ndarray):
 
 def setup_pile_soil(ps, srd, tip: float, settings: InstallSettings, duration: float,
                     pause_depth: float, penetration: float):
-    """(PileSoil, shaft [N], largest factor [-]): ``ps`` (embedded to ``tip`` [m], its
-    capacities set) with the shaft set up by a pause of ``duration`` [s] at ``pause_depth``
-    [m] and remoulded by ``penetration`` [m] since the restart (:func:`shaft_setup_factors`,
-    the soil types of the SRD's layers or ``settings.setup_soil``)."""
+    """The pile and soil with the shaft set up by a pause.
+
+    ``ps`` (embedded to ``tip``, its capacities set) with the shaft set up by a pause of
+    ``duration`` at ``pause_depth`` and remoulded by ``penetration`` since the restart
+    (:func:`shaft_setup_factors`, the soil types of the SRD's layers or
+    ``settings.setup_soil``).
+
+    Parameters
+    ----------
+    ps : PileSoil
+        The pile and soil, embedded to ``tip`` with its capacities set.
+    srd : SrdSource
+        The SRD source (its soil layers).
+    tip : float
+        Tip depth below the mudline [m].
+    settings : InstallSettings
+        The ``[installation]`` settings.
+    duration : float
+        The pause [s].
+    pause_depth : float
+        Tip depth at the pause [m].
+    penetration : float
+        The penetration since the restart [m].
+
+    Returns
+    -------
+    pile_soil : PileSoil
+        The pile and soil with the shaft set up.
+    shaft : float
+        Total shaft resistance [N].
+    factor : float
+        Largest set-up factor [-].
+    """
     middles = segment_middles(ps.pile, tip)
     factors = shaft_setup_factors(settings, duration, middles, pause_depth, penetration,
                                   segment_soil_types(srd, middles))
@@ -135,7 +229,23 @@ def setup_pile_soil(ps, srd, tip: float, settings: InstallSettings, duration: fl
 
 
 def load_install_settings(table: Table | None) -> InstallSettings:
-    """Read and validate ``[installation]`` (absent: the defaults)."""
+    """Read and validate ``[installation]`` (absent: the defaults).
+
+    Parameters
+    ----------
+    table : Table or None
+        The ``[installation]`` table.
+
+    Returns
+    -------
+    InstallSettings
+        The settings.
+
+    Raises
+    ------
+    InputError
+        If a key breaks its rule.
+    """
 
     if table is None:
         return InstallSettings()

@@ -224,9 +224,20 @@ FILES = {"system": SYSTEM, "anvil": ANVIL}
 
 
 def documented(kind: str, dotted_key: str) -> bool:
-    """Whether ``dotted_key`` (array indices dropped, e.g. ``anvilwave.pile.sections.length``) of a
-    file
-    of ``kind`` ("system", "anvil") is documented (a ``*`` matches one part)."""
+    """Whether a key of a file of ``kind`` is documented (a ``*`` matches one part).
+
+    Parameters
+    ----------
+    kind : {"system", "anvil"}
+        The file kind.
+    dotted_key : str
+        The key, array indices dropped, e.g. ``pile.sections.length``.
+
+    Returns
+    -------
+    bool
+        True if the key is documented or is a table holding documented keys.
+    """
     parts = dotted_key.split(".")
     for key in FILES[kind]:
         if key.startswith(dotted_key + "."):  # a table
@@ -240,7 +251,18 @@ def documented(kind: str, dotted_key: str) -> bool:
 
 
 def describe(kind: str = "system") -> str:
-    """The keys of a file kind as a plain-text table."""
+    """The keys of a file kind as a plain-text table.
+
+    Parameters
+    ----------
+    kind : str, default "system"
+        The file kind (a key of :data:`FILES`).
+
+    Returns
+    -------
+    str
+        One row per key: key, unit, default and meaning.
+    """
     rows = [f"{'key':44s} {'unit':12s} {'default':16s} meaning"]
     for key, (unit, default, meaning) in FILES[kind].items():
         rows.append(f"{key:44s} {unit:12s} {str(default):16s} {meaning}")

@@ -66,7 +66,35 @@ RAM_MODELS = ("rod", "modal")
 
 @dataclass(frozen=True)
 class AnvilSettings:
-    """How the anvil unit is modelled (see the module docstring)."""
+    """How the anvil unit is modelled (see the module docstring).
+
+    Parameters
+    ----------
+    model : {"rom", "lumped", "classic", "none"}
+        The anvil model.
+    spec : AnvilSpec or None, default None
+        The anvil geometry of the anvil file (rom, lumped).
+    fmax : float or None, default None
+        Frequency content of the ROM [Hz]; default the anvil file's.
+    damping_ratio : float or None, default None
+        Modal damping ratio [-]; default the anvil file's.
+    static_correction : bool, default True
+        Residual flexibility of the truncated modes.
+    mass : float or None, default None
+        Lumped anvil mass [kg]; default the FE mass.
+    ram_contact_stiffness : float or None, default None
+        Ram contact spring [N/m]; default the ram's toe half segment.
+    pile_contact_stiffness : float or None, default None
+        Pile contact spring [N/m]; default the pile's top half segment.
+    ram_contact_damping : float, default 0.0
+        Dashpot parallel to the ram contact [N s/m].
+    pile_contact_damping : float, default 0.0
+        Dashpot parallel to the pile contact [N s/m].
+    classic : DrivingSystem or None, default None
+        The classic driving system (model "classic").
+    pile_head : {"rod", "tube"}
+        "rod" (the 1D pile's flat head) or "tube" (the rings on an FE tube head).
+    """
 
     model: str
     spec: AnvilSpec | None = None
@@ -86,15 +114,34 @@ class AnvilSettings:
 class SystemConfig:
     """A validated system file.
 
-    duration : simulated time of one blow [s].
-    time_step : master step [s], None for automatic.
-    output_interval : spacing of the recorded samples [s], None for every step.
-    gravity : [m/s^2].
-    blows : number of consecutive blows.
-    impact_velocity : ram velocity at first contact [m/s].
-    drive : the ``[driveability]`` settings (:class:`anvilwave.analyses.drive.DriveSettings`).
-    srd : the ``[srd]`` source of a drive analysis (:class:`anvilwave.analyses.drive.SrdSource`).
-    install : the ``[installation]`` settings (:class:`anvilwave.analyses.install.InstallSettings`).
+    Parameters
+    ----------
+    source : str
+        The system file, for messages.
+    duration : float
+        Simulated time of one blow [s].
+    time_step : float or None
+        Master step [s], None for automatic.
+    output_interval : float or None
+        Spacing of the recorded samples [s], None for every step.
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    blows : int
+        Number of consecutive blows [-].
+    hammer : Hammer
+        The hammer (:mod:`anvilwave.hammer.database`).
+    impact_velocity : float
+        Ram velocity at first contact [m/s].
+    anvil : AnvilSettings
+        How the anvil is modelled.
+    pile_soil : PileSoil
+        The pile and its soil.
+    drive : DriveSettings, optional
+        The ``[driveability]`` settings (:class:`anvilwave.config.drive.DriveSettings`).
+    srd : SrdSource, optional
+        The ``[srd]`` source of a drive analysis (:class:`anvilwave.config.drive.SrdSource`).
+    install : InstallSettings, optional
+        The ``[installation]`` settings (:class:`anvilwave.config.install.InstallSettings`).
     """
 
     source: str
@@ -113,20 +160,54 @@ class SystemConfig:
 
     @property
     def blow_energy(self) -> float:
-        """Blow energy of the system's impact velocity [J]: m v^2 / (2 efficiency) (the
-        kinetic energy where the hammer has no efficiency)."""
+        """Blow energy of the system's impact velocity [J].
+
+        m v^2 / (2 efficiency) (the kinetic energy where the hammer has no efficiency).
+        """
         kinetic = 0.5 * float(np.sum(self.hammer.ram.mass)) * self.impact_velocity**2
         eff = self.hammer.efficiency
         return kinetic / eff if eff == eff and eff > 0 else kinetic
 
     def with_energy(self, energy: float) -> SystemConfig:
-        """The same system at another blow energy [J] (the hammer's efficiency applies)."""
+        """The same system at another blow energy (the hammer's efficiency applies).
+
+        Parameters
+        ----------
+        energy : float
+            Blow energy [J].
+
+        Returns
+        -------
+        SystemConfig
+            The system at that energy.
+
+        Raises
+        ------
+        InputError
+            If ``energy`` is not positive.
+        """
         if not energy > 0.0:
             raise InputError(self.source, "hammer.energy", f"must be positive, got {energy!r}")
         return replace(self, impact_velocity=self.hammer.impact_velocity_at(energy))
 
     def with_anvil_model(self, model: str) -> SystemConfig:
-        """The same system with another anvil model ("rom", "lumped", "classic")."""
+        """The same system with another anvil model.
+
+        Parameters
+        ----------
+        model : {"rom", "lumped", "classic", "none"}
+            The anvil model.
+
+        Returns
+        -------
+        SystemConfig
+            The system with that anvil model.
+
+        Raises
+        ------
+        InputError
+            If the model needs an anvil file or a classic driving system the system lacks.
+        """
         if model == self.anvil.model:
             return self
         if model in ("rom", "lumped") and self.anvil.spec is None:
@@ -139,7 +220,23 @@ class SystemConfig:
 
 
 def load_system(path: str | Path) -> SystemConfig:
-    """Read and validate a system file."""
+    """Read and validate a system file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The system file (TOML, module docstring).
+
+    Returns
+    -------
+    SystemConfig
+        The validated system.
+
+    Raises
+    ------
+    InputError
+        If a key breaks its rule (the message names the file, the key and the rule).
+    """
     root = Table.from_file(path)
     source = str(path)
 
@@ -196,8 +293,23 @@ def load_system(path: str | Path) -> SystemConfig:
 
 
 def depth_limit(pile_soil, srd) -> tuple[float, str]:
-    """The deepest tip depth a drive can analyse [m] and what sets it: the pile's length,
-    or the bottom of the ``[srd]`` soil profile if shallower."""
+    """The deepest tip depth a drive can analyse and what sets it.
+
+    Parameters
+    ----------
+    pile_soil : PileSoil
+        The pile and its soil.
+    srd : SrdSource or None
+        The ``[srd]`` source.
+
+    Returns
+    -------
+    limit : float
+        The deepest tip depth [m]: the pile's length, or the bottom of the ``[srd]`` soil
+        profile if shallower.
+    what : str
+        What sets it, for messages.
+    """
     limit, what = float(pile_soil.pile.length), "the pile's length"
     profile = getattr(srd, "profile", None)
     if profile is not None and getattr(profile, "layers", None) and profile.bottom < limit:
@@ -206,9 +318,31 @@ def depth_limit(pile_soil, srd) -> tuple[float, str]:
 
 
 def check_depths(source: str, pile_soil, srd, drive, install, hammer) -> None:
-    """Refuse the depths of ``[driveability]`` and ``[installation]`` that lie below the pile
-    or the soil profile, beyond the drive, and blow energies above the hammer's rated energy:
-    one :class:`InputError` naming the key, the row and the value."""
+    """Refuse depths below the pile or the soil profile and energies above the rated one.
+
+    The depths of ``[driveability]`` and ``[installation]`` that lie below the pile or the soil
+    profile, beyond the drive, and blow energies above the hammer's rated energy.
+
+    Parameters
+    ----------
+    source : str
+        The system file, for messages.
+    pile_soil : PileSoil
+        The pile and its soil.
+    srd : SrdSource or None
+        The ``[srd]`` source.
+    drive : DriveSettings or None
+        The ``[driveability]`` settings.
+    install : InstallSettings or None
+        The ``[installation]`` settings.
+    hammer : Hammer
+        The hammer.
+
+    Raises
+    ------
+    InputError
+        One error naming the key, the row and the value.
+    """
     limit, what = depth_limit(pile_soil, srd)
     length = float(pile_soil.pile.length)
 

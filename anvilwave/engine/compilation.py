@@ -28,8 +28,20 @@ def _main_kernels():
 
 
 def uncached(dispatchers=None) -> list[str]:
-    """Names of the numba kernels (default: the engine's, the FEA's and the FMI master's loop)
-    that have no on-disk cache index yet, i.e. will be compiled on their first call."""
+    """Names of the numba kernels that will be compiled on their first call.
+
+    Those with no on-disk cache index yet.
+
+    Parameters
+    ----------
+    dispatchers : iterable of numba dispatchers, optional
+        The kernels (default: the engine's, the FEA's and the FMI master's loop).
+
+    Returns
+    -------
+    list of str
+        The kernels' names.
+    """
     missing = []
     for fn in dispatchers if dispatchers is not None else _main_kernels():
         cache = getattr(fn, "_cache", None)
@@ -40,8 +52,20 @@ def uncached(dispatchers=None) -> list[str]:
 
 
 def announce_compilation(dispatchers=None, stream=None) -> bool:
-    """Print ``compiling kernels ...`` once per process if a kernel will be compiled; returns
-    whether it did."""
+    """Print ``compiling kernels ...`` once per process if a kernel will be compiled.
+
+    Parameters
+    ----------
+    dispatchers : iterable of numba dispatchers, optional
+        The kernels (default: as :func:`uncached`).
+    stream : file-like, optional
+        Where to print (default: ``sys.stderr``).
+
+    Returns
+    -------
+    bool
+        Whether it printed.
+    """
     global _announced
     if _announced or not uncached(dispatchers):
         return False

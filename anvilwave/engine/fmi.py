@@ -33,14 +33,27 @@ ROLES = {"ram": "Ram", "pile": "PileSoil"}
 class FmiBlowResult:
     """One blow of the FMI engine, in the shape of :class:`anvilwave.engine.direct.BlowResult`.
 
-    columns : ``{name: array}`` with the names of :data:`anvilwave.engine.direct.COLUMNS` (SI
-    units).
-    time_step : master step h [s]; n_steps : steps of the blow; wall_time : wall time of the
-    stepping loop alone [s]; input_energy : kinetic energy of the ram at impact [J].
-    pile_max_compression_stress, pile_max_tension_stress : the PileSoil unit's running stress
-    extremes [Pa] at the end of the run (the pile unit lives through all blows: for one blow
-    they are the blow's, as the engine reports them; with several, only the last blow carries
-    them, over the whole run).
+    Parameters
+    ----------
+    columns : dict
+        ``{name: array}`` with the names of :data:`anvilwave.engine.direct.COLUMNS` (SI units).
+    time_step : float
+        Master step h [s].
+    n_steps : int
+        Steps of the blow [-].
+    wall_time : float
+        Wall time of the stepping loop alone [s].
+    input_energy : float
+        Kinetic energy of the ram at impact [J].
+    messages : dict, optional
+        ``{unit role: [message, ...]}``, the messages the FMUs logged.
+    pile_max_compression_stress : float or None, default None
+        The PileSoil unit's running compression stress extreme [Pa] at the end of the run
+        (the pile unit lives through all blows: for one blow it is the blow's, as the engine
+        reports it; with several, only the last blow carries it, over the whole run).
+    pile_max_tension_stress : float or None, default None
+        The PileSoil unit's running tension stress extreme [Pa], as
+        ``pile_max_compression_stress``.
     """
 
     columns: dict[str, np.ndarray]
@@ -69,6 +82,16 @@ def engine_columns(record: BlowRecord) -> dict[str, np.ndarray]:
     Anvil displacements are taken relative to the pile head's position at the start of the
     blow (where the anvil came to rest), as the engine reports them; a column the FMUs do not
     provide is NaN.
+
+    Parameters
+    ----------
+    record : BlowRecord
+        A blow recorded by the FMU master.
+
+    Returns
+    -------
+    dict
+        ``{name: numpy.ndarray}`` in SI units.
     """
 
     head = record.pile_head_start
@@ -98,16 +121,37 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
             native_anvil: bool | None = None) -> list[FmiBlowResult]:
     """Simulate ``cfg.blows`` blows with the FMUs of the system; one result per blow.
 
-    out_dir_for_fmus : folder the FMUs and ``system.ssp`` are built into.
-    anvil_model : precomputed modal data (``ModalData`` or ``.npz`` path) of the anvil.
-    duration [s], record_interval [s] : as :meth:`anvilwave.engine.direct.Engine.run` (default:
-        the file's).
-    progress : progress bar (default: on for runs of 100000 steps or more).
-    fmus : the dict of an earlier :func:`anvilwave.engine.fmus.build_system_fmus` (skips the build).
-    parameters : ``{"ram" | "anvil" | "pile": {name: value}}`` FMU parameters to change.
-    time_step : master step h [s] (default: the engine's, ``build_engine(cfg).time_step``).
-    native_anvil : the anvil FMUs to build (``build_system_fmus``): None (default) native
-        when a C compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    out_dir_for_fmus : str or pathlib.Path
+        Folder the FMUs and ``system.ssp`` are built into.
+    anvil_model : ModalData or path, optional
+        Precomputed modal data (``ModalData`` or ``.npz`` path) of the anvil.
+    duration : float or None, default None
+        Simulated time of a blow [s], as :meth:`anvilwave.engine.direct.Engine.run`
+        (default: the file's).
+    record_interval : float or None, default None
+        Spacing of the recorded samples [s], as :meth:`anvilwave.engine.direct.Engine.run`
+        (default: the file's).
+    progress : bool or None, default None
+        Progress bar (default: on for runs of 100000 steps or more).
+    fmus : dict or None, default None
+        The dict of an earlier :func:`anvilwave.engine.fmus.build_system_fmus` (skips the
+        build).
+    parameters : dict or None, default None
+        ``{"ram" | "anvil" | "pile": {name: value}}`` FMU parameters to change.
+    time_step : float or None, default None
+        Master step h [s] (default: the engine's, ``build_engine(cfg).time_step``).
+    native_anvil : bool or None, default None
+        The anvil FMUs to build (``build_system_fmus``): None (default) native when a C
+        compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
+
+    Returns
+    -------
+    list of FmiBlowResult
+        One result per blow.
     """
 
     if fmus is None:

@@ -63,9 +63,28 @@ from anvilwave.inputs import InputError
 
 
 def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
-    """The modal data of the system's anvil: ``anvil_model`` (a ModalData or a modal-data
-    ``.npz`` path) or that of the anvil file, from the modal-data cache as the engine takes it
-    (:func:`anvilwave.config.cache.cached_modal_data`)."""
+    """The modal data of the system's anvil.
+
+    ``anvil_model`` (a ModalData or a modal-data ``.npz`` path) or that of the anvil file, from
+    the modal-data cache as the engine takes it (:func:`anvilwave.config.cache.cached_modal_data`).
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    anvil_model : ModalData or path, optional
+        Precomputed modal data (None: from the anvil file).
+
+    Returns
+    -------
+    ModalData
+        The anvil's modal data.
+
+    Raises
+    ------
+    InputError
+        If the system has no anvil geometry.
+    """
 
     if isinstance(anvil_model, ModalData):
         return anvil_model
@@ -82,7 +101,18 @@ def load_anvil_modal_data(cfg: SystemConfig, anvil_model=None):
 def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
     """The FMU parameter values of a system (per FMU type), as the engine sets its units.
 
-    Also returns, under ``"_rest"``, the anvil top face at rest [m] per anvil FMU.
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system.
+    modal : ModalData
+        The anvil's modal data.
+
+    Returns
+    -------
+    dict
+        ``{fmu type: {name: value}}``; also, under ``"_rest"``, the anvil top face at rest [m]
+        per anvil FMU.
     """
 
     s = cfg.anvil
@@ -124,31 +154,50 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                       native_anvil: bool | None = True,
                       native_units: bool | None = None,
                       fmi_version: int = 2) -> dict[str, Any]:
-    """Write ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and
-    ``system.ssp`` for a system into ``out_dir`` (module docstring).
+    """Write the FMUs and ``system.ssp`` of a system into ``out_dir`` (module docstring).
 
-    anvil_model : precomputed modal data of the anvil (``ModalData`` or a ``.npz`` path);
-        default: computed from the system's anvil file (as
-        :func:`anvilwave.engine.direct.build_engine`).
-    time_step : master step h [s] (default: the engine's); the SSP's default experiment
-        starts at -step/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
-    native_anvil : True: native anvils (InputError without a C compiler); False: the
-        pythonfmu anvils; None: native when a C compiler is found, else pythonfmu with a
-        warning.
-    native_units : Ram and PileSoil (module docstring): None native where supported, else
-        pythonfmu with a warning; True native (InputError when not supported); False
-        pythonfmu.
-    fmi_version : 3 builds the native Ram and PileSoil as FMI 3.0 co-simulation units (the same
-        binaries and numbers; InputError when they cannot be native); the anvils stay FMI 2.0.
+    ``Ram.fmu``, ``Anvil.fmu``, ``AnvilLumped.fmu``, ``PileSoil.fmu`` and ``system.ssp``.
 
-    Returns ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path,
-    "ssp": path, "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU),
-    "anvil_implementation", "ram_implementation", "pile_soil_implementation": "native" or
-    "pythonfmu",
-    "parameters": {fmu type: {name: value}}, "time_step": h [s], "ssp_step": [s],
-    "modal_data": ModalData,
-    "anvil_rest": {anvil FMU type: (top face at rest [m], weight [N])}}``.
-    The anvil model of the system must be "rom" or "lumped" (InputError otherwise).
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system; its anvil model must be "rom" or "lumped".
+    out_dir : str or pathlib.Path
+        The folder written to.
+    anvil_model : ModalData or path, optional
+        Precomputed modal data of the anvil (``ModalData`` or a ``.npz`` path); default:
+        computed from the system's anvil file (as :func:`anvilwave.engine.direct.build_engine`).
+    time_step : float or None, default None
+        Master step h [s] (default: the engine's); the SSP's default experiment starts at
+        -step/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+    ssp : bool, default True
+        Write ``system.ssp``.
+    native_anvil : bool or None, default True
+        True: native anvils (InputError without a C compiler); False: the pythonfmu anvils;
+        None: native when a C compiler is found, else pythonfmu with a warning.
+    native_units : bool or None, default None
+        Ram and PileSoil (module docstring): None native where supported, else pythonfmu
+        with a warning; True native (InputError when not supported); False pythonfmu.
+    fmi_version : int, default 2
+        3 builds the native Ram and PileSoil as FMI 3.0 co-simulation units (the same binaries
+        and numbers; InputError when they cannot be native); the anvils stay FMI 2.0.
+
+    Returns
+    -------
+    dict
+        ``{"Ram": path, "Anvil": path, "AnvilLumped": path, "PileSoil": path, "ssp": path,
+        "anvil": "Anvil" or "AnvilLumped" (the system's anvil FMU), "anvil_implementation",
+        "ram_implementation", "pile_soil_implementation": "native" or "pythonfmu",
+        "parameters": {fmu type: {name: value}}, "time_step": h [s], "ssp_step": [s],
+        "modal_data": ModalData, "anvil_rest": {anvil FMU type: (top face at rest [m],
+        weight [N])}}``.
+
+    Raises
+    ------
+    InputError
+        If the anvil model is not "rom" or "lumped", the system needs the in-process engine
+        (a tube pile head, a ram face in annuli), ``fmi_version`` is not 2 or 3 (or 3 without
+        native units), or the native units asked for cannot be built.
     """
 
     if cfg.anvil.model not in ANVIL_FMU:

@@ -97,7 +97,19 @@ _BETA_ROUND_OFF = 1e-9  # beta closer to 1 than this is a uniform pile (floating
 def pile_impedance(elastic_modulus, area, wave_speed):
     """Pile impedance Z = E A / c [N s/m].
 
-    elastic_modulus : E [Pa]. area : A, steel cross-section [m^2]. wave_speed : c [m/s].
+    Parameters
+    ----------
+    elastic_modulus : float or array_like
+        E [Pa].
+    area : float or array_like
+        A, steel cross-section [m^2].
+    wave_speed : float or array_like
+        c [m/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Impedance Z [N s/m].
     """
     return elastic_modulus * area / wave_speed
 
@@ -105,8 +117,19 @@ def pile_impedance(elastic_modulus, area, wave_speed):
 def wave_down(force, velocity, impedance):
     """Wave travelling down WD = (F + Z v)/2 [N] (Rausche, Goble & Likins 1985).
 
-    force : F [N], compression positive. velocity : v [m/s], downward positive.
-    impedance : Z [N s/m].
+    Parameters
+    ----------
+    force : float or array_like
+        F [N], compression positive.
+    velocity : float or array_like
+        v [m/s], downward positive.
+    impedance : float
+        Z [N s/m].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Wave down WD [N].
     """
     return 0.5 * (np.asarray(force) + impedance * np.asarray(velocity))
 
@@ -114,7 +137,19 @@ def wave_down(force, velocity, impedance):
 def wave_up(force, velocity, impedance):
     """Wave travelling up WU = (F - Z v)/2 [N] (Rausche, Goble & Likins 1985).
 
-    Parameters as :func:`wave_down`.
+    Parameters
+    ----------
+    force : float or array_like
+        F [N], compression positive.
+    velocity : float or array_like
+        v [m/s], downward positive.
+    impedance : float
+        Z [N s/m].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Wave up WU [N].
     """
     return 0.5 * (np.asarray(force) - impedance * np.asarray(velocity))
 
@@ -122,18 +157,46 @@ def wave_up(force, velocity, impedance):
 def rausche_goble_likins_1985_total_resistance(wave_down_t1, wave_up_t2):
     """Case method total resistance RTL = WD(t1) + WU(t2) [N].
 
-    wave_down_t1 : WD at t1 [N]. wave_up_t2 : WU at t2 = t1 + 2L/c [N].
+    Parameters
+    ----------
+    wave_down_t1 : float or array_like
+        WD at t1 [N].
+    wave_up_t2 : float or array_like
+        WU at t2 = t1 + 2L/c [N].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Total resistance RTL [N].
     """
     return wave_down_t1 + wave_up_t2
 
 
 def rausche_goble_likins_1985_static_resistance(force_t1, velocity_t1, force_t2, velocity_t2,
                                                 impedance, case_damping):
-    """Case method static resistance RSP = (1 - Jc)/2 (F1 + Z v1) + (1 + Jc)/2 (F2 - Z v2) [N].
+    """Case method static resistance RSP [N].
 
-    force_t1, force_t2 : F at t1 and t2 = t1 + 2L/c [N].
-    velocity_t1, velocity_t2 : v at t1 and t2 [m/s].
-    impedance : Z [N s/m]. case_damping : Jc [-].
+    RSP = (1 - Jc)/2 (F1 + Z v1) + (1 + Jc)/2 (F2 - Z v2).
+
+    Parameters
+    ----------
+    force_t1 : float or array_like
+        F at t1 [N].
+    velocity_t1 : float or array_like
+        v at t1 [m/s].
+    force_t2 : float or array_like
+        F at t2 = t1 + 2L/c [N].
+    velocity_t2 : float or array_like
+        v at t2 [m/s].
+    impedance : float
+        Z [N s/m].
+    case_damping : float
+        Jc [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Static resistance RSP [N].
     """
     return (0.5 * (1.0 - case_damping) * (force_t1 + impedance * velocity_t1)
             + 0.5 * (1.0 + case_damping) * (force_t2 - impedance * velocity_t2))
@@ -144,9 +207,19 @@ def rausche_goble_1979_beta(wave_down_t1, wave_up_tr, wave_up_tx):
 
     alpha = (WU(tr) - WU(tx)) / (WD(t1) - WU(tr)), beta = (1 - alpha)/(1 + alpha).
 
-    wave_down_t1 : WD at t1 [N].
-    wave_up_tr : WU at tr = t0 + 2x/c, the reflection of the impact start [N].
-    wave_up_tx : WU at tx = t1 + 2x/c, the reflection of the impact peak [N].
+    Parameters
+    ----------
+    wave_down_t1 : float or array_like
+        WD at t1 [N].
+    wave_up_tr : float or array_like
+        WU at tr = t0 + 2x/c, the reflection of the impact start [N].
+    wave_up_tx : float or array_like
+        WU at tx = t1 + 2x/c, the reflection of the impact peak [N].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Impedance ratio beta [-].
     """
     alpha = (wave_up_tr - wave_up_tx) / (wave_down_t1 - wave_up_tr)
     return (1.0 - alpha) / (1.0 + alpha)
@@ -155,7 +228,19 @@ def rausche_goble_1979_beta(wave_down_t1, wave_up_tr, wave_up_tx):
 def transferred_energy(time, force, velocity):
     """Running integral of F v dt from the record start (trapezoidal rule) [J].
 
-    time : t [s], increasing. force : F [N]. velocity : v [m/s].
+    Parameters
+    ----------
+    time : array_like
+        t [s], increasing.
+    force : array_like
+        F [N].
+    velocity : array_like
+        v [m/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Transferred energy at each sample [J], 0 at the first.
     """
     t = np.asarray(time, dtype=float)
     p = np.asarray(force, dtype=float) * np.asarray(velocity, dtype=float)
@@ -165,8 +250,22 @@ def transferred_energy(time, force, velocity):
 def first_peak_index(signal, peak_prominence: float = 0.1) -> int:
     """Index of the first peak of a signal (see the module notes on t1).
 
-    signal : samples [any unit]. peak_prominence : smallest prominence of the peak, as a
-    fraction of the signal's maximum [-].
+    Parameters
+    ----------
+    signal : array_like
+        Samples [any unit].
+    peak_prominence : float, default 0.1
+        Smallest prominence of the peak, as a fraction of the signal's maximum [-].
+
+    Returns
+    -------
+    int
+        Index of the first peak.
+
+    Raises
+    ------
+    ValueError
+        If the signal never becomes positive.
     """
     s = np.asarray(signal, dtype=float)
     top = float(np.max(s))
@@ -183,10 +282,27 @@ def max_tension_along_pile(time, wave_down_gauge, wave_up_gauge, wave_speed: flo
                            length: float) -> tuple[float, float, float]:
     """Largest tension force below the gauges from WD and WU superposed (module notes) [N].
 
-    time : t [s], increasing. wave_down_gauge, wave_up_gauge : WD, WU at the gauges [N].
-    wave_speed : c [m/s]. length : L below the gauges [m].
+    Parameters
+    ----------
+    time : array_like
+        t [s], increasing.
+    wave_down_gauge : array_like
+        WD at the gauges [N].
+    wave_up_gauge : array_like
+        WU at the gauges [N].
+    wave_speed : float
+        c [m/s].
+    length : float
+        L below the gauges [m].
 
-    Returns (tension [N] (>= 0), its depth below the gauges [m], its time [s]).
+    Returns
+    -------
+    tension : float
+        Largest tension force [N] (>= 0).
+    depth : float
+        Its depth below the gauges [m].
+    time : float
+        Its time [s].
     """
     t = np.asarray(time, dtype=float)
     wd = np.asarray(wave_down_gauge, dtype=float)
@@ -212,14 +328,38 @@ def max_tension_along_pile(time, wave_down_gauge, wave_up_gauge, wave_speed: flo
 class CaseMethodResult:
     """PDA quantities of one blow record.
 
-    rtl : total resistance RTL [N]. rsp : static resistance RSP(Jc) at t1 [N].
-    rmx : largest RSP(Jc) as t1 moves later [N]. emx : largest transferred energy EMX [J].
-    fmx : largest force at the gauges [N]. csx : FMX / A [Pa].
-    tsx : largest tension stress below the gauges [Pa] (>= 0).
-    bta : integrity factor beta [-] (<= 1). bta_depth : depth of the BTA minimum below the
-    gauges [m] (NaN when BTA = 1). t1 : [s]. t2 : t1 + 2L/c [s]. rmx_t1 : t1 of RMX [s].
-    tsx_depth : depth of the largest tension below the gauges [m].
-    case_damping : Jc [-]. impedance : Z [N s/m].
+    Parameters
+    ----------
+    rtl : float
+        Total resistance RTL [N].
+    rsp : float
+        Static resistance RSP(Jc) at t1 [N].
+    rmx : float
+        Largest RSP(Jc) as t1 moves later [N].
+    emx : float
+        Largest transferred energy EMX [J].
+    fmx : float
+        Largest force at the gauges [N].
+    csx : float
+        FMX / A [Pa].
+    tsx : float
+        Largest tension stress below the gauges [Pa] (>= 0).
+    bta : float
+        Integrity factor beta [-] (<= 1).
+    bta_depth : float
+        Depth of the BTA minimum below the gauges [m] (NaN when BTA = 1).
+    t1 : float
+        Time t1 [s].
+    t2 : float
+        t1 + 2L/c [s].
+    rmx_t1 : float
+        t1 of RMX [s].
+    tsx_depth : float
+        Depth of the largest tension below the gauges [m].
+    case_damping : float
+        Jc [-].
+    impedance : float
+        Z [N s/m].
     """
 
     rtl: float
@@ -239,13 +379,25 @@ class CaseMethodResult:
     impedance: float
 
     def summary(self) -> dict[str, float]:
-        """The PDA summary, named ``NAME [unit]`` (JSON-ready)."""
+        """The PDA summary, named ``NAME [unit]`` (JSON-ready).
+
+        Returns
+        -------
+        dict
+            ``{NAME [unit]: value}``.
+        """
         return {"RTL [N]": self.rtl, "RSP [N]": self.rsp, "RMX [N]": self.rmx,
                 "EMX [J]": self.emx, "FMX [N]": self.fmx, "CSX [Pa]": self.csx,
                 "TSX [Pa]": self.tsx, "BTA [-]": self.bta}
 
     def details(self) -> dict[str, float]:
-        """Times, depths and parameters behind the summary, named ``name [unit]``."""
+        """Times, depths and parameters behind the summary, named ``name [unit]``.
+
+        Returns
+        -------
+        dict
+            ``{name [unit]: value}``.
+        """
         return {"t1 [s]": self.t1, "t2 [s]": self.t2, "rmx_t1 [s]": self.rmx_t1,
                 "bta_depth [m]": self.bta_depth, "tsx_depth [m]": self.tsx_depth,
                 "case_damping [-]": self.case_damping, "impedance [N s/m]": self.impedance}
@@ -258,20 +410,48 @@ def case_method(time, force, velocity, *, area: float, elastic_modulus: float,
                 bta_cutoff: float | None = BTA_CUTOFF) -> CaseMethodResult:
     """Case method and PDA summary of a gauge record (see the module notes for each quantity).
 
-    time : t [s], strictly increasing (uniform sampling not required).
-    force : gauge force F [N], compression positive.
-    velocity : gauge velocity v [m/s], downward positive.
-    area : steel cross-section A at the gauges [m^2].
-    elastic_modulus : E [Pa].
-    wave_speed : c [m/s].
-    length_below_gauges : L [m].
-    case_damping : Jc [-] (>= 0).
-    t1_signal : ``"velocity"`` (first peak of Z v) or ``"force"`` (first peak of F).
-    rmx_window : how far t1 is moved later for RMX [s] (default 2L/c).
-    peak_prominence : see :func:`first_peak_index` [-].
-    onset_fraction : impact start for BTA, fraction of WD(t1) [-].
-    bta_cutoff : cut-off of the wave up's low-pass filter for BTA [Hz] (None: unfiltered,
-        the formula on the samples).
+    Parameters
+    ----------
+    time : array_like
+        t [s], strictly increasing (uniform sampling not required).
+    force : array_like
+        Gauge force F [N], compression positive.
+    velocity : array_like
+        Gauge velocity v [m/s], downward positive.
+    area : float
+        Steel cross-section A at the gauges [m^2].
+    elastic_modulus : float
+        E [Pa].
+    wave_speed : float
+        c [m/s].
+    length_below_gauges : float
+        L [m].
+    case_damping : float
+        Jc [-] (>= 0).
+    t1_signal : {"velocity", "force"}
+        ``"velocity"`` (first peak of Z v) or ``"force"`` (first peak of F).
+    rmx_window : float or None, default None
+        How far t1 is moved later for RMX [s] (default 2L/c).
+    peak_prominence : float, default 0.1
+        See :func:`first_peak_index` [-].
+    onset_fraction : float, default 0.0
+        Impact start for BTA, fraction of WD(t1) [-].
+    bta_cutoff : float or None, default BTA_CUTOFF
+        Cut-off of the wave up's low-pass filter for BTA [Hz] (None: unfiltered, the
+        formula on the samples).
+
+    Returns
+    -------
+    CaseMethodResult
+        The PDA quantities of the record.
+
+    Raises
+    ------
+    ValueError
+        If the arrays are not 1-D of one length (>= 3), contain non-finite values, time
+        does not increase strictly, a pile property is not positive, ``case_damping`` or
+        ``rmx_window`` is negative, ``t1_signal`` is unknown, the signal never becomes positive or
+        the record ends before t1 + 2L/c.
     """
     t = np.asarray(time, dtype=float)
     f = np.asarray(force, dtype=float)
@@ -328,10 +508,27 @@ def case_method(time, force, velocity, *, area: float, elastic_modulus: float,
 
 
 def bta_lowpass(time, signal, cutoff: float | None = BTA_CUTOFF) -> np.ndarray:
-    """``signal`` low-passed for BTA: a Gaussian filter (no overshoot, so a step reflection
-    keeps its height; zero phase) whose gain is -3 dB at ``cutoff`` [Hz] (standard deviation
-    sqrt(ln 2) / (2 pi cutoff) [s]), on the record's mean sample spacing; unchanged with
-    ``cutoff`` None or when the filter is narrower than a sample."""
+    """``signal`` low-passed for BTA by a Gaussian filter.
+
+    The Gaussian filter has no overshoot, so a step reflection keeps its height, and zero phase;
+    its gain is -3 dB at ``cutoff`` (standard deviation sqrt(ln 2) / (2 pi cutoff) [s]), on the
+    record's mean sample spacing. The signal is unchanged with ``cutoff`` None or when the filter
+    is narrower than a sample.
+
+    Parameters
+    ----------
+    time : array_like
+        t [s], increasing.
+    signal : array_like
+        Samples [any unit].
+    cutoff : float or None, default BTA_CUTOFF
+        -3 dB frequency [Hz] (None: no filtering).
+
+    Returns
+    -------
+    numpy.ndarray
+        The filtered signal [unit of ``signal``].
+    """
     s = np.asarray(signal, dtype=float)
     if cutoff is None:
         return s

@@ -80,25 +80,52 @@ def read_cpt_csv(path, *, qc_unit: str | None = None, fs_unit: str | None = None
                  duplicate_depths: str = "error", push_column: str | None = None,
                  skip_push_start: float = 0.0, negative_fs: str = "error",
                  rows_where: dict[str, str] | None = None) -> Cpt:
-    """Read a CPT from a CSV file (module docstring) into a
-    :class:`anvilwave.pile.soil.profile.Cpt`.
+    """Read a CPT from a CSV file (module docstring).
 
-    path : the CSV file.
-    qc_unit, fs_unit, u2_unit : pressure unit of each column ("Pa", "kPa", "MPa") when the
-        header does not state it (or to confirm it).
-    depth_unit : "m" or "cm".
-    columns : header names (without unit) for roles whose name is not recognised, e.g.
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+    qc_unit : {"Pa", "kPa", "MPa"} or None, default None
+        Pressure unit of the qc column when the header does not state it (or to confirm it).
+    fs_unit : {"Pa", "kPa", "MPa"} or None, default None
+        Pressure unit of the fs column, as ``qc_unit``.
+    u2_unit : {"Pa", "kPa", "MPa"} or None, default None
+        Pressure unit of the u2 column, as ``qc_unit``.
+    depth_unit : {"m", "cm"} or None, default None
+        Unit of the depth column.
+    columns : dict or None, default None
+        Header names (without unit) for roles whose name is not recognised, e.g.
         ``{"depth": "penetration"}``.
-    depth_reference : "mudline" (depth below the seabed) or "sea-level".
-    water_depth : water depth [m], required with ``depth_reference="sea-level"``.
-    missing : "error", "interpolate" or "drop" for empty / NaN values of qc, fs and u2.
-    duplicate_depths : "error" or "average" for readings at the same depth.
-    push_column : name of a column numbering the pushes of the cone.
-    skip_push_start : readings within this distance below the start of their push are
-        dropped [m] (needs ``push_column``).
-    negative_fs : "error" or "zero" (small negative sleeve friction from the zero drift of the
-        sensor set to 0).
-    rows_where : {column name: text}; only rows whose columns hold that text are read.
+    depth_reference : {"mudline", "sea-level"}
+        "mudline" (depth below the seabed) or "sea-level".
+    water_depth : float or None, default None
+        Water depth [m], required with ``depth_reference="sea-level"``.
+    missing : {"error", "interpolate", "drop"}
+        What to do with empty / NaN values of qc, fs and u2.
+    duplicate_depths : {"error", "average"}
+        What to do with readings at the same depth.
+    push_column : str or None, default None
+        Name of a column numbering the pushes of the cone.
+    skip_push_start : float, default 0.0
+        Readings within this distance below the start of their push are dropped [m] (needs
+        ``push_column``).
+    negative_fs : {"error", "zero"}
+        "zero" sets small negative sleeve friction (from the zero drift of the sensor) to 0.
+    rows_where : dict or None, default None
+        {column name: text}; only rows whose columns hold that text are read.
+
+    Returns
+    -------
+    Cpt
+        The CPT (:class:`anvilwave.pile.soil.profile.Cpt`), depths below the mudline [m],
+        pressures [Pa].
+
+    Raises
+    ------
+    InputError
+        If an option or the file breaks a rule (the message names the file and the column
+        or option).
     """
     path = Path(path)
     source = str(path)

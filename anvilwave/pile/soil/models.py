@@ -98,22 +98,38 @@ DEFAULT_TOE_POISSON_RATIO = 0.3
 class SoilSpec:
     """Soil along an embedded pile.
 
-    model : one of :data:`MODELS`.
-    penetration : embedded length below the mudline [m].
-    srd : unit resistances against depth below the mudline.
-    quake_shaft, quake_toe : quakes [m] (quake_toe unused by "lysmer-toe").
-    damping_shaft, damping_toe : Smith damping factors J [s/m] (damping_toe unused by
-        "lysmer-toe").
-    friction_perimeter : "outside+inside" or "outside"
-    (:func:`anvilwave.pile.soil.srd.shaft_perimeter`).
-    toe_area : "annulus" or "plugged" (:func:`anvilwave.pile.soil.srd.toe_area`).
-    toe_shear_modulus : soil shear modulus below the toe G [Pa] ("lysmer-toe").
-    toe_density : soil density below the toe [kg/m^3] ("lysmer-toe").
-    toe_poisson_ratio : soil Poisson's ratio below the toe [-] ("lysmer-toe").
-    capacities : optional (shaft per segment (N,) [N], toe [N]) given directly (an SRD
-        distribution computed elsewhere, e.g. per tip depth with friction fatigue); when set,
-        ``srd``, ``friction_perimeter`` and ``toe_area`` do not enter the capacities.
-    layers : optional :class:`SoilLayers`, quakes and dampings per layer (module docstring).
+    Parameters
+    ----------
+    model : str
+        One of :data:`MODELS`.
+    penetration : float
+        Embedded length below the mudline [m].
+    srd : SoilResistanceTable or None
+        Unit resistances against depth below the mudline.
+    quake_shaft : float, default DEFAULT_QUAKE
+        Shaft quake [m].
+    quake_toe : float, default DEFAULT_QUAKE
+        Toe quake [m] (unused by "lysmer-toe").
+    damping_shaft : float, default DEFAULT_DAMPING_SHAFT
+        Shaft Smith damping factor J [s/m].
+    damping_toe : float, default DEFAULT_DAMPING_TOE
+        Toe Smith damping factor J [s/m] (unused by "lysmer-toe").
+    friction_perimeter : {"outside+inside", "outside"}
+        See :func:`anvilwave.pile.soil.srd.shaft_perimeter`.
+    toe_area : {"annulus", "plugged"}
+        See :func:`anvilwave.pile.soil.srd.toe_area`.
+    toe_shear_modulus : float, default 0.0
+        Soil shear modulus below the toe G [Pa] ("lysmer-toe").
+    toe_density : float, default 0.0
+        Soil density below the toe [kg/m^3] ("lysmer-toe").
+    toe_poisson_ratio : float, default DEFAULT_TOE_POISSON_RATIO
+        Soil Poisson's ratio below the toe [-] ("lysmer-toe").
+    capacities : tuple or None, default None
+        (shaft per segment (N,) [N], toe [N]) given directly (an SRD distribution computed
+        elsewhere, e.g. per tip depth with friction fatigue); when set, ``srd``,
+        ``friction_perimeter`` and ``toe_area`` do not enter the capacities.
+    layers : SoilLayers or None, default None
+        Quakes and dampings per layer (module docstring).
     """
 
     model: str
@@ -173,8 +189,11 @@ LAYER_COLUMNS = ("top [m]", "bottom [m]", "quake_shaft [m]", "quake_toe [m]",
 class SoilLayers:
     """Quakes and Smith dampings per soil layer (module docstring).
 
-    rows : (n, 6) rows of :data:`LAYER_COLUMNS`, depths below the mudline, top < bottom,
-        sorted and not overlapping; quakes > 0, dampings >= 0.
+    Parameters
+    ----------
+    rows : numpy.ndarray
+        (n, 6) rows of :data:`LAYER_COLUMNS`, depths below the mudline, top < bottom, sorted
+        and not overlapping; quakes > 0, dampings >= 0.
     """
 
     rows: np.ndarray
@@ -187,7 +206,13 @@ class SoilLayers:
             raise ValueError(problem)
 
     def problem(self) -> str | None:
-        """Why the rows are not valid, or None."""
+        """Why the rows are not valid, or None.
+
+        Returns
+        -------
+        str or None
+            The problem, None when the rows are valid.
+        """
         r = self.rows
         if r.ndim != 2 or r.shape[1] != 6 or r.shape[0] < 1:
             return "needs rows [top, bottom, quake_shaft, quake_toe, damping_shaft, damping_toe]"
@@ -204,8 +229,24 @@ class SoilLayers:
         return None
 
     def values(self, depth, column: int, default: float, upper: bool = False) -> np.ndarray:
-        """Column ``column`` of the layer holding each ``depth`` [m]; ``default`` outside every
-        layer. ``upper``: a depth on a boundary belongs to the layer above it."""
+        """Column ``column`` of the layer holding each ``depth``; ``default`` outside every layer.
+
+        Parameters
+        ----------
+        depth : float or array_like
+            Depths below the mudline [m].
+        column : int
+            Index into :data:`LAYER_COLUMNS`.
+        default : float
+            Value outside every layer [unit of the column].
+        upper : bool, default False
+            A depth on a boundary belongs to the layer above it.
+
+        Returns
+        -------
+        numpy.ndarray
+            The values at the depths [unit of the column].
+        """
         z = np.atleast_1d(np.asarray(depth, dtype=float))
         out = np.full(z.shape, float(default))
         for top, bottom, *vals in self.rows:
@@ -215,8 +256,30 @@ class SoilLayers:
 
 
 def layer_values(soil: SoilSpec, segments: Segments, pile_length: float):
-    """(shaft quake (N,) [m], shaft damping (N,) [s/m], toe quake [m], toe damping [s/m]) of
-    the soil's segments: per layer where ``soil.layers`` gives them, else its scalars."""
+    """Quakes and dampings of the soil's segments and toe.
+
+    Per layer where ``soil.layers`` gives them, else the soil's scalars.
+
+    Parameters
+    ----------
+    soil : SoilSpec
+        The soil.
+    segments : Segments
+        The pile's segments.
+    pile_length : float
+        Pile length [m] (the mudline lies ``pile_length - penetration`` below the head).
+
+    Returns
+    -------
+    quake_shaft : numpy.ndarray
+        (N,) shaft quake [m].
+    damping_shaft : numpy.ndarray
+        (N,) shaft damping [s/m].
+    quake_toe : float
+        Toe quake [m].
+    damping_toe : float
+        Toe damping [s/m].
+    """
     n = segments.count
     qs = np.full(n, float(soil.quake_shaft))
     js = np.full(n, float(soil.damping_shaft))
@@ -236,7 +299,20 @@ def layer_values(soil: SoilSpec, segments: Segments, pile_length: float):
 
 
 def toe_quake(soil: SoilSpec, pile: PileSpec) -> float:
-    """The toe quake [m] of the soil at its penetration (per layer where given)."""
+    """The toe quake of the soil at its penetration (per layer where given).
+
+    Parameters
+    ----------
+    soil : SoilSpec
+        The soil.
+    pile : PileSpec
+        The pile.
+
+    Returns
+    -------
+    float
+        Toe quake [m].
+    """
     if soil.layers is None:
         return float(soil.quake_toe)
     return layer_values(soil, discretise(pile), pile.length)[2]
@@ -245,7 +321,21 @@ def toe_quake(soil: SoilSpec, pile: PileSpec) -> float:
 def lysmer_stiffness(shear_modulus: float, radius: float, poisson_ratio: float) -> float:
     """Static stiffness of a rigid disc on an elastic half-space, 4 G r0 / (1 - nu) [N/m].
 
-    shear_modulus G [Pa], radius r0 [m], poisson_ratio nu [-] (Lysmer & Richart 1966).
+    Lysmer & Richart (1966).
+
+    Parameters
+    ----------
+    shear_modulus : float
+        G [Pa].
+    radius : float
+        r0 [m].
+    poisson_ratio : float
+        nu [-].
+
+    Returns
+    -------
+    float
+        Stiffness [N/m].
     """
     return 4.0 * shear_modulus * radius / (1.0 - poisson_ratio)
 
@@ -254,16 +344,47 @@ def lysmer_dashpot(shear_modulus: float, density: float, radius: float,
                    poisson_ratio: float) -> float:
     """Radiation dashpot of Lysmer's analog, 3.4 r0^2 sqrt(G rho) / (1 - nu) [N s/m].
 
-    shear_modulus G [Pa], density rho [kg/m^3], radius r0 [m], poisson_ratio nu [-].
+    Parameters
+    ----------
+    shear_modulus : float
+        G [Pa].
+    density : float
+        rho [kg/m^3].
+    radius : float
+        r0 [m].
+    poisson_ratio : float
+        nu [-].
+
+    Returns
+    -------
+    float
+        Dashpot [N s/m].
     """
     return 3.4 * radius * radius * math.sqrt(shear_modulus * density) / (1.0 - poisson_ratio)
 
 
 def smith_springs(capacity, quake, damping, viscous: bool) -> tuple:
-    """(stiffness [N/m], Smith J [s/m], dashpot [N s/m]) arrays of Smith springs.
+    """Stiffness, Smith J and dashpot arrays of Smith springs.
 
-    capacity R_u [N], quake q [m], damping J [s/m]; ``viscous`` selects Smith-viscous
-    (c = J R_u) instead of Smith (J applied to |R_s| in the kernel).
+    Parameters
+    ----------
+    capacity : array_like
+        R_u [N].
+    quake : array_like
+        q [m].
+    damping : array_like
+        J [s/m].
+    viscous : bool
+        Smith-viscous (c = J R_u) instead of Smith (J applied to |R_s| in the kernel).
+
+    Returns
+    -------
+    stiffness : numpy.ndarray
+        R_u / q [N/m].
+    smith_j : numpy.ndarray
+        Smith J [s/m] (0 when viscous).
+    dashpot : numpy.ndarray
+        Dashpot [N s/m] (0 unless viscous).
     """
     capacity = np.asarray(capacity, dtype=float)
     stiffness = capacity / quake
@@ -274,7 +395,29 @@ def smith_springs(capacity, quake, damping, viscous: bool) -> tuple:
 
 
 def soil_capacities(soil: SoilSpec, pile: PileSpec, segments: Segments | None = None):
-    """Static shaft resistance per segment (N,) [N] and toe resistance [N]."""
+    """Static shaft resistance per segment and toe resistance.
+
+    Parameters
+    ----------
+    soil : SoilSpec
+        The soil.
+    pile : PileSpec
+        The pile.
+    segments : Segments or None, default None
+        The pile's segments (default: ``discretise(pile)``).
+
+    Returns
+    -------
+    shaft : numpy.ndarray
+        (N,) shaft resistance per segment [N].
+    toe : float
+        Toe resistance [N].
+
+    Raises
+    ------
+    ValueError
+        If ``soil.capacities`` has not one shaft value per segment.
+    """
     seg = segments if segments is not None else discretise(pile)
     if soil.capacities is not None:
         shaft, toe = soil.capacities
@@ -295,7 +438,19 @@ def soil_parameters(soil: SoilSpec | None, pile: PileSpec,
                     segments: Segments | None = None) -> np.ndarray:
     """The soil parameter array of the kernels, shape (SOIL_ROWS, N+1), float64 (toe last).
 
-    ``soil=None`` gives a pile without soil (all zeros: a free toe).
+    Parameters
+    ----------
+    soil : SoilSpec or None
+        The soil; None gives a pile without soil (all zeros: a free toe).
+    pile : PileSpec
+        The pile.
+    segments : Segments or None, default None
+        The pile's segments (default: ``discretise(pile)``).
+
+    Returns
+    -------
+    numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters.
     """
     seg = segments if segments is not None else discretise(pile)
     params = np.zeros((SOIL_ROWS, seg.count + 1))
@@ -343,9 +498,27 @@ def soil_from_table(table: Table, pile_length: float, srd_optional: bool = False
                     default_penetration: float | None = None) -> SoilSpec:
     """Read and validate the ``[soil]`` table (module docstring).
 
-    pile_length : length of the pile the soil is for [m] (bounds the penetration).
-    srd_optional : the SRD comes from elsewhere (a drive analysis's ``[srd]`` table): ``srd``
-        may be omitted, and ``penetration`` then defaults to ``default_penetration`` [m].
+    Parameters
+    ----------
+    table : Table
+        The ``[soil]`` table.
+    pile_length : float
+        Length of the pile the soil is for [m] (bounds the penetration).
+    srd_optional : bool, default False
+        The SRD comes from elsewhere (a drive analysis's ``[srd]`` table): ``srd`` may be
+        omitted, and ``penetration`` then defaults to ``default_penetration``.
+    default_penetration : float or None, default None
+        Penetration when ``srd_optional`` and none is given [m].
+
+    Returns
+    -------
+    SoilSpec
+        The soil.
+
+    Raises
+    ------
+    InputError
+        If a key breaks its rule.
     """
     model = table.string("model", DEFAULT_MODEL, choices=MODELS)
     if srd_optional and default_penetration is not None:

@@ -84,11 +84,26 @@ _DEPTH_TOLERANCE = 1e-9  # [m] round-off allowed when comparing depths
 def campanella_1982_total_cone_resistance(qc, u2, net_area_ratio=DEFAULT_NET_AREA_RATIO):
     """Corrected (total) cone resistance qt = qc + (1 - a) u2 [Pa].
 
-    Campanella, Gillespie & Robertson (1982); Lunne, Robertson & Powell (1997), eq. 2.2.
+    Parameters
+    ----------
+    qc : float or array_like
+        Measured cone resistance [Pa].
+    u2 : float or array_like
+        Pore pressure measured behind the cone (u2 position) [Pa].
+    net_area_ratio : float, default DEFAULT_NET_AREA_RATIO
+        Net area ratio a of the cone [-] (0.8 typical; 1 gives qt = qc).
 
-    qc : measured cone resistance [Pa].
-    u2 : pore pressure measured behind the cone (u2 position) [Pa].
-    net_area_ratio : net area ratio a of the cone [-] (0.8 typical; 1 gives qt = qc).
+    Returns
+    -------
+    numpy.ndarray
+        Corrected cone resistance qt [Pa].
+
+    References
+    ----------
+    Campanella, R.G., Gillespie, D., Robertson, P.K. (1982). Pore pressures during cone
+    penetration testing. Proc. 2nd European Symposium on Penetration Testing, Amsterdam, 507-512.
+    Lunne, T., Robertson, P.K., Powell, J.J.M. (1997). Cone penetration testing in geotechnical
+    practice. Blackie / Spon, eq. 2.2.
     """
     return np.asarray(qc, dtype=float) + (1.0 - net_area_ratio) * np.asarray(u2, dtype=float)
 
@@ -98,11 +113,24 @@ def campanella_1982_total_cone_resistance(qc, u2, net_area_ratio=DEFAULT_NET_ARE
 class Cpt:
     """A cone penetration test, depths below the mudline.
 
-    depth : (n,) depth below the mudline [m], strictly increasing, >= 0.
-    qc : (n,) cone resistance [Pa], >= 0.
-    fs : (n,) sleeve friction [Pa], >= 0.
-    u2 : (n,) pore pressure at the u2 position [Pa] (zeros when not measured).
-    source : where the data came from (file name), for messages.
+    Parameters
+    ----------
+    depth : numpy.ndarray
+        (n,) depth below the mudline [m], strictly increasing, >= 0.
+    qc : numpy.ndarray
+        (n,) cone resistance [Pa], >= 0.
+    fs : numpy.ndarray
+        (n,) sleeve friction [Pa], >= 0.
+    u2 : numpy.ndarray
+        (n,) pore pressure at the u2 position [Pa] (zeros when not measured).
+    source : str, default ""
+        Where the data came from (file name), for messages.
+
+    Raises
+    ------
+    ValueError
+        If the arrays are not 1-D of one shape with at least two readings, not finite, the
+        depths do not increase strictly or are negative, or qc or fs is negative.
     """
 
     depth: np.ndarray
@@ -134,8 +162,20 @@ class Cpt:
                 raise ValueError(f"CPT {name} must not be negative")
 
     def qt(self, net_area_ratio: float = DEFAULT_NET_AREA_RATIO) -> np.ndarray:
-        """Corrected cone resistance at the readings [Pa], floored at 0 (negative u2 with a
-        tiny qc can otherwise give qt < 0)."""
+        """Corrected cone resistance at the readings [Pa], floored at 0.
+
+        The floor is there because a negative u2 with a tiny qc can otherwise give qt < 0.
+
+        Parameters
+        ----------
+        net_area_ratio : float, default DEFAULT_NET_AREA_RATIO
+            Net area ratio a of the cone [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            (n,) corrected cone resistance qt at the readings [Pa].
+        """
         return np.maximum(campanella_1982_total_cone_resistance(self.qc, self.u2,
                                                                 net_area_ratio), 0.0)
 
@@ -144,15 +184,33 @@ class Cpt:
 class SoilLayer:
     """One soil layer.
 
-    top, bottom : depths of the layer's top and bottom below the mudline [m].
-    soil_type : "sand" or "clay".
-    submerged_unit_weight : gamma' [N/m^3] (> 0), e.g. 10e3 for a dense sand.
-    interface_friction_angle : soil-pile friction angle delta [deg] (sand; Alm & Hamre use the
-        constant-volume interface angle). When None, phi' - 5 deg (Stevens et al. 1982).
-    friction_angle : effective friction angle phi' [deg] (sand), used when delta is None.
-    undrained_shear_strength : su at the top of the layer [Pa] (clay, Stevens et al.).
-    undrained_shear_strength_gradient : d su / dz [Pa/m] (su linear with depth in the layer).
-    plasticity_index : PI as a fraction [-] (0.30 for 30 %; clay, Semple & Gemeinhardt).
+    Parameters
+    ----------
+    top : float
+        Depth of the layer's top below the mudline [m].
+    bottom : float
+        Depth of the layer's bottom below the mudline [m].
+    soil_type : {"sand", "clay"}
+        Soil type.
+    submerged_unit_weight : float
+        gamma' [N/m^3] (> 0), e.g. 10e3 for a dense sand.
+    interface_friction_angle : float or None, default None
+        Soil-pile friction angle delta [deg] (sand; Alm & Hamre use the constant-volume interface
+        angle). When None, phi' - 5 deg (Stevens et al. 1982).
+    friction_angle : float or None, default None
+        Effective friction angle phi' [deg] (sand), used when delta is None.
+    undrained_shear_strength : float or None, default None
+        su at the top of the layer [Pa] (clay, Stevens et al.).
+    undrained_shear_strength_gradient : float, default 0.0
+        d su / dz [Pa/m] (su linear with depth in the layer).
+    plasticity_index : float or None, default None
+        PI as a fraction [-] (0.30 for 30 %; clay, Semple & Gemeinhardt).
+
+    Raises
+    ------
+    ValueError
+        If the soil type is unknown, the depths break 0 <= top < bottom, the unit weight is not
+        positive, an angle lies outside (0, 90) deg, su is negative or PI lies outside [0, 2].
     """
 
     top: float
@@ -198,10 +256,21 @@ class SoilLayer:
 class SoilProfile:
     """Soil layers from the mudline down, with an optional CPT.
 
-    layers : contiguous layers, the first at the mudline (top 0), each starting where the
-        previous one ends.
-    cpt : the CPT (needed by :class:`AlmHamre2001`).
-    net_area_ratio : net area ratio a of the cone [-], for qt = qc + (1 - a) u2.
+    Parameters
+    ----------
+    layers : tuple of SoilLayer
+        Contiguous layers, the first at the mudline (top 0), each starting where the previous one
+        ends.
+    cpt : Cpt or None, default None
+        The CPT (needed by :class:`AlmHamre2001`).
+    net_area_ratio : float, default DEFAULT_NET_AREA_RATIO
+        Net area ratio a of the cone [-], for qt = qc + (1 - a) u2.
+
+    Raises
+    ------
+    ValueError
+        If there is no layer, the first does not start at the mudline, the layers are not
+        contiguous or the net area ratio lies outside (0, 1].
     """
 
     layers: tuple[SoilLayer, ...]
@@ -282,7 +351,23 @@ class SoilProfile:
                              f" below the mudline; got {np.min(z):g} to {np.max(z):g} m")
 
     def layer_index(self, depth) -> np.ndarray:
-        """Index of the layer at ``depth`` [m] (the deeper layer on a boundary)."""
+        """Index of the layer at ``depth`` (the deeper layer on a boundary).
+
+        Parameters
+        ----------
+        depth : float or array_like
+            Depth below the mudline [m], within the profile.
+
+        Returns
+        -------
+        numpy.ndarray
+            Layer index at each depth.
+
+        Raises
+        ------
+        ValueError
+            If a depth lies outside the profile.
+        """
         z = np.asarray(depth, dtype=float)
         self._check_depth(z)
         return np.minimum(np.searchsorted(self.bottoms, z, side="right"), len(self.layers) - 1)
@@ -290,7 +375,15 @@ class SoilProfile:
     def vertical_effective_stress(self, depth) -> np.ndarray:
         """sigma'v0(z) = integral of gamma' from the mudline to ``depth`` [Pa] (exact).
 
-        depth : depth below the mudline [m].
+        Parameters
+        ----------
+        depth : float or array_like
+            Depth below the mudline [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            Vertical effective stress sigma'v0 at each depth [Pa].
         """
         z = np.asarray(depth, dtype=float)
         i = self.layer_index(z)
@@ -299,7 +392,15 @@ class SoilProfile:
     def undrained_shear_strength(self, depth) -> np.ndarray:
         """su(z) = su_top + gradient (z - top) of the layer at ``depth`` [Pa] (NaN if unset).
 
-        depth : depth below the mudline [m].
+        Parameters
+        ----------
+        depth : float or array_like
+            Depth below the mudline [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            Undrained shear strength at each depth [Pa], NaN where the layer has none.
         """
         z = np.asarray(depth, dtype=float)
         i = self.layer_index(z)
@@ -316,10 +417,24 @@ class SoilProfile:
                              "where it is needed")
 
     def qt(self, depth) -> np.ndarray:
-        """Corrected cone resistance at ``depth`` [Pa], linear between readings, held at the
-        first reading between the mudline and the first reading.
+        """Corrected cone resistance at ``depth`` [Pa], linear between readings.
 
-        depth : depth below the mudline [m] (not below the last reading).
+        Between the mudline and the first reading it is held at the first reading.
+
+        Parameters
+        ----------
+        depth : float or array_like
+            Depth below the mudline [m] (not below the last reading).
+
+        Returns
+        -------
+        numpy.ndarray
+            Corrected cone resistance qt at each depth [Pa].
+
+        Raises
+        ------
+        ValueError
+            If the profile has no CPT or a depth lies below its last reading.
         """
         z = np.asarray(depth, dtype=float)
         self._require_cpt(z)
@@ -328,15 +443,38 @@ class SoilProfile:
     def sleeve_friction(self, depth) -> np.ndarray:
         """CPT sleeve friction at ``depth`` [Pa] (interpolated like :meth:`qt`).
 
-        depth : depth below the mudline [m].
+        Parameters
+        ----------
+        depth : float or array_like
+            Depth below the mudline [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            Sleeve friction fs at each depth [Pa].
+
+        Raises
+        ------
+        ValueError
+            If the profile has no CPT or a depth lies below its last reading.
         """
         z = np.asarray(depth, dtype=float)
         self._require_cpt(z)
         return np.interp(z, self.cpt.depth, self.cpt.fs)
 
     def breakpoints(self, with_cpt: bool) -> np.ndarray:
-        """Depths where the inputs change slope or jump [m]: layer boundaries and (with_cpt)
-        the CPT readings."""
+        """Depths where the inputs change slope or jump [m].
+
+        Parameters
+        ----------
+        with_cpt : bool
+            Include the CPT readings besides the layer boundaries.
+
+        Returns
+        -------
+        numpy.ndarray
+            Sorted unique depths [m]: layer boundaries and (``with_cpt``) the CPT readings.
+        """
         points = [self.tops, self.bottoms]
         if with_cpt and self.cpt is not None:
             points.append(self.cpt.depth)
@@ -350,19 +488,38 @@ class AlmHamre2001:
 
     Soil type and delta (sand) come from the layers; qt, fs from the CPT.
 
-    sand_outside_factor, sand_inside_factor : factors on the sand unit friction on each face
-        [-]. Default 0.5 + 0.5: the sand friction was calibrated as outside friction, and
-        practice splits it half outside, half inside (another variant in use: 0.5 outside
-        only, i.e. ``faces="outside"``).
-    clay_outside_factor, clay_inside_factor : factors on the clay unit friction [-]. Default
-        1.0 + 1.0 (the variant in use besides: 1.0 outside only).
-    sand_toe_factor : 0.15 (2001) or 0.10 (2018 revision, :data:`ALM_HAMRE_2018_SAND_TOE_FACTOR`)
-        [-].
-    clay_residual_floor : "zero", "0.002qt" or "clamp"
-        (:func:`anvilwave.pile.soil.srd_methods.alm_hamre_2001_clay_residual_friction`).
-    atmospheric_pressure : pa [Pa] (100 kPa in the paper).
-    toe_window : length over which the unit toe resistance is averaged, centred on the tip [m]
-        (0: the value at the tip).
+    Parameters
+    ----------
+    sand_outside_factor : float, default 0.5
+        Factor on the sand unit friction on the outside face [-]. The sand friction was
+        calibrated as outside friction, and practice splits it half outside, half inside
+        (another variant in use: 0.5 outside only, i.e. ``faces="outside"``).
+    sand_inside_factor : float, default 0.5
+        Factor on the sand unit friction on the inside face [-].
+    clay_outside_factor : float, default 1.0
+        Factor on the clay unit friction on the outside face [-] (the variant in use besides:
+        1.0 outside only).
+    clay_inside_factor : float, default 1.0
+        Factor on the clay unit friction on the inside face [-].
+    sand_toe_factor : float, default ALM_HAMRE_2001_SAND_TOE_FACTOR
+        0.15 (2001) or 0.10 (2018 revision, :data:`ALM_HAMRE_2018_SAND_TOE_FACTOR`) [-].
+    clay_residual_floor : {"zero", "0.002qt", "clamp"}
+        See :func:`anvilwave.pile.soil.srd_methods.alm_hamre_2001_clay_residual_friction`.
+    atmospheric_pressure : float, default ATMOSPHERIC_PRESSURE
+        pa [Pa] (100 kPa in the paper).
+    toe_window : float, default 0.0
+        Length over which the unit toe resistance is averaged, centred on the tip [m] (0: the
+        value at the tip).
+
+    Raises
+    ------
+    ValueError
+        If ``clay_residual_floor`` is unknown or ``toe_window`` is negative.
+
+    References
+    ----------
+    Alm, T., Hamre, L. (2001). Soil model for pile driveability predictions based on CPT
+    interpretations. Proc. 15th ICSMGE, Istanbul, 1297-1302.
     """
 
     sand_outside_factor: float = 0.5
@@ -384,7 +541,20 @@ class AlmHamre2001:
             raise ValueError("toe_window must not be negative")
 
     def check(self, profile: SoilProfile, deepest: float) -> None:
-        """Raise ValueError when ``profile`` lacks data needed down to ``deepest`` [m]."""
+        """Check that ``profile`` has the data needed down to ``deepest``.
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        deepest : float
+            Deepest tip depth to be analysed [m].
+
+        Raises
+        ------
+        ValueError
+            If the CPT is missing or too short, or a sand layer has neither delta nor phi'.
+        """
         profile._require_cpt(np.array([deepest]))
         for i, layer in enumerate(profile.layers):
             if layer.top < deepest and layer.soil_type == "sand" and np.isnan(layer.delta):
@@ -392,12 +562,41 @@ class AlmHamre2001:
                                  "interface_friction_angle or friction_angle")
 
     def breakpoints(self, profile: SoilProfile) -> np.ndarray:
-        """Depths where the inputs change: layer boundaries and CPT readings [m]."""
+        """Depths where the inputs change: layer boundaries and CPT readings [m].
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+
+        Returns
+        -------
+        numpy.ndarray
+            Sorted unique depths [m].
+        """
         return profile.breakpoints(with_cpt=True)
 
     def unit_friction(self, profile: SoilProfile, depth, tip_depth: float):
-        """(outside, inside) unit shaft friction at ``depth`` [Pa] for the tip at
-        ``tip_depth`` [m] (face factors applied; depth > 0)."""
+        """(outside, inside) unit shaft friction at ``depth`` for the tip at ``tip_depth``.
+
+        Face factors applied; depth > 0.
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        depth : float or array_like
+            Depths below the mudline [m].
+        tip_depth : float
+            Tip depth p [m].
+
+        Returns
+        -------
+        outside : numpy.ndarray
+            Unit shaft friction on the outside face [Pa].
+        inside : numpy.ndarray
+            Unit shaft friction on the inside face [Pa].
+        """
         z = np.asarray(depth, dtype=float)
         i = profile.layer_index(z)
         sand = profile.is_sand[i]
@@ -419,7 +618,20 @@ class AlmHamre2001:
         return f * outside, f * inside
 
     def point_toe(self, profile: SoilProfile, depth) -> np.ndarray:
-        """Unit toe resistance with the tip at ``depth`` [Pa] (no averaging; depth > 0)."""
+        """Unit toe resistance with the tip at ``depth`` [Pa] (no averaging; depth > 0).
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        depth : float or array_like
+            Tip depth below the mudline [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            Unit toe resistance [Pa].
+        """
         z = np.asarray(depth, dtype=float)
         i = profile.layer_index(z)
         qt = profile.qt(z)
@@ -429,8 +641,22 @@ class AlmHamre2001:
         return np.where(profile.is_sand[i], sand, sm.alm_hamre_2001_clay_toe(qt))
 
     def unit_toe(self, profile: SoilProfile, tip_depth: float) -> float:
-        """Unit toe resistance for the tip at ``tip_depth`` [m] [Pa] (averaged over
-        ``toe_window`` centred on the tip, clipped to the profile and the CPT)."""
+        """Unit toe resistance for the tip at ``tip_depth`` [Pa].
+
+        Averaged over ``toe_window`` centred on the tip, clipped to the profile and the CPT.
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        tip_depth : float
+            Tip depth p [m].
+
+        Returns
+        -------
+        float
+            Unit toe resistance [Pa].
+        """
         if self.toe_window <= 0.0:
             return float(self.point_toe(profile, tip_depth))
         half = 0.5 * self.toe_window
@@ -444,13 +670,34 @@ class AlmHamre2001:
 
 @dataclass(frozen=True)
 class Stevens1982:
-    """Stevens, Wiltsie & Turton (1982) SRD from soil layers; clay after Semple & Gemeinhardt
-    (1981).
+    """Stevens, Wiltsie & Turton (1982) SRD from soil layers.
 
-    bound : "lower" (K = 0.5) or "upper" (K = 0.7) sand friction.
-    earth_pressure_coefficient : K [-] overriding ``bound`` (None: from ``bound``).
-    outside_factor, inside_factor : factors on the unit friction on each face [-].
-    ocr_floor : lower limit of the estimated OCR in clay [-] (None for none).
+    Clay after Semple & Gemeinhardt (1981).
+
+    Parameters
+    ----------
+    bound : {"lower", "upper"}
+        "lower" (K = 0.5) or "upper" (K = 0.7) sand friction.
+    earth_pressure_coefficient : float or None, default None
+        K [-] overriding ``bound`` (None: from ``bound``).
+    outside_factor : float, default 1.0
+        Factor on the unit friction on the outside face [-].
+    inside_factor : float, default 1.0
+        Factor on the unit friction on the inside face [-].
+    ocr_floor : float or None, default SEMPLE_GEMEINHARDT_1981_OCR_FLOOR
+        Lower limit of the estimated OCR in clay [-] (None for none).
+
+    Raises
+    ------
+    ValueError
+        If ``bound`` is neither "lower" nor "upper".
+
+    References
+    ----------
+    Stevens, R.S., Wiltsie, E.A., Turton, T.H. (1982). Evaluating pile drivability for hard clay,
+    very dense sand and rock. OTC 4205.
+    Semple, R.M., Gemeinhardt, J.P. (1981). Stress history approach to analysis of soil resistance
+    to pile driving. OTC 3969.
     """
 
     bound: str = "lower"
@@ -473,7 +720,21 @@ class Stevens1982:
         return sm.STEVENS_1982_K_UPPER if self.bound == "upper" else sm.STEVENS_1982_K_LOWER
 
     def check(self, profile: SoilProfile, deepest: float) -> None:
-        """Raise ValueError when ``profile`` lacks data needed down to ``deepest`` [m]."""
+        """Check that ``profile`` has the data needed down to ``deepest``.
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        deepest : float
+            Deepest tip depth to be analysed [m].
+
+        Raises
+        ------
+        ValueError
+            If a sand layer has neither delta nor phi', or a clay layer lacks su or PI or has
+        su <= 0.
+        """
         for i, layer in enumerate(profile.layers):
             if layer.top > deepest:
                 break
@@ -491,12 +752,39 @@ class Stevens1982:
                     raise ValueError(f"{where} needs an undrained shear strength above 0 Pa")
 
     def breakpoints(self, profile: SoilProfile) -> np.ndarray:
-        """Depths where the inputs change: layer boundaries [m]."""
+        """Depths where the inputs change: layer boundaries [m].
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+
+        Returns
+        -------
+        numpy.ndarray
+            Sorted unique depths [m].
+        """
         return profile.breakpoints(with_cpt=False)
 
     def unit_friction(self, profile: SoilProfile, depth, tip_depth: float):
-        """(outside, inside) unit shaft friction at ``depth`` [Pa] (face factors applied;
-        no friction fatigue, so ``tip_depth`` [m] is not used; depth > 0)."""
+        """(outside, inside) unit shaft friction at ``depth`` (face factors applied; depth > 0).
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        depth : float or array_like
+            Depths below the mudline [m].
+        tip_depth : float
+            Tip depth p [m]; not used (no friction fatigue).
+
+        Returns
+        -------
+        outside : numpy.ndarray
+            Unit shaft friction on the outside face [Pa].
+        inside : numpy.ndarray
+            Unit shaft friction on the inside face [Pa].
+        """
         z = np.asarray(depth, dtype=float)
         i = profile.layer_index(z)
         sigma_v = profile.vertical_effective_stress(z)
@@ -509,7 +797,20 @@ class Stevens1982:
         return f * self.outside_factor, f * self.inside_factor
 
     def unit_toe(self, profile: SoilProfile, tip_depth: float) -> float:
-        """Unit toe resistance for the tip at ``tip_depth`` [m] [Pa]."""
+        """Unit toe resistance for the tip at ``tip_depth`` [Pa].
+
+        Parameters
+        ----------
+        profile : SoilProfile
+            The soil profile.
+        tip_depth : float
+            Tip depth p [m].
+
+        Returns
+        -------
+        float
+            Unit toe resistance [Pa].
+        """
         i = profile.layer_index(tip_depth)
         if profile.is_sand[i]:
             sigma_v = profile.vertical_effective_stress(tip_depth)
@@ -542,13 +843,30 @@ def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str 
         lying exactly at the tip is the one above the step (the first of the repeated rows),
         as GRLWEAP interpolates the toe column at the penetration.
 
-    tip_depths : (m,) tip depths of the tables [m], strictly increasing.
-    tables : m arrays of shape (n_j, 3).
-    tip_depth : tip depth p [m], 0 <= p <= t_m.
-    depth : depths at which the unit shaft friction is wanted [m].
-    rule : "interpolate" or "grlweap".
+    Parameters
+    ----------
+    tip_depths : array_like
+        (m,) tip depths of the tables [m], strictly increasing.
+    tables : sequence of array_like
+        m arrays of shape (n_j, 3).
+    tip_depth : float
+        Tip depth p [m], 0 <= p <= t_m.
+    depth : float or array_like
+        Depths at which the unit shaft friction is wanted [m].
+    rule : {"interpolate", "grlweap"}
+        How the tip depth picks its table.
 
-    Returns (unit shaft friction at ``depth`` [Pa], unit toe resistance at the tip [Pa]).
+    Returns
+    -------
+    shaft : numpy.ndarray
+        Unit shaft friction at ``depth`` [Pa].
+    toe : float
+        Unit toe resistance at the tip [Pa].
+
+    Raises
+    ------
+    ValueError
+        If the rule is unknown or the tip depth lies outside 0 to t_m.
     """
     if rule not in TIP_TABLE_RULES:
         raise ValueError(f"unknown tip-table rule {rule!r}; choose one of {TIP_TABLE_RULES}")
@@ -576,9 +894,23 @@ def tip_table_resistance(tip_depths, tables, tip_depth: float, depth, rule: str 
 
 
 def tip_table_index(tip_depths, tip_depth: float, rule: str = "interpolate") -> int:
-    """Index of the table a tip depth [m] takes by ``rule`` (:func:`tip_table_resistance`):
-    "grlweap" the nearest table at or below the tip, "interpolate" the nearest at or above it
-    (the first of the two it blends)."""
+    """Index of the table a tip depth takes by ``rule`` (:func:`tip_table_resistance`).
+
+    Parameters
+    ----------
+    tip_depths : array_like
+        (m,) tip depths of the tables [m], strictly increasing.
+    tip_depth : float
+        Tip depth p [m].
+    rule : {"interpolate", "grlweap"}
+        "grlweap" the nearest table at or below the tip, "interpolate" the nearest at or above it
+        (the first of the two it blends).
+
+    Returns
+    -------
+    int
+        Index of the table.
+    """
     tips = np.asarray(tip_depths, dtype=float)
     if rule == "grlweap":
         j = np.searchsorted(tips, tip_depth - _DEPTH_TOLERANCE, side="left")
@@ -600,12 +932,26 @@ def _toe_above_step(table: np.ndarray, tip_depth: float) -> float:
 class TipDepthTables:
     """User SRD tables per tip depth (:func:`tip_table_resistance`); no soil profile needed.
 
-    tip_depths : (m,) tip depths [m], strictly increasing, >= 0.
-    tables : m arrays of rows [depth [m], unit shaft friction [Pa], unit toe resistance [Pa]],
-        depths non-decreasing from >= 0, resistances >= 0.
-    outside_factor, inside_factor : factors on the unit friction on each face [-].
-    rule : how a tip depth picks its table, "interpolate" or "grlweap"
-        (:func:`tip_table_resistance`).
+    Parameters
+    ----------
+    tip_depths : numpy.ndarray
+        (m,) tip depths [m], strictly increasing, >= 0.
+    tables : tuple of numpy.ndarray
+        m arrays of rows [depth [m], unit shaft friction [Pa], unit toe resistance [Pa]], depths
+        non-decreasing from >= 0, resistances >= 0.
+    outside_factor : float, default 1.0
+        Factor on the unit friction on the outside face [-].
+    inside_factor : float, default 1.0
+        Factor on the unit friction on the inside face [-].
+    rule : {"interpolate", "grlweap"}
+        How a tip depth picks its table (:func:`tip_table_resistance`).
+
+    Raises
+    ------
+    ValueError
+        If the tip depths are negative or not strictly increasing, the rule is unknown, the number
+        of tables differs from the number of tip depths, or a table is malformed, not finite, has
+        decreasing or negative depths or negative resistances.
     """
 
     tip_depths: np.ndarray
@@ -640,24 +986,79 @@ class TipDepthTables:
                 raise ValueError(f"table {j}: unit resistances must not be negative")
 
     def check(self, profile, deepest: float) -> None:
-        """Raise ValueError when ``deepest`` [m] lies beyond the last tip depth."""
+        """Check that ``deepest`` does not lie beyond the last tip depth.
+
+        Parameters
+        ----------
+        profile : SoilProfile or None
+            Not used (the tables need no profile).
+        deepest : float
+            Deepest tip depth to be analysed [m].
+
+        Raises
+        ------
+        ValueError
+            If ``deepest`` lies beyond the last tip depth.
+        """
         if deepest > self.tip_depths[-1] + _DEPTH_TOLERANCE:
             raise ValueError(f"tip depth {deepest:g} m beyond the last table "
                              f"({self.tip_depths[-1]:g} m)")
 
     def breakpoints(self, profile) -> np.ndarray:
-        """Depths of the table rows [m]."""
+        """Depths of the table rows [m].
+
+        Parameters
+        ----------
+        profile : SoilProfile or None
+            Not used.
+
+        Returns
+        -------
+        numpy.ndarray
+            Sorted unique depths of the rows of all tables [m].
+        """
         return np.unique(np.concatenate([t[:, 0] for t in self.tables]))
 
     def unit_friction(self, profile, depth, tip_depth: float):
-        """(outside, inside) unit shaft friction at ``depth`` [m] for the tip at
-        ``tip_depth`` [m] [Pa] (face factors applied)."""
+        """(outside, inside) unit shaft friction at ``depth`` for the tip at ``tip_depth``.
+
+        Face factors applied.
+
+        Parameters
+        ----------
+        profile : SoilProfile or None
+            Not used.
+        depth : float or array_like
+            Depths below the mudline [m].
+        tip_depth : float
+            Tip depth p [m].
+
+        Returns
+        -------
+        outside : numpy.ndarray
+            Unit shaft friction on the outside face [Pa].
+        inside : numpy.ndarray
+            Unit shaft friction on the inside face [Pa].
+        """
         shaft, _ = tip_table_resistance(self.tip_depths, self.tables, tip_depth, depth,
                                         self.rule)
         return shaft * self.outside_factor, shaft * self.inside_factor
 
     def unit_toe(self, profile, tip_depth: float) -> float:
-        """Unit toe resistance for the tip at ``tip_depth`` [m] [Pa]."""
+        """Unit toe resistance for the tip at ``tip_depth`` [Pa].
+
+        Parameters
+        ----------
+        profile : SoilProfile or None
+            Not used.
+        tip_depth : float
+            Tip depth p [m].
+
+        Returns
+        -------
+        float
+            Unit toe resistance [Pa].
+        """
         return tip_table_resistance(self.tip_depths, self.tables, tip_depth, [], self.rule)[1]
 
 
@@ -710,10 +1111,16 @@ def _average(func, low: float, high: float, nodes: np.ndarray) -> float:
 class SrdDistribution:
     """Ultimate static soil resistance for one tip depth.
 
-    tip_depth : tip depth below the mudline [m].
-    shaft : (N,) shaft resistance of each segment's embedded part [N].
-    toe : toe resistance [N].
-    embedded_length : (N,) embedded length of each segment [m].
+    Parameters
+    ----------
+    tip_depth : float
+        Tip depth below the mudline [m].
+    shaft : numpy.ndarray
+        (N,) shaft resistance of each segment's embedded part [N].
+    toe : float
+        Toe resistance [N].
+    embedded_length : numpy.ndarray
+        (N,) embedded length of each segment [m].
     """
 
     tip_depth: float
@@ -739,10 +1146,29 @@ class SrdDistribution:
 
 def toe_bearing_area(outer_diameter: float, wall_thickness: float,
                      pile_mode: str = "coring") -> float:
-    """Toe bearing area [m^2]: the steel annulus pi/4 (D^2 - (D - 2t)^2) for a coring pile,
-    the full section pi/4 D^2 for a plugged one.
+    """Toe bearing area [m^2] of a coring or a plugged pile.
 
-    outer_diameter : D [m]; wall_thickness : t [m]; pile_mode : "coring" or "plugged".
+    The steel annulus pi/4 (D^2 - (D - 2t)^2) for a coring pile, the full section pi/4 D^2 for a
+    plugged one.
+
+    Parameters
+    ----------
+    outer_diameter : float
+        D [m].
+    wall_thickness : float
+        t [m].
+    pile_mode : {"coring", "plugged"}
+        Pile mode.
+
+    Returns
+    -------
+    float
+        Toe bearing area [m^2].
+
+    Raises
+    ------
+    ValueError
+        If ``pile_mode`` is unknown.
     """
     if pile_mode == "plugged":
         return 0.25 * np.pi * outer_diameter ** 2
@@ -759,21 +1185,47 @@ def srd_distribution(profile: SoilProfile | None, method, tip_depth: float,
                      gauss_points: int = DEFAULT_GAUSS_POINTS) -> SrdDistribution:
     """Shaft resistance per segment and toe resistance for the tip at ``tip_depth``.
 
-    profile : the soil profile (None for :class:`TipDepthTables`).
-    method : "alm-hamre-2001", "stevens-1982" (default options) or a method object
+    Parameters
+    ----------
+    profile : SoilProfile or None
+        The soil profile (None for :class:`TipDepthTables`).
+    method : str or object
+        "alm-hamre-2001", "stevens-1982" (default options) or a method object
         (:class:`AlmHamre2001`, :class:`Stevens1982`, :class:`TipDepthTables`).
-    tip_depth : depth of the pile tip below the mudline, the penetration p [m].
-    segment_top_depths : (N,) depth of each segment's top below the MUDLINE [m], negative above
-        it; from segments measured down from the pile head: top - (pile_length - p).
-    segment_lengths : (N,) segment lengths [m]. No segment may reach below the tip; only the
-        part of each segment below the mudline carries friction.
-    outer_diameter, wall_thickness : D, t per segment or scalars [m]; the toe takes those of
-        the last segment (the toe segment).
-    pile_mode : "coring" (toe on the annulus; default faces outside + inside) or "plugged"
-        (toe on the full section; default faces outside).
-    faces : "outside" or "outside+inside", overriding the default of ``pile_mode``.
-    bound_multiplier : factor on shaft and toe [-] (1 best estimate).
-    resolution : longest integration piece [m]; gauss_points : Gauss points per piece.
+    tip_depth : float
+        Depth of the pile tip below the mudline, the penetration p [m].
+    segment_top_depths : array_like
+        (N,) depth of each segment's top below the MUDLINE [m], negative above it; from segments
+        measured down from the pile head: top - (pile_length - p).
+    segment_lengths : array_like
+        (N,) segment lengths [m]. No segment may reach below the tip; only the part of each
+        segment below the mudline carries friction.
+    outer_diameter : float or array_like
+        D per segment or a scalar [m]; the toe takes that of the last segment (the toe segment).
+    wall_thickness : float or array_like
+        t per segment or a scalar [m]; the toe takes that of the last segment.
+    pile_mode : {"coring", "plugged"}
+        "coring" (toe on the annulus; default faces outside + inside) or "plugged" (toe on the
+        full section; default faces outside).
+    faces : {"outside", "outside+inside"} or None, default None
+        Friction faces, overriding the default of ``pile_mode``.
+    bound_multiplier : float, default 1.0
+        Factor on shaft and toe [-] (1 best estimate).
+    resolution : float, default DEFAULT_RESOLUTION
+        Longest integration piece [m].
+    gauss_points : int, default DEFAULT_GAUSS_POINTS
+        Gauss-Legendre points per piece.
+
+    Returns
+    -------
+    SrdDistribution
+        Shaft resistance per segment and toe resistance [N].
+
+    Raises
+    ------
+    ValueError
+        If the method, ``pile_mode`` or ``faces`` is unknown, an option is out of range, a
+        segment length is negative, a segment reaches below the tip, or the profile lacks data.
     """
     method = _method(method)
     if pile_mode not in PILE_MODES:
@@ -825,10 +1277,27 @@ def srd_versus_depth(profile: SoilProfile | None, method, tip_depths, outer_diam
                      wall_thickness: float, **options) -> tuple[np.ndarray, np.ndarray]:
     """Total shaft and toe resistance of a uniform pile for each tip depth.
 
-    profile, method, options : as :func:`srd_distribution`.
-    tip_depths : (m,) tip depths below the mudline [m].
-    outer_diameter, wall_thickness : D, t of the embedded pile [m].
-    Returns (srd_shaft (m,) [N], srd_toe (m,) [N]).
+    Parameters
+    ----------
+    profile : SoilProfile or None
+        As :func:`srd_distribution`.
+    method : str or object
+        As :func:`srd_distribution`.
+    tip_depths : array_like
+        (m,) tip depths below the mudline [m].
+    outer_diameter : float
+        D of the embedded pile [m].
+    wall_thickness : float
+        t of the embedded pile [m].
+    **options
+        Keyword options of :func:`srd_distribution`.
+
+    Returns
+    -------
+    srd_shaft : numpy.ndarray
+        (m,) total shaft resistance [N].
+    srd_toe : numpy.ndarray
+        (m,) toe resistance [N].
     """
     tips = np.atleast_1d(np.asarray(tip_depths, dtype=float))
     shaft, toe = np.zeros(tips.shape), np.zeros(tips.shape)

@@ -54,6 +54,11 @@ def skov_denver_1988_setup(duration: float, a: float, t0: float):
     float or ndarray
         The factor [-]; 1 for t <= t0 (the relation holds from t0 on).
 
+    Raises
+    ------
+    ValueError
+        If A < 0, t0 <= 0 or a duration is negative.
+
     References
     ----------
     Skov, R., Denver, H. (1988). Time-dependence of bearing capacity of piles. Proc. 3rd Int.
@@ -69,7 +74,25 @@ def skov_denver_1988_setup(duration: float, a: float, t0: float):
 
 
 def skov_denver_1988_for(soil_type: str, duration: float) -> float:
-    """:func:`skov_denver_1988_setup` with the A and t0 of a soil type ("sand", "clay")."""
+    """:func:`skov_denver_1988_setup` with the A and t0 of a soil type.
+
+    Parameters
+    ----------
+    soil_type : {"sand", "clay"}
+        The soil type (a key of :data:`SKOV_DENVER_1988`).
+    duration : float or ndarray
+        Pause t [s], >= 0.
+
+    Returns
+    -------
+    float or ndarray
+        The set-up factor [-].
+
+    Raises
+    ------
+    ValueError
+        If the soil type has no set-up values, or the duration is negative.
+    """
     try:
         a, t0 = SKOV_DENVER_1988[soil_type]
     except KeyError:
@@ -79,7 +102,8 @@ def skov_denver_1988_for(soil_type: str, duration: float) -> float:
 
 
 def remoulded_setup(factor: float, penetration: float, remoulding_length: float) -> float:
-    """Set-up factor left after the blows since a restart have driven ``penetration`` [m]:
+    """Set-up factor left after the blows since a restart have driven ``penetration``.
+
     1 + (F - 1) exp(-s / L_r) (module docstring).
 
     Parameters
@@ -95,6 +119,11 @@ def remoulded_setup(factor: float, penetration: float, remoulding_length: float)
     -------
     float
         The remaining factor [-].
+
+    Raises
+    ------
+    ValueError
+        If ``remoulding_length`` is not positive.
     """
     if remoulding_length <= 0.0:
         raise ValueError(f"remoulding_length must be positive [m], got {remoulding_length!r}")

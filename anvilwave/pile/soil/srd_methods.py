@@ -91,11 +91,22 @@ def alm_hamre_2001_sand_initial_friction(qt, sigma_v, delta, pa=ATMOSPHERIC_PRES
 
     fs,i = 0.0132 qt (sigma'v0 / pa)^0.13 tan(delta)   (Alm & Hamre 2001, eq. for sand).
 
-    qt : corrected cone resistance [Pa].
-    sigma_v : vertical effective stress sigma'v0 [Pa].
-    delta : constant-volume interface friction angle [deg].
-    pa : reference atmospheric pressure [Pa]; 100 kPa in the paper (some implementations use
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa].
+    delta : float or array_like
+        Constant-volume interface friction angle [deg].
+    pa : float, default ATMOSPHERIC_PRESSURE
+        Reference atmospheric pressure [Pa]; 100 kPa in the paper (some implementations use
         101.325 kPa, which lowers fs,i by 0.17 %).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Initial unit shaft friction fs,i [Pa].
     """
     qt, sigma_v = np.asarray(qt, dtype=float), np.asarray(sigma_v, dtype=float)
     return 0.0132 * qt * (sigma_v / pa) ** 0.13 * np.tan(np.radians(delta))
@@ -105,9 +116,18 @@ def alm_hamre_2001_sand_residual_friction(fs_initial,
                                           ratio=ALM_HAMRE_2001_SAND_RESIDUAL_RATIO):
     """Residual (fully degraded) unit shaft friction in sand, fs,res = 0.2 fs,i [Pa].
 
-    fs_initial : initial unit shaft friction fs,i [Pa]
+    Parameters
+    ----------
+    fs_initial : float or array_like
+        Initial unit shaft friction fs,i [Pa]
         (:func:`alm_hamre_2001_sand_initial_friction`).
-    ratio : fs,res / fs,i [-], 0.2 in Alm & Hamre (2001).
+    ratio : float, default ALM_HAMRE_2001_SAND_RESIDUAL_RATIO
+        fs,res / fs,i [-], 0.2 in Alm & Hamre (2001).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Residual unit shaft friction fs,res [Pa].
     """
     return ratio * np.asarray(fs_initial, dtype=float)
 
@@ -115,7 +135,15 @@ def alm_hamre_2001_sand_residual_friction(fs_initial,
 def alm_hamre_2001_clay_initial_friction(fs):
     """Initial unit shaft friction in clay: the CPT sleeve friction, fs,i = fs [Pa].
 
-    fs : CPT sleeve friction [Pa].
+    Parameters
+    ----------
+    fs : float or array_like
+        CPT sleeve friction [Pa].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Initial unit shaft friction fs,i [Pa].
     """
     return np.array(fs, dtype=float)
 
@@ -129,16 +157,35 @@ def alm_hamre_2001_clay_residual_friction(qt, sigma_v, floor="zero", fs_initial=
     near the mudline); implementations in use differ in how they floor it, so the rule is an
     explicit option:
 
-    ``"zero"`` (default): max(fs,res, 0) - the formula as published wherever it is physical;
-    ``"0.002qt"``: max(fs,res, 0.002 qt) - the formula's value at qt / sigma'v0 = 200 as a
-        floor (raises fs,res wherever qt / sigma'v0 > 200);
-    ``"clamp"``: fs,res clipped to [0, fs,i] (``fs_initial`` required), so friction fatigue
-        never raises the friction above its initial value.
+    ``"zero"`` (default)
+        max(fs,res, 0) - the formula as published wherever it is physical.
+    ``"0.002qt"``
+        max(fs,res, 0.002 qt) - the formula's value at qt / sigma'v0 = 200 as a floor (raises
+        fs,res wherever qt / sigma'v0 > 200).
+    ``"clamp"``
+        fs,res clipped to [0, fs,i] (``fs_initial`` required), so friction fatigue never raises
+        the friction above its initial value.
 
-    qt : corrected cone resistance [Pa].
-    sigma_v : vertical effective stress sigma'v0 [Pa] (> 0).
-    floor : one of :data:`CLAY_RESIDUAL_FLOORS`.
-    fs_initial : initial unit shaft friction fs,i [Pa] (only for ``"clamp"``).
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa].
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa] (> 0).
+    floor : {"zero", "0.002qt", "clamp"}
+        One of :data:`CLAY_RESIDUAL_FLOORS`.
+    fs_initial : float or array_like, optional
+        Initial unit shaft friction fs,i [Pa] (only for ``"clamp"``).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Residual unit shaft friction fs,res [Pa].
+
+    Raises
+    ------
+    ValueError
+        If ``floor`` is unknown, or is ``"clamp"`` without ``fs_initial``.
     """
     qt, sigma_v = np.asarray(qt, dtype=float), np.asarray(sigma_v, dtype=float)
     fs_res = 0.004 * qt * (1.0 - 0.0025 * qt / sigma_v)
@@ -159,8 +206,17 @@ def alm_hamre_2001_friction_fatigue_k(qt, sigma_v):
 
     Alm & Hamre (2001), the same for sand and clay.
 
-    qt : corrected cone resistance [Pa] (>= 0).
-    sigma_v : vertical effective stress sigma'v0 [Pa] (> 0).
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance [Pa] (>= 0).
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa] (> 0).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Shape factor k [1/m].
     """
     qt, sigma_v = np.asarray(qt, dtype=float), np.asarray(sigma_v, dtype=float)
     return np.sqrt(qt / sigma_v) / ALM_HAMRE_2001_SHAPE_DIVISOR
@@ -171,12 +227,24 @@ def alm_hamre_2001_degraded_friction(fs_i, fs_res, k, depth, tip_depth):
 
     fs(z; p) = fs,res + (fs,i - fs,res) exp(-k (p - z))   (Alm & Hamre 2001).
 
-    fs_i : initial unit shaft friction at z [Pa].
-    fs_res : residual unit shaft friction at z [Pa].
-    k : shape factor at z [1/m] (:func:`alm_hamre_2001_friction_fatigue_k`).
-    depth : depth z of the point below the mudline [m].
-    tip_depth : depth p of the pile tip below the mudline [m]. Points below the tip
-        (z > p) are not reached yet: the distance p - z is clipped at 0 there, giving fs,i.
+    Parameters
+    ----------
+    fs_i : float or array_like
+        Initial unit shaft friction at z [Pa].
+    fs_res : float or array_like
+        Residual unit shaft friction at z [Pa].
+    k : float or array_like
+        Shape factor at z [1/m] (:func:`alm_hamre_2001_friction_fatigue_k`).
+    depth : float or array_like
+        Depth z of the point below the mudline [m].
+    tip_depth : float
+        Depth p of the pile tip below the mudline [m]. Points below the tip (z > p) are not
+        reached yet: the distance p - z is clipped at 0 there, giving fs,i.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Degraded unit shaft friction fs(z; p) [Pa].
     """
     fs_i, fs_res = np.asarray(fs_i, dtype=float), np.asarray(fs_res, dtype=float)
     passed = np.maximum(np.asarray(tip_depth, dtype=float) - np.asarray(depth, dtype=float),
@@ -190,9 +258,19 @@ def alm_hamre_2001_sand_toe(qt, sigma_v, factor=ALM_HAMRE_2001_SAND_TOE_FACTOR):
     q_toe = factor qt (qt / sigma'v0)^0.2, factor 0.15 (Alm & Hamre 2001) or 0.10
     (:data:`ALM_HAMRE_2018_SAND_TOE_FACTOR`, the 2018 revision).
 
-    qt : corrected cone resistance at the tip [Pa].
-    sigma_v : vertical effective stress at the tip sigma'v0 [Pa] (> 0).
-    factor : toe factor [-].
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance at the tip [Pa].
+    sigma_v : float or array_like
+        Vertical effective stress at the tip sigma'v0 [Pa] (> 0).
+    factor : float, default ALM_HAMRE_2001_SAND_TOE_FACTOR
+        Toe factor [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit toe resistance q_toe [Pa].
     """
     qt, sigma_v = np.asarray(qt, dtype=float), np.asarray(sigma_v, dtype=float)
     return factor * qt * (qt / sigma_v) ** 0.2
@@ -201,7 +279,15 @@ def alm_hamre_2001_sand_toe(qt, sigma_v, factor=ALM_HAMRE_2001_SAND_TOE_FACTOR):
 def alm_hamre_2001_clay_toe(qt):
     """Unit toe resistance in clay, q_toe = 0.6 qt [Pa] (Alm & Hamre 2001).
 
-    qt : corrected cone resistance at the tip [Pa].
+    Parameters
+    ----------
+    qt : float or array_like
+        Corrected cone resistance at the tip [Pa].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit toe resistance q_toe [Pa].
     """
     return 0.6 * np.asarray(qt, dtype=float)
 
@@ -210,7 +296,15 @@ def alm_hamre_2001_clay_toe(qt):
 def stevens_1982_interface_friction_angle(friction_angle):
     """Soil-pile friction angle delta = phi' - 5 deg [deg] (Stevens et al. 1982).
 
-    friction_angle : effective friction angle of the sand phi' [deg].
+    Parameters
+    ----------
+    friction_angle : float or array_like
+        Effective friction angle of the sand phi' [deg].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Soil-pile friction angle delta [deg].
     """
     return np.asarray(friction_angle, dtype=float) - STEVENS_1982_DELTA_OFFSET
 
@@ -221,7 +315,19 @@ def stevens_1982_limits(delta):
     Linear interpolation between the tabulated delta = 15, 20, 25, 30, 35 deg; outside that
     range the nearest row is used (clamped, no extrapolation).
 
-    delta : soil-pile friction angle [deg].
+    Parameters
+    ----------
+    delta : float or array_like
+        Soil-pile friction angle [deg].
+
+    Returns
+    -------
+    nq : float or numpy.ndarray
+        Bearing capacity factor Nq [-].
+    f_l : float or numpy.ndarray
+        Limit unit shaft friction f_L [Pa].
+    q_l : float or numpy.ndarray
+        Limit unit toe resistance q_L [Pa].
     """
     delta = np.asarray(delta, dtype=float)
     return (np.interp(delta, STEVENS_1982_DELTA, STEVENS_1982_NQ),
@@ -234,10 +340,20 @@ def stevens_1982_sand_friction(sigma_v, delta, k=STEVENS_1982_K_LOWER):
 
     Stevens, Wiltsie & Turton (1982); limit f_L from :func:`stevens_1982_limits`.
 
-    sigma_v : vertical effective stress sigma'v0 [Pa].
-    delta : soil-pile friction angle [deg] (phi' - 5 deg).
-    k : lateral earth-pressure coefficient K [-]: 0.5 lower bound
+    Parameters
+    ----------
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa].
+    delta : float or array_like
+        Soil-pile friction angle [deg] (phi' - 5 deg).
+    k : float, default STEVENS_1982_K_LOWER
+        Lateral earth-pressure coefficient K [-]: 0.5 lower bound
         (:data:`STEVENS_1982_K_LOWER`), 0.7 upper bound (:data:`STEVENS_1982_K_UPPER`).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit shaft friction f [Pa].
     """
     sigma_v = np.asarray(sigma_v, dtype=float)
     _, f_limit, _ = stevens_1982_limits(delta)
@@ -249,8 +365,17 @@ def stevens_1982_sand_toe(sigma_v, delta):
 
     Stevens, Wiltsie & Turton (1982); Nq and q_L from :func:`stevens_1982_limits`.
 
-    sigma_v : vertical effective stress at the tip sigma'v0 [Pa].
-    delta : soil-pile friction angle [deg].
+    Parameters
+    ----------
+    sigma_v : float or array_like
+        Vertical effective stress at the tip sigma'v0 [Pa].
+    delta : float or array_like
+        Soil-pile friction angle [deg].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit toe resistance q [Pa].
     """
     nq, _, q_limit = stevens_1982_limits(delta)
     return np.minimum(nq * np.asarray(sigma_v, dtype=float), q_limit)
@@ -259,7 +384,15 @@ def stevens_1982_sand_toe(sigma_v, delta):
 def stevens_1982_clay_toe(su):
     """Unit toe resistance in clay, q = 9 su [Pa] (Stevens et al. 1982).
 
-    su : undrained shear strength at the tip [Pa].
+    Parameters
+    ----------
+    su : float or array_like
+        Undrained shear strength at the tip [Pa].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit toe resistance q [Pa].
     """
     return CLAY_TOE_BEARING_FACTOR * np.asarray(su, dtype=float)
 
@@ -270,9 +403,19 @@ def api_rp2a_alpha(su, sigma_v, alpha_max=API_ALPHA_MAX):
     alpha = 0.5 psi^-0.5 (psi <= 1), 0.5 psi^-0.25 (psi > 1), psi = su / sigma'v0,
     with alpha <= 1 (API RP 2A-WSD, after Randolph & Murphy 1985).
 
-    su : undrained shear strength [Pa] (> 0).
-    sigma_v : vertical effective stress sigma'v0 [Pa] (> 0).
-    alpha_max : upper limit of alpha [-] (1.0 in API RP 2A; ``np.inf`` for none).
+    Parameters
+    ----------
+    su : float or array_like
+        Undrained shear strength [Pa] (> 0).
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa] (> 0).
+    alpha_max : float, default API_ALPHA_MAX
+        Upper limit of alpha [-] (1.0 in API RP 2A; ``np.inf`` for none).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Adhesion factor alpha [-].
     """
     psi = np.asarray(su, dtype=float) / np.asarray(sigma_v, dtype=float)
     alpha = np.where(psi <= 1.0, 0.5 * psi ** -0.5, 0.5 * psi ** -0.25)
@@ -287,12 +430,23 @@ def semple_gemeinhardt_1981_ocr(su, sigma_v, plasticity_index,
     normally consolidated strength ratio and su ~ OCR^0.85), as used by Semple & Gemeinhardt
     (1981).
 
-    su : undrained shear strength [Pa].
-    sigma_v : vertical effective stress sigma'v0 [Pa] (> 0).
-    plasticity_index : plasticity index as a fraction [-] (0.30 for PI = 30 %); converted to
-        percent inside the formula.
-    floor : lower limit of the OCR [-] (default 1: a strength ratio below the normally
+    Parameters
+    ----------
+    su : float or array_like
+        Undrained shear strength [Pa].
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa] (> 0).
+    plasticity_index : float or array_like
+        Plasticity index as a fraction [-] (0.30 for PI = 30 %); converted to percent inside
+        the formula.
+    floor : float or None, default SEMPLE_GEMEINHARDT_1981_OCR_FLOOR
+        Lower limit of the OCR [-] (default 1: a strength ratio below the normally
         consolidated one is read as normally consolidated); None for no floor.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Estimated OCR [-].
     """
     ratio = np.asarray(su, dtype=float) / np.asarray(sigma_v, dtype=float)
     pi_percent = 100.0 * np.asarray(plasticity_index, dtype=float)
@@ -309,11 +463,23 @@ def semple_gemeinhardt_1981_clay_friction(su, sigma_v, plasticity_index,
     Fp = 0.5 OCR^0.3; alpha from :func:`api_rp2a_alpha`, OCR from
     :func:`semple_gemeinhardt_1981_ocr`.
 
-    su : undrained shear strength [Pa] (> 0).
-    sigma_v : vertical effective stress sigma'v0 [Pa] (> 0).
-    plasticity_index : plasticity index as a fraction [-].
-    ocr_floor : lower limit of the estimated OCR [-] (None for none).
-    alpha_max : upper limit of alpha [-].
+    Parameters
+    ----------
+    su : float or array_like
+        Undrained shear strength [Pa] (> 0).
+    sigma_v : float or array_like
+        Vertical effective stress sigma'v0 [Pa] (> 0).
+    plasticity_index : float or array_like
+        Plasticity index as a fraction [-].
+    ocr_floor : float or None, default SEMPLE_GEMEINHARDT_1981_OCR_FLOOR
+        Lower limit of the estimated OCR [-] (None for none).
+    alpha_max : float, default API_ALPHA_MAX
+        Upper limit of alpha [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Unit shaft friction f [Pa].
     """
     su = np.asarray(su, dtype=float)
     ocr = semple_gemeinhardt_1981_ocr(su, sigma_v, plasticity_index, floor=ocr_floor)
