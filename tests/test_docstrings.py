@@ -70,7 +70,7 @@ MODULES_SYSTEM = (
     "anvilwave.engine.compilation",
     "anvilwave.engine.fmi",
     "anvilwave.engine.fmus",
-    "anvilwave.examples",
+    "anvilwave.output.examples",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.cpt",
