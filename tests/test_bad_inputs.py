@@ -236,8 +236,12 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 
 def test_the_count_is_stated():
+    """docs/system-file.md states the count and the classes of the cases tested here."""
     assert COUNT == len(BAD_INPUTS) + 17 and COUNT >= 42
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
+    docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
+    words = {6: "six"}
+    assert f"runs {COUNT} such cases in {words[len(CLASSES)]} classes" in " ".join(docs.split())
 
 
 @pytest.mark.parametrize("case", OUTPUT_CASES)
