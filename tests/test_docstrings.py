@@ -98,6 +98,7 @@ MODULES_FMU = (
 )
 """The FMI package."""
 MODULES_KERNELS = (
+    "anvilwave.engine.direct",
     "anvilwave.anvil_rom.rings",
     "anvilwave.anvil_rom.unit",
     "anvilwave.anvil_rom.rom",
