@@ -97,7 +97,12 @@ MODULES_FMU = (
     "anvilwave.fmu.units.ram",
 )
 """The FMI package."""
-MODULES_KERNELS = ()
+MODULES_KERNELS = (
+    "anvilwave.engine.direct",
+    "anvilwave.anvil_rom.rings",
+    "anvilwave.anvil_rom.unit",
+    "anvilwave.anvil_rom.rom",
+)
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
 MODULES = MODULES_PHYSICS_AND_OUTPUT + MODULES_SYSTEM + MODULES_FMU + MODULES_KERNELS
 

@@ -61,59 +61,92 @@ MAX_PIVOTS_PER_CONTACT = 50
 
 
 class RingState(NamedTuple):
-    """The ring unit's arrays (float64), m = J + K contacts: the ram face's J annuli, then the
-    pile port's K rings. A NamedTuple: the compiled kernels read its fields by name (numba
-    compiles and caches functions taking it like any tuple of arrays)."""
+    """The ring unit's arrays (float64) for m = J + K contacts.
+
+    The ram face's J annuli come first, then the pile port's K rings. A NamedTuple: the
+    compiled kernels read its fields by name (numba compiles and caches functions taking it
+    like any tuple of arrays). The short names (``A``, ``F``, ...) are those of the formulas
+    (module docstring).
+
+    Parameters
+    ----------
+    participation : numpy.ndarray
+        ``RP``: the rings' modal participations p_k, shape (n, K) [kg^-1/2].
+    flexibility : numpy.ndarray
+        ``A``: the complementarity problem's matrix C + D R D, shape (m, m) [m/N] (module
+        docstring).
+    dashpot_ratios : numpy.ndarray
+        ``T``: the contacts' dashpot over spring ratios c / k, shape (m,) [s].
+    ring_shares : numpy.ndarray
+        ``W``: the rings' area shares, shape (K,) [-].
+    forces : numpy.ndarray
+        ``F``: the contact forces at t_n, shape (m,) [N] (written).
+    elastic_forces : numpy.ndarray
+        ``E``: their elastic parts (without the dashpots), shape (m,) [N] (written).
+    ring_modal : numpy.ndarray
+        ``ring``: the rings' modal (u, v) of the state, shape (2, K) [m, m/s] (written).
+    scratch : numpy.ndarray
+        The solvers' scratch, shape (m, m + 4): the active sets of the forces and of their
+        elastic parts, the overlaps, the elimination.
+    residual : numpy.ndarray
+        ``R``: the residual flexibility between the ram annuli and the rings, shape (m, m)
+        [m/N].
+    head_kernel : numpy.ndarray
+        ``D``: the tube head's correction at each lag, shape (L, K, K) [m/N] (:func:`head_push`;
+        one lag of zeros on the 1D head).
+    head_history : numpy.ndarray
+        The ring forces' changes since the rest, shape (L, K) [N] (written).
+    head_shift : numpy.ndarray
+        The head's shift of the rings' pile side, now and a step before, shape (2, K) [m]
+        (written).
+    head_rest : numpy.ndarray
+        The ring forces at the blow's start, shape (K,) [N] (written).
+    head_count : numpy.ndarray
+        The steps in the history [-] and the work handed to the tube head [J], shape (2,)
+        (written).
+    face_participation : numpy.ndarray
+        ``RQ``: the anvil's participations on the ram face's annuli, shape (n, J) [kg^-1/2].
+    face_modal : numpy.ndarray
+        ``face``: their modal (u, v) of the state, shape (2, J) [m, m/s] (written).
+    annulus_shares : numpy.ndarray
+        ``Wr``: the annuli's area shares, shape (J,) [-].
+    ram_coefficients : numpy.ndarray
+        ``Cr``: the ram's flexible modes' step coefficients a, b, c, m_e, omega^2, shape
+        (n_r, 5) [-, -, s^2, -, rad^2/s^2] (:meth:`RamFace.coefficients`).
+    ram_participation : numpy.ndarray
+        ``Pr``: the ram's flexible modes on its annuli, shape (n_r, J) [kg^-1/2].
+    ram_toe_participation : numpy.ndarray
+        ``pr``: the same on the whole toe, shape (n_r,) [kg^-1/2].
+    ram_state : numpy.ndarray
+        The ram modes T and U now and a step before, shape (4, n_r) [m kg^1/2]
+        (:func:`ram_face_advance`) (written).
+    ram_offsets : numpy.ndarray
+        The annuli's offsets from the ram unit's toe now and a step before [m] and their rate
+        [m/s], shape (3, J) (written).
+    """
 
     participation: np.ndarray
-    """RP (n, K): the rings' modal participations p_k [kg^-1/2]."""
     flexibility: np.ndarray
-    """A (m, m): the complementarity problem's matrix C + D R D [m/N] (module docstring)."""
     dashpot_ratios: np.ndarray
-    """T (m): the contacts' dashpot over spring ratios c / k [s]."""
     ring_shares: np.ndarray
-    """W (K): the rings' area shares [-]."""
     forces: np.ndarray
-    """F (m): the contact forces at t_n [N] (written)."""
     elastic_forces: np.ndarray
-    """E (m): their elastic parts (without the dashpots) [N] (written)."""
     ring_modal: np.ndarray
-    """ring (2, K): the rings' modal (u, v) of the state [m, m/s] (written)."""
     scratch: np.ndarray
-    """(m, m + 4): the solvers' scratch: the active sets of the forces and of their elastic
-    parts, the overlaps, the elimination."""
     residual: np.ndarray
-    """R (m, m): the residual flexibility between the ram annuli and the rings [m/N]."""
     head_kernel: np.ndarray
-    """D (L, K, K): the tube head's correction at each lag [m/N] (:func:`head_push`; one lag
-    of zeros on the 1D head)."""
     head_history: np.ndarray
-    """(L, K): the ring forces' changes since the rest [N] (written)."""
     head_shift: np.ndarray
-    """(2, K): the head's shift of the rings' pile side, now and a step before [m] (written)."""
     head_rest: np.ndarray
-    """(K): the ring forces at the blow's start [N] (written)."""
     head_count: np.ndarray
-    """(2): the steps in the history and the work handed to the tube head [J] (written)."""
     face_participation: np.ndarray
-    """RQ (n, J): the anvil's participations on the ram face's annuli [kg^-1/2]."""
     face_modal: np.ndarray
-    """face (2, J): their modal (u, v) of the state [m, m/s] (written)."""
     annulus_shares: np.ndarray
-    """Wr (J): the annuli's area shares [-]."""
     ram_coefficients: np.ndarray
-    """Cr (n_r, 5): the ram's flexible modes' step coefficients a, b, c, m_e, omega^2
-    (:meth:`RamFace.coefficients`)."""
     ram_participation: np.ndarray
-    """Pr (n_r, J): the ram's flexible modes on its annuli [kg^-1/2]."""
     ram_toe_participation: np.ndarray
-    """pr (n_r): the same on the whole toe [kg^-1/2]."""
     ram_state: np.ndarray
-    """(4, n_r): the ram modes T and U now and a step before (:func:`ram_face_advance`)
-    (written)."""
     ram_offsets: np.ndarray
-    """(3, J): the annuli's offsets from the ram unit's toe now, a step before [m] and their
-    rate [m/s] (written)."""
 
 
 STATE = ("forces", "elastic_forces", "ring_modal", "scratch", "head_history", "head_shift",
@@ -122,19 +155,40 @@ STATE = ("forces", "elastic_forces", "ring_modal", "scratch", "head_history", "h
 
 
 def copy_ring_state(rings: RingState) -> RingState:
-    """``rings`` with its changing arrays (:data:`STATE`) copied and its data shared."""
+    """``rings`` with its changing arrays (:data:`STATE`) copied and its data shared.
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays.
+
+    Returns
+    -------
+    RingState
+        A state that runs apart from ``rings`` on the same data.
+    """
     return rings._replace(**{name: getattr(rings, name).copy() for name in STATE})
 
 
 @dataclass(frozen=True, eq=False)
 class RamFace:
-    """The ram's toe in J equal-width annuli, as the anvil's ram port in annuli sees it: the
-    ram's flexible modes (the rigid one moves every annulus alike and is left out).
+    """The ram's toe in J equal-width annuli, as the anvil's ram port in annuli sees it.
 
-    omega : (n,) circular frequencies [rad/s] (all > 0). participation : (J, n) b_a^T phi_j
-    on each annulus [kg^-1/2]. toe : (n,) on the whole toe (the ram unit's), their
-    area-weighted mean. residual : (J, J) the truncated modes' flexibility between the
-    annuli [m/N]. areas : (J,) [m^2].
+    The ram's flexible modes (the rigid one moves every annulus alike and is left out).
+
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies of the flexible modes, shape (n,) [rad/s] (all > 0).
+    participation : numpy.ndarray
+        b_a^T phi_j on each annulus, shape (J, n) [kg^-1/2].
+    toe : numpy.ndarray
+        The same on the whole toe (the ram unit's), their area-weighted mean, shape (n,)
+        [kg^-1/2].
+    residual : numpy.ndarray
+        The truncated modes' flexibility between the annuli, shape (J, J) [m/N].
+    areas : numpy.ndarray
+        Areas of the annuli, shape (J,) [m^2].
     """
 
     omega: np.ndarray
@@ -145,7 +199,26 @@ class RamFace:
 
     @classmethod
     def of(cls, omega, participation, toe, residual, areas) -> RamFace:
-        """From a ram's modes with its rigid-body mode (omega = 0), which is dropped."""
+        """From a ram's modes with its rigid-body mode (omega = 0), which is dropped.
+
+        Parameters
+        ----------
+        omega : array_like
+            Circular frequencies, shape (n,) [rad/s], the rigid-body mode's 0 included.
+        participation : array_like
+            b_a^T phi_j on each annulus, shape (J, n) [kg^-1/2].
+        toe : array_like
+            The same on the whole toe, shape (n,) [kg^-1/2].
+        residual : array_like
+            The truncated modes' flexibility between the annuli, shape (J, J) [m/N].
+        areas : array_like
+            Areas of the annuli, shape (J,) [m^2].
+
+        Returns
+        -------
+        RamFace
+            The face with the flexible modes only.
+        """
         omega = np.asarray(omega, float)
         flexible = omega > 0.0
         return cls(omega[flexible], np.asarray(participation, float)[:, flexible],
@@ -154,11 +227,29 @@ class RamFace:
 
     @property
     def n_annuli(self) -> int:
+        """Number of annuli of the face.
+
+        Returns
+        -------
+        int
+            J [-].
+        """
         return int(self.areas.size)
 
     def coefficients(self, h: float) -> np.ndarray:
-        """(n, 5) [a, b, c, m_e, omega^2] of the modes for the step ``h`` [s]
-        (:func:`anvilwave.anvil_rom.rom.modal_transition`, undamped: the ram unit's)."""
+        """[a, b, c, m_e, omega^2] of the modes for the step ``h`` (undamped: the ram unit's).
+
+        Parameters
+        ----------
+        h : float
+            Time step [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (n, 5) [-, -, s^2, -, rad^2/s^2]
+            (:func:`anvilwave.anvil_rom.rom.modal_transition`, then omega^2).
+        """
         return np.column_stack([modal_transition(self.omega, 0.0, h), self.omega ** 2])
 
 
@@ -200,9 +291,34 @@ def _solve_active(A, g, F, active, work):
 
 @njit(cache=True, inline='always')
 def contact_lcp(A, g, F, active, work):
-    """The forces F >= 0 [N] with A F - g >= 0 and F (A F - g) = 0 (module docstring), in
-    place; ``active`` (m) holds the active set to start from (1.0: in contact) and receives
-    the solution's; ``work`` (m, m + 1) scratch. Returns the number of pivots."""
+    """The forces F >= 0 [N] with A F - g >= 0 and F (A F - g) = 0 (module docstring), in place.
+
+    Murty's least-index principal pivoting from the given active set.
+
+    Parameters
+    ----------
+    A : numpy.ndarray
+        The problem's matrix, symmetric positive definite, shape (m, m) [m/N].
+    g : numpy.ndarray
+        The overlaps, shape (m,) [m].
+    F : numpy.ndarray
+        Receives the forces, shape (m,) [N] (written).
+    active : numpy.ndarray
+        The active set to start from (1.0: in contact), shape (m,); receives the solution's
+        (written).
+    work : numpy.ndarray
+        Scratch, shape (m, m + 1).
+
+    Returns
+    -------
+    int
+        The number of pivots [-].
+
+    Raises
+    ------
+    RuntimeError
+        If the pivoting does not end within MAX_PIVOTS_PER_CONTACT pivots per contact.
+    """
     m = g.shape[0]
     for pivots in range(MAX_PIVOTS_PER_CONTACT * m):
         _solve_active(A, g, F, active, work)
@@ -227,11 +343,39 @@ def contact_lcp(A, g, F, active, work):
 
 @njit(cache=True, inline='always')
 def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, elastic, shift, offset, rate):
-    """The overlaps g (J + K) of the ram face's J annuli (``face`` (2, J) the anvil's modal
-    (u, v) there; the ram's toe u_ram, v_ram plus its annuli's ``offset`` and ``rate`` (J),
-    :func:`ram_face_advance`; zeros for one port) and of the K rings, with the dashpots
-    folded in (``elastic``: without them); ``shift`` (K) [m] moves the rings' pile side down
-    (the tube head's correction, :func:`head_push`; zeros for the 1D head)."""
+    """The overlaps g of the ram face's J annuli and of the K rings, dashpots folded in.
+
+    The ram side of annulus a is the ram's toe plus its ``offset`` and ``rate``
+    (:func:`ram_face_advance`; zeros for one port); the rings' pile side is moved down by
+    ``shift`` (the tube head's correction, :func:`head_push`; zeros for the 1D head).
+
+    Parameters
+    ----------
+    g : numpy.ndarray
+        Receives the overlaps, shape (J + K,) [m] (written).
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    face : numpy.ndarray
+        The anvil's modal (u, v) at the ram face's annuli, shape (2, J) [m, m/s].
+    ring : numpy.ndarray
+        The anvil's modal (u, v) at the rings, shape (2, K) [m, m/s].
+    T : numpy.ndarray
+        The contacts' dashpot over spring ratios c / k, shape (J + K,) [s].
+    elastic : bool
+        True: the overlaps without the dashpots.
+    shift : numpy.ndarray
+        Shift of the rings' pile side, shape (K,) [m].
+    offset : numpy.ndarray
+        The annuli's offsets from the ram toe, shape (J,) [m].
+    rate : numpy.ndarray
+        Their rates, shape (J,) [m/s].
+    """
     J = face.shape[1]
     K = ring.shape[1]
     for a in range(J):
@@ -246,18 +390,25 @@ def ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, elastic, shift
 
 @njit(cache=True, inline='always')
 def head_push(rings):
-    """After a step with the ring forces ``rings`` F held: their change since the rest
-    (``rings`` rest) into the tube head's history and its next shift, sum over m >= 1 of
-    D[m] (F_(n+1-m) - F_rest) - D[0] F_rest, with D the dynamic head correction
-    (:func:`anvilwave.pile.head_kernel.head_correction` without its contact springs, which are in
-    A);
-    the shift before is kept as the previous one (for the energy). The work of the forces on
-    the step that just ended, their trapezoid (F_n-1 + F_n) / 2 over its shift's change, is
+    """After a step with the ring forces held: the tube head's history and its next shift.
+
+    After a step with the ring forces ``rings`` F held: their change since the rest (``rings``
+    rest) into the tube head's history and its next shift, sum over m >= 1 of D[m] (F_(n+1-m) -
+    F_rest) - D[0] F_rest, with D the dynamic head correction
+    (:func:`anvilwave.pile.head_kernel.head_correction` without its contact springs, which are
+    in A); the shift before is kept as the previous one (for the energy). The work of the forces
+    on the step that just ended, their trapezoid (F_n-1 + F_n) / 2 over its shift's change, is
     added to ``rings`` count[1] [J] (the energy the rings hand to the tube head beyond the 1D
     head and beyond D[0], whose part is the contacts' complementary energy; the held force's
-    rectangle F_n over the next change booked +1.8 % of the Table 1 blow at fmax 10 kHz and
-    10 us, where the rings chatter: the kernel's tube is loaded by forces that vary linearly
-    over a step). A kernel of one step (the 1D head: D = 0) leaves the shift at zero."""
+    rectangle F_n over the next change booked +1.8 % of the Table 1 blow at fmax 10 kHz and 10
+    us, where the rings chatter: the kernel's tube is loaded by forces that vary linearly over a
+    step). A kernel of one step (the 1D head: D = 0) leaves the shift at zero.
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    """
     F, D, history = rings.forces, rings.head_kernel, rings.head_history
     shift, rest, count = rings.head_shift, rings.head_rest, rings.head_count
     J = rings.face_modal.shape[1]
@@ -287,9 +438,31 @@ def head_push(rings):
 
 @njit(cache=True, inline='always')
 def ring_contact(rings, u_ram, v_ram, u_pile, v_pile):
-    """Contact forces (F_ram, F_pile) [N] of the neighbour states: the sums over the ram
-    face's annuli and over the rings, whose forces are left in ``rings`` F (the faces' modal
-    states are ``rings`` ring and face)."""
+    """Contact forces (F_ram, F_pile) [N] of the neighbour states.
+
+    The sums over the ram face's annuli and over the rings, whose forces are left in
+    ``rings`` F (the faces' modal states are ``rings`` ring and face).
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    ram : float
+        Ram contact force, the sum over the annuli [N].
+    total : float
+        Pile contact force, the sum over the rings [N].
+    """
     A, T, F, ring = rings.flexibility, rings.dashpot_ratios, rings.forces, rings.ring_modal
     scratch, face, offsets = rings.scratch, rings.face_modal, rings.ram_offsets
     m = F.shape[0]
@@ -311,11 +484,34 @@ def ring_contact(rings, u_ram, v_ram, u_pile, v_pile):
 
 @njit(cache=True, inline='always')
 def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
-    """The contact forces without the dashpots into ``rings`` E (their elastic parts, whose
-    complementary energy the contacts store) and the power [W] the dashpots dissipate at the
-    forces ``rings`` F (:func:`anvilwave.anvil_rom.unit.modal_unit_dashpot_power` for rings).
+    """The contact forces without the dashpots and the power [W] the dashpots dissipate.
+
+    The elastic parts go into ``rings`` E (their complementary energy the contacts store); the
+    power is at the forces ``rings`` F
+    (:func:`anvilwave.anvil_rom.unit.modal_unit_dashpot_power` for rings).
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
     Returns
-    (elastic F_ram, elastic sum of the ring forces, power)."""
+    -------
+    ram : float
+        Elastic part of the ram contact force [N].
+    total : float
+        Elastic sum of the ring forces [N].
+    power : float
+        Power dissipated by the contact dashpots [W].
+    """
     A, T, F, E = rings.flexibility, rings.dashpot_ratios, rings.forces, rings.elastic_forces
     ring, scratch = rings.ring_modal, rings.scratch
     face, offsets = rings.face_modal, rings.ram_offsets
@@ -341,8 +537,21 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
 
 @njit(cache=True)
 def ring_interface(coefficients, state, rings, h):
-    """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state into
-    ``rings`` ring (2, K) and face (2, J)."""
+    """The rings' and the ram face annuli's modal (u, v) [m, m/s] of the state.
+
+    Into ``rings`` ring (2, K) and face (2, J).
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8) (:mod:`anvilwave.anvil_rom.unit`).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    h : float
+        Time step [s].
+    """
     C, S = coefficients, state
     _port_sums(C.shape[0], S, rings.participation, h, rings.ring_modal)
     _port_sums(C.shape[0], S, rings.face_participation, h, rings.face_modal)
@@ -365,12 +574,21 @@ def _port_sums(n, S, participations, h, out):
 
 @njit(cache=True, inline='always')
 def ram_face_advance(rings, h):
-    """The ram face's annuli over h with their forces (``rings`` F[:J]) held: the ram's
-    flexible modes driven by the annuli's forces (T) and, as the ram unit drives them, by
-    their sum on the whole toe (U), both from rest at the blow's start; the annuli's offsets
-    from the toe, sum_j P_aj T_j - p_j U_j (the ram unit's toe is sum p_j U_j + the rigid
-    mode, which moves every annulus alike), into ``rings`` offsets (now, before, rate). With
-    one port (no modes) the offsets stay zero."""
+    """Advance the ram face's annuli over h with their forces held.
+
+    The annuli's forces are ``rings`` F[:J]: the ram's flexible modes driven by the annuli's
+    forces (T) and, as the ram unit drives them, by their sum on the whole toe (U), both from
+    rest at the blow's start; the annuli's offsets from the toe, sum_j P_aj T_j - p_j U_j (the
+    ram unit's toe is sum p_j U_j + the rigid mode, which moves every annulus alike), into
+    ``rings`` offsets (now, before, rate). With one port (no modes) the offsets stay zero.
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    h : float
+        Time step [s].
+    """
     F, Cr, Pr = rings.forces, rings.ram_coefficients, rings.ram_participation
     pr, state, offsets = rings.ram_toe_participation, rings.ram_state, rings.ram_offsets
     nr = Cr.shape[0]
@@ -399,10 +617,25 @@ def ram_face_advance(rings, h):
 
 @njit(cache=True, inline='always')
 def ram_face_energy(rings, h):
-    """(kinetic, strain) [J] the ram's face in annuli adds to the ram unit's, in the shadow
-    form of :func:`anvilwave.hammer.modal_ram.modal_ram_energies`: E(T) - E(U)
-    (:func:`ram_face_advance`:
-    the ram's true flexible state is T, the unit's U)."""
+    """(kinetic, strain) [J] the ram's face in annuli adds to the ram unit's energies.
+
+    In the shadow form of :func:`anvilwave.hammer.modal_ram.modal_ram_energies`: E(T) - E(U)
+    (:func:`ram_face_advance`: the ram's true flexible state is T, the unit's U).
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`).
+    h : float
+        Time step [s].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    strain : float
+        Strain energy [J].
+    """
     Cr, state = rings.ram_coefficients, rings.ram_state
     kinetic = 0.0
     strain = 0.0
@@ -417,13 +650,32 @@ def ram_face_energy(rings, h):
 
 @njit(cache=True, inline='always')
 def ring_unit_advance(parameters, coefficients, state, force_ram, rings, interface):
-    """Advance the modes over h with the ram force and the ring forces (``rings`` F) held
-    (:func:`anvilwave.anvil_rom.unit.modal_unit_advance` with the pile load split over the rings
-    and,
-    with J > 1 annuli, the ram load over the annuli; with one port ``force_ram``), then the
+    """Advance the modes over h with the ram force and the ring forces (``rings`` F) held.
+
+    :func:`anvilwave.anvil_rom.unit.modal_unit_advance` with the pile load split over the rings
+    and, with J > 1 annuli, the ram load over the annuli (with one port ``force_ram``), then the
     interface sums of the new state: ``interface`` (u_top, v_top, u_bottom, v_bottom; the
     bottom as the whole ring's mean), ``rings`` ring and face; then the ram face's annuli
-    (:func:`ram_face_advance`) and the tube head (:func:`head_push`)."""
+    (:func:`ram_face_advance`) and the tube head (:func:`head_push`).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: the one-port unit's parameters (:mod:`anvilwave.anvil_rom.unit`; ``P[7]`` gravity
+        [m/s^2], ``P[8]`` the step h [s]).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8) (:mod:`anvilwave.anvil_rom.unit`).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2]; advanced to t_n+1 and t_n
+        (written).
+    force_ram : float
+        Ram contact force held over the step [N] (one port).
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    interface : numpy.ndarray
+        Receives the modal (u_top, v_top, u_bottom, v_bottom) of the new state, shape (4,)
+        [m, m/s] (written).
+    """
     P, C, S = parameters, coefficients, state
     RP, F, ring = rings.participation, rings.forces, rings.ring_modal
     RQ, face = rings.face_participation, rings.face_modal
@@ -476,13 +728,42 @@ def ring_unit_advance(parameters, coefficients, state, force_ram, rings, interfa
 
 @njit(cache=True)
 def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
-    """(kinetic, potential) [J] of the ring unit in the conserved (shadow) form of the
-    two-step scheme (:func:`anvilwave.anvil_rom.unit.modal_unit_energy_at`): the modes' kinetic and
-    strain energies and gravity potential, and the complementary energy of the contacts and
-    the residual flexibility, F_n^T A F_n-1 / 2 with F_n the elastic forces (``rings`` E, from
-    :func:`ring_elastic_forces`) and F_n-1 those one step earlier (neighbours moved back by
-    h v, modes at q_n-1); with the ram face in annuli also what they add to the ram unit's
-    energy (:func:`ram_face_energy`)."""
+    """(kinetic, potential) [J] of the ring unit in the shadow form of the two-step scheme.
+
+    The conserved form (:func:`anvilwave.anvil_rom.unit.modal_unit_energy_at`): the modes'
+    kinetic and strain energies and gravity potential, and the complementary energy of the
+    contacts and the residual flexibility, F_n^T A F_n-1 / 2 with F_n the elastic forces
+    (``rings`` E, from :func:`ring_elastic_forces`) and F_n-1 those one step earlier (neighbours
+    moved back by h v, modes at q_n-1); with the ram face in annuli also what they add to the
+    ram unit's energy (:func:`ram_face_energy`).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: the one-port unit's parameters (:mod:`anvilwave.anvil_rom.unit`; ``P[7]`` gravity
+        [m/s^2], ``P[8]`` the step h [s]).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8) (:mod:`anvilwave.anvil_rom.unit`).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`).
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    potential : float
+        Potential energy [J].
+    """
     P, C, S = parameters, coefficients, state
     RP, A, E, scratch = rings.participation, rings.flexibility, rings.elastic_forces, rings.scratch
     RQ, offsets = rings.face_participation, rings.ram_offsets
@@ -518,11 +799,26 @@ def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_
 
 def ring_matrix(contact_ram, contact_rings: np.ndarray, residual: np.ndarray
                 ) -> np.ndarray:
-    """A = C + D R D (module docstring) of the ram contact [N/m] (or, for a ram face in J
-    annuli, the ram's residual flexibility between them (J, J) [m/N]: the contacts' ram
-    side), the ring contact stiffnesses (K) [N/m] and the residual flexibility R (J + K,
-    J + K) [m/N] between the ram face's annuli and the rings; C is block-diagonal, the ram
-    block, then diag(1 / k) of the rings."""
+    """A = C + D R D (module docstring) of the contacts and the residual flexibility.
+
+    C is block-diagonal, the ram block, then diag(1 / k) of the rings.
+
+    Parameters
+    ----------
+    contact_ram : float or numpy.ndarray
+        The ram contact's spring [N/m], or, for a ram face in J annuli, the ram's residual
+        flexibility between them, shape (J, J) [m/N] (the contacts' ram side).
+    contact_rings : numpy.ndarray
+        The ring contact stiffnesses, shape (K,) [N/m].
+    residual : numpy.ndarray
+        R, the residual flexibility between the ram face's annuli and the rings, shape
+        (J + K, J + K) [m/N].
+
+    Returns
+    -------
+    numpy.ndarray
+        A, shape (J + K, J + K) [m/N].
+    """
     ram = np.atleast_2d(contact_ram)
     if ram.shape == (1, 1):
         ram = 1.0 / ram
@@ -536,13 +832,39 @@ def ring_matrix(contact_ram, contact_rings: np.ndarray, residual: np.ndarray
 
 def ring_static_rest(omega, participation_rings, ring_stiffness, residual_rings, weight
                      ) -> tuple[np.ndarray, float]:
-    """Ring forces (K) [N] and the rigid displacement [m] of an anvil of ``weight`` [N] at rest
-    on a fixed flat pile head. The rings in contact satisfy F_k / k_k + sum_l G_kl F_l = u0,
+    """Ring forces [N] and the rigid displacement [m] of an anvil at rest on a flat pile head.
+
+    The pile head is fixed. The rings in contact satisfy F_k / k_k + sum_l G_kl F_l = u0,
     with G_kl = sum_j p_kj p_lj / w_j^2 + R_kl the rings' flexible static response and u0 the
     rigid translation (the same at every ring), and sum F = weight; a ring whose force would
     be tensile is open (under its own weight a wide anvil dishes: the outer ring can lift),
     with u0 - (G F)_k <= 0 there. Solved by active sets from all rings in contact.
-    ``participation_rings`` (K, n) with the rigid mode first; ``residual_rings`` (K, K)."""
+
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies of the anvil's modes, shape (n,) [rad/s] (0: rigid).
+    participation_rings : numpy.ndarray
+        The rings' modal participations, shape (K, n) [kg^-1/2], the rigid mode first.
+    ring_stiffness : numpy.ndarray
+        The rings' contact springs k_k, shape (K,) [N/m].
+    residual_rings : numpy.ndarray
+        The residual flexibility between the rings, shape (K, K) [m/N].
+    weight : float
+        The anvil's weight [N].
+
+    Returns
+    -------
+    forces : numpy.ndarray
+        The ring forces, shape (K,) [N].
+    u0 : float
+        The rigid displacement [m].
+
+    Raises
+    ------
+    RuntimeError
+        If the active set does not settle within 4 K changes.
+    """
     flexible = omega > 0.0
     Pk = participation_rings[:, flexible]
     G = (Pk / omega[flexible] ** 2) @ Pk.T + residual_rings
@@ -571,10 +893,24 @@ def ring_static_rest(omega, participation_rings, ring_stiffness, residual_rings,
 
 @njit(cache=True, inline='always')
 def ring_faces(rings):
-    """(u_top, u_bottom) [m] with the static correction at the forces ``rings`` F: the ram
-    face's and the rings' area-weighted means (the whole face's and the whole ring's
+    """(u_top, u_bottom) [m] with the static correction at the forces ``rings`` F.
+
+    The ram face's and the rings' area-weighted means (the whole face's and the whole ring's
     displacements), from their modal parts (``rings`` face and ring) and the residual
-    flexibility ``rings`` R (``residual``)."""
+    flexibility ``rings`` R (``residual``).
+
+    Parameters
+    ----------
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`).
+
+    Returns
+    -------
+    u_top : float
+        Displacement of the top face [m].
+    u_bottom : float
+        Displacement of the bottom face (the ring) [m].
+    """
     W, F, ring, R = rings.ring_shares, rings.forces, rings.ring_modal, rings.residual
     face, Wr = rings.face_modal, rings.annulus_shares
     m = F.shape[0]
@@ -600,9 +936,42 @@ def ring_faces(rings):
 
 @njit(cache=True)
 def ring_unit_outputs(parameters, coefficients, state, rings, u_ram, v_ram, u_pile, v_pile):
-    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour
-    states, from its state alone (the anvil FMU's feedthrough): the faces' modal sums, the
-    rings' contact problem (forces left in ``rings`` F; F_pile their sum) and the faces."""
+    """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] of the ring unit for the neighbour states.
+
+    From its state alone (the anvil FMU's feedthrough): the faces' modal sums, the rings'
+    contact problem (forces left in ``rings`` F; F_pile their sum) and the faces.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: the one-port unit's parameters (:mod:`anvilwave.anvil_rom.unit`; ``P[7]`` gravity
+        [m/s^2], ``P[8]`` the step h [s]).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8) (:mod:`anvilwave.anvil_rom.unit`).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    rings : RingState
+        The ring unit's arrays (:class:`RingState`); its changing fields are written.
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    force_ram : float
+        Ram contact force [N].
+    force_pile : float
+        Pile contact force, the sum of the ring forces [N].
+    u_top : float
+        Displacement of the top face [m].
+    u_bottom : float
+        Displacement of the bottom face [m].
+    """
     P, C, S = parameters, coefficients, state
     ring_interface(C, S, rings, P[8])
     force_ram, force_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)

@@ -48,21 +48,37 @@ from anvilwave.inputs import InputError
 class ModalAnvil:
     """Modal ROM of an anvil between the ram face and the pile ring.
 
-    omega : (n,) circular frequencies [rad/s]; omega[0] = 0 is the rigid-body mode.
-    participation_ram, participation_pile : (n,) b^T phi at the interfaces [kg^-1/2].
-    participation_gravity : (n,) phi^T M e_z [kg^1/2].
-    damping_ratio : modal damping ratio of the flexible modes [-].
-    residual_flexibility : (2, 2) static correction [m/N] (zeros without it).
-    total_mass : [kg].
-    fmax : frequency content [Hz].
-    participation_rings : (K, n) the pile port split into K rings
-    (:mod:`anvilwave.anvil_rom.rings`), or
-        None (one port).
-    residual_rings : (J + K, J + K) static correction between the ram face (J = 1) or its J
-        annuli and the rings [m/N] (zeros without it), or None.
-    ring_areas : (K,) [m^2], or None.
-    participation_ram_annuli : (J, n) the ram port split into J > 1 annuli, or None.
-    ram_annulus_areas : (J,) [m^2], or None.
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies, shape (n,) [rad/s]; omega[0] = 0 is the rigid-body mode.
+    participation_ram : numpy.ndarray
+        b_ram^T phi at the ram face, shape (n,) [kg^-1/2].
+    participation_pile : numpy.ndarray
+        b_pile^T phi at the pile ring, shape (n,) [kg^-1/2].
+    participation_gravity : numpy.ndarray
+        phi^T M e_z, shape (n,) [kg^1/2].
+    damping_ratio : float
+        Modal damping ratio of the flexible modes [-].
+    residual_flexibility : numpy.ndarray
+        Static correction between the ram face and the pile ring, shape (2, 2) [m/N] (zeros
+        without it).
+    total_mass : float
+        Mass of the anvil [kg].
+    fmax : float
+        Frequency content of the ROM [Hz].
+    participation_rings : numpy.ndarray or None, default None
+        The pile port split into K rings (:mod:`anvilwave.anvil_rom.rings`), shape (K, n)
+        [kg^-1/2]; None: one port.
+    residual_rings : numpy.ndarray or None, default None
+        Static correction between the ram face (J = 1) or its J annuli and the rings, shape
+        (J + K, J + K) [m/N] (zeros without it); None: one port.
+    ring_areas : numpy.ndarray or None, default None
+        Areas of the rings, shape (K,) [m^2]; None: one port.
+    participation_ram_annuli : numpy.ndarray or None, default None
+        The ram port split into J > 1 annuli, shape (J, n) [kg^-1/2]; None: one port.
+    ram_annulus_areas : numpy.ndarray or None, default None
+        Areas of the ram port's annuli, shape (J,) [m^2]; None: one port.
     """
 
     omega: np.ndarray
@@ -81,22 +97,47 @@ class ModalAnvil:
 
     @property
     def n_annuli(self) -> int:
-        """Annuli of the ram port (1: one port)."""
+        """Annuli of the ram port (1: one port).
+
+        Returns
+        -------
+        int
+            J, the number of annuli of the ram port [-].
+        """
         return (1 if self.participation_ram_annuli is None
                 else int(self.participation_ram_annuli.shape[0]))
 
     @property
     def n_rings(self) -> int:
-        """Rings of the pile port (1: one port)."""
+        """Rings of the pile port (1: one port).
+
+        Returns
+        -------
+        int
+            K, the number of rings of the pile port [-].
+        """
         return 1 if self.participation_rings is None else int(self.participation_rings.shape[0])
 
     @property
     def n_modes(self) -> int:
+        """Number of retained modes, the rigid-body mode included.
+
+        Returns
+        -------
+        int
+            n [-].
+        """
         return len(self.omega)
 
     @property
     def frequencies(self) -> np.ndarray:
-        """Natural frequencies [Hz]."""
+        """Natural frequencies [Hz].
+
+        Returns
+        -------
+        numpy.ndarray
+            omega / (2 pi), shape (n,) [Hz].
+        """
         return self.omega / (2.0 * np.pi)
 
     @classmethod
@@ -105,7 +146,31 @@ class ModalAnvil:
                         source: str = "modal data") -> ModalAnvil:
         """Truncate stored modes at ``fmax`` [Hz] (default: all stored) into a ROM.
 
-        Raises :class:`InputError` when fmax exceeds the stored content or keeps no flexible mode.
+        Parameters
+        ----------
+        data : ModalData
+            The stored modes of the anvil (:mod:`anvilwave.anvil_rom.fem.modalfile`).
+        fmax : float, optional
+            Highest frequency kept [Hz]; default: the frequency content of ``data``.
+        damping_ratio : float, optional
+            Modal damping ratio of the flexible modes [-], in [0, 1); default: that of
+            ``data``.
+        static_correction : bool, default False
+            Add the residual flexibility of the truncated modes (module docstring).
+        source : str, default "modal data"
+            Name of the input the errors refer to.
+
+        Returns
+        -------
+        ModalAnvil
+            The ROM (with the pile port in rings, and the ram port in annuli, when ``data``
+            has them).
+
+        Raises
+        ------
+        InputError
+            If ``fmax`` is not positive, exceeds the stored content or keeps no flexible mode,
+            or if ``damping_ratio`` is outside [0, 1).
         """
         freqs = np.asarray(data.frequencies)
         fmax = data.fmax if fmax is None else float(fmax)
@@ -149,7 +214,23 @@ class ModalAnvil:
 
     @classmethod
     def rigid(cls, mass: float) -> ModalAnvil:
-        """The rigid lumped-mass anvil of the classic programs: one rigid-body mode [kg]."""
+        """The rigid lumped-mass anvil of the classic programs: one rigid-body mode.
+
+        Parameters
+        ----------
+        mass : float
+            Mass of the anvil [kg].
+
+        Returns
+        -------
+        ModalAnvil
+            The one-mode ROM (omega = 0, participations 1 / sqrt(mass), no static correction).
+
+        Raises
+        ------
+        InputError
+            If ``mass`` is not positive and finite.
+        """
         if not np.isfinite(mass) or mass <= 0.0:
             raise InputError("anvil", "mass", f"must be positive, got {mass!r} kg")
         s = 1.0 / np.sqrt(mass)
@@ -157,13 +238,36 @@ class ModalAnvil:
                    np.zeros((2, 2)), float(mass), 0.0)
 
     def transition(self, h: float) -> np.ndarray:
-        """(n, 4) step coefficients [a, b, c, m_e] for a step ``h`` [s] (module docstring)."""
+        """Step coefficients [a, b, c, m_e] of the modes for a step ``h`` (module docstring).
+
+        Parameters
+        ----------
+        h : float
+            Time step [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            [a, b, c, m_e] per mode, shape (n, 4) [-, -, s^2, -] (:func:`modal_transition`).
+        """
         return modal_transition(self.omega, self.damping_ratio, h)
 
     def static_modal_coordinates(self, force_ram: float, force_pile: float) -> np.ndarray:
-        """Flexible-mode coordinates in static equilibrium under the interface forces [N].
+        """Flexible-mode coordinates in static equilibrium under the interface forces.
 
         The rigid coordinate is returned as 0 (it is fixed by the supports, not the anvil).
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram contact force on the top face [N] (compression positive).
+        force_pile : float
+            Pile contact force on the bottom face [N] (compression positive).
+
+        Returns
+        -------
+        numpy.ndarray
+            Modal coordinates q, shape (n,) [m kg^1/2].
         """
         q = np.zeros(self.n_modes)
         flexible = self.omega > 0.0
@@ -179,6 +283,20 @@ def residual_flexibility(elastic_flexibility: np.ndarray, omega: np.ndarray,
     R = G - sum over kept flexible modes of p p^T / omega^2, with G the inertia-relief
     flexibility of the full FE model (all flexible modes) between the ports whose modal
     participations are given, in G's order (the anvil's: ram, pile).
+
+    Parameters
+    ----------
+    elastic_flexibility : numpy.ndarray
+        G, the inertia-relief flexibility between the ports, shape (m, m) [m/N].
+    omega : numpy.ndarray
+        Circular frequencies of the kept modes, shape (n,) [rad/s] (0: rigid, skipped).
+    *participations : numpy.ndarray
+        The modal participations p of each port, shape (n,) each [kg^-1/2], in G's order.
+
+    Returns
+    -------
+    numpy.ndarray
+        R, shape (m, m) [m/N].
     """
     flexible = omega > 0.0
     P = np.vstack([np.asarray(p)[flexible] for p in participations])
@@ -192,6 +310,20 @@ def modal_transition(omega: np.ndarray, damping_ratio: float, h: float) -> np.nd
     roots exp(lambda h) of the mode) and for a constant force (c = (1 - a - b) / w^2, the static
     response f / w^2 reproduced exactly); m_e = w^2 h^2 / (2 - a) is the modal mass of the
     equivalent central-difference scheme (1 for the rigid mode), used for energies.
+
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies, shape (n,) [rad/s] (0: the rigid-body mode).
+    damping_ratio : float
+        Modal damping ratio xi of the flexible modes [-].
+    h : float
+        Time step [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        [a, b, c, m_e] per mode, shape (n, 4) [-, -, s^2, -].
     """
     omega = np.asarray(omega, dtype=float)
     out = np.empty((len(omega), 4))
@@ -214,9 +346,27 @@ def modal_transition(omega: np.ndarray, damping_ratio: float, h: float) -> np.nd
 def modal_step(coef, p_ram, p_pile, p_grav, q, q_prev, force_ram, force_pile, gravity):
     """Advance all modal coordinates by one step (in place).
 
-    coef : (n, >=3) [a, b, c, ...] from :func:`modal_transition`; q, q_prev : modal
-    coordinates at t_n and t_n-1 (become t_n+1 and t_n); force_ram, force_pile : interface forces
-    at t_n [N] (compression positive); gravity [m/s^2].
+    Parameters
+    ----------
+    coef : numpy.ndarray
+        [a, b, c, ...] per mode from :func:`modal_transition`, shape (n, >= 3)
+        [-, -, s^2, ...].
+    p_ram : numpy.ndarray
+        Participations at the ram face, shape (n,) [kg^-1/2].
+    p_pile : numpy.ndarray
+        Participations at the pile ring, shape (n,) [kg^-1/2].
+    p_grav : numpy.ndarray
+        Gravity participations phi^T M e_z, shape (n,) [kg^1/2].
+    q : numpy.ndarray
+        Modal coordinates at t_n, shape (n,) [m kg^1/2]; becomes t_n+1 (written).
+    q_prev : numpy.ndarray
+        Modal coordinates at t_n-1, shape (n,) [m kg^1/2]; becomes t_n (written).
+    force_ram : float
+        Ram interface force at t_n [N] (compression positive).
+    force_pile : float
+        Pile interface force at t_n [N] (compression positive).
+    gravity : float
+        Gravitational acceleration [m/s^2].
     """
     for j in range(q.shape[0]):
         f = p_ram[j] * force_ram - p_pile[j] * force_pile + p_grav[j] * gravity
@@ -227,8 +377,34 @@ def modal_step(coef, p_ram, p_pile, p_grav, q, q_prev, force_ram, force_pile, gr
 
 @njit(cache=True)
 def modal_interface(p_ram, p_pile, q, q_prev, h):
-    """Modal part of (u_top, v_top, u_bottom, v_bottom) [m, m/s]; v is the half-step velocity
-    (q_n - q_n-1) / h of the step h [s]."""
+    """Modal part of (u_top, v_top, u_bottom, v_bottom) [m, m/s].
+
+    v is the half-step velocity (q_n - q_n-1) / h of the step h [s].
+
+    Parameters
+    ----------
+    p_ram : numpy.ndarray
+        Participations at the ram face, shape (n,) [kg^-1/2].
+    p_pile : numpy.ndarray
+        Participations at the pile ring, shape (n,) [kg^-1/2].
+    q : numpy.ndarray
+        Modal coordinates at t_n, shape (n,) [m kg^1/2].
+    q_prev : numpy.ndarray
+        Modal coordinates at t_n-1, shape (n,) [m kg^1/2].
+    h : float
+        Time step [s].
+
+    Returns
+    -------
+    ut : float
+        Modal top-face displacement [m].
+    vt : float
+        Modal top-face half-step velocity [m/s].
+    ub : float
+        Modal bottom-face displacement [m].
+    vb : float
+        Modal bottom-face half-step velocity [m/s].
+    """
     inverse_step = 1.0 / h
     ut = 0.0
     vt = 0.0
@@ -255,6 +431,46 @@ def anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, u_top, v_top, u_bot, v_bo
     solution is unique; the four active sets are tried in turn (the dashpots then act on the
     equivalent overlap d + c d'/k). Without static correction (r = 0) this is two independent
     :func:`contact_force` evaluations.
+
+    Parameters
+    ----------
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    u_top : float
+        Modal displacement of the top face [m].
+    v_top : float
+        Modal velocity of the top face [m/s].
+    u_bot : float
+        Modal displacement of the bottom face [m].
+    v_bot : float
+        Modal velocity of the bottom face [m/s].
+    k_ram : float
+        Ram contact spring [N/m].
+    c_ram : float
+        Ram contact dashpot [N s/m].
+    k_pile : float
+        Pile contact spring [N/m].
+    c_pile : float
+        Pile contact dashpot [N s/m].
+    r00 : float
+        Residual flexibility at the ram face [m/N].
+    r01 : float
+        Residual flexibility between the ram face and the pile ring [m/N].
+    r11 : float
+        Residual flexibility at the pile ring [m/N].
+
+    Returns
+    -------
+    f_ram : float
+        Ram-anvil contact force [N] (compression positive, >= 0).
+    f_pile : float
+        Anvil-pile contact force [N] (compression positive, >= 0).
     """
     if r00 == 0.0 and r01 == 0.0 and r11 == 0.0:
         return (contact_force(u_ram - u_top, v_ram - v_top, k_ram, c_ram),

@@ -44,8 +44,21 @@ GRAVITY = 9.81  # [m/s^2]
 class ContactParameters:
     """Penalty contacts of the anvil.
 
-    ram_stiffness, pile_stiffness : compression-only contact springs [N/m].
-    ram_damping, pile_damping : contact dashpots [N s/m].
+    Parameters
+    ----------
+    ram_stiffness : float
+        Compression-only contact spring between the ram toe and the top face [N/m].
+    pile_stiffness : float
+        Compression-only contact spring between the bottom face and the pile head [N/m].
+    ram_damping : float, default 0.0
+        Dashpot of the ram contact [N s/m].
+    pile_damping : float, default 0.0
+        Dashpot of the pile contact [N s/m].
+
+    Raises
+    ------
+    InputError
+        If a stiffness is not positive and finite or a damping not >= 0 and finite.
     """
 
     ram_stiffness: float
@@ -68,23 +81,38 @@ class ContactParameters:
 class AnvilUnit:
     """Modal (or rigid) anvil with its ram and pile contacts.
 
-    anvil : the ROM (``ModalAnvil.from_modal_data``) or the rigid mass (``ModalAnvil.rigid``).
-    contact : contact springs and dashpots.
-    gravity : gravitational acceleration [m/s^2] (0 to switch gravity off).
+    The kernel arrays ``P``, ``C``, ``S`` (module docstring) and, with the pile port in
+    rings, ``rings`` (:class:`anvilwave.anvil_rom.rings.RingState`) are built on creation.
+
+    Parameters
+    ----------
+    anvil : ModalAnvil
+        The ROM (``ModalAnvil.from_modal_data``) or the rigid mass (``ModalAnvil.rigid``).
+    contact : ContactParameters
+        Contact springs and dashpots.
+    gravity : float, default GRAVITY
+        Gravitational acceleration [m/s^2] (0 to switch gravity off).
+    head : tuple or None, default None
+        A tube head under the rings (:func:`anvilwave.pile.head_kernel.head_correction`):
+        (D, springs), D (L, K, K) [m/N] what the tube adds to the 1D head at each lag (at lag 0
+        without the contact springs), springs (K,) [N/m] the rings' contacts on the tube;
+        None: the 1D head.
+    ram_face : RamFace or None, default None
+        The ram's face in annuli (:class:`anvilwave.anvil_rom.rings.RamFace`) when the anvil's
+        ram port is in annuli; None: one port.
+
+    Raises
+    ------
+    ValueError
+        If the ram port is in annuli without a ``ram_face`` (or with one of another number of
+        annuli), or if ``head`` does not match the rings.
     """
 
     anvil: ModalAnvil
     contact: ContactParameters
     gravity: float = GRAVITY
     head: tuple | None = None
-    """A tube head under the rings (:func:`anvilwave.pile.head_kernel.head_correction`): (D,
-    springs),
-    D (L, K, K) [m/N] what the tube adds to the 1D head at each lag (at lag 0 without the
-    contact springs), springs (K,) [N/m] the rings' contacts on the tube; None: the 1D head."""
     ram_face: RamFace | None = None
-    """The ram's face in annuli (:class:`anvilwave.anvil_rom.rings.RamFace`) when the anvil's ram
-    port is
-    in annuli; None: one port."""
 
     def __post_init__(self):
         r = self.anvil.residual_flexibility
@@ -156,8 +184,25 @@ class AnvilUnit:
             ram_offsets=np.zeros((3, J)))
 
     def set_head(self, head: tuple) -> tuple[float, float]:
-        """Put the rings on a tube head (``head`` as the field) and rest on it afresh: returns
-        :meth:`rest_on_pile`'s (u_top, weight)."""
+        """Put the rings on a tube head and rest on it afresh.
+
+        Parameters
+        ----------
+        head : tuple
+            (D, springs) as the field ``head``: D (L, K, K) [m/N], springs (K,) [N/m].
+
+        Returns
+        -------
+        u_top : float
+            Top face at rest [m] (:meth:`rest_on_pile`).
+        weight : float
+            Pile contact force at rest [N].
+
+        Raises
+        ------
+        ValueError
+            If the pile port is not in rings, or ``head`` does not match the rings.
+        """
         if self.rings is None:
             raise ValueError("a tube head needs the pile port in rings")
         self.head = head
@@ -165,8 +210,25 @@ class AnvilUnit:
         return self.rest_on_pile(0.0)
 
     def set_ram_face(self, face: RamFace) -> tuple[float, float]:
-        """Put the ram face in annuli (``face``, the ram's, as the anvil's ram port) and rest
-        afresh: returns :meth:`rest_on_pile`'s (u_top, weight)."""
+        """Put the ram face in annuli (the ram's, as the anvil's ram port) and rest afresh.
+
+        Parameters
+        ----------
+        face : RamFace
+            The ram's toe in as many annuli as the anvil's ram port.
+
+        Returns
+        -------
+        u_top : float
+            Top face at rest [m] (:meth:`rest_on_pile`).
+        weight : float
+            Pile contact force at rest [N].
+
+        Raises
+        ------
+        ValueError
+            If the pile port is not in rings, or ``face`` has another number of annuli.
+        """
         if self.rings is None:
             raise ValueError("a ram face in annuli needs the pile port in rings")
         self.ram_face = face
@@ -174,9 +236,16 @@ class AnvilUnit:
         return self.rest_on_pile(0.0)
 
     def restart_head(self, rings: RingState | None = None) -> None:
-        """Start the tube head's history afresh from the present ring forces (a blow's start):
-        its changes are measured from them; the ram face's annuli start at rest (the ram's
-        flexible modes are at rest at impact)."""
+        """Start the tube head's history afresh from the present ring forces (a blow's start).
+
+        Its changes are measured from them; the ram face's annuli start at rest (the ram's
+        flexible modes are at rest at impact).
+
+        Parameters
+        ----------
+        rings : RingState or None, default None
+            The ring arrays to restart (written); None: the unit's own ``rings``.
+        """
         rings = self.rings if rings is None else rings
         F, D, shift, rest = rings.forces, rings.head_kernel, rings.head_shift, rings.head_rest
         count = rings.head_count
@@ -190,6 +259,13 @@ class AnvilUnit:
 
     @property
     def n_modes(self) -> int:
+        """Number of modes of the anvil, the rigid-body mode included.
+
+        Returns
+        -------
+        int
+            n [-].
+        """
         return self.anvil.n_modes
 
     def set_step(self, h: float) -> None:
@@ -197,6 +273,11 @@ class AnvilUnit:
 
         The two-step state is rescaled so that the half-step velocity is kept across a change
         of step size.
+
+        Parameters
+        ----------
+        h : float
+            Time step [s].
         """
         if h != self._h:
             n = self.n_modes
@@ -212,8 +293,20 @@ class AnvilUnit:
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
         """Static equilibrium on the pile under gravity (ram not yet touching).
 
-        Sets the state and returns (u_top, pile contact force [N]). The ram toe touches the top
-        face when its displacement equals the returned u_top.
+        Sets the state. The ram toe touches the top face when its displacement equals the
+        returned u_top.
+
+        Parameters
+        ----------
+        pile_head_displacement : float, default 0.0
+            Displacement of the pile head the anvil rests on [m].
+
+        Returns
+        -------
+        u_top : float
+            Top face at rest [m] (with rings: the face's highest annulus).
+        force_pile : float
+            Pile contact force at rest, the anvil's weight [N].
         """
         force_pile = self.anvil.total_mass * self.gravity
         if self.rings is not None:
@@ -259,7 +352,27 @@ class AnvilUnit:
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
         """Contact forces (F_ram, F_pile) [N] for the given neighbour states (feedthrough).
-        With rings F_pile is the sum of the ring forces, which are kept for :meth:`step`."""
+
+        With rings F_pile is the sum of the ring forces, which are kept for :meth:`step`.
+
+        Parameters
+        ----------
+        u_ram : float
+            Ram toe displacement [m] (positive down).
+        v_ram : float
+            Ram toe velocity [m/s].
+        u_pile : float
+            Pile head displacement [m].
+        v_pile : float
+            Pile head velocity [m/s].
+
+        Returns
+        -------
+        f_ram : float
+            Ram contact force [N].
+        f_pile : float
+            Pile contact force [N].
+        """
         if self.rings is not None:
             f_ram, f_pile, _, _ = ring_unit_outputs(self.P, self.C, self.S, self.rings, u_ram,
                                                     v_ram, u_pile, v_pile)
@@ -267,9 +380,25 @@ class AnvilUnit:
         return modal_unit_forces(self.P, self.C, self.S, u_ram, v_ram, u_pile, v_pile)
 
     def step(self, force_ram: float, force_pile: float, h: float) -> None:
-        """Advance the modes over ``h`` [s] with the contact forces held. With rings the pile
-        force is split as the ring forces of the last :meth:`forces` (by area if they were
-        all zero)."""
+        """Advance the modes over ``h`` [s] with the contact forces held.
+
+        With rings the pile force is split as the ring forces of the last :meth:`forces` (by
+        area if they were all zero).
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram contact force held over the step [N] (compression positive).
+        force_pile : float
+            Pile contact force held over the step [N] (compression positive).
+        h : float
+            Time step [s].
+
+        Raises
+        ------
+        ValueError
+            With the ram face in annuli (it runs in the in-process engine only).
+        """
         self.set_step(h)
         if self.rings is not None:
             self._ring_forces(force_ram, force_pile)
@@ -278,9 +407,34 @@ class AnvilUnit:
         modal_unit_step(self.P, self.C, self.S, force_ram, force_pile)
 
     def outputs(self, force_ram: float, force_pile: float) -> tuple[float, float, float, float]:
-        """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included (with
-        rings: u_bottom and v_bottom the rings' area-weighted means, the ring forces split as
-        in :meth:`step`)."""
+        """(u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included.
+
+        With rings: u_bottom and v_bottom the rings' area-weighted means, the ring forces split
+        as in :meth:`step`.
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram contact force [N].
+        force_pile : float
+            Pile contact force [N].
+
+        Returns
+        -------
+        u_top : float
+            Top face displacement [m].
+        v_top : float
+            Top face velocity [m/s].
+        u_bottom : float
+            Bottom face displacement [m].
+        v_bottom : float
+            Bottom face velocity [m/s].
+
+        Raises
+        ------
+        ValueError
+            With the ram face in annuli (it runs in the in-process engine only).
+        """
         if self.rings is not None:
             return self._ring_outputs(force_ram, force_pile)
         return modal_unit_outputs(self.P, self.C, self.S, force_ram, force_pile)
@@ -311,6 +465,29 @@ class AnvilUnit:
 
         Potential = modal strain + gravity potential of the anvil + the energy stored in the
         two contact springs and in the residual flexibility.
+
+        Parameters
+        ----------
+        u_ram : float
+            Ram toe displacement [m] (positive down).
+        v_ram : float
+            Ram toe velocity [m/s].
+        u_pile : float
+            Pile head displacement [m].
+        v_pile : float
+            Pile head velocity [m/s].
+
+        Returns
+        -------
+        kinetic : float
+            Kinetic energy [J].
+        potential : float
+            Potential energy [J].
+
+        Raises
+        ------
+        ValueError
+            With the pile port in rings (the in-process engine books that energy).
         """
         if self.rings is not None:
             raise ValueError("the energy of a pile port in rings is booked by the in-process "
@@ -320,6 +497,34 @@ class AnvilUnit:
 
 @njit(cache=True)
 def modal_unit_outputs(parameters, coefficients, state, force_ram, force_pile):
+    """Interface (u_top, v_top, u_bottom, v_bottom) [m, m/s], static correction included.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    force_ram : float
+        Ram contact force at t_n [N] (compression positive).
+    force_pile : float
+        Pile contact force at t_n [N] (compression positive).
+
+    Returns
+    -------
+    ut : float
+        Top face displacement [m].
+    vt : float
+        Top face velocity [m/s].
+    ub : float
+        Bottom face displacement [m].
+    vb : float
+        Bottom face velocity [m/s].
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
@@ -330,6 +535,36 @@ def modal_unit_outputs(parameters, coefficients, state, force_ram, force_pile):
 
 @njit(cache=True)
 def modal_unit_forces(parameters, coefficients, state, u_ram, v_ram, u_pile, v_pile):
+    """Contact forces (F_ram, F_pile) [N] of the state for the neighbour states (feedthrough).
+
+    :func:`anvilwave.anvil_rom.rom.anvil_contact_forces` of the modal interface sums.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     ut, vt, ub, vb = modal_interface(C[:, 4], C[:, 5], S[:n], S[n:], P[8])
@@ -339,6 +574,26 @@ def modal_unit_forces(parameters, coefficients, state, u_ram, v_ram, u_pile, v_p
 
 @njit(cache=True)
 def modal_unit_step(parameters, coefficients, state, force_ram, force_pile):
+    """Advance the modes over h (``P[8]``) with the contact forces held, in place.
+
+    :func:`anvilwave.anvil_rom.rom.modal_step` on the kernel arrays.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2]; advanced to t_n+1 and t_n
+        (written).
+    force_ram : float
+        Ram contact force held over the step [N] (compression positive).
+    force_pile : float
+        Pile contact force held over the step [N] (compression positive).
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     modal_step(C, C[:, 4], C[:, 5], C[:, 6], S[:n], S[n:], force_ram, force_pile, P[7])
@@ -352,6 +607,32 @@ def modal_unit_energy(parameters, coefficients, state, u_ram, v_ram, u_pile, v_p
     - g p_grav (q_n + q_n-1) / 2 + the contact springs, k d_n d_n-1 / 2 each (with static
     correction: F_n^T (K_c^-1 + R) F_n-1 / 2, contacts and residual flexibility together). The
     contact dashpots, if any, are not counted.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    potential : float
+        Potential energy [J].
     """
     P, C, S = parameters, coefficients, state
     interface = np.empty(4)
@@ -363,10 +644,45 @@ def modal_unit_energy(parameters, coefficients, state, u_ram, v_ram, u_pile, v_p
 @njit(cache=True, fastmath={"reassoc"})
 def modal_unit_energy_at(parameters, coefficients, state, interface, u_ram, v_ram, u_pile, v_pile,
                          f_ram, f_pile):
-    """:func:`modal_unit_energy` in one sweep over the modes, given the interface
-    displacements of the state (``interface[0]``, ``interface[2]``, :func:`modal_unit_interface`)
-    and the contact forces of these neighbour states.
-    The sums may be added in any order (fastmath reassociation only: their last bits)."""
+    """:func:`modal_unit_energy` in one sweep over the modes, given interface and forces.
+
+    Given the interface displacements of the state (``interface[0]``, ``interface[2]``,
+    :func:`modal_unit_interface`) and the contact forces of these neighbour states.
+    The sums may be added in any order (fastmath reassociation only: their last bits).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    interface : numpy.ndarray
+        The modal (u_top, v_top, u_bottom, v_bottom) of the state, shape (4,) [m, m/s]
+        (:func:`modal_unit_interface`).
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    f_ram : float
+        Ram contact force at these neighbour states [N].
+    f_pile : float
+        Pile contact force at these neighbour states [N].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    potential : float
+        Potential energy [J].
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     h = P[8]
@@ -411,8 +727,24 @@ def modal_unit_energy_at(parameters, coefficients, state, interface, u_ram, v_ra
 # modal_unit_step / modal_unit_forces / modal_unit_outputs, with one pass over the modes a step.
 @njit(cache=True)
 def modal_unit_interface(parameters, coefficients, state, interface):
-    """Modal parts (u_top, v_top, u_bottom, v_bottom) [m, m/s] of the state into
-    ``interface`` (4,) (:func:`anvilwave.anvil_rom.rom.modal_interface`)."""
+    """Modal parts (u_top, v_top, u_bottom, v_bottom) [m, m/s] of the state into ``interface``.
+
+    :func:`anvilwave.anvil_rom.rom.modal_interface` on the kernel arrays.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
+    interface : numpy.ndarray
+        Receives the modal (u_top, v_top, u_bottom, v_bottom) of the state, shape (4,)
+        [m, m/s] (written).
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     inverse_step = 1.0 / P[8]
@@ -434,8 +766,29 @@ def modal_unit_interface(parameters, coefficients, state, interface):
 
 @njit(cache=True, inline='always')
 def modal_unit_advance(parameters, coefficients, state, force_ram, force_pile, interface):
-    """:func:`modal_unit_step`, then :func:`modal_unit_interface` of the new state, in one
-    sweep over the modes (the same arithmetic)."""
+    """:func:`modal_unit_step`, then :func:`modal_unit_interface` of the new state.
+
+    In one sweep over the modes (the same arithmetic).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    coefficients : numpy.ndarray
+        ``C``: the per-mode table, shape (n, 8): a, b, c, m_e, p_ram, p_pile, p_grav, omega
+        (module docstring).
+    state : numpy.ndarray
+        ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2]; advanced to t_n+1 and t_n
+        (written).
+    force_ram : float
+        Ram contact force held over the step [N] (compression positive).
+    force_pile : float
+        Pile contact force held over the step [N] (compression positive).
+    interface : numpy.ndarray
+        Receives the modal (u_top, v_top, u_bottom, v_bottom) of the new state, shape (4,)
+        [m, m/s] (written).
+    """
     P, C, S = parameters, coefficients, state
     n = C.shape[0]
     gravity = P[7]
@@ -465,14 +818,47 @@ def modal_unit_advance(parameters, coefficients, state, force_ram, force_pile, i
 
 @njit(cache=True, inline='always')
 def modal_unit_dashpot_power(parameters, interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile):
-    """(F_e,ram, F_e,pile, power): the contact forces without the dashpots [N] (the elastic
-    parts, whose complementary energy the contacts store) and the power [W] the dashpots
-    dissipate at the contact forces ``f_ram``, ``f_pile`` of :func:`modal_unit_contact`.
+    """(F_e,ram, F_e,pile, power): elastic contact forces [N] and dashpot power [W].
+
+    The contact forces without the dashpots (the elastic parts, whose complementary energy the
+    contacts store) and the power the dashpots dissipate at the contact forces ``f_ram``,
+    ``f_pile`` of :func:`modal_unit_contact`.
 
     With the dashpots folded into an equivalent overlap (:func:`anvilwave.anvil_rom.rom.
     anvil_contact_forces`) the force is F = A^-1 (d + T d') with T = diag(c / k): its elastic
     part A^-1 d stores d^T A^-1 d / 2, whose rate is F_e . d', so the rest, (F - F_e) . d',
-    is dissipated (d' the relative velocities of the modal faces, rest to the contacts)."""
+    is dissipated (d' the relative velocities of the modal faces, rest to the contacts).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    interface : numpy.ndarray
+        The modal (u_top, v_top, u_bottom, v_bottom) of the state, shape (4,) [m, m/s]
+        (:func:`modal_unit_interface`).
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    f_ram : float
+        Ram contact force at these neighbour states [N].
+    f_pile : float
+        Pile contact force at these neighbour states [N].
+
+    Returns
+    -------
+    fe_ram : float
+        Elastic part of the ram contact force [N].
+    fe_pile : float
+        Elastic part of the pile contact force [N].
+    power : float
+        Power dissipated by the contact dashpots [W].
+    """
     P = parameters
     fe_ram, fe_pile = anvil_contact_forces(u_ram, 0.0, u_pile, 0.0, interface[0], 0.0,
                                            interface[2], 0.0, P[0], 0.0, P[2], 0.0, P[4], P[5],
@@ -484,7 +870,32 @@ def modal_unit_dashpot_power(parameters, interface, u_ram, v_ram, u_pile, v_pile
 
 @njit(cache=True, inline='always')
 def modal_unit_contact(parameters, interface, u_ram, v_ram, u_pile, v_pile):
-    """Contact forces (F_ram, F_pile) [N] from the interface sums (:func:`modal_unit_forces`)."""
+    """Contact forces (F_ram, F_pile) [N] from the interface sums (:func:`modal_unit_forces`).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m, N s/m,
+        m/N, m/N, m/N, m/s^2, s] (module docstring).
+    interface : numpy.ndarray
+        The modal (u_top, v_top, u_bottom, v_bottom) of the state, shape (4,) [m, m/s]
+        (:func:`modal_unit_interface`).
+    u_ram : float
+        Ram toe displacement [m] (positive down).
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    """
     P = parameters
     return anvil_contact_forces(u_ram, v_ram, u_pile, v_pile, interface[0], interface[1],
                                 interface[2], interface[3], P[0], P[1], P[2], P[3], P[4], P[5],

@@ -177,6 +177,28 @@ def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays
     (three diagonals) joined through the anvil's dense block of modes. Each test costs about
     one elimination of that block, so an engine gets its limit in milliseconds, without a
     dense eigenvalue solver (nor its threads).
+
+    Parameters
+    ----------
+    ram_mass : array_like
+        The ram chain's masses, shape (N_r,) [kg].
+    ram_stiffness : array_like
+        The ram chain's springs, shape (N_r - 1,) [N/m].
+    k_ram : float
+        Ram contact spring [N/m] (without an anvil: the two contacts in series).
+    k_pile : float
+        Pile contact spring [N/m].
+    pile_arrays : PileSoilArrays
+        The pile's and soil's parameter arrays (``PileSoil.arrays()``).
+    participation_ram : array_like, optional
+        The anvil's participations at the ram face, shape (n,) [kg^-1/2]; None: no anvil.
+    participation_pile : array_like, optional
+        The anvil's participations at the pile ring, shape (n,) [kg^-1/2].
+
+    Returns
+    -------
+    float
+        2 / omega_max [s].
     """
     ram_mass = np.asarray(ram_mass, float)
     ram_stiffness = np.asarray(ram_stiffness, float)
@@ -221,10 +243,32 @@ def coupled_stable_time_step(ram_mass, ram_stiffness, k_ram, k_pile, pile_arrays
 
 def modal_ram_coupled_stable_time_step(participation_toe, k_ram, k_pile, pile_arrays,
                                        participation_ram, participation_pile) -> float:
-    """:func:`coupled_stable_time_step` with a modal ram unit [s]: the ram's modes, like the
-    anvil's, enter as free unit masses coupled through their toe participations (each is
-    integrated exactly; the bound is conservative). One dense symmetric eigenvalue problem of
-    the ram's and the anvil's modes and the pile chain (a few hundred to a few thousand rows).
+    """:func:`coupled_stable_time_step` with a modal ram unit [s].
+
+    The ram's modes, like the anvil's, enter as free unit masses coupled through their toe
+    participations (each is integrated exactly; the bound is conservative). One dense symmetric
+    eigenvalue problem of the ram's and the anvil's modes and the pile chain (a few hundred to
+    a few thousand rows).
+
+    Parameters
+    ----------
+    participation_toe : array_like
+        The ram's modes at its toe, shape (n_r,) [kg^-1/2].
+    k_ram : float
+        Ram contact spring [N/m].
+    k_pile : float
+        Pile contact spring [N/m].
+    pile_arrays : PileSoilArrays
+        The pile's and soil's parameter arrays (``PileSoil.arrays()``).
+    participation_ram : array_like
+        The anvil's participations at the ram face, shape (n,) [kg^-1/2].
+    participation_pile : array_like
+        The anvil's participations at the pile ring, shape (n,) [kg^-1/2].
+
+    Returns
+    -------
+    float
+        2 / omega_max [s].
     """
     from scipy.linalg import eigvalsh
 
@@ -351,153 +395,261 @@ def _largest_eigenvalue(ram_diagonal, ram_off, block, to_toe, to_head, toe_head,
 
 # ----------------------------------------------------------------- the loop's state
 class LoopRam(NamedTuple):
-    """The ram as the loop steps it: its chain (:func:`anvilwave.hammer.ram.ram_advance`) or,
-    when ``modal_coefficients`` has columns, the modal ram unit
-    (:func:`anvilwave.hammer.modal_ram.modal_ram_advance`; the chain's arrays are then unused).
-    Both rams run in the one compiled loop, chosen at run time, so that a ram model does not
-    change how the compiler lays out the rest of the step."""
+    """The ram as the loop steps it: its chain or the modal ram unit.
+
+    The chain is :func:`anvilwave.hammer.ram.ram_advance`'s; when ``modal_coefficients`` has
+    columns the modal ram unit runs instead (:func:`anvilwave.hammer.modal_ram.modal_ram_advance`;
+    the chain's arrays are then unused). Both rams run in the one compiled loop, chosen at run
+    time, so that a ram model does not change how the compiler lays out the rest of the step.
+
+    Parameters
+    ----------
+    weight : numpy.ndarray
+        The chain's weights m g, shape (N,) [N].
+    inverse_mass : numpy.ndarray
+        1 / m, shape (N,) [1/kg].
+    stiffness : numpy.ndarray
+        The chain's springs, shape (N - 1,) [N/m].
+    mass : numpy.ndarray
+        The chain's masses, shape (N,) [kg].
+    u : numpy.ndarray
+        Displacements, shape (N,) [m] (written).
+    v : numpy.ndarray
+        Half-step velocities, shape (N,) [m/s] (written).
+    n_sub : int
+        The chain's sub-steps per master step [-].
+    modal_coefficients : numpy.ndarray
+        C of a :class:`anvilwave.hammer.modal_ram.ModalRamUnit` (no columns: the chain runs).
+    modal_state : numpy.ndarray
+        Its S (written).
+    modal_toe : numpy.ndarray
+        Its toe (u, v, half), shape (3,) [m, m/s, -] (written).
+    """
 
     weight: np.ndarray
-    """(N,) the chain's weights m g [N]."""
     inverse_mass: np.ndarray
-    """(N,) 1 / m [1/kg]."""
     stiffness: np.ndarray
-    """(N - 1,) the chain's springs [N/m]."""
     mass: np.ndarray
-    """(N,) [kg]."""
     u: np.ndarray
-    """(N,) displacements [m] (written)."""
     v: np.ndarray
-    """(N,) half-step velocities [m/s] (written)."""
     n_sub: int
-    """The chain's sub-steps per master step."""
     modal_coefficients: np.ndarray
-    """C of a :class:`anvilwave.hammer.modal_ram.ModalRamUnit` (no columns: the chain runs)."""
     modal_state: np.ndarray
-    """Its S (written)."""
     modal_toe: np.ndarray
-    """Its toe (u, v, half) [m, m/s, -] (written)."""
 
 
 class LoopModalAnvil(NamedTuple):
-    """The modal (ROM or lumped) anvil unit's kernel arrays (:mod:`anvilwave.anvil_rom.unit`)."""
+    """The modal (ROM or lumped) anvil unit's kernel arrays (:mod:`anvilwave.anvil_rom.unit`).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h] [N/m, N s/m, N/m,
+        N s/m, m/N, m/N, m/N, m/s^2, s].
+    coefficients : numpy.ndarray
+        ``C``: the modes' step coefficients and participations, shape (n, 8).
+    state : numpy.ndarray
+        ``S``: q at t_n and t_n-1, shape (2 n,) [m kg^1/2] (written).
+    interface : numpy.ndarray
+        The state's modal u_top, v_top, u_bottom, v_bottom, shape (4,) [m, m/s] (written).
+    """
 
     parameters: np.ndarray
-    """P: [k_ram, c_ram, k_pile, c_pile, r00, r01, r11, gravity, h]."""
     coefficients: np.ndarray
-    """C (n, 8): the modes' step coefficients and participations."""
     state: np.ndarray
-    """S (2 n): q at t_n and t_n-1 (written)."""
     interface: np.ndarray
-    """(4,) the state's modal u_top, v_top, u_bottom, v_bottom [m, m/s] (written)."""
 
 
 class LoopClassic(NamedTuple):
-    """The classic driving system's kernel arrays (:mod:`anvilwave.hammer.driving_system`)."""
+    """The classic driving system's kernel arrays (:mod:`anvilwave.hammer.driving_system`).
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        ``P``: the driving system's parameters
+        (:meth:`anvilwave.hammer.driving_system.DrivingSystem.parameters`).
+    state : numpy.ndarray
+        ``S``: its state (written).
+    n_sub : int
+        Its sub-steps per master step [-].
+    """
 
     parameters: np.ndarray
     state: np.ndarray
-    """(written)"""
     n_sub: int
-    """Its sub-steps per master step."""
 
 
 class LoopAnvil(NamedTuple):
-    """The anvil unit: one of ``modal`` (with the pile port in ``rings`` or not), ``classic``
-    or ``direct`` (the contact [k [N/m], c [N s/m]] of ram toe and pile head, no anvil); the
-    others are None, and the compiler keeps only the code of the given one."""
+    """The anvil unit: one of ``modal`` (with or without ``rings``), ``classic`` or ``direct``.
+
+    The others are None, and the compiler keeps only the code of the given one.
+
+    Parameters
+    ----------
+    modal : LoopModalAnvil or None
+        The modal (ROM or lumped) anvil unit.
+    rings : RingState or None
+        The modal unit's pile port in rings (:class:`anvilwave.anvil_rom.rings.RingState`).
+    classic : LoopClassic or None
+        The classic driving system.
+    direct : numpy.ndarray or None
+        No anvil: the contact [k, c] [N/m, N s/m] of ram toe and pile head.
+    """
 
     modal: LoopModalAnvil | None
     rings: RingState | None
-    """The modal unit's pile port in rings (:class:`anvilwave.anvil_rom.rings.RingState`)."""
     classic: LoopClassic | None
     direct: np.ndarray | None
 
 
 class LoopPile(NamedTuple):
-    """The pile and soil as :func:`anvilwave.pile.kernels.pile_advance` takes them, the blow's
-    start and the stress extremes folded at every step."""
+    """The pile and soil as :func:`anvilwave.pile.kernels.pile_advance` takes them.
+
+    With the blow's start and the stress extremes folded at every step.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        The pile's parameter array (``PileSoil.arrays().pile``).
+    probes : numpy.ndarray
+        Its probe array (gauges, head extrapolation).
+    pile_sweep : tuple
+        The pile's sweep arrays (:func:`anvilwave.pile.kernels.sweep_arrays`).
+    soil_sweep : tuple
+        The soil's sweep arrays (:func:`anvilwave.pile.kernels.sweep_arrays`).
+    first_soil : int
+        The first mass with soil (:func:`anvilwave.pile.kernels.sweep_arrays`) [-].
+    u : numpy.ndarray
+        Displacements, shape (N,) [m] (written).
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s] (written).
+    soil_offset : numpy.ndarray
+        Plastic offsets of the soil springs, shape (N + 1,) [m] (written).
+    energy : numpy.ndarray
+        Energies and works, shape (ENERGY_SIZE,) [J] (written).
+    n_sub : int
+        The pile's sub-steps per master step [-].
+    start_u : numpy.ndarray
+        u at the start of the blow, shape (N,) [m].
+    start_v : numpy.ndarray
+        v at the start of the blow, shape (N,) [m/s].
+    start_energy : numpy.ndarray
+        energy at the start of the blow, shape (ENERGY_SIZE,) [J].
+    face0 : float
+        The head face displacement the anvil unit's pile input is measured from [m].
+    stress_factor : numpy.ndarray
+        The springs' stress factors, shape (N - 1,) [N/m^3].
+    largest : numpy.ndarray
+        The largest shortening of each spring, shape (N - 1,) [m] (written,
+        :func:`anvilwave.pile.kernels.fold_elongations`).
+    smallest : numpy.ndarray
+        The smallest shortening of each spring, shape (N - 1,) [m] (written).
+    """
 
     parameters: np.ndarray
-    """The pile's parameter array (``PileSoil.arrays().pile``)."""
     probes: np.ndarray
-    """Its probe array (gauges, head extrapolation)."""
     pile_sweep: tuple
     soil_sweep: tuple
     first_soil: int
-    """:func:`anvilwave.pile.kernels.sweep_arrays`."""
     u: np.ndarray
-    """(N,) [m] (written)."""
     v: np.ndarray
-    """(N,) [m/s] (written)."""
     soil_offset: np.ndarray
-    """(N + 1,) [m] (written)."""
     energy: np.ndarray
-    """(ENERGY_SIZE,) [J] (written)."""
     n_sub: int
-    """The pile's sub-steps per master step."""
     start_u: np.ndarray
     start_v: np.ndarray
     start_energy: np.ndarray
-    """u, v and energy at the start of the blow."""
     face0: float
-    """The head face displacement the anvil unit's pile input is measured from [m]."""
     stress_factor: np.ndarray
-    """(N - 1,) the springs' stress factors [N/m^3]."""
     largest: np.ndarray
     smallest: np.ndarray
-    """(N - 1,) the largest and smallest shortening of each spring [m] (written,
-    :func:`anvilwave.pile.kernels.fold_elongations`)."""
 
 
 class LoopSettings(NamedTuple):
-    """The blow's time grid and recording."""
+    """The blow's time grid and recording.
+
+    Parameters
+    ----------
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    t0 : float
+        The time of step 0 [s].
+    h : float
+        The master step [s].
+    n_steps : int
+        Number of master steps of the blow [-].
+    record_every : int
+        Steps between the rows of ``out`` (and of the sections) [-].
+    energy_every : int
+        Steps between the rows of ``energies`` (the last step is always one) [-].
+    """
 
     gravity: float
-    """[m/s^2]"""
     t0: float
-    """The time of step 0 [s]."""
     h: float
-    """The master step [s]."""
     n_steps: int
     record_every: int
-    """Steps between the rows of ``out`` (and of the sections)."""
     energy_every: int
-    """Steps between the rows of ``energies`` (the last step is always one)."""
 
 
 class LoopRecords(NamedTuple):
-    """What the loop writes besides the states (None: not kept, its code removed)."""
+    """What the loop writes besides the states (None: not kept, its code removed).
+
+    Parameters
+    ----------
+    out : numpy.ndarray or None
+        The time series, shape (len(COLUMNS), rows) (written).
+    energies : numpy.ndarray or None
+        The energy series, shape (1 + len(ENERGY_COLUMNS), rows) (written).
+    works : tuple or None
+        The per-mass soil work sums of :func:`anvilwave.pile.kernels.pile_advance` [J] (None:
+        no energy bookkeeping).
+    sections : tuple or None
+        (spring indices, buffer (n_sections, rows)): the elongation u_i - u_i+1 [m] of chosen
+        pile springs at every record row, whether ``out`` is recorded or not.
+    summary : numpy.ndarray
+        The blow's summary (S_* entries), shape (SUMMARY_SIZE,) (written).
+    """
 
     out: np.ndarray | None
-    """(COLUMNS, rows) the time series."""
     energies: np.ndarray | None
-    """(1 + ENERGY_COLUMNS, rows) the energy series."""
     works: tuple | None
-    """The per-mass soil work sums of :func:`anvilwave.pile.kernels.pile_advance` (None: no
-    energy bookkeeping)."""
     sections: tuple | None
-    """(spring indices, buffer (n_sections, rows)): the elongation u_i - u_i+1 [m] of chosen
-    pile springs at every record row, whether ``out`` is recorded or not."""
     summary: np.ndarray
-    """(SUMMARY_SIZE,) the blow's summary (S_* entries)."""
 
 
 # ----------------------------------------------------------------- the loop
 @njit(cache=True)
 def run_blow(ram, anvil, pile, settings, records):
-    """Advance one blow of ``settings.n_steps`` master steps of ``settings.h`` [s] from
-    ``settings.t0`` [s], the states in place.
+    """Advance one blow of ``settings.n_steps`` master steps, the states in place.
 
-    ram : :class:`LoopRam`; anvil : :class:`LoopAnvil`; pile : :class:`LoopPile`; settings :
-    :class:`LoopSettings`; records : :class:`LoopRecords`. Records every ``record_every`` steps
-    into ``records.out`` and every ``energy_every`` steps and at the last into
+    The steps are ``settings.h`` [s] from ``settings.t0`` [s]. Records every ``record_every``
+    steps into ``records.out`` and every ``energy_every`` steps and at the last into
     ``records.energies`` unless they are None; ``records.summary`` receives the blow's summary.
-    Returns the numbers of rows recorded (columns, energies).
 
     The optional parts (the anvil's variants and the records) are handed on as arguments of
     their own (:func:`_blow`): the compiler removes the code of those that are None only when
     they are arguments, not fields.
+
+    Parameters
+    ----------
+    ram : LoopRam
+        The ram (states written).
+    anvil : LoopAnvil
+        The anvil unit (states written).
+    pile : LoopPile
+        The pile and soil (states written).
+    settings : LoopSettings
+        The time grid and recording.
+    records : LoopRecords
+        What the loop writes besides the states.
+
+    Returns
+    -------
+    row : int
+        Number of rows recorded into ``records.out`` (and the sections) [-].
+    energy_row : int
+        Number of rows recorded into ``records.energies`` [-].
     """
     return _blow(ram, anvil.modal, anvil.rings, anvil.classic, anvil.direct, pile, settings,
                  records.out, records.energies, records.works, records.sections,
@@ -755,9 +907,19 @@ def _pile_damping_work(head, gravity, soil_static, soil_damping, stored):
 class PileState:
     """The state of the pile and its soil between blows (the engine keeps its own copies).
 
-    u : (N,) displacements [m]; v : (N,) velocities [m/s] (positive down, leapfrog half-step
-    values); soil_offset : (N + 1,) plastic offsets of the soil springs [m] (toe last);
-    energy : (ENERGY_SIZE,) energies and works of :mod:`anvilwave.pile.kernels` [J].
+    Parameters
+    ----------
+    u : numpy.ndarray
+        Displacements, shape (N,) [m] (positive down).
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s] (positive down, leapfrog half-step values).
+    soil_offset : numpy.ndarray
+        Plastic offsets of the soil springs, shape (N + 1,) [m] (toe last).
+    energy : numpy.ndarray
+        Energies and works of :mod:`anvilwave.pile.kernels`, shape (ENERGY_SIZE,) [J].
+    start_soil_offset : numpy.ndarray or None, default None
+        Of a blow's final state: the soil offsets at the start of that blow, shape (N + 1,)
+        [m].
     """
 
     u: np.ndarray
@@ -765,9 +927,15 @@ class PileState:
     soil_offset: np.ndarray
     energy: np.ndarray
     start_soil_offset: np.ndarray | None = field(default=None, repr=False, compare=False)
-    """Of a blow's final state: the soil offsets at the start of that blow [m]."""
 
     def copy(self) -> PileState:
+        """A copy of the state's arrays (without ``start_soil_offset``).
+
+        Returns
+        -------
+        PileState
+            The copy.
+        """
         return PileState(self.u.copy(), self.v.copy(), self.soil_offset.copy(),
                          self.energy.copy())
 
@@ -800,17 +968,51 @@ class PileState:
 class BlowResult:
     """Time series and summary of one simulated blow (columns: COLUMNS, ENERGY_COLUMNS).
 
-    columns, energies : recorded time series (empty with ``record=False``; energies also
-    empty with ``energy=False``). The summary is computed inside the loop at every step,
-    recorded or not: max_compression_stress, max_tension_stress [Pa] (over all springs and
-    steps; tension negative), emx_gauge [J] (largest running integral of gauge force x gauge
-    velocity, trapezoidal at the master steps), emx_head [J] (largest work done by the head
-    force on the pile-top face since the blow started: ENTHRU at the head, GRLWEAP's
-    location), max_pile_head_force [N] (anvil-pile contact force), max_toe_displacement [m],
-    permanent_set [m] (toe displacement at the end minus at the start), toe_velocity_end [m/s].
-    section_strain : (rows, n_sections) elongation u_i - u_i+1 [m] of the springs asked for
-    with ``sections`` at every record row (times the stress factor: the stress, positive in
-    compression), or None.
+    The summary is computed inside the loop at every step, recorded or not.
+
+    Parameters
+    ----------
+    columns : dict of str to numpy.ndarray
+        Recorded time series, keys COLUMNS (empty with ``record=False``).
+    energies : dict of str to numpy.ndarray
+        Recorded energy series, keys "time [s]" and ENERGY_COLUMNS (empty with
+        ``record=False`` or ``energy=False``).
+    time_step : float
+        The master step [s].
+    n_steps : int
+        Number of master steps [-].
+    wall_time : float
+        Wall-clock time of the loop [s].
+    input_energy : float
+        Kinetic energy of the ram at impact [J].
+    max_compression_stress : float
+        Largest compressive stress over all springs and steps [Pa].
+    max_tension_stress : float
+        Largest tensile stress over all springs and steps [Pa] (negative).
+    emx_gauge : float
+        Largest running integral of gauge force x gauge velocity, trapezoidal at the master
+        steps [J].
+    emx_head : float
+        Largest work done by the head force on the pile-top face since the blow started [J]
+        (ENTHRU at the head, GRLWEAP's location).
+    max_pile_head_force : float
+        Largest anvil-pile contact force [N].
+    max_toe_displacement : float
+        Largest toe displacement [m].
+    permanent_set : float
+        Toe displacement at the end minus at the start [m].
+    toe_velocity_end : float
+        Toe velocity at the end [m/s].
+    impact_velocity : float
+        Ram velocity at impact [m/s].
+    initial_state : PileState
+        The pile's state at the start.
+    final_state : PileState
+        The pile's state at the end, the one the next blow starts from.
+    section_strain : numpy.ndarray or None, default None
+        Elongation u_i - u_i+1 [m] of the springs asked for with ``sections`` at every record
+        row, shape (rows, n_sections) (times the stress factor: the stress, positive in
+        compression), or None.
     """
 
     columns: dict[str, np.ndarray]
@@ -847,10 +1049,25 @@ class BlowResult:
 class AnvilKernels:
     """An anvil unit as kernel arrays: the state at rest S (copied for every blow).
 
-    kind : "rom", "lumped", "classic" or "none"; P, C, S : the kernel arrays (C unused for
-    classic and none); u_top0 : top face at rest [m]; stable_step : the coupled stability
-    limit of this unit [s]; n_sub : its sub-steps (classic); unit : the AnvilUnit or
-    DrivingSystem.
+    Parameters
+    ----------
+    kind : str
+        "rom", "lumped", "classic" or "none".
+    P : numpy.ndarray
+        The unit's parameter array (without an anvil: the contact [k, c] [N/m, N s/m]).
+    C : numpy.ndarray
+        The unit's coefficient array (unused for classic and none).
+    S : numpy.ndarray
+        The unit's state at rest.
+    u_top0 : float
+        Top face at rest [m].
+    stable_step : float
+        The coupled stability limit of this unit [s].
+    n_sub : int, default 1
+        Its sub-steps per master step (classic) [-].
+    unit : object, default None
+        The :class:`anvilwave.anvil_rom.unit.AnvilUnit` or
+        :class:`anvilwave.hammer.driving_system.DrivingSystem` (None without an anvil).
     """
 
     kind: str
@@ -874,6 +1091,33 @@ class Engine:
     Build it with :func:`build_engine`. :meth:`blow` simulates one blow from a given pile
     state, :meth:`run` consecutive blows; :meth:`static_state` is the state a blow starts from
     by default and :meth:`with_pile_soil` the same engine on another soil or penetration.
+
+    Parameters
+    ----------
+    config : SystemConfig
+        The system configuration.
+    anvil : AnvilKernels
+        The anvil unit, prepared for ``time_step``.
+    ram_mass : numpy.ndarray
+        The ram chain's masses, shape (N_r,) [kg] (a modal ram unit: its total mass).
+    ram_stiffness : numpy.ndarray
+        The ram chain's springs, shape (N_r - 1,) [N/m].
+    pile_arrays : PileSoilArrays
+        The pile's and soil's parameter arrays (``PileSoil.arrays()``).
+    time_step : float
+        The master step [s].
+    limits : dict of str to float
+        The stability limits of the units and of their coupling [s] (and the ROM's fmax
+        sampling).
+    modal : ModalData, optional
+        The anvil's modal data (ROM anvil), or None.
+    ram_modes : RamToeModes, optional
+        :class:`anvilwave.hammer.modal_ram.RamToeModes` of a modal ram unit (None: the ram
+        chain).
+    ram_unit : ModalRamUnit, optional
+        The :class:`anvilwave.hammer.modal_ram.ModalRamUnit` of ``ram_modes``, its step
+        coefficients set (built here when None; engines for other soils share it: every blow
+        restarts its state).
     """
 
     config: SystemConfig
@@ -885,11 +1129,7 @@ class Engine:
     limits: dict[str, float]
     modal: object = None
     ram_modes: object = None
-    """:class:`anvilwave.hammer.modal_ram.RamToeModes` of a modal ram unit (None: the ram chain)."""
     ram_unit: object = None
-    """The :class:`anvilwave.hammer.modal_ram.ModalRamUnit` of ``ram_modes``, its step coefficients
-    set
-    (built here when None; engines for other soils share it: every blow restarts its state)."""
 
     def __post_init__(self):
         g = self.config.gravity
@@ -920,9 +1160,15 @@ class Engine:
         return _static_pile_force(self.anvil, self.config.gravity)
 
     def static_state(self) -> PileState:
-        """The pile and soil at rest under the anvil's (or helmet's) weight and their own
-        (:func:`anvilwave.pile.model.initial_state`): the state a blow starts from by default. A
-        copy."""
+        """The pile and soil at rest under the anvil's (or helmet's) weight and their own.
+
+        :func:`anvilwave.pile.model.initial_state`: the state a blow starts from by default.
+
+        Returns
+        -------
+        PileState
+            A copy of the static state.
+        """
         if self._static is None:
             s = initial_state(self.pile_arrays, head_force=self.static_head_force,
                               gravity=self.config.gravity)
@@ -930,14 +1176,30 @@ class Engine:
         return self._static.copy()
 
     def with_pile_soil(self, pile_soil) -> Engine:
-        """This engine for another :class:`anvilwave.pile.model.PileSoil` with the same pile
-        discretisation (another soil, SRD or penetration): the anvil unit, the ram (a modal
-        ram's unit too) and the time step are shared; only the pile's arrays, its sub-steps and
-        its static state are new.
+        """This engine for another pile-soil model with the same pile discretisation.
+
+        Another soil, SRD or penetration: the anvil unit, the ram (a modal ram's unit too) and
+        the time step are shared; only the pile's arrays, its sub-steps and its static state
+        are new.
 
         The coupled stability limit is not recomputed: the soil springs are orders of magnitude
         softer than the contact and pile springs that set it, and the pile sub-steps within its
-        own limit (soil included). Raises ValueError if the pile's segments differ.
+        own limit (soil included).
+
+        Parameters
+        ----------
+        pile_soil : PileSoil
+            The :class:`anvilwave.pile.model.PileSoil` with the same pile.
+
+        Returns
+        -------
+        Engine
+            The engine on ``pile_soil``.
+
+        Raises
+        ------
+        ValueError
+            If the pile's segments (sections, segment length, material damping) differ.
         """
         arrays = pile_soil.arrays()
         mine = self.pile_arrays.pile
@@ -957,15 +1219,43 @@ class Engine:
              energy_interval: float | None = None, sections=None) -> BlowResult:
         """Simulate one blow from ``state`` (default :meth:`static_state`; not modified).
 
-        The ram starts at ``impact_velocity`` [m/s] (default: the system's) on the anvil at
-        rest on the pile head; the blow lasts ``duration`` [s] (default: the system's) and is
-        recorded every ``record_interval`` [s] (default: the system's output interval, else
-        every step). record : keep the time series (False: the summary only, no memory per
-        step). energy : keep the energy bookkeeping (the ENERGY_COLUMNS series and the works of
-        the final state; default: as ``record``). energy_interval : spacing of the energy
-        series [s] (default: every record, but at least ENERGY_STEPS master steps apart); the
-        last step is always in it, and each of its rows is exact (the works are summed at
-        every step). The result's ``final_state`` is the state the next blow starts from.
+        The ram starts on the anvil at rest on the pile head. The result's ``final_state`` is
+        the state the next blow starts from.
+
+        Parameters
+        ----------
+        state : PileState, optional
+            The pile's state to start from (not modified); default :meth:`static_state`.
+        impact_velocity : float, optional
+            Ram velocity at impact [m/s]; default: the system's.
+        duration : float, optional
+            Duration of the blow [s]; default: the system's.
+        record_interval : float, optional
+            Spacing of the records [s]; default: the system's output interval, else every
+            step.
+        record : bool, default True
+            Keep the time series (False: the summary only, no memory per step).
+        energy : bool, optional
+            Keep the energy bookkeeping (the ENERGY_COLUMNS series and the works of the final
+            state); default: as ``record``.
+        energy_interval : float, optional
+            Spacing of the energy series [s]; default: every record, but at least ENERGY_STEPS
+            master steps apart. The last step is always in it, and each of its rows is exact
+            (the works are summed at every step).
+        sections : array_like of int, optional
+            Indices of pile springs whose elongation is recorded at every record row
+            (``BlowResult.section_strain``).
+
+        Returns
+        -------
+        BlowResult
+            The blow's time series and summary.
+
+        Raises
+        ------
+        ValueError
+            If ``duration`` or ``impact_velocity`` is not positive, the blow is longer than the
+            tube head's kernel, or a section index is out of range.
         """
         cfg = self.config
         h = self.time_step
@@ -1079,9 +1369,38 @@ class Engine:
             progress: bool = False, record: bool = True, energy: bool | None = None,
             blows: int | None = None, energy_interval: float | None = None
             ) -> list[BlowResult]:
-        """Simulate ``blows`` (default ``config.blows``) consecutive blows of ``duration``
-        [s] each (:meth:`blow`): each blow restarts the ram at its impact velocity on the anvil
-        at rest; the pile keeps its permanent set and soil state from the previous blow."""
+        """Simulate consecutive blows (:meth:`blow`) from the static state.
+
+        Each blow restarts the ram at its impact velocity on the anvil at rest; the pile keeps
+        its permanent set and soil state from the previous blow.
+
+        Parameters
+        ----------
+        duration : float, optional
+            Duration of each blow [s]; default: the system's.
+        record_interval : float, optional
+            Spacing of the records [s] (:meth:`blow`).
+        progress : bool, default False
+            Show a progress bar (tqdm) for more than one blow.
+        record : bool, default True
+            Keep the time series (:meth:`blow`).
+        energy : bool, optional
+            Keep the energy bookkeeping (:meth:`blow`); default: as ``record``.
+        blows : int, optional
+            Number of blows [-]; default ``config.blows``.
+        energy_interval : float, optional
+            Spacing of the energy series [s] (:meth:`blow`).
+
+        Returns
+        -------
+        list of BlowResult
+            One result per blow, in order.
+
+        Raises
+        ------
+        ValueError
+            As :meth:`blow`.
+        """
         count = self.config.blows if blows is None else int(blows)
         sequence = range(count)
         if progress and count > 1:
@@ -1103,7 +1422,18 @@ WARM_UP_STEPS = 200
 
 
 def probes_springs(arrays) -> int:
-    """Number of pile springs (segments - 1)."""
+    """Number of pile springs (segments - 1).
+
+    Parameters
+    ----------
+    arrays : PileSoilArrays
+        The pile's and soil's parameter arrays (``PileSoil.arrays()``).
+
+    Returns
+    -------
+    int
+        N - 1 [-].
+    """
     return int(arrays.pile.shape[1] - 1)
 
 
@@ -1241,6 +1571,24 @@ def contact_stiffnesses(cfg: SystemConfig) -> tuple[float, float]:
     contact springs are those half segments, 2 E A / dx (Smith 1960); a value in the system file
     replaces them (e.g. a cushion). A rigid ram has no half segment: its contact stiffness must
     be given.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system configuration.
+
+    Returns
+    -------
+    k_ram : float
+        Ram contact stiffness [N/m].
+    k_pile : float
+        Pile contact stiffness [N/m].
+
+    Raises
+    ------
+    InputError
+        If the ram has no toe half segment (rigid, or explicit segments) and
+        ``anvil.ram_contact_stiffness`` is not given.
     """
     s = cfg.anvil
     k_pile = s.pile_contact_stiffness or cfg.pile_soil.head_contact_stiffness()
@@ -1261,8 +1609,25 @@ def _contact(cfg: SystemConfig) -> ContactParameters:
 
 
 def anvil_modal_data(cfg: SystemConfig):
-    """The modal data of the system's anvil, from the modal-data cache
-    (:func:`anvilwave.config.cache.cached_modal_data`: computed once per machine)."""
+    """The modal data of the system's anvil, from the modal-data cache.
+
+    :func:`anvilwave.config.cache.cached_modal_data`: computed once per machine.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system configuration.
+
+    Returns
+    -------
+    ModalData
+        The anvil's modes up to ``anvil.fmax``.
+
+    Raises
+    ------
+    InputError
+        If the anvil's specification or ``anvil.fmax`` is invalid.
+    """
 
     try:
         return cached_modal_data(cfg.anvil.spec, fmax=cfg.anvil.fmax)
@@ -1286,16 +1651,32 @@ def _modal_ram_as_chain(cfg: SystemConfig):
 def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
     """Assemble the components of a system.
 
-    modal : precomputed ModalData of the anvil; default: the ROM anvil's from the modal-data
-    cache (computed on a miss), the lumped anvil's mass from its geometry without modes
-    (:func:`anvilwave.anvil_rom.fem.pipeline.solid_mass`).
-    ram_modes : :class:`anvilwave.hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
-    (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`, exact per mode, its residual flexibility the
-    ram's
-    side of the contact) instead of the system's ram chain; None: the system's ram (a modal
-    ram given as toe modes, ``ram_model = "modal"``, runs as the unit with the ROM and lumped
-    anvils and as its equivalent chain with the classic driving system, whose kernel steps a
-    ram chain).
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system configuration.
+    modal : ModalData, optional
+        Precomputed modal data of the anvil; default: the ROM anvil's from the modal-data
+        cache (computed on a miss), the lumped anvil's mass from its geometry without modes
+        (:func:`anvilwave.anvil_rom.fem.pipeline.solid_mass`).
+    ram_modes : RamToeModes, optional
+        :class:`anvilwave.hammer.modal_ram.RamToeModes`: the ram runs as the modal unit
+        (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`, exact per mode, its residual
+        flexibility the ram's side of the contact) instead of the system's ram chain; None:
+        the system's ram (a modal ram given as toe modes, ``ram_model = "modal"``, runs as the
+        unit with the ROM and lumped anvils and as its equivalent chain with the classic
+        driving system, whose kernel steps a ram chain).
+
+    Returns
+    -------
+    Engine
+        The engine, its time step chosen (or checked against the stability limits).
+
+    Raises
+    ------
+    InputError
+        If the configuration's anvil, ram and pile head do not fit together, or
+        ``simulation.time_step`` is above the stable limit of the anvil contact coupling.
     """
     if ram_modes is None and cfg.hammer.ram.is_modal_unit:
         if cfg.anvil.model in ("rom", "lumped"):
