@@ -97,7 +97,9 @@ MODULES_FMU = (
     "anvilwave.fmu.units.ram",
 )
 """The FMI package."""
-MODULES_KERNELS = ()
+MODULES_KERNELS = (
+    "anvilwave.pile.kernels",
+)
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
 MODULES = MODULES_PHYSICS_AND_OUTPUT + MODULES_SYSTEM + MODULES_FMU + MODULES_KERNELS
 
