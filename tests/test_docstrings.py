@@ -101,6 +101,7 @@ MODULES_KERNELS = (
     "anvilwave.pile.kernels",
     "anvilwave.hammer.ram",
     "anvilwave.hammer.modal_ram",
+    "anvilwave.hammer.ram_table",
 )
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
 MODULES = MODULES_PHYSICS_AND_OUTPUT + MODULES_SYSTEM + MODULES_FMU + MODULES_KERNELS
