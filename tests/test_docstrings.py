@@ -102,6 +102,7 @@ MODULES_KERNELS = (
     "anvilwave.hammer.ram",
     "anvilwave.hammer.modal_ram",
     "anvilwave.hammer.ram_table",
+    "anvilwave.hammer.driving_system",
 )
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
 MODULES = MODULES_PHYSICS_AND_OUTPUT + MODULES_SYSTEM + MODULES_FMU + MODULES_KERNELS
