@@ -102,6 +102,11 @@ MODULES_KERNELS = (
     "anvilwave.anvil_rom.rings",
     "anvilwave.anvil_rom.unit",
     "anvilwave.anvil_rom.rom",
+    "anvilwave.pile.kernels",
+    "anvilwave.hammer.ram",
+    "anvilwave.hammer.modal_ram",
+    "anvilwave.hammer.ram_table",
+    "anvilwave.hammer.driving_system",
 )
 """The compiled kernels and the units they step (engine.direct, anvil_rom, hammer, pile)."""
 MODULES = MODULES_PHYSICS_AND_OUTPUT + MODULES_SYSTEM + MODULES_FMU + MODULES_KERNELS
@@ -176,3 +181,21 @@ def test_numpydoc(qualified_name):
 def test_every_module_listed_exists():
     for module_name in MODULES:
         assert public_names(importlib.import_module(module_name)), module_name
+
+
+def test_every_module_with_public_objects_is_listed():
+    """Every module of the package that defines a public function or class is checked: the
+    API reference has no module without its parameters. The example scripts are not modules
+    of the API (they are run, not imported)."""
+    root = Path(importlib.import_module("anvilwave").__file__).parent
+    missing = []
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(root.parent).with_suffix("").parts
+        if "examples" in parts:
+            continue
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if any(isinstance(n, ast.FunctionDef | ast.ClassDef) and not n.name.startswith("_")
+               for n in tree.body) and name not in MODULES:
+            missing.append(name)
+    assert not missing, missing

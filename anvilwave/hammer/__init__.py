@@ -5,7 +5,7 @@ Modules
 impact          impact velocity from rated energy or stroke and efficiency
 ram             the ram as a lumped-mass rod (or rigid) and its time-stepping kernels
 cushion         compression-only cushion force with restitution and round-out
-driving_system  the classic hammer cushion / helmet / pile cushion system ("lumped anvil"),
+driving_system  the classic hammer cushion / helmet / pile cushion system (model "classic"),
                 with GRLWEAP's ram bottom spring, hammer damping and assembly chain
 database        hammer files (anvilwave/hammer/data/*.toml) with cited sources
 

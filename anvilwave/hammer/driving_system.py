@@ -1,4 +1,4 @@
-"""The classic driving system of Smith-type wave-equation programs (the "lumped-mass anvil").
+"""The classic driving system of Smith-type wave-equation programs: cushions and helmet.
 
     ram toe --[ram bottom spring + hammer cushion || hammer damping]-- helmet / anvil mass
                                                                          |        |
@@ -8,10 +8,10 @@
 
 Both cushions are compression-only springs with Smith's restitution law and optional round-out
 (:mod:`anvilwave.hammer.cushion`); the helmet (anvil plus inserts) is one rigid mass; the hammer
-assembly
-(housing, sleeve) is a chain of n masses (top first) joined by linear springs, whose lowest mass
-rests on the helmet through a compression-only contact with its own restitution and round-out,
-so it adds its weight and can lift off (n = 1 is the single assembly mass of the classic model).
+assembly (housing, sleeve) is a chain of n masses (top first) joined by linear springs, whose
+lowest mass rests on the helmet through a compression-only contact with its own restitution and
+round-out, so it adds its weight and can lift off (n = 1 is the single assembly mass of the
+classic model).
 Without a pile cushion the helmet bears on the pile through a steel contact of given stiffness
 (GRLWEAP: E A / dx of the first pile segment), with a restitution and round-out of its own
 (default 1 and 0: elastic and linear). This is the driving-system model of Smith (1960),
@@ -22,8 +22,7 @@ classic one, number for number):
 
 * Ram bottom spring in series with the hammer cushion. A ram given by segment masses and the
   springs between them (no lengths, :meth:`anvilwave.hammer.ram.RamRod.from_segments`) has no toe
-  half
-  segment; GRLWEAP's hammer file gives the spring below its last segment, and that spring acts
+  half segment; GRLWEAP's hammer file gives the spring below its last segment, and that spring acts
   in series with the hammer cushion. The two form one spring of stiffness
   1 / (1 / k_ram_bottom + 1 / k_cushion) (:func:`series_stiffness`) to which the cushion's
   restitution and round-out apply (they describe the combination, as in GRLWEAP); the cushion
@@ -129,6 +128,16 @@ def series_stiffness(*stiffnesses: float) -> float:
     ----------
     *stiffnesses : float
         Spring stiffnesses k_i [N/m], each greater than 0 (math.inf for a rigid link).
+
+    Returns
+    -------
+    float
+        The series stiffness [N/m] (inf when every k_i is infinite or none is given).
+
+    Raises
+    ------
+    ValueError
+        If a stiffness is not greater than 0 (or is nan).
     """
     flexibility = 0.0
     for k in stiffnesses:
@@ -160,8 +169,19 @@ def grlweap_2010_hammer_damping(ram_bottom_mass: float, stiffness: float,
         Mass of the ram's lowest segment m [kg].
     stiffness : float
         Hammer cushion stiffness combined with the ram bottom spring k [N/m].
-    damping_ratio : float
+    damping_ratio : float, default GRLWEAP_HAMMER_DAMPING_RATIO
         Fraction of critical damping zeta [-] (GRLWEAP default 0.02).
+
+    Returns
+    -------
+    float
+        The hammer damping c [N s/m].
+
+    Raises
+    ------
+    ValueError
+        If ``ram_bottom_mass`` or ``stiffness`` is not greater than 0, or ``damping_ratio`` is
+        negative.
 
     References
     ----------
@@ -176,14 +196,20 @@ def grlweap_2010_hammer_damping(ram_bottom_mass: float, stiffness: float,
 class Cushion:
     """A compression-only cushion (or contact) with restitution and round-out.
 
-    Attributes
+    Parameters
     ----------
     stiffness : float
         Loading stiffness k [N/m] (E A / t of the cushion material).
-    restitution : float
+    restitution : float, default 1.0
         Coefficient of restitution e [-], 0 < e <= 1.
-    round_out : float
+    round_out : float, default 0.0
         Round-out compression r [m] (0: linear from first contact).
+
+    Raises
+    ------
+    ValueError
+        If the stiffness is not finite and positive, the restitution is outside (0, 1] or the
+        round-out is negative or not finite.
     """
 
     stiffness: float
@@ -200,8 +226,26 @@ class Cushion:
 
     @classmethod
     def from_table(cls, table: Table) -> Cushion:
-        """Keys: ``stiffness`` [N/m], or ``area`` [m^2] + ``elastic_modulus`` [Pa] +
-        ``thickness`` [m] (k = E A / t); ``restitution`` [-]; ``round_out`` [m] (0)."""
+        """Read a cushion from a TOML table (errors name the key and the rule).
+
+        Parameters
+        ----------
+        table : anvilwave.inputs.Table
+            The cushion table: ``stiffness`` [N/m], or ``area`` [m^2] + ``elastic_modulus`` [Pa] +
+            ``thickness`` [m] (k = E A / t); ``restitution`` [-] (required); ``round_out`` [m]
+            (default 0).
+
+        Returns
+        -------
+        Cushion
+            The cushion.
+
+        Raises
+        ------
+        anvilwave.inputs.InputError
+            If a key is missing, invalid or unknown, or ``stiffness`` is given together with the
+            material keys.
+        """
         material_keys = ("area", "elastic_modulus", "thickness")
         if table.has("stiffness"):
             for key in material_keys:
@@ -230,7 +274,7 @@ def _positive(value: float) -> bool:
 class DrivingSystem:
     """Hammer cushion, helmet (+ resting assembly) and pile cushion between ram and pile.
 
-    Attributes
+    Parameters
     ----------
     hammer_cushion : Cushion
         Between ram toe and helmet (its own stiffness; see ``ram_bottom_stiffness``).
@@ -240,29 +284,36 @@ class DrivingSystem:
         Between helmet and pile head; without a pile cushion the steel helmet-pile contact
         (GRLWEAP: E A / dx of the first pile segment, round-out 3 mm, restitution 1), see
         ``has_pile_cushion``.
-    assembly_mass : float
+    assembly_mass : float, default 0.0
         One hammer assembly mass resting on the helmet [kg] (0: none); or use
         ``assembly_masses`` for a chain.
-    assembly_stiffness : float
+    assembly_stiffness : float, default 0.0
         Stiffness of the compression-only contact of ``assembly_mass`` on the helmet [N/m].
-    has_pile_cushion : bool
+    has_pile_cushion : bool, default True
         False when ``pile_cushion`` stands for the bare steel contact.
-    ram_bottom_stiffness : float
+    ram_bottom_stiffness : float, default inf
         Spring below the ram's lowest segment [N/m], in series with the hammer cushion
         (math.inf: none, the cushion acts on the ram's toe mass directly).
-    hammer_damping : float
+    hammer_damping : float, default 0.0
         Dashpot parallel to the (combined) hammer cushion [N s/m], acting only while the
         cushion carries load.
-    assembly_masses : tuple of float
+    assembly_masses : tuple of float, default ()
         Hammer assembly as a chain of masses [kg], top first (instead of ``assembly_mass``).
-    assembly_stiffnesses : tuple of float
+    assembly_stiffnesses : tuple of float, default ()
         The spring below each of ``assembly_masses`` [N/m]: springs 0 ... n-2 join the masses
         (linear, tension and compression), the last is the compression-only contact of the
         lowest mass on the helmet.
-    assembly_restitution : float
+    assembly_restitution : float, default 1.0
         Coefficient of restitution of the assembly contact [-] (1: elastic).
-    assembly_round_out : float
+    assembly_round_out : float, default 0.0
         Round-out of the assembly contact [m] (0: linear).
+
+    Raises
+    ------
+    ValueError
+        If a mass, stiffness, restitution, round-out or damping is out of range, both
+        ``assembly_mass`` and ``assembly_masses`` are given, or ``assembly_stiffnesses`` does
+        not have one entry per assembly mass.
     """
 
     hammer_cushion: Cushion
@@ -310,32 +361,44 @@ class DrivingSystem:
     def from_table(cls, table: Table) -> DrivingSystem:
         """Read a driving system from a TOML table (``[anvil.classic]`` of a system file).
 
-        Keys
-        ----
-        helmet_mass : [kg] helmet / anvil mass (required).
-        hammer_cushion : table, see :meth:`Cushion.from_table` (required).
-        ram_bottom_stiffness : [N/m] optional spring below the ram's lowest segment, in series
-            with the hammer cushion (GRLWEAP's hammer file gives it for a ram of segment
-            masses and springs; the cushion's restitution and round-out apply to the
-            combination). Default: none.
-        hammer_damping : [N s/m] optional dashpot parallel to the (combined) hammer cushion,
-            acting while it carries load (default 0); or
-        hammer_damping_ratio : [-] GRLWEAP's rule instead, c = 2 zeta sqrt(m k)
-            (:func:`grlweap_2010_hammer_damping`; GRLWEAP's default 0.02) with
-        ram_bottom_mass : [kg] the mass of the ram's lowest segment (only with
-            hammer_damping_ratio, required there).
-        assembly_mass : [kg] one assembly mass (0) with assembly_stiffness [N/m], its contact
-            on the helmet; or
-        assembly_masses : [kg] a chain of assembly masses, top first, with
-        assembly_stiffnesses : [N/m] the spring below each (the last one is the
-            compression-only contact on the helmet), as many as assembly_masses.
-        assembly_restitution : [-] restitution of the assembly contact (1); only with an
-            assembly.
-        assembly_round_out : [m] round-out of the assembly contact (0); only with an assembly.
-        pile_cushion : table, see :meth:`Cushion.from_table`; or without it
-        pile_contact_stiffness : [N/m] the helmet-pile steel contact (GRLWEAP: E A / dx of the
-            first pile segment), with
-        pile_contact_restitution : [-] (1) and pile_contact_round_out : [m] (0).
+        Parameters
+        ----------
+        table : anvilwave.inputs.Table
+            The table, with the keys
+
+            * ``helmet_mass`` [kg]: helmet / anvil mass (required);
+            * ``hammer_cushion``: a table, see :meth:`Cushion.from_table` (required);
+            * ``ram_bottom_stiffness`` [N/m]: optional spring below the ram's lowest segment, in
+              series with the hammer cushion (GRLWEAP's hammer file gives it for a ram of segment
+              masses and springs; the cushion's restitution and round-out apply to the
+              combination); default none;
+            * ``hammer_damping`` [N s/m]: optional dashpot parallel to the (combined) hammer
+              cushion, acting while it carries load (default 0); or ``hammer_damping_ratio`` [-],
+              GRLWEAP's rule instead, c = 2 zeta sqrt(m k) (:func:`grlweap_2010_hammer_damping`;
+              GRLWEAP's default 0.02), with ``ram_bottom_mass`` [kg], the mass of the ram's lowest
+              segment (only with hammer_damping_ratio, required there);
+            * ``assembly_mass`` [kg]: one assembly mass (0) with ``assembly_stiffness`` [N/m], its
+              contact on the helmet; or ``assembly_masses`` [kg], a chain of assembly masses, top
+              first, with ``assembly_stiffnesses`` [N/m], the spring below each (the last one is
+              the compression-only contact on the helmet), as many as assembly_masses;
+            * ``assembly_restitution`` [-]: restitution of the assembly contact (1) and
+              ``assembly_round_out`` [m]: its round-out (0); only with an assembly;
+            * ``pile_cushion``: a table, see :meth:`Cushion.from_table`; or without it
+              ``pile_contact_stiffness`` [N/m], the helmet-pile steel contact (GRLWEAP: E A / dx of
+              the first pile segment), with ``pile_contact_restitution`` [-] (1) and
+              ``pile_contact_round_out`` [m] (0).
+
+        Returns
+        -------
+        DrivingSystem
+            The driving system.
+
+        Raises
+        ------
+        anvilwave.inputs.InputError
+            If a key is missing, invalid or unknown, or keys that exclude each other are given
+            together (a pile cushion and the pile contact keys, hammer_damping and
+            hammer_damping_ratio, one assembly mass and a chain).
         """
         helmet_mass = table.number("helmet_mass", gt=0, unit="kg")
         (assembly_mass, assembly_stiffness, masses,
@@ -382,8 +445,11 @@ class DrivingSystem:
 
     @property
     def effective_hammer_cushion(self) -> Cushion:
-        """The hammer cushion in series with the ram bottom spring (its restitution and
-        round-out on the combination); the cushion itself without a ram bottom spring."""
+        """The hammer cushion in series with the ram bottom spring.
+
+        Its restitution and round-out apply to the combination; the cushion itself without a ram
+        bottom spring.
+        """
         hc = self.hammer_cushion
         if math.isinf(self.ram_bottom_stiffness):
             return hc
@@ -391,11 +457,34 @@ class DrivingSystem:
                        hc.restitution, hc.round_out)
 
     def static_pile_force(self, gravity: float = GRAVITY) -> float:
-        """Force on the pile head at rest, (m_helmet + sum m_assembly) g [N]; gravity [m/s^2]."""
+        """Force on the pile head at rest, (m_helmet + sum m_assembly) g [N].
+
+        Parameters
+        ----------
+        gravity : float, default GRAVITY
+            Gravitational acceleration [m/s^2].
+
+        Returns
+        -------
+        float
+            The static force [N].
+        """
         return (self.helmet_mass + self.total_assembly_mass) * gravity
 
     def parameters(self, gravity: float = GRAVITY) -> np.ndarray:
-        """The float64 parameter array (P_* layout) for the kernels; gravity [m/s^2]."""
+        """The float64 parameter array (P_* layout) for the kernels.
+
+        Parameters
+        ----------
+        gravity : float, default GRAVITY
+            Gravitational acceleration [m/s^2] (it also sets the static compressions).
+
+        Returns
+        -------
+        numpy.ndarray
+            (N_PARAMS + 3 n - 2,) parameters, n the number of assembly masses (N_PARAMS without an
+            assembly) [SI units of each entry].
+        """
         masses, springs = self.assembly_chain
         n = masses.size
         p = np.zeros(N_PARAMS + (3 * n - 2 if n else 0))
@@ -432,8 +521,18 @@ class DrivingSystem:
 
     @staticmethod
     def initial_state(params: np.ndarray) -> np.ndarray:
-        """The float64 state array (S_* layout) at t = 0: at rest, springs at their
-        static compression."""
+        """The float64 state array (S_* layout) at t = 0: at rest, springs at static compression.
+
+        Parameters
+        ----------
+        params : numpy.ndarray
+            The parameter array (:meth:`parameters`) [SI units of each entry].
+
+        Returns
+        -------
+        numpy.ndarray
+            (N_STATE + 2 (n - 1),) state [SI units of each entry] (N_STATE without an assembly).
+        """
         n = int(params[P_N_ASSEMBLY])
         state = np.zeros(N_STATE + (2 * (n - 1) if n else 0))
         state[S_HC_MAX] = params[P_HC_PRECOMPRESSION]
@@ -578,13 +677,34 @@ def _drift_assembly(state, n, dt):
 
 @njit(cache=True)
 def driving_system_forces(params, state, u_ram, v_ram, u_pile, v_pile):
-    """Outputs at the current instant (feedthrough): (F_ram, F_pile, u_top, u_bottom).
+    """Outputs at the current instant (feedthrough); the state is not changed.
 
-    F_ram : hammer cushion force on the ram toe [N], compression positive (pushes the ram up),
+    Parameters
+    ----------
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+    state : numpy.ndarray
+        The state array (S_* layout) [SI units of each entry].
+    u_ram : float
+        Ram toe displacement [m], positive down.
+    v_ram : float
+        Ram toe velocity [m/s], positive down.
+    u_pile : float
+        Pile head displacement [m], positive down.
+    v_pile : float
+        Pile head velocity [m/s]; part of the interface but not used.
+
+    Returns
+    -------
+    F_ram : float
+        Hammer cushion force on the ram toe [N], compression positive (pushes the ram up),
         including the hammer damping c (v_ram - v_helmet) while the cushion carries load.
-    F_pile : pile cushion force on the pile head [N], compression positive (pushes it down).
-    u_top, u_bottom : helmet displacement [m] (a rigid helmet: both the same).
-    v_pile is part of the interface but not used. The state is not changed.
+    F_pile : float
+        Pile cushion force on the pile head [N], compression positive (pushes it down).
+    u_top : float
+        Helmet displacement [m].
+    u_bottom : float
+        Helmet displacement [m] (a rigid helmet: the same as ``u_top``).
     """
     f_hc, f_pc, f_as, c_hc, c_pc, c_as = _forces(params, state[S_HELMET_U],
                                                  state[S_ASSEMBLY_U], u_ram, u_pile,
@@ -609,10 +729,22 @@ def driving_system_step(params, state, u_ram, v_ram, u_pile, v_pile, h, n_sub):
 
     Parameters
     ----------
-    params : parameter array. state : state array.
-    u_ram, v_ram : ram toe displacement [m] and velocity [m/s] at the start of the step.
-    u_pile, v_pile : pile head displacement [m] and velocity [m/s] at the start of the step.
-    h : step [s]. n_sub : number of sub-steps.
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+    state : numpy.ndarray
+        The state array (S_* layout) [SI units of each entry]; updated in place.
+    u_ram : float
+        Ram toe displacement at the start of the step [m].
+    v_ram : float
+        Ram toe velocity over the step [m/s].
+    u_pile : float
+        Pile head displacement at the start of the step [m].
+    v_pile : float
+        Pile head velocity over the step [m/s].
+    h : float
+        The step [s].
+    n_sub : int
+        Number of sub-steps [-].
     """
     dt = h / n_sub
     m_h = params[P_HELMET_MASS]
@@ -684,6 +816,16 @@ def driving_system_stable_time_step(params):
     helmet (mass "n" is the helmet). The hammer damping does not enter: its rate c / m_h is
     three orders of magnitude below omega_max (1e-3 of it for the GRLWEAP IHC S-4000 system)
     and its end-of-step force is taken implicitly.
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+
+    Returns
+    -------
+    float
+        The stable sub-step [s].
     """
     m_h = params[P_HELMET_MASS]
     k_hc = params[P_HC_STIFFNESS] / params[P_HC_RESTITUTION] ** 2
@@ -716,7 +858,7 @@ def driving_system_stable_time_step(params):
 
 @njit(cache=True)
 def driving_system_energy(params, state, u_ram, u_pile):
-    """(kinetic, strain and damping, gravity potential) energy of the driving system [J].
+    """Kinetic, strain and damping, and gravity potential energy of the driving system [J].
 
     kinetic: helmet and assembly masses; strain and damping: what the Smith-law springs give
     back if unloaded (e^2 F^2 / (2 k) each: hammer cushion, pile cushion, assembly contact),
@@ -725,6 +867,26 @@ def driving_system_energy(params, state, u_ram, u_pile):
     -g (m_h u_h + sum m_i u_i), relative to t = 0. The energy dissipated by the restitution
     law of the springs is not included: :func:`driving_system_losses` gives it, and
     kinetic + strain and damping + potential + losses changes by the work done on the system.
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+    state : numpy.ndarray
+        The state array (S_* layout) [SI units of each entry].
+    u_ram : float
+        Ram toe displacement [m].
+    u_pile : float
+        Pile head displacement [m].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    strain : float
+        Recoverable strain energy plus the hammer damping's work [J].
+    potential : float
+        Gravity potential relative to t = 0 [J].
     """
     m_h = params[P_HELMET_MASS]
     u_h = state[S_HELMET_U]
@@ -754,14 +916,26 @@ def driving_system_energy(params, state, u_ram, u_pile):
 
 @njit(cache=True)
 def driving_system_losses(params, state):
-    """Energy [J] dissipated since t = 0 by the restitution law (and round-out) of the
-    Smith-law springs: hammer cushion, pile cushion or contact, assembly contact.
+    """Energy [J] dissipated since t = 0 by the restitution law (and round-out) of the springs.
 
-    Each loses :func:`anvilwave.hammer.cushion.hysteresis_loss` of its largest compression so far,
+    The Smith-law springs: hammer cushion, pile cushion or contact, assembly contact. Each loses
+    :func:`anvilwave.hammer.cushion.hysteresis_loss` of its largest compression so far,
     minus that of its static compression at t = 0 (the state a blow starts from). Without
     round-out, (1 - e^2) k (c_max^2 - c_0^2) / 2; an elastic linear spring (e = 1, no
     round-out) loses nothing. The hammer damping's work is part of
     :func:`driving_system_energy` instead.
+
+    Parameters
+    ----------
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+    state : numpy.ndarray
+        The state array (S_* layout) [SI units of each entry].
+
+    Returns
+    -------
+    float
+        The dissipated energy [J].
     """
     loss = (hysteresis_loss(state[S_HC_MAX], params[P_HC_STIFFNESS], params[P_HC_RESTITUTION],
                             params[P_HC_ROUND_OUT])
@@ -788,14 +962,22 @@ def interface_time_step(params: np.ndarray, ram_toe_mass: float, pile_head_mass:
     -- pile head (stiffest cushion branches k / e^2; the hammer cushion combined with the ram
     bottom spring). Returns 2 / omega_max of that chain (Gershgorin bound, as
     :func:`anvilwave.hammer.ram.stable_time_step`), never above the driving system's own stable
-    sub-step,
-    nor above 2 m_toe / c, the limit of the hammer damping c held on the ram toe mass
+    sub-step, nor above 2 m_toe / c, the limit of the hammer damping c held on the ram toe mass
     (explicit). A guide, not a proof: use a safety factor.
 
     Parameters
     ----------
-    params : parameter array. ram_toe_mass : mass of the ram's toe node [kg].
-    pile_head_mass : mass of the pile's head node [kg].
+    params : numpy.ndarray
+        The parameter array (P_* layout) [SI units of each entry].
+    ram_toe_mass : float
+        Mass of the ram's toe node [kg].
+    pile_head_mass : float
+        Mass of the pile's head node [kg].
+
+    Returns
+    -------
+    float
+        The step estimate [s].
     """
     mass = np.array([ram_toe_mass, params[P_HELMET_MASS], pile_head_mass], dtype=np.float64)
     stiffness = np.array([params[P_HC_STIFFNESS] / params[P_HC_RESTITUTION] ** 2,

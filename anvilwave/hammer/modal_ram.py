@@ -63,8 +63,17 @@ ELEMENTS_PER_RADIUS = 6
 
 
 def ram_outline(sections: np.ndarray) -> np.ndarray:
-    """Half-section polygon (r, z) [m] of a ram of stacked circular sections, z down from the
-    top face; rows of ``sections`` are [length, outer diameter, inner diameter] [m], top first.
+    """Half-section polygon (r, z) [m] of a ram of stacked circular sections, z down from the top.
+
+    Parameters
+    ----------
+    sections : numpy.ndarray
+        (s, 3) rows [length, outer diameter, inner diameter] [m], top first.
+
+    Returns
+    -------
+    numpy.ndarray
+        (p, 2) polygon vertices (r, z) [m], without repeated or collinear points.
     """
     sections = np.asarray(sections, float)
     z = np.concatenate(([0.0], np.cumsum(sections[:, 0])))
@@ -93,8 +102,25 @@ def ram_outline(sections: np.ndarray) -> np.ndarray:
 
 
 def default_mesh_size(sections: np.ndarray, material: Material, fmax: float) -> float:
-    """Element size [m]: ELEMENTS_PER_SHEAR_WAVELENGTH per shear wavelength at fmax [Hz] and
-    ELEMENTS_PER_RADIUS across the toe radius and the thinnest wall."""
+    """Default element size [m] of a ram's mesh for a frequency content fmax.
+
+    ELEMENTS_PER_SHEAR_WAVELENGTH per shear wavelength at fmax and ELEMENTS_PER_RADIUS across
+    the toe radius and the thinnest wall, whichever is smaller.
+
+    Parameters
+    ----------
+    sections : numpy.ndarray
+        (s, 3) rows [length, outer diameter, inner diameter] [m], top first.
+    material : anvilwave.anvil_rom.fem.geometry.Material
+        The ram's material (its shear wave speed [m/s]).
+    fmax : float
+        Frequency content [Hz].
+
+    Returns
+    -------
+    float
+        The element size [m].
+    """
     sections = np.asarray(sections, float)
     walls = 0.5 * (sections[:, 1] - sections[:, 2])
     return float(min(material.shear_wave_speed / (ELEMENTS_PER_SHEAR_WAVELENGTH * fmax),
@@ -111,17 +137,46 @@ def modal_ram(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSO
               realisation: str = "unit", annuli: int = 1) -> RamRod:
     """The modal ROM of ``ram`` (given by its sections) up to ``fmax`` [Hz], as a RamRod.
 
-    poisson_ratio [-]; mesh_size [m] (default :func:`default_mesh_size`). Errors name
-    ``source`` and the key: a ram without sections (rigid, explicit segments) has no shape to
-    mesh. modes : ``modes(spec, fmax) -> ModalData`` of the ram's section (default: computed,
-    :func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`). realisation : "unit" (the RamRod
-    carries
-    the toe modes, :attr:`RamRod.modes`, for :class:`ModalRamUnit`) or "chain" (the masses and
-    springs of the equivalent chain, from ``realise(omega, participation) -> (mass,
-    stiffness)``, default :func:`anvilwave.anvil_rom.chain.chain_from_modes`). The system layer
-    passes
-    its modal-data cache for both. annuli : the toe also in that many annuli
-    (:func:`modal_ram_modes`).
+    Errors name ``source`` and the key: a ram without sections (rigid, explicit segments) has
+    no shape to mesh. The system layer passes its modal-data cache for ``modes`` and
+    ``realise``.
+
+    Parameters
+    ----------
+    ram : RamRod
+        The ram, with its ``sections`` (its shape) and material.
+    fmax : float
+        Frequency content [Hz]: the modes up to it are kept.
+    poisson_ratio : float, default DEFAULT_POISSON_RATIO
+        Poisson's ratio of the ram [-], in [0, 0.5).
+    mesh_size : float or None, default None
+        Element size [m]; None for :func:`default_mesh_size`.
+    source : str, default "hammer"
+        What the errors name as the input's source.
+    modes : callable or None, default None
+        ``modes(spec, fmax) -> ModalData`` of the ram's section; None to compute them
+        (:func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes`).
+    realise : callable or None, default None
+        ``realise(omega, participation) -> (mass, stiffness)`` of the equivalent chain (for
+        ``realisation="chain"``); None for :func:`anvilwave.anvil_rom.chain.chain_from_modes`.
+    realisation : {"unit", "chain"}, default "unit"
+        "unit": the RamRod carries the toe modes (:attr:`RamRod.modes`, for
+        :class:`ModalRamUnit`); "chain": the masses and springs of the equivalent chain.
+    annuli : int, default 1
+        The toe also in that many annuli [-] (:func:`modal_ram_modes`).
+
+    Returns
+    -------
+    RamRod
+        The modal ram (its shape kept, ``fmax`` and the residual ``toe_stiffness`` set).
+
+    Raises
+    ------
+    ValueError
+        If ``realisation`` is not one of REALISATIONS.
+    anvilwave.inputs.InputError
+        If the ram has no shape, or ``fmax`` or ``poisson_ratio`` is out of range
+        (:func:`modal_ram_modes`).
     """
     if realisation not in REALISATIONS:
         raise ValueError(f"realisation must be one of {REALISATIONS}, got {realisation!r}")
@@ -142,7 +197,24 @@ def _as_unit(ram: RamRod, toe_modes: RamToeModes) -> RamRod:
 
 def modal_ram_chain(ram: RamRod, toe_modes: RamToeModes, realise: Callable | None = None
                     ) -> RamRod:
-    """``ram`` realised as the chain of its toe modes (:func:`modal_ram`, "chain")."""
+    """``ram`` realised as the chain of its toe modes (:func:`modal_ram`, "chain").
+
+    Parameters
+    ----------
+    ram : RamRod
+        The ram whose shape the result keeps.
+    toe_modes : RamToeModes
+        Its toe modes (:func:`modal_ram_modes`).
+    realise : callable or None, default None
+        ``realise(omega, participation) -> (mass, stiffness)``; None for
+        :func:`anvilwave.anvil_rom.chain.chain_from_modes`.
+
+    Returns
+    -------
+    RamRod
+        The chain ram: masses [kg] and springs [N/m] top first, the residual toe stiffness
+        [N/m] and ``fmax`` [Hz] of the modes.
+    """
     mass, stiffness = _chain(toe_modes, realise)
     return dataclasses.replace(ram, mass=mass[::-1].copy(), stiffness=stiffness[::-1].copy(),
                                toe_stiffness=toe_modes.toe_stiffness, fmax=toe_modes.fmax,
@@ -150,13 +222,38 @@ def modal_ram_chain(ram: RamRod, toe_modes: RamToeModes, realise: Callable | Non
 
 
 def ram_from_toe_modes(toe_modes: RamToeModes, toe_diameter: float = math.nan) -> RamRod:
-    """A modal-unit RamRod of given toe modes (no shape: the modes are the ram)."""
+    """A modal-unit RamRod of given toe modes (no shape: the modes are the ram).
+
+    Parameters
+    ----------
+    toe_modes : RamToeModes
+        The toe modes.
+    toe_diameter : float, default nan
+        Diameter of the striking face [m] (nan if unknown).
+
+    Returns
+    -------
+    RamRod
+        The ram run as the modal unit: one total mass [kg], no springs.
+    """
     return _as_unit(RamRod.rigid(toe_modes.total_mass, float(toe_diameter)), toe_modes)
 
 
 def toe_modes_table(toe_modes: RamToeModes) -> dict:
-    """The TOML table (``[ram]`` with ``kind = "modal"``) that reads back as ``toe_modes``
-    exactly (:func:`toe_modes_from_table`)."""
+    """The TOML table (``[ram]`` with ``kind = "modal"``) that reads back as ``toe_modes`` exactly.
+
+    Parameters
+    ----------
+    toe_modes : RamToeModes
+        The toe modes.
+
+    Returns
+    -------
+    dict
+        The table (:func:`toe_modes_from_table` reads it): ``kind``, ``fmax`` [Hz], ``mass``
+        [kg], ``toe_stiffness`` [N/m], ``frequencies`` [Hz], ``omega`` [rad/s],
+        ``participation`` [kg^-1/2], ``participation_gravity`` [kg^1/2].
+    """
     return {"kind": "modal", "fmax": toe_modes.fmax, "mass": toe_modes.total_mass,
             "toe_stiffness": toe_modes.toe_stiffness,
             "frequencies": (toe_modes.omega / (2.0 * np.pi)).tolist(),
@@ -166,10 +263,26 @@ def toe_modes_table(toe_modes: RamToeModes) -> dict:
 
 
 def toe_modes_from_table(table) -> RamToeModes:
-    """Toe modes from a ``[ram]`` table with ``kind = "modal"`` (errors name the key):
-    ``omega`` [rad/s] (exactly one 0: the rigid-body mode; ``frequencies`` [Hz] beside it for
-    the reader), ``participation`` [kg^-1/2], ``participation_gravity`` [kg^1/2], ``mass``
-    [kg], ``toe_stiffness`` [N/m], ``fmax`` [Hz]."""
+    """Toe modes from a ``[ram]`` table with ``kind = "modal"`` (errors name the key).
+
+    Parameters
+    ----------
+    table : anvilwave.inputs.Table
+        The table, with ``omega`` [rad/s] (exactly one 0: the rigid-body mode; ``frequencies``
+        [Hz] beside it for the reader), ``participation`` [kg^-1/2], ``participation_gravity``
+        [kg^1/2], ``mass`` [kg], ``toe_stiffness`` [N/m] and ``fmax`` [Hz].
+
+    Returns
+    -------
+    RamToeModes
+        The toe modes (read-only arrays).
+
+    Raises
+    ------
+    anvilwave.inputs.InputError
+        If a key is missing or invalid: the arrays of unequal length or not finite, ``omega``
+        negative or without exactly one 0, the rigid-body mode not moving the toe.
+    """
     omega = table.array("omega")
     table.array("frequencies")  # for the reader; omega is exact
     n = omega.size
@@ -199,17 +312,28 @@ def toe_modes_from_table(table) -> RamToeModes:
 class RamToeModes:
     """The ram's free-free modes seen at its toe (one port).
 
-    omega : (n,) circular frequencies [rad/s]; exactly one 0 (the rigid-body mode).
-    participation : (n,) b_toe^T phi_j at the toe [kg^-1/2].
-    participation_gravity : (n,) phi_j^T M e_z [kg^1/2] (only the rigid mode's is non-zero).
-    total_mass : [kg]. toe_stiffness : 1 / residual toe flexibility of the truncated modes
-    [N/m]. fmax : frequency content [Hz].
-    annulus_participation : (J, n) the toe split into J > 1 equal-width annuli from the axis,
-        uniform pressure on each [kg^-1/2], or None (one port); area-weighted they add up to
-        ``participation``.
-    annulus_residual : (J, J) residual flexibility of the truncated modes between the annuli
-        [m/N] (area-weighted on both sides: 1 / ``toe_stiffness``), or None.
-    annulus_areas : (J,) [m^2], the inner disc first, or None.
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        (n,) circular frequencies [rad/s]; exactly one 0 (the rigid-body mode).
+    participation : numpy.ndarray
+        (n,) b_toe^T phi_j at the toe [kg^-1/2].
+    participation_gravity : numpy.ndarray
+        (n,) phi_j^T M e_z [kg^1/2] (only the rigid mode's is non-zero).
+    total_mass : float
+        Ram mass [kg].
+    toe_stiffness : float
+        1 / residual toe flexibility of the truncated modes [N/m].
+    fmax : float
+        Frequency content [Hz].
+    annulus_participation : numpy.ndarray or None, default None
+        (J, n) the toe split into J > 1 equal-width annuli from the axis, uniform pressure on
+        each [kg^-1/2], or None (one port); area-weighted they add up to ``participation``.
+    annulus_residual : numpy.ndarray or None, default None
+        (J, J) residual flexibility of the truncated modes between the annuli [m/N]
+        (area-weighted on both sides: 1 / ``toe_stiffness``), or None.
+    annulus_areas : numpy.ndarray or None, default None
+        (J,) areas of the annuli [m^2], the inner disc first, or None.
     """
 
     omega: np.ndarray
@@ -229,16 +353,48 @@ class RamToeModes:
 
     @property
     def n_modes(self) -> int:
+        """Number of modes n [-], the rigid-body mode included."""
         return int(self.omega.size)
 
 
 def modal_ram_modes(ram: RamRod, fmax: float, *, poisson_ratio: float = DEFAULT_POISSON_RATIO,
                     mesh_size: float | None = None, source: str = "hammer",
                     modes: Callable | None = None, annuli: int = 1) -> RamToeModes:
-    """The toe modes of ``ram`` up to ``fmax`` [Hz] (parameters as :func:`modal_ram`), no chain:
-    any number of modes (no double-precision range limit). ``annuli`` > 1 also projects them
-    on that many equal-width annuli of the toe (the mesh has vertices at their edges), for a
-    ram face in annuli (:class:`anvilwave.anvil_rom.rings.RamFace`)."""
+    """The toe modes of ``ram`` up to ``fmax`` [Hz], no chain: any number of modes.
+
+    No double-precision range limit, unlike the chain. ``annuli`` > 1 also projects them on
+    that many equal-width annuli of the toe (the mesh has vertices at their edges), for a ram
+    face in annuli (:class:`anvilwave.anvil_rom.rings.RamFace`). Cached per ram and fmax.
+
+    Parameters
+    ----------
+    ram : RamRod
+        The ram, with its ``sections`` and material.
+    fmax : float
+        Frequency content [Hz].
+    poisson_ratio : float, default DEFAULT_POISSON_RATIO
+        Poisson's ratio of the ram [-], in [0, 0.5).
+    mesh_size : float or None, default None
+        Element size [m]; None for :func:`default_mesh_size`.
+    source : str, default "hammer"
+        What the errors name as the input's source.
+    modes : callable or None, default None
+        ``modes(spec, fmax) -> ModalData`` of the ram's section; None to compute them.
+    annuli : int, default 1
+        Number of equal-width annuli of the toe [-] (1: one port).
+
+    Returns
+    -------
+    RamToeModes
+        The toe modes and the residual toe stiffness.
+
+    Raises
+    ------
+    anvilwave.inputs.InputError
+        If the ram has no shape (rigid or explicit segments), ``fmax`` is not positive,
+        ``poisson_ratio`` is outside [0, 0.5), the outline is invalid or a ram face in annuli
+        has a hollow toe.
+    """
     if ram.sections is None or not math.isfinite(ram.elastic_modulus):
         raise InputError(source, "ram", "a modal ram needs the ram's shape (diameter and mass "
                                         "or length, or a profile), not a rigid mass or "
@@ -314,19 +470,38 @@ class ModalRamUnit:
     Kernel data (float64, 64-byte aligned, the n modes padded with inert ones to a multiple
     of 8 columns, so that every row and both halves of S start on a cache line): ``C`` (9,
     n_padded), rows a, b, c, m_e, p_toe, p_grav, omega of the modes for the step
-    (:func:`anvilwave.anvil_rom.rom.modal_transition`, undamped: b = -1), then c p_grav g and c
-    p_toe
-    (the step's constant load and force coefficient, set with the step); the rigid-body
-    mode is mode 0, the only one gravity loads (p_grav of a free-free flexible mode is phi^T M e_z
-    = 0 by orthogonality to the rigid translation; the FE value, ~1e-12 of the rigid mode's, is
-    dropped); the padding columns are all zero (they stay at rest and carry nothing). ``S``
-    (2 n_padded) holds q at t_n and at t_n-1 in its two halves, which swap roles every
+    (:func:`anvilwave.anvil_rom.rom.modal_transition`, undamped: b = -1), then c p_grav g and
+    c p_toe (the step's constant load and force coefficient, set with the step); the rigid-body
+    mode is mode 0, the only one gravity loads (p_grav of a free-free flexible mode is
+    phi^T M e_z = 0 by orthogonality to the rigid translation; the FE value, ~1e-12 of the rigid
+    mode's, is dropped); the padding columns are all zero (they stay at rest and carry nothing).
+    ``S`` (2 n_padded) holds q at t_n and at t_n-1 in its two halves, which swap roles every
     step (the kernel writes q_n+1 over q_n-1); ``toe`` = [u_toe, v_toe, half] [m, m/s, -]: the
     toe state (modal part; the residual flexibility is the contact's series spring
     ``toe_stiffness``, as for the chain) and which half of S is t_n (0: the first). Velocities
     are half-step values (q_n - q_n-1) / h, as in the leapfrog units.
 
-    toe_modes : :func:`modal_ram_modes`. gravity : [m/s^2].
+    Parameters
+    ----------
+    toe_modes : RamToeModes
+        The ram's toe modes (:func:`modal_ram_modes`).
+    gravity : float, default 9.81
+        Gravitational acceleration [m/s^2].
+
+    Attributes
+    ----------
+    modes : RamToeModes
+        The toe modes.
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    C : numpy.ndarray
+        (9, n_padded) kernel coefficients (above).
+    S : numpy.ndarray
+        (2 n_padded,) modal coordinates at t_n and t_n-1 [m kg^1/2].
+    toe : numpy.ndarray
+        [u_toe [m], v_toe [m/s], half [-]].
+    h : float
+        The step [s] of the coefficients (nan before the first).
     """
 
     def __init__(self, toe_modes: RamToeModes, gravity: float = 9.81):
@@ -351,15 +526,31 @@ class ModalRamUnit:
         return self.modes.toe_stiffness
 
     def modal_coordinates(self) -> tuple[np.ndarray, np.ndarray]:
-        """(q at t_n, q at t_n-1), each (n,), rigid-body mode first."""
+        """The modal coordinates at t_n and at t_n-1, rigid-body mode first.
+
+        Returns
+        -------
+        now : numpy.ndarray
+            (n,) q at t_n [m kg^1/2] (a view into ``S``).
+        previous : numpy.ndarray
+            (n,) q at t_n-1 [m kg^1/2] (a view into ``S``).
+        """
         n = self.modes.n_modes
         width = self.C.shape[1]
         now = 0 if self.toe[2] == 0.0 else width
         return self.S[now:now + n], self.S[width - now:width - now + n]
 
     def set_step(self, h: float) -> None:
-        """Use the step h [s] from now on; the state keeps its displacement q_n and its
-        half-step rate (q_n - q_n-1) / h (a master that changes its step)."""
+        """Use the step h [s] from now on.
+
+        The state keeps its displacement q_n and its half-step rate (q_n - q_n-1) / h (a master
+        that changes its step).
+
+        Parameters
+        ----------
+        h : float
+            The new step [s].
+        """
         if h == self.h:
             return
         if math.isfinite(self.h):
@@ -376,8 +567,17 @@ class ModalRamUnit:
         self.h = float(h)
 
     def start(self, toe_displacement: float, velocity: float, h: float) -> None:
-        """Undeformed rigid motion at ``velocity`` [m/s] with the toe at ``toe_displacement``
-        [m] at t_n (and h velocity earlier at t_n-1): the exact state of a falling ram."""
+        """Start from undeformed rigid motion: the exact state of a falling ram.
+
+        Parameters
+        ----------
+        toe_displacement : float
+            Toe displacement at t_n [m], positive down.
+        velocity : float
+            Velocity of the ram [m/s], positive down (the toe was h velocity higher at t_n-1).
+        h : float
+            The step [s].
+        """
         if h != self.h:
             self._coefficients(h)
         p = self.C[4, 0]
@@ -387,22 +587,45 @@ class ModalRamUnit:
         self.toe[:] = toe_displacement, velocity, 0.0
 
     def step(self, toe_force: float) -> tuple[float, float]:
-        """Advance over h with the toe force [N] (compression, pushes up) held; returns the
-        new (u_toe, v_toe) [m, m/s]."""
+        """Advance over h with the toe force held.
+
+        Parameters
+        ----------
+        toe_force : float
+            Force on the toe [N], compression positive (pushes the toe up).
+
+        Returns
+        -------
+        u_toe : float
+            The new toe displacement [m].
+        v_toe : float
+            The new toe half-step velocity [m/s].
+        """
         modal_ram_advance(self.C, self.S, toe_force, self.h, self.toe)
         return float(self.toe[0]), float(self.toe[1])
 
     def energies(self) -> tuple[float, float, float]:
-        """(kinetic, strain, gravity potential) [J] of the state (:func:`modal_ram_energies`)."""
+        """Kinetic, strain and gravity potential energy [J] (:func:`modal_ram_energies`).
+
+        Returns
+        -------
+        kinetic : float
+            Kinetic energy [J].
+        strain : float
+            Strain energy [J].
+        potential : float
+            Gravity potential [J].
+        """
         return modal_ram_energies(self.C, self.S, self.toe, self.gravity, self.h)
 
 
 @njit(cache=True, fastmath={"reassoc"})
 def modal_ram_advance(coefficients, state, toe_force, h, toe):
-    """Advance every toe mode over h [s] with ``toe_force`` [N] (compression positive, pushes
-    the toe up) held, in place (``coefficients``, ``state``: the unit's C and S, so called in
-    the formulas, :class:`ModalRamUnit`); writes the new modal (u_toe, v_toe) into ``toe``
-    [m, m/s] and flips its ``half``.
+    """Advance every toe mode over h [s] with ``toe_force`` [N] held, in place.
+
+    ``coefficients`` and ``state`` are the unit's C and S (so called in the formulas,
+    :class:`ModalRamUnit`); the new modal (u_toe, v_toe) are written into ``toe`` and its
+    ``half`` is flipped.
 
     eta_j,n+1 = a eta_j,n - eta_j,n-1 + c (p_grav,j g - p_toe,j F): exact per undamped mode
     for a held force, at any h (unconditionally stable; no sub-steps); gravity loads the rigid
@@ -412,7 +635,22 @@ def modal_ram_advance(coefficients, state, toe_force, h, toe):
     vectorised with the sum in vector lanes. The order of that sum is the compiler's (within
     1e-14 of the terms' magnitudes of the exactly rounded sum, tested): the engine and the Ram
     FMU, which both run this kernel, agree to rounding, not necessarily bit for bit. Not
-    inlined: an inlined copy would take its caller's IEEE rules and lose the vectorisation."""
+    inlined: an inlined copy would take its caller's IEEE rules and lose the vectorisation.
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        (9, n_padded) the unit's C [-], [kg^-1/2], [rad/s] and the step's coefficients.
+    state : numpy.ndarray
+        (2 n_padded,) the unit's S, modal coordinates at t_n and t_n-1 [m kg^1/2]; updated in
+        place.
+    toe_force : float
+        Force on the toe, held over the step [N], compression positive (pushes the toe up).
+    h : float
+        The step [s] (that of the coefficients).
+    toe : numpy.ndarray
+        [u_toe [m], v_toe [m/s], half [-]]; updated in place.
+    """
     C, S = coefficients, state
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n
@@ -435,10 +673,35 @@ def modal_ram_advance(coefficients, state, toe_force, h, toe):
 
 @njit(cache=True)
 def modal_ram_energies(coefficients, state, toe, gravity, h):
-    """(kinetic, strain, gravity potential) [J] of the modal ram in the conserved (shadow) form
-    of the two-step scheme, as the anvil's (:func:`anvilwave.anvil_rom.unit.modal_unit_energy`):
-    sum m_e ((q_n - q_n-1) / h)^2 / 2, sum w^2 q_n q_n-1 / 2 and -g sum p_grav (q_n + q_n-1) / 2.
-    The residual flexibility is the contact's series spring: its energy is the contact's."""
+    """Kinetic, strain and gravity potential energy [J] of the modal ram in its conserved form.
+
+    The conserved (shadow) form of the two-step scheme, as the anvil's
+    (:func:`anvilwave.anvil_rom.unit.modal_unit_energy`): sum m_e ((q_n - q_n-1) / h)^2 / 2,
+    sum w^2 q_n q_n-1 / 2 and -g sum p_grav (q_n + q_n-1) / 2. The residual flexibility is the
+    contact's series spring: its energy is the contact's.
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        (9, n_padded) the unit's C [-], [kg^-1/2], [rad/s].
+    state : numpy.ndarray
+        (2 n_padded,) the unit's S [m kg^1/2].
+    toe : numpy.ndarray
+        [u_toe [m], v_toe [m/s], half [-]].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    h : float
+        The step [s].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    strain : float
+        Strain energy [J].
+    potential : float
+        Gravity potential [J].
+    """
     C, S = coefficients, state
     n = C.shape[1]
     now = 0 if toe[2] == 0.0 else n

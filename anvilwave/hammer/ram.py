@@ -47,8 +47,7 @@ DEFAULT_SEGMENT_LENGTH = 0.5
 # --------------------------------------------------------------------------- discretisation
 def lump_rod(lengths, areas, elastic_modulus: float, density: float,
              segment_length: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Lumped masses [kg], springs [N/m] and toe half-segment spring [N/m] of a rod made of
-    uniform sections (top first).
+    """Lumped masses, springs and toe half-segment spring of a rod of uniform sections (top first).
 
     Each section of length L_s is cut into ceil(L_s / segment_length) equal segments; each
     segment's mass rho A dx sits at its centre, centres are joined by two half segments in
@@ -69,8 +68,12 @@ def lump_rod(lengths, areas, elastic_modulus: float, density: float,
 
     Returns
     -------
-    mass : (n,) segment masses [kg]; stiffness : (n - 1,) springs between them [N/m];
-    toe_stiffness : the toe half segment 2 E A / dx [N/m].
+    mass : numpy.ndarray
+        (n,) segment masses [kg], top first.
+    stiffness : numpy.ndarray
+        (n - 1,) springs between them [N/m].
+    toe_stiffness : float
+        The toe half segment 2 E A / dx [N/m].
     """
     element_dx = []
     element_area = []
@@ -87,7 +90,20 @@ def lump_rod(lengths, areas, elastic_modulus: float, density: float,
 
 
 def circle_area(outer_diameter: float, inner_diameter: float = 0.0) -> float:
-    """Area [m^2] of a solid (inner 0) or hollow circular section; diameters [m]."""
+    """Area [m^2] of a solid (inner 0) or hollow circular section.
+
+    Parameters
+    ----------
+    outer_diameter : float
+        Outer diameter [m].
+    inner_diameter : float, default 0.0
+        Inner diameter [m] (0 for a solid section).
+
+    Returns
+    -------
+    float
+        The section area [m^2].
+    """
     return 0.25 * math.pi * (outer_diameter**2 - inner_diameter**2)
 
 
@@ -95,33 +111,41 @@ def circle_area(outer_diameter: float, inner_diameter: float = 0.0) -> float:
 class RamRod:
     """A ram as n lumped masses (top first) joined by n - 1 springs; rigid when n = 1.
 
-    Attributes
+    Parameters
     ----------
-    mass : (n,) ndarray
-        Nodal masses [kg], node 0 at the top, node n - 1 at the toe.
-    stiffness : (n - 1,) ndarray
-        Spring stiffnesses [N/m]; spring j joins nodes j and j + 1.
-    length : float
+    mass : numpy.ndarray
+        (n,) nodal masses [kg], node 0 at the top, node n - 1 at the toe.
+    stiffness : numpy.ndarray
+        (n - 1,) spring stiffnesses [N/m]; spring j joins nodes j and j + 1.
+    length : float, default nan
         Ram length [m] (nan when built from explicit segments or as a rigid body).
-    toe_diameter : float
+    toe_diameter : float, default nan
         Diameter of the striking face [m] (nan if unknown); the anvil ROM needs it.
-    toe_stiffness : float
+    toe_stiffness : float, default nan
         Half segment between the toe mass and the striking face [N/m], the ram's side of the
         contact spring (nan for a rigid ram or explicit segments: give a contact stiffness).
         For a modal ram, the residual flexibility of its truncated modes at the toe, inverted.
-    sections : (s, 3) ndarray or None
-        The ram's shape, top to toe: rows [length, outer diameter, inner diameter] [m] (None
-        when built from explicit segments or as a rigid body); the modal ram is built from it.
-    elastic_modulus, density : float
-        Material of ``sections`` [Pa], [kg/m^3] (nan when unknown).
-    fmax : float
-        Frequency content [Hz] of a modal ram (:mod:`anvilwave.hammer.modal_ram`); nan for a Smith
-        rod.
-    modes : :class:`anvilwave.hammer.modal_ram.RamToeModes` or None
-        A modal ram run as the modal unit (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`): its
-        toe
-        modes; ``mass`` is then the one total mass (the ram's weight and impact energy) and
-        ``stiffness`` empty. None for a Smith rod and for a modal ram realised as a chain.
+    sections : numpy.ndarray or None, default None
+        (s, 3) the ram's shape, top to toe: rows [length, outer diameter, inner diameter] [m]
+        (None when built from explicit segments or as a rigid body); the modal ram is built
+        from it.
+    elastic_modulus : float, default nan
+        Young's modulus of ``sections`` [Pa] (nan when unknown).
+    density : float, default nan
+        Density of ``sections`` [kg/m^3] (nan when unknown).
+    fmax : float, default nan
+        Frequency content [Hz] of a modal ram (:mod:`anvilwave.hammer.modal_ram`); nan for a
+        Smith rod.
+    modes : anvilwave.hammer.modal_ram.RamToeModes or None, default None
+        A modal ram run as the modal unit (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`):
+        its toe modes; ``mass`` is then the one total mass (the ram's weight and impact energy)
+        and ``stiffness`` empty. None for a Smith rod and for a modal ram realised as a chain.
+
+    Raises
+    ------
+    ValueError
+        If ``mass`` is not a non-empty 1D array, ``stiffness`` does not have one entry fewer,
+        or a mass or stiffness is not finite and positive.
     """
 
     mass: np.ndarray
@@ -152,7 +176,20 @@ class RamRod:
     # ------------------------------------------------------------------ constructors
     @classmethod
     def rigid(cls, mass: float, toe_diameter: float = math.nan) -> RamRod:
-        """A rigid ram of mass [kg] (one mass, no spring)."""
+        """A rigid ram (one mass, no spring).
+
+        Parameters
+        ----------
+        mass : float
+            Ram mass [kg].
+        toe_diameter : float, default nan
+            Diameter of the striking face [m] (nan if unknown).
+
+        Returns
+        -------
+        RamRod
+            The rigid ram.
+        """
         return cls(np.array([float(mass)]), np.zeros(0), math.nan, toe_diameter)
 
     @classmethod
@@ -160,8 +197,28 @@ class RamRod:
                      elastic_modulus: float = STEEL_ELASTIC_MODULUS,
                      density: float = STEEL_DENSITY,
                      segment_length: float = DEFAULT_SEGMENT_LENGTH) -> RamRod:
-        """A ram of circular sections (top to toe); lengths and diameters [m], E [Pa],
-        density [kg/m^3], segment_length [m]. Inner diameters default to 0 (solid)."""
+        """A ram of circular sections, top to toe.
+
+        Parameters
+        ----------
+        lengths : array_like
+            Section lengths [m], top to toe.
+        outer_diameters : array_like
+            Outer diameter of each section [m].
+        inner_diameters : array_like or None, default None
+            Inner diameter of each section [m]; None for solid sections (0).
+        elastic_modulus : float, default STEEL_ELASTIC_MODULUS
+            Young's modulus E [Pa].
+        density : float, default STEEL_DENSITY
+            Density rho [kg/m^3].
+        segment_length : float, default DEFAULT_SEGMENT_LENGTH
+            Largest element length dx [m] (:func:`lump_rod`).
+
+        Returns
+        -------
+        RamRod
+            The lumped ram, with its ``sections``, length and toe diameter.
+        """
         lengths = np.asarray(lengths, float)
         outer = np.asarray(outer_diameters, float)
         inner = np.zeros_like(outer) if inner_diameters is None else np.asarray(
@@ -175,18 +232,50 @@ class RamRod:
 
     @classmethod
     def uniform(cls, length: float, diameter: float, **kwargs) -> RamRod:
-        """A solid steel-like cylinder of length [m] and diameter [m] (keywords as from_profile)."""
+        """A solid cylinder of given length and diameter (steel unless told otherwise).
+
+        Parameters
+        ----------
+        length : float
+            Ram length [m].
+        diameter : float
+            Ram diameter [m].
+        **kwargs
+            Keywords of :meth:`from_profile` (``elastic_modulus`` [Pa], ``density`` [kg/m^3],
+            ``segment_length`` [m]).
+
+        Returns
+        -------
+        RamRod
+            The lumped cylinder.
+        """
         return cls.from_profile([length], [diameter], **kwargs)
 
     @classmethod
     def from_segments(cls, masses, stiffnesses, toe_diameter: float = math.nan) -> RamRod:
-        """A ram from explicit masses [kg] (top first) and the springs [N/m] between them."""
+        """A ram from explicit masses (top first) and the springs between them.
+
+        Parameters
+        ----------
+        masses : array_like
+            (n,) segment masses [kg], top first.
+        stiffnesses : array_like
+            (n - 1,) springs between them [N/m].
+        toe_diameter : float, default nan
+            Diameter of the striking face [m] (nan if unknown).
+
+        Returns
+        -------
+        RamRod
+            The ram (no shape, no toe half segment).
+        """
         return cls(np.asarray(masses, float), np.asarray(stiffnesses, float), math.nan,
                    toe_diameter)
 
     # ------------------------------------------------------------------ properties
     @property
     def n_masses(self) -> int:
+        """Number of lumped masses n [-]."""
         return self.mass.size
 
     @property
@@ -206,12 +295,16 @@ class RamRod:
 
     @property
     def is_rigid(self) -> bool:
+        """True for a rigid ram: one mass and no toe modes."""
         return self.mass.size == 1 and self.modes is None
 
     @property
     def static_stiffness(self) -> float:
-        """Stiffness between the top mass and the striking face [N/m]: the springs and the toe
-        half segment in series (inf when rigid; without the toe half segment if unknown)."""
+        """Stiffness between the top mass and the striking face [N/m].
+
+        The springs and the toe half segment in series (inf when rigid; without the toe half
+        segment if unknown).
+        """
         if self.is_rigid:
             return math.inf
         toe = 0.0 if math.isnan(self.toe_stiffness) else 1.0 / self.toe_stiffness
@@ -219,22 +312,42 @@ class RamRod:
 
     @property
     def toe_impedance(self) -> float:
-        """Bar impedance of the striking face's section, E A / c = A sqrt(E rho) [N s/m] (nan
-        when the ram has no shape: explicit segments, rigid, toe modes alone)."""
+        """Bar impedance of the striking face's section, E A / c = A sqrt(E rho) [N s/m].
+
+        nan when the ram has no shape: explicit segments, rigid, toe modes alone.
+        """
         if self.sections is None:
             return math.nan
         outer, inner = self.sections[-1, 1], self.sections[-1, 2]
         return circle_area(outer, inner) * math.sqrt(self.elastic_modulus * self.density)
 
     def stable_time_step(self) -> float:
-        """Largest stable leapfrog step [s] (Gershgorin bound; inf when rigid)."""
+        """Largest stable leapfrog step [s] (Gershgorin bound; inf when rigid).
+
+        Returns
+        -------
+        float
+            The stable step [s] (:func:`stable_time_step`).
+        """
         return stable_time_step(self.mass, self.stiffness)
 
     def initial_state(self, impact_velocity: float) -> tuple[np.ndarray, np.ndarray]:
-        """(u, v) at the first contact t = 0 [m, m/s]: undeformed, every mass at v_impact.
+        """The state at the first contact t = 0: undeformed, every mass at the impact velocity.
 
         A falling ram carries no internal force (gravity accelerates all masses alike), so
         u = 0 and v = impact velocity is its exact state at impact.
+
+        Parameters
+        ----------
+        impact_velocity : float
+            Impact velocity [m/s], positive down.
+
+        Returns
+        -------
+        u : numpy.ndarray
+            (n,) displacements [m] (zeros).
+        v : numpy.ndarray
+            (n,) velocities [m/s] (all the impact velocity).
         """
         return np.zeros(self.n_masses), np.full(self.n_masses, float(impact_velocity))
 
@@ -244,10 +357,29 @@ class RamRod:
 def ram_advance(weight, inverse_mass, stiffness, u, v, toe_force, h, n_sub):
     """Advance the ram over a communication step h [s] in n_sub leapfrog sub-steps, in place.
 
-    The physics of :func:`ram_step` on arrays prepared once: weight m g [N] and inverse mass
-    1 / m [1/kg] of every mass (top first), the n - 1 springs [N/m]. One sweep per sub-step:
+    The physics of :func:`ram_step` on arrays prepared once. One sweep per sub-step:
     the spring below mass i is evaluated before u_i moves and carried to mass i + 1, so every
     force is that of the displacements at the start of the sub-step.
+
+    Parameters
+    ----------
+    weight : numpy.ndarray
+        (n,) weight m g of every mass [N], top first.
+    inverse_mass : numpy.ndarray
+        (n,) inverse mass 1 / m of every mass [1/kg].
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m], positive down; updated in place.
+    v : numpy.ndarray
+        (n,) velocities [m/s], positive down; updated in place.
+    toe_force : float
+        Contact force on the toe, held over the step [N], compression positive (pushes the toe
+        up).
+    h : float
+        Communication step [s].
+    n_sub : int
+        Number of sub-steps [-] (h / n_sub below :func:`stable_time_step`).
     """
     dt = h / n_sub
     last = u.shape[0] - 1
@@ -273,32 +405,69 @@ def ram_step(mass, stiffness, u, v, toe_force, gravity, h, n_sub):
     sub-step before u. The leapfrog form matters for the coupling: the master holds the contact
     force computed from the displacements at t_n, and a velocity-Verlet step with that held
     force (u += h v + h^2 a / 2, v += h a) would be unstable for the contact spring (energy
-    growth (w h)^2 / 2 per step); leapfrog keeps it stable up to w h < 2.
+    growth (w h)^2 / 2 per step); leapfrog keeps it stable up to w h < 2. A convenience form of
+    :func:`ram_advance` that prepares its arrays on every call.
 
     Parameters
     ----------
-    mass : (n,) nodal masses [kg], top first.
-    stiffness : (n - 1,) springs [N/m].
-    u, v : (n,) displacements [m] and velocities [m/s], positive down.
-    toe_force : contact force on the toe [N], positive in compression (pushes the toe up).
-    gravity : gravitational acceleration [m/s^2] (0 to switch it off).
-    h : communication step [s].
-    n_sub : number of sub-steps (h / n_sub below :func:`stable_time_step`).
-
-    A convenience form of :func:`ram_advance` that prepares its arrays on every call.
+    mass : numpy.ndarray
+        (n,) nodal masses [kg], top first.
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m], positive down; updated in place.
+    v : numpy.ndarray
+        (n,) velocities [m/s], positive down; updated in place.
+    toe_force : float
+        Contact force on the toe [N], positive in compression (pushes the toe up).
+    gravity : float
+        Gravitational acceleration [m/s^2] (0 to switch it off).
+    h : float
+        Communication step [s].
+    n_sub : int
+        Number of sub-steps [-] (h / n_sub below :func:`stable_time_step`).
     """
     ram_advance(mass * gravity, 1.0 / mass, stiffness, u, v, toe_force, h, n_sub)
 
 
 @njit(cache=True, fastmath={"reassoc"})
 def leapfrog_energies(mass, stiffness, u, v, gravity, dt):
-    """(kinetic, strain, gravity potential) [J] in the leapfrog's conserved (shadow) form.
+    """Kinetic, strain and gravity potential energy [J] in the leapfrog's conserved (shadow) form.
 
-    With v the velocity of the last sub-step dt [s] (u_prev = u - dt v): kinetic sum m v^2 / 2,
+    With v the velocity of the last sub-step dt (u_prev = u - dt v): kinetic sum m v^2 / 2,
     strain sum k e e_prev / 2 and gravity potential -sum m g (u + u_prev) / 2, whose sum changes
     exactly by the work of the external forces for the central-difference scheme (Belytschko,
     Liu & Moran 2000, sec. 6.2), instead of oscillating by O(dt) like the plain energies.
     The sums may be added in any order (fastmath reassociation only: their last bits).
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (n,) nodal masses [kg].
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m].
+    v : numpy.ndarray
+        (n,) velocities of the last sub-step [m/s].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    dt : float
+        The sub-step [s].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy [J].
+    strain : float
+        Strain energy of the springs [J].
+    potential : float
+        Gravity potential relative to u = 0 [J].
+
+    References
+    ----------
+    Belytschko, T., Liu, W.K. & Moran, B. (2000). Nonlinear Finite Elements for Continua and
+        Structures. Wiley, ch. 6.
     """
     last = mass.shape[0] - 1
     kinetic = 0.5 * mass[last] * v[last] * v[last]
@@ -321,6 +490,18 @@ def stable_time_step(mass, stiffness):
     M^-1/2 K M^-1/2, (k_{i-1} + k_i) / m_i + k_{i-1} / sqrt(m_{i-1} m_i) + k_i / sqrt(m_i m_{i+1}).
     The first is exact for a long uniform chain, 4 k / m = (2 c / dx)^2;
     both are conservative otherwise.
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (n,) nodal masses [kg].
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+
+    Returns
+    -------
+    float
+        The stable step [s] (inf when there is no spring).
     """
     n = mass.shape[0]
     row_sum = 0.0
@@ -348,9 +529,17 @@ def required_substeps(h, stable_step, safety=0.9):
 
     Parameters
     ----------
-    h : communication step [s].
-    stable_step : stable sub-step [s] (may be inf).
-    safety : fraction of the stable step to use [-].
+    h : float
+        Communication step [s].
+    stable_step : float
+        Stable sub-step [s] (may be inf).
+    safety : float, default 0.9
+        Fraction of the stable step to use [-].
+
+    Returns
+    -------
+    int
+        The number of sub-steps [-].
     """
     if not stable_step < np.inf:
         return 1
@@ -360,14 +549,37 @@ def required_substeps(h, stable_step, safety=0.9):
 
 @njit(cache=True)
 def spring_forces(stiffness, u, out):
-    """Spring forces N_j = k_j (u_j - u_{j+1}) [N] (compression positive) into out (n - 1,)."""
+    """Spring forces N_j = k_j (u_j - u_{j+1}) [N] (compression positive) into ``out``.
+
+    Parameters
+    ----------
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m].
+    out : numpy.ndarray
+        (n - 1,) array that receives the spring forces [N].
+    """
     for j in range(stiffness.shape[0]):
         out[j] = stiffness[j] * (u[j] - u[j + 1])
 
 
 @njit(cache=True)
 def toe_spring_force(stiffness, u):
-    """Force in the lowest ram spring [N], compression positive (0 for a rigid ram)."""
+    """Force in the lowest ram spring [N], compression positive (0 for a rigid ram).
+
+    Parameters
+    ----------
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m].
+
+    Returns
+    -------
+    float
+        The force [N].
+    """
     n = stiffness.shape[0]
     if n == 0:
         return 0.0
@@ -376,7 +588,20 @@ def toe_spring_force(stiffness, u):
 
 @njit(cache=True)
 def kinetic_energy(mass, v):
-    """Kinetic energy sum(m v^2) / 2 [J]."""
+    """Kinetic energy sum(m v^2) / 2 [J].
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (n,) nodal masses [kg].
+    v : numpy.ndarray
+        (n,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The kinetic energy [J].
+    """
     energy = 0.0
     for i in range(mass.shape[0]):
         energy += 0.5 * mass[i] * v[i] * v[i]
@@ -385,7 +610,20 @@ def kinetic_energy(mass, v):
 
 @njit(cache=True)
 def strain_energy(stiffness, u):
-    """Strain energy of the springs sum(k (u_j - u_{j+1})^2) / 2 [J]."""
+    """Strain energy of the springs sum(k (u_j - u_{j+1})^2) / 2 [J].
+
+    Parameters
+    ----------
+    stiffness : numpy.ndarray
+        (n - 1,) springs [N/m].
+    u : numpy.ndarray
+        (n,) displacements [m].
+
+    Returns
+    -------
+    float
+        The strain energy [J].
+    """
     energy = 0.0
     for j in range(stiffness.shape[0]):
         d = u[j] - u[j + 1]
@@ -395,7 +633,22 @@ def strain_energy(stiffness, u):
 
 @njit(cache=True)
 def gravity_potential_energy(mass, u, gravity):
-    """Gravitational potential energy relative to u = 0 [J]: -g sum(m u) (z down)."""
+    """Gravitational potential energy relative to u = 0 [J]: -g sum(m u) (z down).
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (n,) nodal masses [kg].
+    u : numpy.ndarray
+        (n,) displacements [m], positive down.
+    gravity : float
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    float
+        The potential energy [J].
+    """
     energy = 0.0
     for i in range(mass.shape[0]):
         energy -= gravity * mass[i] * u[i]
@@ -404,7 +657,20 @@ def gravity_potential_energy(mass, u, gravity):
 
 @njit(cache=True)
 def momentum(mass, v):
-    """Axial momentum sum(m v) [kg m/s], positive down."""
+    """Axial momentum sum(m v) [kg m/s], positive down.
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (n,) nodal masses [kg].
+    v : numpy.ndarray
+        (n,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The momentum [kg m/s].
+    """
     total = 0.0
     for i in range(mass.shape[0]):
         total += mass[i] * v[i]
@@ -412,7 +678,20 @@ def momentum(mass, v):
 
 
 def max_angular_frequency(mass, stiffness) -> float:
-    """Exact largest natural angular frequency of the free chain [rad/s] (scipy; for checks)."""
+    """Exact largest natural angular frequency of the free chain [rad/s] (scipy; for checks).
+
+    Parameters
+    ----------
+    mass : array_like
+        (n,) nodal masses [kg].
+    stiffness : array_like
+        (n - 1,) springs [N/m].
+
+    Returns
+    -------
+    float
+        The largest angular frequency [rad/s] (0 for one mass).
+    """
 
     mass = np.asarray(mass, float)
     if mass.size == 1:

@@ -21,20 +21,32 @@ from anvilwave.inputs import Table
 def ram_from_table(table: Table) -> RamRod:
     """Read a ram from a TOML table (errors name the key and the rule).
 
-    Keys
-    ----
-    kind : "rod" (default), "rigid" or "modal".
-    rigid: ``mass`` [kg], optional ``diameter`` [m] of the striking face.
-    modal: the toe modes of a modal ram (:func:`anvilwave.hammer.modal_ram.toe_modes_from_table`:
-    what
-    a Ram FMU embeds).
-    rod, one of
-      * ``diameter`` [m] with ``mass`` [kg] or ``length`` [m]: a uniform solid cylinder;
-      * ``profile`` = [[length, outer_diameter], ...] or [[length, outer, inner], ...] [m],
-        top to toe, optionally with ``mass`` [kg] (then the density is the one that gives it);
-      * ``segment_masses`` [kg] (top first) and ``segment_stiffnesses`` [N/m] (n - 1 springs).
-    With the first two: ``elastic_modulus`` [Pa] (210e9), ``density`` [kg/m^3] (7850),
-    ``segment_length`` [m] (0.5).
+    Parameters
+    ----------
+    table : anvilwave.inputs.Table
+        The ``[ram]`` table. ``kind`` is "rod" (default), "rigid" or "modal".
+
+        * rigid: ``mass`` [kg], optional ``diameter`` [m] of the striking face.
+        * modal: the toe modes of a modal ram
+          (:func:`anvilwave.hammer.modal_ram.toe_modes_from_table`: what a Ram FMU embeds),
+          optional ``diameter`` [m].
+        * rod, one of: ``diameter`` [m] with ``mass`` [kg] or ``length`` [m], a uniform solid
+          cylinder; ``profile`` = [[length, outer_diameter], ...] or [[length, outer, inner],
+          ...] [m], top to toe, optionally with ``mass`` [kg] (then the density is the one that
+          gives it); ``segment_masses`` [kg] (top first) and ``segment_stiffnesses`` [N/m]
+          (n - 1 springs), optional ``diameter`` [m]. With the first two: ``elastic_modulus``
+          [Pa] (210e9), ``density`` [kg/m^3] (7850), ``segment_length`` [m] (0.5).
+
+    Returns
+    -------
+    RamRod
+        The ram.
+
+    Raises
+    ------
+    anvilwave.inputs.InputError
+        If a key is missing, invalid, unknown or contradicts another (e.g. ``density`` with
+        ``profile`` and ``mass``, both or neither of ``mass`` and ``length``).
     """
     kind = table.string("kind", "rod", choices=("rod", "rigid", "modal"))
     if kind == "modal":

@@ -75,18 +75,45 @@ over the shortening of the first spring (for :func:`head_face_work`)."""
 def soil_resistance(u, v, offset, capacity, tension, stiffness, smith, dashpot):
     """Smith (1960) soil spring: elastic-perfectly-plastic static part plus damping.
 
-    u : pile displacement at the spring [m]; v : velocity [m/s]; offset : plastic offset s [m].
-    capacity : R_u [N]; tension : capacity for upward motion [N] (0: no tension, gap);
-    stiffness : R_u / quake [N/m]; smith : Smith damping J [s/m]; dashpot : viscous c [N s/m].
-
     Static: R_s = k (u - s), limited to [-tension, capacity]; at a limit s moves along (plastic
     flow) so unloading follows the elastic slope k and leaves the permanent set s. With
     tension = 0 and u < s the soil has lost contact: no force, s unchanged (reloading starts
     at u = s). Damping: R_d = (J |R_s| + c) v (Smith damping with |R_s| so that it always
     dissipates; Smith-viscous is c = J R_u). Where the soil cannot pull (tension = 0) the total
-    R_s + R_d is kept >= 0.
+    R_s + R_d is kept >= 0. A spring with stiffness <= 0 carries nothing.
 
-    Returns (R_s [N], R_d [N], new offset [m]).
+    Parameters
+    ----------
+    u : float
+        Pile displacement at the spring [m], positive down.
+    v : float
+        Pile velocity at the spring [m/s], positive down.
+    offset : float
+        Plastic offset s of the spring [m] (the permanent set so far).
+    capacity : float
+        Ultimate resistance R_u for downward motion [N].
+    tension : float
+        Capacity for upward motion [N] (0: no tension, a gap opens).
+    stiffness : float
+        Spring stiffness R_u / quake [N/m].
+    smith : float
+        Smith damping J [s/m].
+    dashpot : float
+        Viscous dashpot c [N s/m].
+
+    Returns
+    -------
+    static : float
+        Static resistance R_s [N], positive when it pushes the pile up.
+    damping : float
+        Damping resistance R_d [N], positive when it pushes the pile up.
+    offset : float
+        The new plastic offset [m].
+
+    References
+    ----------
+    Smith, E.A.L. (1960). Pile-driving analysis by the wave equation. Journal of the Soil Mechanics
+        and Foundations Division, ASCE, 86(SM4), 35-61.
     """
     if stiffness <= 0.0:
         return 0.0, 0.0, offset
@@ -132,12 +159,30 @@ yield displacements capacity / k and tension / k [m] (0 where k = 0)."""
 
 
 def sweep_arrays(pile: np.ndarray, soil: np.ndarray, gravity: float):
-    """(pile_sweep, soil_sweep, first_soil) of :func:`pile_advance` for a pile and soil (each
-    array contiguous and aligned, :mod:`anvilwave.anvil_rom.arrays`).
+    """The arrays of :func:`pile_advance` for a pile and soil, prepared once.
 
-    pile, soil : the kernel parameter arrays (module docstring); gravity [m/s^2].
-    first_soil : index of the first mass with a shaft soil spring (N - 1 when none above the
-    toe mass).
+    Each array is contiguous and aligned (:mod:`anvilwave.anvil_rom.arrays`).
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters (module docstring) [kg], [N/m], [N s/m].
+    soil : numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters (module docstring) [N], [N/m], [s/m], [N s/m].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    pile_sweep : tuple of numpy.ndarray
+        The (N,) arrays named by SWEEP_PILE: m g [N], 1 / m [1/kg], the spring [N/m] and the
+        dashpot [N s/m] below each mass.
+    soil_sweep : tuple of numpy.ndarray
+        The (N + 1,) arrays named by SWEEP_SOIL: the soil rows and the yield displacements
+        capacity / k and tension / k [m] (0 where k = 0).
+    first_soil : int
+        Index of the first mass with a shaft soil spring [-] (N - 1 when none above the toe
+        mass).
     """
     mass = pile[PILE_MASS]
     pile_sweep = (aligned_copy(mass * gravity), aligned_copy(1.0 / mass),
@@ -163,12 +208,38 @@ def pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, 
 
     The physics of :func:`pile_step` on the arrays of :func:`sweep_arrays`. Works in place on
     u, v, soil_offset; adds the head works (WORK_HEAD, WORK_HEAD_SHORTENING) to ``energy``.
-    soil_works : None, or the per-mass soil work sums (SWEEP_WORKS) to add to;
-    damping_work : None, or the per-mass sums of the pile dashpots' work. The gravity work is
-    not summed (:func:`gravity_work` has it from the states) and ENERGY_KINETIC /
-    ENERGY_STRAIN are not updated (:func:`update_energy`). The dashpots' work is also the
-    remainder of the exact energy balance (module docstring): the in-process engine books it
-    that way, without a sum over the free length of the pile.
+    The gravity work is not summed (:func:`gravity_work` has it from the states) and
+    ENERGY_KINETIC / ENERGY_STRAIN are not updated (:func:`update_energy`). The dashpots' work is
+    also the remainder of the exact energy balance (module docstring): the in-process engine books
+    it that way, without a sum over the free length of the pile.
+
+    Parameters
+    ----------
+    pile_sweep : tuple of numpy.ndarray
+        The pile arrays of :func:`sweep_arrays` (SWEEP_PILE) [N], [1/kg], [N/m], [N s/m].
+    soil_sweep : tuple of numpy.ndarray
+        The soil arrays of :func:`sweep_arrays` (SWEEP_SOIL) [N], [N/m], [s/m], [N s/m], [m].
+    first_soil : int
+        Index of the first mass with a shaft soil spring [-] (:func:`sweep_arrays`).
+    u : numpy.ndarray
+        (N,) displacements [m], positive down; updated in place.
+    v : numpy.ndarray
+        (N,) velocities [m/s], positive down; updated in place.
+    soil_offset : numpy.ndarray
+        (N + 1,) plastic offsets of the soil springs [m]; updated in place.
+    energy : numpy.ndarray
+        (ENERGY_SIZE,) energy state [J]; the head works are added to it.
+    head_force : float
+        Force on the pile head, held over the step [N], compression positive.
+    h : float
+        Communication step [s].
+    n_sub : int
+        Number of equal sub-steps [-] (h / n_sub within :func:`stable_time_step`).
+    soil_works : tuple of numpy.ndarray or None, optional
+        None, or the (N,) per-mass sums of the soil's static and damping work (SWEEP_WORKS)
+        to add to [J].
+    damping_work : numpy.ndarray or None, optional
+        None, or the (N,) per-mass sums of the pile dashpots' work to add to [J].
     """
     dt = h / n_sub
     for _ in range(n_sub):
@@ -262,9 +333,29 @@ def _pile_sweep(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, head_forc
 def gravity_work(weight, u, v, u_start, v_start, dt):
     """Work done by gravity on the pile since the state (u_start, v_start) [J].
 
-    With sub-steps of a constant dt [s] the leapfrog's centred increments du = dt (v_old +
+    With sub-steps of a constant dt the leapfrog's centred increments du = dt (v_old +
     v_new) / 2 sum to u - u_start + dt (v_start - v) / 2 for every mass, so the work
-    sum m g du needs no running total. weight : m g per mass [N].
+    sum m g du needs no running total.
+
+    Parameters
+    ----------
+    weight : numpy.ndarray
+        (N,) weight m g of each mass [N].
+    u : numpy.ndarray
+        (N,) displacements now [m].
+    v : numpy.ndarray
+        (N,) velocities now [m/s] (of the last sub-step).
+    u_start : numpy.ndarray
+        (N,) displacements at the start [m].
+    v_start : numpy.ndarray
+        (N,) velocities at the start [m/s].
+    dt : float
+        The constant sub-step [s].
+
+    Returns
+    -------
+    float
+        The gravity work [J].
     """
     work = 0.0
     for i in range(u.size):
@@ -283,12 +374,44 @@ exactly rounded sums). The time stepping itself is compiled without fastmath."""
 
 @njit(cache=True, fastmath=ENERGY_SUMS)
 def pile_energies(mass, stiffness, weight, u, v, dt, u_start, v_start, soil_works):
-    """The pile's energies at a record point in one pass [J]: (kinetic, strain, gravity work
-    since (u_start, v_start), soil static work, soil damping work).
+    """The pile's energies at a record point in one pass [J].
 
-    kinetic and strain as :func:`update_energy` (sub-step dt [s]), the gravity work as
-    :func:`gravity_work`, the soil works the totals of the per-mass sums ``soil_works`` of
-    :func:`pile_advance` (SWEEP_WORKS order).
+    Kinetic and strain energy as :func:`update_energy`, the gravity work as
+    :func:`gravity_work`, the soil works the totals of the per-mass sums of :func:`pile_advance`.
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        (N,) segment masses [kg].
+    stiffness : numpy.ndarray
+        (N,) spring below each mass [N/m] (0 below the toe mass).
+    weight : numpy.ndarray
+        (N,) weight m g of each mass [N].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities of the last sub-step [m/s].
+    dt : float
+        The sub-step [s].
+    u_start : numpy.ndarray
+        (N,) displacements at the start of the gravity work [m].
+    v_start : numpy.ndarray
+        (N,) velocities at the start of the gravity work [m/s].
+    soil_works : tuple of numpy.ndarray
+        The (N,) per-mass soil work sums (SWEEP_WORKS order) [J].
+
+    Returns
+    -------
+    kinetic : float
+        Kinetic energy sum m v^2 / 2 [J].
+    strain : float
+        Strain energy in the leapfrog form sum k e e' / 2 [J].
+    gravity : float
+        Gravity work since (u_start, v_start) [J].
+    soil_static : float
+        Work done on the soil by its static resistance [J].
+    soil_damping : float
+        Work done on the soil by its damping resistance [J].
     """
     n = u.size
     kinetic = 0.0
@@ -314,8 +437,22 @@ def pile_energies(mass, stiffness, weight, u, v, dt, u_start, v_start, soil_work
 
 @njit(cache=True)
 def sum_works(works):
-    """Totals of per-mass work sums [J]: (damping, soil static, soil damping) of the three
-    arrays of :func:`pile_step`."""
+    """Totals of per-mass work sums [J] (the three arrays of :func:`pile_step`).
+
+    Parameters
+    ----------
+    works : tuple of numpy.ndarray
+        Three (N,) arrays of per-mass work sums [J]: pile damping, soil static, soil damping.
+
+    Returns
+    -------
+    damping : float
+        Total work of the pile dashpots [J].
+    soil_static : float
+        Total work done on the soil by its static resistance [J].
+    soil_damping : float
+        Total work done on the soil by its damping resistance [J].
+    """
     a = 0.0
     b = 0.0
     c = 0.0
@@ -330,16 +467,34 @@ def sum_works(works):
 def pile_step(pile, soil, u, v, soil_offset, energy, head_force, gravity, h, n_sub):
     """Advance the pile and soil over a communication step.
 
-    pile : (PILE_ROWS, N) parameters; soil : (SOIL_ROWS, N+1) parameters.
-    u, v, soil_offset, energy : state, updated in place (see the module docstring).
-    head_force : force on the pile head, held over the step [N], compression positive
-        (pushes the head down).
-    gravity : gravitational acceleration applied to the pile masses [m/s^2] (0 switches it off).
-    h : communication step [s]; n_sub : number of equal sub-steps (an int), h / n_sub must not
-        exceed :func:`stable_time_step` (:func:`anvilwave.pile.model.substeps` chooses it).
-
     A convenience form of :func:`pile_advance` that prepares its arrays on every call and keeps
-    every entry of ``energy`` up to date.
+    every entry of ``energy`` up to date. u, v, soil_offset and energy are updated in place (see
+    the module docstring).
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    soil : numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters [N], [N/m], [s/m], [N s/m].
+    u : numpy.ndarray
+        (N,) displacements [m], positive down.
+    v : numpy.ndarray
+        (N,) velocities [m/s], positive down.
+    soil_offset : numpy.ndarray
+        (N + 1,) plastic offsets of the soil springs [m].
+    energy : numpy.ndarray
+        (ENERGY_SIZE,) energy state [J].
+    head_force : float
+        Force on the pile head, held over the step [N], compression positive (pushes the head
+        down).
+    gravity : float
+        Gravitational acceleration applied to the pile masses [m/s^2] (0 switches it off).
+    h : float
+        Communication step [s].
+    n_sub : int
+        Number of equal sub-steps [-]; h / n_sub must not exceed :func:`stable_time_step`
+        (:func:`anvilwave.pile.model.substeps` chooses it).
     """
     n = u.size
     mass = pile[PILE_MASS]
@@ -374,8 +529,21 @@ def pile_step(pile, soil, u, v, soil_offset, energy, head_force, gravity, h, n_s
 def update_energy(pile, u, v, energy, dt):
     """Set energy[ENERGY_KINETIC] = sum m v^2 / 2 and energy[ENERGY_STRAIN] = sum k e e' / 2 [J].
 
-    e = u_i - u_{i+1} now and e' the same a sub-step dt [s] earlier (u - dt v), the form that
+    e = u_i - u_{i+1} now and e' the same a sub-step dt earlier (u - dt v), the form that
     makes the discrete energy balance exact (module docstring). With v = 0 it is sum k e^2 / 2.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities of the last sub-step [m/s].
+    energy : numpy.ndarray
+        (ENERGY_SIZE,) energy state [J]; its kinetic and strain entries are set in place.
+    dt : float
+        The sub-step [s].
     """
     n = u.size
     mass = pile[PILE_MASS]
@@ -397,6 +565,18 @@ def energy_residual(energy, energy_initial):
 
     (KE + U) - (KE + U)_0 - (W_head + W_gravity - W_soil_static - W_soil_damping - W_pile_damping),
     the works counted from the initial state ``energy_initial``.
+
+    Parameters
+    ----------
+    energy : numpy.ndarray
+        (ENERGY_SIZE,) energy state now [J].
+    energy_initial : numpy.ndarray
+        (ENERGY_SIZE,) energy state at the start [J].
+
+    Returns
+    -------
+    float
+        The residual [J].
     """
     stored = energy[ENERGY_KINETIC] + energy[ENERGY_STRAIN]
     stored0 = energy_initial[ENERGY_KINETIC] + energy_initial[ENERGY_STRAIN]
@@ -418,6 +598,18 @@ def head_face_work(probes, energy):
     extrapolation: it acts like a small interface dashpot (the strain of the first spring lags
     the head force by about dx / 2c); for a 10 t ram on a spring (closed-form case 2) it takes
     3.1 %, 0.86 % and 0.22 % of the transferred energy at dx = 1, 0.5 and 0.25 m (~dx^2).
+
+    Parameters
+    ----------
+    probes : numpy.ndarray
+        (PROBE_SIZE,) output probes; HEAD_EXTRAPOLATION is the factor e [-].
+    energy : numpy.ndarray
+        (ENERGY_SIZE,) energy state [J].
+
+    Returns
+    -------
+    float
+        The work on the head face [J].
     """
     return energy[WORK_HEAD] + probes[HEAD_EXTRAPOLATION] * energy[WORK_HEAD_SHORTENING]
 
@@ -432,6 +624,18 @@ def stable_time_step(pile, soil):
     omega dt <= 2 (sqrt(1 + zeta^2) - zeta), i.e. dt <= 2 / (sqrt(omega^2 + beta^2) + beta);
     the minimum over the masses is returned. For an undamped uniform pile without soil this is
     exactly the Courant limit dx / c.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    soil : numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters [N], [N/m], [s/m], [N s/m].
+
+    Returns
+    -------
+    float
+        The stable sub-step [s] (inf when nothing restrains the masses).
     """
     mass = pile[PILE_MASS]
     k = pile[PILE_STIFFNESS]
@@ -469,26 +673,83 @@ def head_displacement(probes, u):
     Contacts that use this face displacement converge at second order in dx; using u_0 (the
     top mass) makes the contact a half-segment too deep, a first-order error (the pile head
     then looks stiffer by dx / (2 E A)). A state function: no feedthrough of the head force.
+
+    Parameters
+    ----------
+    probes : numpy.ndarray
+        (PROBE_SIZE,) output probes; HEAD_EXTRAPOLATION is the factor e [-].
+    u : numpy.ndarray
+        (N,) displacements [m].
+
+    Returns
+    -------
+    float
+        The head-face displacement [m].
     """
     return u[0] + probes[HEAD_EXTRAPOLATION] * (u[0] - u[1])
 
 
 @njit(cache=True, inline='always')
 def head_velocity(probes, v):
-    """Velocity of the pile-top face [m/s], positive down (as :func:`head_displacement`)."""
+    """Velocity of the pile-top face [m/s], positive down (as :func:`head_displacement`).
+
+    Parameters
+    ----------
+    probes : numpy.ndarray
+        (PROBE_SIZE,) output probes; HEAD_EXTRAPOLATION is the factor e [-].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The head-face velocity [m/s].
+    """
     return v[0] + probes[HEAD_EXTRAPOLATION] * (v[0] - v[1])
 
 
 @njit(cache=True, inline='always')
 def spring_force(pile, u, v, j):
-    """Axial force in spring j (between masses j and j+1) incl. material damping [N], compr. +."""
+    """Axial force in spring j (between masses j and j+1) incl. material damping [N], compr. +.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+    j : int
+        Spring index [-], 0 <= j < N - 1.
+
+    Returns
+    -------
+    float
+        The spring force [N], compression positive.
+    """
     return (pile[PILE_STIFFNESS, j] * (u[j] - u[j + 1])
             + pile[PILE_DASHPOT, j] * (v[j] - v[j + 1]))
 
 
 @njit(cache=True)
 def top_force(pile, u, v):
-    """Axial force in the first spring, dx_0 / 2 + dx_1 / 2 below the head [N], compr. +."""
+    """Axial force in the first spring, dx_0 / 2 + dx_1 / 2 below the head [N], compr. +.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The force [N], compression positive.
+    """
     return spring_force(pile, u, v, 0)
 
 
@@ -498,6 +759,22 @@ def gauge_force(pile, probes, u, v):
 
     Linear interpolation between the springs around the gauge (weights in ``probes``); the
     velocity used by the damping part is v at t - dt/2 (leapfrog).
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        (PILE_ROWS, N) pile parameters [kg], [N/m], [N s/m].
+    probes : numpy.ndarray
+        (PROBE_SIZE,) output probes: GAUGE_SPRING index and GAUGE_SPRING_WEIGHT [-].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The gauge force [N], compression positive.
     """
     j = int(probes[GAUGE_SPRING])
     w = probes[GAUGE_SPRING_WEIGHT]
@@ -509,7 +786,20 @@ def gauge_force(pile, probes, u, v):
 
 @njit(cache=True, inline='always')
 def gauge_velocity(probes, v):
-    """Pile velocity at the gauge depth [m/s], linear between the mass centres around it."""
+    """Pile velocity at the gauge depth [m/s], linear between the mass centres around it.
+
+    Parameters
+    ----------
+    probes : numpy.ndarray
+        (PROBE_SIZE,) output probes: GAUGE_MASS index and GAUGE_MASS_WEIGHT [-].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The gauge velocity [m/s], positive down.
+    """
     i = int(probes[GAUGE_MASS])
     w = probes[GAUGE_MASS_WEIGHT]
     if w > 0.0:
@@ -519,19 +809,60 @@ def gauge_velocity(probes, v):
 
 @njit(cache=True)
 def toe_displacement(u):
-    """Toe (last mass) displacement [m], positive down."""
+    """Toe (last mass) displacement [m], positive down.
+
+    Parameters
+    ----------
+    u : numpy.ndarray
+        (N,) displacements [m].
+
+    Returns
+    -------
+    float
+        The toe displacement [m].
+    """
     return u[u.size - 1]
 
 
 @njit(cache=True)
 def toe_velocity(v):
-    """Toe (last mass) velocity [m/s], positive down."""
+    """Toe (last mass) velocity [m/s], positive down.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+
+    Returns
+    -------
+    float
+        The toe velocity [m/s].
+    """
     return v[v.size - 1]
 
 
 @njit(cache=True)
 def toe_resistance(soil, u, v, soil_offset):
-    """Toe soil resistance at the present state [N], static and total: (R_s, R_s + R_d)."""
+    """Toe soil resistance at the present state [N], static and total.
+
+    Parameters
+    ----------
+    soil : numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters [N], [N/m], [s/m], [N s/m]; column N is the toe.
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+    soil_offset : numpy.ndarray
+        (N + 1,) plastic offsets of the soil springs [m] (not changed).
+
+    Returns
+    -------
+    static : float
+        Static toe resistance R_s [N].
+    total : float
+        Total toe resistance R_s + R_d [N].
+    """
     n = u.size
     rs, rd, _ = soil_resistance(
         u[n - 1], v[n - 1], soil_offset[n], soil[SOIL_CAPACITY, n], soil[SOIL_TENSION, n],
@@ -541,7 +872,23 @@ def toe_resistance(soil, u, v, soil_offset):
 
 @njit(cache=True)
 def soil_forces(soil, u, v, soil_offset, static_out, total_out):
-    """Resistance of every soil spring at the present state [N] into (N+1,) arrays (toe last)."""
+    """Resistance of every soil spring at the present state [N] into (N+1,) arrays (toe last).
+
+    Parameters
+    ----------
+    soil : numpy.ndarray
+        (SOIL_ROWS, N + 1) soil parameters [N], [N/m], [s/m], [N s/m].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    v : numpy.ndarray
+        (N,) velocities [m/s].
+    soil_offset : numpy.ndarray
+        (N + 1,) plastic offsets of the soil springs [m] (not changed).
+    static_out : numpy.ndarray
+        (N + 1,) array that receives the static resistances R_s [N].
+    total_out : numpy.ndarray
+        (N + 1,) array that receives the total resistances R_s + R_d [N].
+    """
     n = u.size
     for i in range(n + 1):
         m = min(i, n - 1)
@@ -554,10 +901,21 @@ def soil_forces(soil, u, v, soil_offset, static_out, total_out):
 
 @njit(cache=True, inline='always')
 def fold_elongations(u, largest, smallest):
-    """Fold the shortening u_i - u_i+1 of every spring into per-spring extremes [m] (in
-    place): with the positive stress factors of :func:`update_stress_extremes` the extreme
+    """Fold the shortening u_i - u_i+1 of every spring into per-spring extremes [m], in place.
+
+    With the positive stress factors of :func:`update_stress_extremes` the extreme
     stresses are then stress_factor * largest and * smallest, exactly (rounding is
-    monotonic). One short pass the compiler vectorises."""
+    monotonic). One short pass the compiler vectorises.
+
+    Parameters
+    ----------
+    u : numpy.ndarray
+        (N,) displacements [m].
+    largest : numpy.ndarray
+        (N - 1,) largest shortening of each spring so far [m]; updated in place.
+    smallest : numpy.ndarray
+        (N - 1,) smallest shortening (largest elongation, negative) so far [m]; updated in place.
+    """
     for i in range(largest.size):
         e = u[i] - u[i + 1]
         if e > largest[i]:
@@ -570,9 +928,16 @@ def fold_elongations(u, largest, smallest):
 def update_stress_extremes(stress_factor, u, extremes):
     """Fold the axial stresses of the pile's springs into running extremes (in place).
 
-    stress_factor : (N-1,) spring stiffness / steel area of each spring [N/m^3];
-    u : (N,) displacements [m]; extremes : [largest compression, largest tension (negative)]
-    stress so far [Pa]. Stress = k (u_i - u_i+1) / A, compression positive.
+    Stress = k (u_i - u_i+1) / A, compression positive.
+
+    Parameters
+    ----------
+    stress_factor : numpy.ndarray
+        (N - 1,) spring stiffness / steel area of each spring [N/m^3].
+    u : numpy.ndarray
+        (N,) displacements [m].
+    extremes : numpy.ndarray
+        [largest compression, largest tension (negative)] stress so far [Pa]; updated in place.
     """
     for i in range(u.size - 1):
         stress = stress_factor[i] * (u[i] - u[i + 1])
