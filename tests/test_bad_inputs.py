@@ -399,6 +399,26 @@ def test_peak_on_the_first_sample():
 
 
 # ---------------------------------------------------------------------- killed runs
+def _running(pid: int) -> bool:
+    """Whether a process runs (exists and is not a zombie waiting for its reaper)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (OSError, IndexError):
+        return False
+    return state != "Z"
+
+
+def _running_after(pids: list[int], seconds: float) -> list[int]:
+    """The processes of ``pids`` still running ``seconds`` [s] from now (polled: a loaded
+    machine may take a moment to deliver the signals)."""
+    deadline = time.monotonic() + seconds
+    while True:
+        alive = [p for p in pids if _running(p)]
+        if not alive or time.monotonic() > deadline:
+            return alive
+        time.sleep(0.1)
+
+
 def _children(pid: int) -> list[int]:
     out = []
     for d in Path("/proc").iterdir():
@@ -429,10 +449,7 @@ def test_killed_drive_leaves_no_worker_and_the_rerun_no_staging(tmp_path):
     assert proc.poll() is None and len(workers) >= 2, "the drive ended before its workers ran"
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    time.sleep(5.0)
-    alive = [w for w in workers if Path(f"/proc/{w}").exists()
-             and "Z" not in (Path(f"/proc/{w}/stat").read_text().rsplit(")", 1)[1].split()[:1])]
-    assert alive == []
+    assert _running_after(workers, 5.0) == []
     # the writer of the rerun removes a staging folder the killed run left
     remove_stale_staging(tmp_path)
     assert not list(tmp_path.glob(".partial-*"))
@@ -503,6 +520,5 @@ def test_ctrl_c_on_drive_is_one_line_and_leaves_no_worker(tmp_path):
     assert proc.returncode == 130 and "Traceback" not in err, err
     assert lines[-1] == "anvilwave: interrupted"
     assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"]
-    time.sleep(1.0)
-    assert not [w for w in workers if Path(f"/proc/{w}").exists()]
+    assert _running_after(workers, 5.0) == []
     assert not out.exists() and not list(tmp_path.glob(".partial-*"))
