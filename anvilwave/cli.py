@@ -105,7 +105,7 @@ def _impact(args: argparse.Namespace) -> int:
           f"{s['peak_ram_anvil_force [N]'] / 1e6:.1f} MN, anvil-pile "
           f"{s['peak_anvil_pile_force [N]'] / 1e6:.1f} MN; "
           f"{s['simulated_time [s]'] * 1e3:.1f} ms in {s['wall_time [s]']:.4f} s "
-          f"({s['realtime_factor [-]']:.0f}x real time) -> {args.out}")
+          f"({s['realtime_factor [-]']:.3g}x real time) -> {args.out}")
     return 0
 
 
