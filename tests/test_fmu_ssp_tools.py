@@ -46,12 +46,9 @@ from anvilwave.fmu.fmi_master import BlowMaster  # noqa: E402
 from anvilwave.fmu.native_units import build_native_ram_fmu  # noqa: E402
 from anvilwave.fmu.ssp import write_ssp  # noqa: E402
 
-from .conftest import EXAMPLES  # noqa: E402
+from .conftest import EXAMPLES, SHARED  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
-OMS_DIR = ROOT.parent.parent / "shared" / "tools" / "omsimulator"
-if not OMS_DIR.is_dir():  # a worktree one level deeper than the main checkout
-    OMS_DIR = ROOT.parent.parent.parent / "shared" / "tools" / "omsimulator"
+OMS_DIR = SHARED / "tools" / "omsimulator"
 
 
 @pytest.fixture(scope="module")
