@@ -955,7 +955,43 @@ def _zip(stage: Path, archive: Path) -> None:
 
 
 def _validate(archive: Path, stage: Path, model: str, guid: str) -> None:
-    """fmpy's validation, then instantiate, initialize and step the staged FMU once."""
+    """fmpy's validation, then instantiate, initialize and step the staged anvil FMU once
+    (:func:`check_staged_fmu` with the anvil's output references)."""
+    names = [v.name for v in anvil_variables(model == "AnvilLumped")]
+    check_staged_fmu(archive, stage, model, guid, [names.index(name) for name in OUTPUTS],
+                     moment="at rest")
+
+
+def check_staged_fmu(archive: Path, stage: Path, model: str, guid: str, outputs: list[int],
+                     *, run: bool = True, moment: str = "at the start") -> None:
+    """fmpy's validation, then instantiate, initialize and step a staged FMU once.
+
+    Skipped without fmpy (optional for building).
+
+    Parameters
+    ----------
+    archive : pathlib.Path
+        The ``.fmu``.
+    stage : pathlib.Path
+        The unpacked FMU (the folder the archive was made from).
+    model : str
+        Its model identifier.
+    guid : str
+        Its GUID.
+    outputs : list of int
+        Value references of the outputs that must be finite after initialization.
+    run : bool
+        Instantiate and step it (False: validation only, e.g. a binary for another
+        platform).
+    moment : str
+        When the outputs are read, for the message (``"at rest"``, ``"at the start"``).
+
+    Raises
+    ------
+    NativeBuildError
+        If the FMU does not validate, instantiate or initialize, or its outputs are not
+        finite.
+    """
     try:
         from fmpy.fmi1 import FMICallException
         from fmpy.fmi2 import (
@@ -974,6 +1010,8 @@ def _validate(archive: Path, stage: Path, model: str, guid: str) -> None:
     problems = validate_fmu(str(archive))
     if problems:
         raise NativeBuildError(f"{archive.name} does not validate: " + "; ".join(problems))
+    if not run:
+        return
     messages: list[str] = []
     callbacks = fmi2CallbackFunctions()
     callbacks.logger = fmi2CallbackLoggerTYPE(
@@ -993,8 +1031,7 @@ def _validate(archive: Path, stage: Path, model: str, guid: str) -> None:
         fmu.setupExperiment(startTime=0.0)
         fmu.enterInitializationMode()
         fmu.exitInitializationMode()
-        names = [v.name for v in anvil_variables(model == "AnvilLumped")]
-        outputs = fmu.getReal([names.index(name) for name in OUTPUTS])
+        values = fmu.getReal(outputs)
         fmu.doStep(0.0, 1e-5)
         fmu.terminate()
     except FMICallException as exc:
@@ -1002,5 +1039,6 @@ def _validate(archive: Path, stage: Path, model: str, guid: str) -> None:
                                + "; ".join(messages)) from None
     finally:
         fmu.freeInstance()
-    if not all(math.isfinite(x) for x in outputs):
-        raise NativeBuildError(f"{archive.name}: outputs at rest are not finite: {outputs}")
+    if not all(math.isfinite(x) for x in values):
+        raise NativeBuildError(f"{archive.name}: outputs {moment} are not finite: {values}")
+

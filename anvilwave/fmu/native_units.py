@@ -32,7 +32,6 @@ changing a C source.
 
 from __future__ import annotations
 
-import ctypes
 import hashlib
 import json
 import math
@@ -56,6 +55,7 @@ from anvilwave.fmu.native_build import (
     UNITS,
     NativeBuildError,
     _zip,
+    check_staged_fmu,
     default_experiment_values,
 )
 from anvilwave.hammer.database import load_hammer
@@ -915,56 +915,9 @@ def check_unit_fmu(archive: Path, stage: Path, kind: str, guid: str) -> None:
         If the FMU does not validate, instantiate or initialize, or its outputs are not
         finite.
     """
-    try:
-        from fmpy.fmi1 import FMICallException
-        from fmpy.fmi2 import (
-            FMU2Slave,
-            fmi2CallbackAllocateMemoryTYPE,
-            fmi2CallbackFreeMemoryTYPE,
-            fmi2CallbackFunctions,
-            fmi2CallbackLoggerTYPE,
-        )
-        from fmpy.logging import addLoggerProxy
-        from fmpy.validation import validate_fmu
-    except ImportError:  # fmpy is optional for building
-        return
-    from fmpy import calloc, free
-
-    problems = validate_fmu(str(archive))
-    if problems:
-        raise NativeBuildError(f"{archive.name} does not validate: " + "; ".join(problems))
-    if not (sys.platform.startswith("linux") and sys.maxsize > 2**32):
-        return
-    messages: list[str] = []
-    callbacks = fmi2CallbackFunctions()
-    callbacks.logger = fmi2CallbackLoggerTYPE(
-        lambda env, name, status, category, message: messages.append(message.decode()))
-    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-    addLoggerProxy(ctypes.byref(callbacks))
-    fmu = FMU2Slave(guid=guid, unzipDirectory=str(stage), modelIdentifier=kind,
-                    instanceName="build_check")
-    try:
-        fmu.instantiate(callbacks=callbacks)
-    except Exception as exc:  # noqa: BLE001 - reported with the FMU's own messages
-        fmu.freeLibrary()
-        raise NativeBuildError(f"{archive.name}: fmi2Instantiate failed ({exc}): "
-                               + "; ".join(messages)) from None
     outputs = [v.vr for v in VARIABLES[kind] if v.causality == "output"]
-    try:
-        fmu.setupExperiment(startTime=0.0)
-        fmu.enterInitializationMode()
-        fmu.exitInitializationMode()
-        values = fmu.getReal(outputs)
-        fmu.doStep(0.0, 1e-5)
-        fmu.terminate()
-    except FMICallException as exc:
-        raise NativeBuildError(f"{archive.name} does not initialize ({exc}): "
-                               + "; ".join(messages)) from None
-    finally:
-        fmu.freeInstance()
-    if not all(math.isfinite(x) for x in values):
-        raise NativeBuildError(f"{archive.name}: outputs at the start are not finite: {values}")
+    check_staged_fmu(archive, stage, kind, guid, outputs,
+                     run=sys.platform.startswith("linux") and sys.maxsize > 2**32)
 
 
 if __name__ == "__main__":  # python -m anvilwave.fmu.native_units [platform ...]
