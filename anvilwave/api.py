@@ -152,7 +152,7 @@ def install(system: SystemConfig | str | Path, *, anvil: str | None = None,
 
 
 def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = None,
-          scheduler=None, progress: bool = False) -> BatchResult:
+          scheduler=None, progress: bool = False, force: bool = False) -> BatchResult:
     """A campaign: the driveability of many positions, hammers and anvils (``anvilwave batch``).
 
     Run on dask. Resumable: cases finished in ``out_dir`` are not run again.
@@ -169,6 +169,8 @@ def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = No
         A running dask scheduler (address, cluster object or client) instead.
     progress : bool
         A progress bar over the cases.
+    force : bool, default False
+        Replace a folder holding another command's result (refused without it).
 
     Returns
     -------
@@ -176,4 +178,4 @@ def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = No
         The counts of cases run, skipped and by status, the timings and the campaign.csv rows.
     """
     return run_campaign(campaign, out_dir, workers=workers, scheduler=scheduler,
-                        progress=progress)
+                        progress=progress, force=force)

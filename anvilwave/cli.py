@@ -48,7 +48,7 @@ from anvilwave.output.writer import ResultWriter, check_output
 
 
 def _modes(args: argparse.Namespace) -> int:
-    check_output(args.out, "modes")
+    check_output(args.out, "modes", args.force)
 
     spec = load_anvil(args.anvil)
     if args.mesh_size is not None:
@@ -64,7 +64,7 @@ def _modes(args: argparse.Namespace) -> int:
         result = anvil_modes_from_calculix(spec, args.from_calculix, fmax=args.fmax)
     else:
         result = compute_anvil_modes(spec, fmax=args.fmax)
-    with ResultWriter(args.out, command="modes") as out:
+    with ResultWriter(args.out, command="modes", force=args.force) as out:
         summary = {
             "anvil": str(args.anvil),
             "frequencies [Hz]": [float(f) for f in result.modes.frequencies],
@@ -93,11 +93,11 @@ def _modes(args: argparse.Namespace) -> int:
 
 
 def _impact(args: argparse.Namespace) -> int:
-    check_output(args.out, "impact")
+    check_output(args.out, "impact", args.force)
     cfg = load_system(args.system)
     blows = api.simulate(cfg, engine=args.engine, anvil=args.anvil, progress=True)
     model = blows[0].summary["anvil_model"]
-    with ResultWriter(args.out, command="impact") as out:
+    with ResultWriter(args.out, command="impact", force=args.force) as out:
         write_blows(blows, out, system=str(args.system),
                     title=f"{Path(args.system).name}: {model} anvil, {args.engine} engine")
     s = blows[0].summary
@@ -110,9 +110,9 @@ def _impact(args: argparse.Namespace) -> int:
 
 
 def _build_fmus(args: argparse.Namespace) -> int:
-    check_output(args.out, "build-fmus")
+    check_output(args.out, "build-fmus", args.force)
     try:
-        with ResultWriter(args.out, command="build-fmus") as out:
+        with ResultWriter(args.out, command="build-fmus", force=args.force) as out:
             built = api.build_fmus(args.system, out.staging, anvil=args.anvil,
                                    native_anvil=not args.python_anvil,
                                    native_units=False if args.python_units else None,
@@ -133,7 +133,7 @@ def _build_fmus(args: argparse.Namespace) -> int:
 
 
 def _fea(args: argparse.Namespace) -> int:
-    check_output(args.out, "fea")
+    check_output(args.out, "fea", args.force)
 
     cfg = without_soil(load_system(args.system))
     config = fea_config(cfg, mesh_size=args.mesh_size, truncate_length=args.truncate)
@@ -152,7 +152,7 @@ def _fea(args: argparse.Namespace) -> int:
         "pile_model": ("full length" if config.truncate_length is None else
                        f"{config.truncate_length:g} m with an absorbing cut"),
     }
-    with ResultWriter(args.out, command="fea") as out:
+    with ResultWriter(args.out, command="fea", force=args.force) as out:
         write_csv(columns, out.part("impact.csv"))
         out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_columns(columns, out.part("impact.png"), title=f"{Path(args.system).name}: FEA")
@@ -164,10 +164,10 @@ def _fea(args: argparse.Namespace) -> int:
 
 
 def _compare(args: argparse.Namespace) -> int:
-    check_output(args.out, "compare")
+    check_output(args.out, "compare", args.force)
 
     cfg = load_system(args.system)
-    with ResultWriter(args.out, command="compare") as out:
+    with ResultWriter(args.out, command="compare", force=args.force) as out:
         comparison, _ = _run_comparison(cfg, out, args.rom_engine, args.fea_mesh_size)
     _print_comparison(comparison, args.out)
     return 0
@@ -277,7 +277,7 @@ class _progress:
 
 
 def _demo(args: argparse.Namespace) -> int:
-    check_output(args.out, "demo")
+    check_output(args.out, "demo", args.force)
     """The Table 1 comparison end to end (the README's main job)."""
     import time
 
@@ -295,7 +295,7 @@ def _demo(args: argparse.Namespace) -> int:
     if interfaces is not None:
         steps.insert(3, f"ROM with the interfaces resolved ({INTERFACES}, in-process engine)")
     print(f"anvilwave demo: {system.name} -> {args.out}")
-    with ResultWriter(args.out, command="demo") as out:
+    with ResultWriter(args.out, command="demo", force=args.force) as out:
         _say(1, steps)
         modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
         save_modal_data(modes.modal_data, out.part("modes/modes.npz"))
@@ -595,6 +595,11 @@ def build_parser() -> argparse.ArgumentParser:
                                    "Then e.g. anvilwave impact DIR/table1.toml --out res.")
     p.add_argument("dir", type=Path, metavar="DIR", help="destination folder")
     p.set_defaults(func=_examples)
+    for p in sub.choices.values():  # every command that writes a result folder
+        if any("--out" in a.option_strings for a in p._actions):
+            p.add_argument("--force", action="store_true",
+                           help="replace an output folder that holds another command's result "
+                                "(refused without it; a result is always replaced whole)")
     return parser
 
 
@@ -619,14 +624,14 @@ def _examples(args: argparse.Namespace) -> int:
 
 
 def _drive(args: argparse.Namespace) -> int:
-    check_output(args.out, "drive")
+    check_output(args.out, "drive", args.force)
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
     cfg = load_system(args.system)
     name = Path(args.system).name
     if args.bearing_graph is not None:
         models = list(available_anvil_models(cfg)) if args.compare_anvils else [args.anvil]
-        with ResultWriter(args.out, command="drive") as out:
+        with ResultWriter(args.out, command="drive", force=args.force) as out:
             for model in models:
                 graph = drive_bearing_graph(cfg, args.bearing_graph, anvil=model,
                                             bound=args.bound)
@@ -643,7 +648,7 @@ def _drive(args: argparse.Namespace) -> int:
         result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
                            progress=True, restrike=args.restrike)
         results = {result.model: result}
-    with ResultWriter(args.out, command="drive") as out:
+    with ResultWriter(args.out, command="drive", force=args.force) as out:
         write_anvil_comparison(results, out, title=name)
     for model, result in results.items():
         for depth, blow in result.time_series.items():
@@ -663,10 +668,10 @@ def _drive(args: argparse.Namespace) -> int:
 
 
 def _install(args: argparse.Namespace) -> int:
-    check_output(args.out, "install")
+    check_output(args.out, "install", args.force)
     result = api.install(args.system, anvil=args.anvil, progress=True)
     model = result.summary["anvil_model"]
-    with ResultWriter(args.out, command="install") as out:
+    with ResultWriter(args.out, command="install", force=args.force) as out:
         result.write(out, title=f"{Path(args.system).name}: installation, {model} anvil")
     s = result.summary
     print(f"{Path(args.system).name} [{model}]: {s['total_blows [-]']} blows from "
@@ -684,9 +689,9 @@ def _batch(args: argparse.Namespace) -> int:
                                           "running one), not both")
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", "", f"must be at least 1, got {args.workers}")
-    check_output(args.out, "batch")
+    check_output(args.out, "batch", args.force)
     r = api.batch(args.campaign, args.out, workers=args.workers, scheduler=args.scheduler,
-                  progress=True)
+                  progress=True, force=args.force)
     print(f"{r.cases} cases: {r.ok} ok, {r.error} failed, {r.pending} pending ({r.ran} run, "
           f"{r.skipped} finished before) on {r.workers} workers in {r.wall_time:.1f} s -> "
           f"{r.campaign_csv}")
@@ -694,11 +699,11 @@ def _batch(args: argparse.Namespace) -> int:
 
 
 def _pda(args: argparse.Namespace) -> int:
-    check_output(args.out, "pda")
+    check_output(args.out, "pda", args.force)
     result = api.pda(args.record, length=args.length, area=args.area,
                      elastic_modulus=args.elastic_modulus, wave_speed=args.wave_speed,
                      jc=args.jc)
-    result.write(args.out)
+    result.write(args.out, force=args.force)
     print("  ".join(f"{k} {_si(v)}" for k, v in result.summary.items()
                     if isinstance(v, float | int)))
     print(f"-> {args.out}")
@@ -706,9 +711,9 @@ def _pda(args: argparse.Namespace) -> int:
 
 
 def _match(args: argparse.Namespace) -> int:
-    check_output(args.out, "match")
+    check_output(args.out, "match", args.force)
     result = api.match(args.record, args.system, shaft_zones=args.zones, imposed=args.imposed)
-    result.write(args.out)
+    result.write(args.out, force=args.force)
     s = result.content
     print(f"Rut {s['rut [N]'] / 1e6:.2f} MN (shaft {s['rut_shaft [N]'] / 1e6:.2f} MN, toe "
           f"{s['rut_toe [N]'] / 1e6:.2f} MN), match quality {s['match_quality [-]']:.3f} "
@@ -717,8 +722,8 @@ def _match(args: argparse.Namespace) -> int:
 
 
 def _compare_pda(args: argparse.Namespace) -> int:
-    check_output(args.out, "compare-pda")
-    api.compare_pda(args.record, args.system).write(args.out)
+    check_output(args.out, "compare-pda", args.force)
+    api.compare_pda(args.record, args.system).write(args.out, force=args.force)
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
     return 0
 

@@ -26,7 +26,13 @@ import pytest
 from anvilwave import cli
 from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
-from anvilwave.output.writer import MARKER, ResultWriter, remove_stale_staging
+from anvilwave.output.writer import (
+    MARKER,
+    ResultWriter,
+    check_output,
+    remove_stale_staging,
+    result_command,
+)
 from anvilwave.pile.pda.case_method import case_method, first_peak_index
 
 HAMMER = """
@@ -193,7 +199,10 @@ BAD_INPUTS = [
 ]
 """The command-line bad inputs: (class, case, system extra, arguments, command, words)."""
 
-OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result"]
+OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result",
+                "read-only folder", "folder that cannot be looked into",
+                "--force replaces another command's result whole",
+                "a rerun replaces its result whole"]
 """Bad output folders (test_bad_output_folder)."""
 
 FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies or mass",
@@ -203,7 +212,13 @@ FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies o
                "killed drive: no orphan workers, staging removed by the rerun",
                "stale staging of a dead run removed", "match --zones too many",
                "compare-pda record shorter than 2L/c",
-               "batch with a missing hammer anvil file: no half-made folder"]
+               "batch with a missing hammer anvil file: no half-made folder",
+               "killed batch: no orphan workers, no staging",
+               "a real file-size limit while writing: the old result kept",
+               "cache entry with frequencies off by 1e-6",
+               "cache entry with modes not mass-normalised",
+               "cache entry with a mode mixed with its neighbour",
+               "Table 1 cache entry with scaled frequencies: recomputed, Table 1's peaks"]
 """The faults and refusals tested one by one below."""
 
 PDA_CASES = ["BTA of an intact pile with 2 % noise", "impact peak on the first sample"]
@@ -237,7 +252,7 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 def test_the_count_is_stated():
     """docs/system-file.md states the count and the classes of the cases tested here."""
-    assert COUNT == len(BAD_INPUTS) + 17 and COUNT >= 42
+    assert COUNT == len(BAD_INPUTS) + 27 and COUNT >= 52
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
     docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
     words = {6: "six"}
@@ -296,6 +311,128 @@ def test_writer_keeps_the_old_result_when_a_write_fails(tmp_path):
         w.part("a.txt").write_text("new")
         raise OSError(errno.ENOSPC, "No space left on device")
     assert (out / "a.txt").read_text() == "old"
+    assert not list(tmp_path.glob(".partial-*"))
+
+
+def _in_child(work) -> tuple[int, str]:
+    """Run ``work()`` in a forked child; its exit status and what it wrote to a pipe (the
+    child may drop its privileges or lower its limits without touching this process)."""
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: never returns into pytest
+        os.close(read)
+        code = 1
+        try:
+            message = work()
+            code = 0
+        except InputError as exc:
+            message, code = str(exc), 2
+        except BaseException as exc:  # noqa: BLE001 - reported to the parent
+            message = f"{type(exc).__name__}: {exc}"
+        finally:
+            os.write(write, message.encode()[:4000])
+            os._exit(code)
+    os.close(write)
+    with os.fdopen(read) as pipe:
+        text = pipe.read()
+    return os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1]), text
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="forks a child")
+@pytest.mark.parametrize("case", ["read-only folder", "folder that cannot be looked into"])
+def test_a_read_only_output_folder_is_refused_before_any_work(case):
+    """An output location the user may not write (a 0555 folder), or one below a folder the
+    user may not even look into (0700, another owner): ``check_output``, which every command
+    calls before its work, refuses it with one line naming --out. As root the child drops to
+    'nobody', for whom the kernel enforces the modes."""
+    import shutil
+    import tempfile
+
+    top = Path(tempfile.mkdtemp())  # /tmp: traversable by everyone, unlike pytest's tree
+    try:
+        top.chmod(0o755)
+        locked = top / "locked"
+        locked.mkdir()
+        locked.chmod(0o555 if case == "read-only folder" else 0o700)
+        target = locked / "res" if case == "read-only folder" else locked / "inner" / "res"
+
+        def work():
+            if os.geteuid() == 0:
+                os.setgid(65534)
+                os.setuid(65534)
+            check_output(target, "impact")
+            return "accepted"
+
+        code, text = _in_child(work)
+        locked.chmod(0o755)
+        assert code == 2, text
+        assert "--out" in text and "cannot be written" in text and "\n" not in text, text
+        assert list(locked.iterdir()) == []
+    finally:
+        shutil.rmtree(top, ignore_errors=True)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="forks a child")
+def test_a_full_disk_is_a_clean_stop_and_keeps_the_old_result(tmp_path):
+    """A real write limit (RLIMIT_FSIZE, the kernel's 'File too large', as a full quota gives)
+    hit while a result is written: one line naming --out, the old result kept, no staging."""
+    import resource
+
+    out = tmp_path / "out"
+    with ResultWriter(out, command="impact") as w:
+        w.part("impact.csv").write_text("old\n")
+
+    def work():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # the kernel then returns EFBIG
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+        with ResultWriter(out, command="impact") as w:
+            w.part("impact.csv").write_bytes(b"new\n" * 10_000)
+        return "written"
+
+    code, text = _in_child(work)
+    assert code == 2, text
+    assert "--out" in text and os.strerror(errno.EFBIG) in text and "not written" in text, text
+    assert (out / "impact.csv").read_text() == "old\n"
+    assert not list(tmp_path.glob(".partial-*"))
+
+
+def test_force_replaces_another_commands_result_whole(tmp_path, capsys):
+    """``--force`` lets ``pda`` write into a folder holding a ``drive`` result: the folder then
+    holds the pda result only (marker, files), none of the drive's files."""
+    record = _record(tmp_path)
+    out = tmp_path / "res"
+    out.mkdir()
+    (out / MARKER).write_text(json.dumps({"command": "drive"}))
+    (out / "driveability.csv").write_text("depth\n")
+    (out / "time_series").mkdir()
+    args = ["pda", str(record), "--length", "4", "--area", "0.06", "--jc", "0.3", "--out",
+            str(out)]
+    assert cli.main(args) == 2 and "--force" in capsys.readouterr().err
+    assert cli.main(args + ["--force"]) == 0
+    assert result_command(out) == "pda"
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [MARKER, "pda.csv", "pda.json", "pda.png"])
+    assert not list(tmp_path.glob(".partial-*"))
+    assert oct(out.stat().st_mode & 0o777) == oct(0o777 & ~_umask())
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def test_a_rerun_replaces_its_result_whole(tmp_path):
+    """A result folder written again holds the new result only: a file the earlier run wrote
+    and this one does not (a time series of another depth, say) is gone."""
+    out = tmp_path / "out"
+    with ResultWriter(out, command="drive") as w:
+        w.part("time_series_10m.csv").write_text("a")
+        w.part("driveability.csv").write_text("old")
+    with ResultWriter(out, command="drive") as w:
+        w.part("driveability.csv").write_text("new")
+    assert sorted(p.name for p in out.iterdir()) == [MARKER, "driveability.csv"]
+    assert (out / "driveability.csv").read_text() == "new"
     assert not list(tmp_path.glob(".partial-*"))
 
 
@@ -456,6 +593,50 @@ def test_killed_drive_leaves_no_worker_and_the_rerun_no_staging(tmp_path):
     assert not list(tmp_path.glob(".partial-*"))
 
 
+def _cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_text().replace("\0", " ")
+    except OSError:
+        return ""
+
+
+def _descendants(pid: int) -> list[int]:
+    out, todo = [], [pid]
+    while todo:
+        kids = _children(todo.pop())
+        out += kids
+        todo += kids
+    return out
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_killed_batch_leaves_no_worker_and_no_staging(tmp_path):
+    """``batch`` on its LocalCluster (2 workers, their nannies) killed by SIGKILL while the
+    cases run: 5 s later no process of it runs and no staging file or folder is left."""
+    from .test_campaign import write_campaign
+
+    path = write_campaign(tmp_path / "c", positions=(("P1", 8.0), ("P2", 9.0), ("P3", 9.5)))
+    out = tmp_path / "campaign_out"
+    cmd = [sys.executable, "-m", "anvilwave", "batch", str(path), "--out", str(out),
+           "--workers", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    def workers() -> list[int]:  # the LocalCluster's worker processes (multiprocessing spawn)
+        return [p for p in _descendants(proc.pid) if "spawn_main" in _cmdline(p)]
+
+    for _ in range(1800):  # until both workers run (startup of the cluster first)
+        if len(workers()) >= 2 or proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    assert proc.poll() is None and len(workers()) >= 2, "the batch ended before its workers ran"
+    family = _descendants(proc.pid)  # the workers and multiprocessing's resource tracker
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert _running_after(family, 5.0) == []
+    left = [p for p in tmp_path.rglob("*") if p.name.startswith((".partial-", ".tmp"))
+            or p.suffix == ".partial"]
+    assert left == []
+
+
 # ---------------------------------------------------------------------- the modal cache
 def test_a_cache_entry_with_scaled_frequencies_is_computed_again(tmp_path, monkeypatch):
     """An entry valid as a file but holding another anvil's frequencies (scaled by 0.8) or
@@ -472,15 +653,69 @@ def test_a_cache_entry_with_scaled_frequencies_is_computed_again(tmp_path, monke
     clean = cache.cached_modal_data(spec)
     assert cache.modal_data_mismatch(clean, spec, 10000.0) is None
     (entry,) = (tmp_path / "cache").glob("*.npz")
+    k = cache._sampled_mode_index(clean.frequencies)
+    assert k is not None
+    mixed = clean.participation_ram.copy()
+    mixed[k] = 0.5 * (mixed[k] + mixed[k - 1])
     for bad in (dataclasses.replace(clean, frequencies=clean.frequencies * 0.8),
+                dataclasses.replace(clean, frequencies=clean.frequencies * (1.0 + 1e-6)),
                 dataclasses.replace(clean, total_mass=clean.total_mass * 1.21,
-                                    participation_gravity=clean.participation_gravity * 1.1)):
+                                    participation_gravity=clean.participation_gravity * 1.1),
+                # modes no longer mass-normalised (scaled by 1.001), or mixed with a neighbour
+                dataclasses.replace(clean, participation_ram=clean.participation_ram * 1.001,
+                                    participation_pile=clean.participation_pile * 1.001),
+                dataclasses.replace(clean, participation_ram=mixed)):
         cache._store(bad, entry)
         with pytest.warns(UserWarning, match="does not match its anvil"):
             again = cache.cached_modal_data(spec)
         np.testing.assert_allclose(again.frequencies, clean.frequencies, rtol=1e-9)
         assert again.total_mass == pytest.approx(clean.total_mass, rel=1e-12)
         assert cache.modal_data_mismatch(cache.load_modal_data(entry), spec, 10000.0) is None
+
+
+def test_a_corrupted_table1_cache_entry_gives_the_table1_peaks(tmp_path, monkeypatch,
+                                                               modal_cache):
+    """Table 1's cached modal data with its frequencies scaled by 0.8 (a file valid as such,
+    which once gave peaks of 0.0 MN) is found on reading, warned about and computed again:
+    the blow then has Table 1's stored peak anvil-pile force (tests/data/example_numbers.json,
+    the same 1e-6 as tests/test_example_numbers) and the clean run's ram-anvil peak."""
+    import dataclasses
+    import shutil
+
+    import anvilwave.config.cache as cache
+    from anvilwave.anvil_rom.fem.modalfile import load_modal_data
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+
+    from .example_numbers import EXAMPLES, _short
+
+    def peaks():
+        blow = build_engine(_short(load_system(EXAMPLES / "table1.toml"))).run()[0]
+        return (float(blow.columns["anvil_pile_force [N]"].max()),
+                float(blow.columns["ram_anvil_force [N]"].max()))
+
+    clean = peaks()  # the session cache: computed there once
+    private = tmp_path / "cache"
+    private.mkdir()
+    for entry in modal_cache.glob("*" + cache.SUFFIX):
+        shutil.copy2(entry, private)
+    monkeypatch.setenv(cache.ENVIRONMENT_VARIABLE, str(private))
+    corrupted = 0
+    for entry in private.glob("*" + cache.SUFFIX):
+        if entry.name.endswith(cache.CHAIN_SUFFIX):
+            continue
+        try:
+            data = load_modal_data(entry)
+        except InputError:
+            continue
+        cache._store(dataclasses.replace(data, frequencies=data.frequencies * 0.8), entry)
+        corrupted += 1
+    assert corrupted >= 1
+    with pytest.warns(UserWarning, match="does not match its anvil"):
+        again = peaks()
+    stored = json.loads((Path(__file__).parent / "data" / "example_numbers.json").read_text())
+    assert again[0] == pytest.approx(stored["blow/table1.toml"], rel=1e-6)
+    assert again == pytest.approx(clean, rel=1e-12)
 
 
 # ------------------------------------------------------------------------------ batch

@@ -26,6 +26,7 @@ from anvilwave.analyses.batch import (
 )
 from anvilwave.inputs import InputError, Table
 from anvilwave.inputs import toml_dumps as toml_text
+from anvilwave.output.writer import result_command
 
 from .conftest import EXAMPLES
 
@@ -159,6 +160,7 @@ def test_campaign_completes_with_every_case_exactly_once(finished):
     assert result.ok == 6 and result.error == 0 and result.ran == 6
     rows = read_campaign_csv(out / "campaign.csv")
     assert [r["case"] for r in rows] == cases  # each once, in the campaign's order
+    assert result_command(out) == "batch"  # marked: another command will not write into it
     header = list(rows[0])
     assert header == ["case", "position", "bound", "hammer", "anvil_model", "status",
                       "refusal_depth [m]", "total_blows [-]", "max_blow_count [1/m]",

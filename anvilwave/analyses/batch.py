@@ -122,6 +122,7 @@ from anvilwave.inputs import InputError, Table, read_toml, toml_dumps
 from anvilwave.output.campaign_plots import plot_campaign
 from anvilwave.output.plots import plot_driveability
 from anvilwave.output.tables import write_csv
+from anvilwave.output.writer import check_output, mark_result, result_command
 from anvilwave.pile.model import PileSoil
 
 ALLOWED_FAILURES = 3
@@ -921,7 +922,8 @@ class BatchResult:
 
 
 def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int | None = None,
-                 scheduler=None, progress: bool = True, plots: bool = True) -> BatchResult:
+                 scheduler=None, progress: bool = True, plots: bool = True,
+                 force: bool = False) -> BatchResult:
     """Run every case of a campaign not finished yet in ``out_dir`` (module docstring).
 
     Parameters
@@ -940,6 +942,8 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
         A progress bar over the cases (stderr).
     plots : bool, default True
         Each case's driveability.png and the campaign plots.
+    force : bool, default False
+        A folder holding another command's result is removed first (refused without it).
 
     Returns
     -------
@@ -958,7 +962,9 @@ def run_campaign(campaign_path: str | Path, out_dir: str | Path, *, workers: int
         raise InputError("workers", "", f"must be a whole number of at least 1, got "
                                         f"{workers!r}")
     campaign = load_campaign(campaign_path)
-    out = Path(out_dir)
+    out = check_output(out_dir, "batch", force)
+    if force and result_command(out) not in (None, "batch"):
+        shutil.rmtree(out)  # another command's result: replaced, never mixed
     fresh = not out.exists()  # made by this run: removed again if it stops before any case
     try:
         return _run_campaign(campaign, out, workers, scheduler, progress, plots, start)
@@ -973,6 +979,7 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     """The body of :func:`run_campaign` once the campaign file is read."""
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
+    mark_result(out, "batch")
     specs = {c.name: _spec(c, cases_dir, plots) for c in campaign.cases}
     finished = {c.name for c in campaign.cases
                 if _read_record(cases_dir / c.name / "summary.json", c.input_sha256)}

@@ -167,15 +167,17 @@ class PdaResult:
     jc: float
     case: object = None
 
-    def write(self, out_dir: str | Path) -> None:
+    def write(self, out_dir: str | Path, force: bool = False) -> None:
         """Write ``pda.json``, ``pda.csv`` and ``pda.png`` into the result folder ``out_dir``.
 
         Parameters
         ----------
         out_dir : str or pathlib.Path
             The result folder.
+        force : bool, default False
+            Replace a folder holding another command's result (``--force``).
         """
-        with ResultWriter(out_dir, command="pda") as out:
+        with ResultWriter(out_dir, command="pda", force=force) as out:
             out.part("pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("pda.csv"))
             plot_pda(self.columns, self.case, out.part("pda.png"),
@@ -314,7 +316,7 @@ class MatchResult:
     match: object
     config: object
 
-    def write(self, out_dir: str | Path) -> None:
+    def write(self, out_dir: str | Path, force: bool = False) -> None:
         """Write the match files into the result folder ``out_dir``.
 
         ``match.json``, ``match.csv``, ``match.png``, ``static_load_test.csv`` and
@@ -324,9 +326,11 @@ class MatchResult:
         ----------
         out_dir : str or pathlib.Path
             The result folder.
+        force : bool, default False
+            Replace a folder holding another command's result (``--force``).
         """
         result = self.match
-        with ResultWriter(out_dir, command="match") as out:
+        with ResultWriter(out_dir, command="match", force=force) as out:
             out.part("match.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(result.columns, out.part("match.csv"))
             write_csv(result.static_load_test, out.part("static_load_test.csv"))
@@ -471,16 +475,18 @@ class ComparePdaResult:
     content: dict
     columns: dict
 
-    def write(self, out_dir: str | Path) -> None:
+    def write(self, out_dir: str | Path, force: bool = False) -> None:
         """Write the json, csv and the two figures into the result folder ``out_dir``.
 
         Parameters
         ----------
         out_dir : str or pathlib.Path
             The result folder.
+        force : bool, default False
+            Replace a folder holding another command's result (``--force``).
         """
         name = Path(self.record).name
-        with ResultWriter(out_dir, command="compare-pda") as out:
+        with ResultWriter(out_dir, command="compare-pda", force=force) as out:
             out.part("compare_pda.json").write_text(json.dumps(self.content, indent=2) + "\n")
             write_csv(self.columns, out.part("compare_pda.csv"))
             plot_compare_pda(self.columns, "force [N]", out.part("fig4_pile_top_force.png"),

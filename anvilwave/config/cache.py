@@ -42,10 +42,10 @@ import numpy as np
 import anvilwave.anvil_rom as anvil_rom
 import anvilwave.anvil_rom.fem.pipeline as pipeline
 from anvilwave.anvil_rom.chain import chain_from_modes
-from anvilwave.anvil_rom.fem.elasticity import assemble
+from anvilwave.anvil_rom.fem.elasticity import assemble, interface_vectors
 from anvilwave.anvil_rom.fem.mesh import build_mesh, to_skfem
 from anvilwave.anvil_rom.fem.modalfile import VERSION, load_modal_data, write_modal_data
-from anvilwave.anvil_rom.fem.modes import sturm_count
+from anvilwave.anvil_rom.fem.modes import inverse_iteration_mode
 from anvilwave.anvil_rom.fem.pipeline import solid_mass
 from anvilwave.inputs import InputError
 from anvilwave.pile import head_kernel
@@ -195,10 +195,13 @@ def modal_data_mismatch(data, spec, fmax: float) -> str | None:
     Checked: fmax, the damping ratio and the geometry hash against the key's; the frequencies
     finite, increasing, within fmax; the total mass against the spec's solid mass
     (:func:`~anvilwave.anvil_rom.fem.pipeline.solid_mass`); and the frequencies against the FE
-    eigenproblem: its Sturm count (:func:`~anvilwave.anvil_rom.fem.modes.sturm_count`, the
-    eigenvalues of (K, M) below a shift) at the middle of the middle gap of the cached
-    frequencies must equal the cached modes below it (one factorisation, no eigensolve). The
-    mode shapes are not kept in the modal data, so their orthonormality is not checked here.
+    eigenproblem, on one sampled flexible mode k (the middle one isolated from its
+    neighbours), with one factorisation of K - sigma M at sigma just above its eigenvalue
+    (:func:`~anvilwave.anvil_rom.fem.modes.inverse_iteration_mode`, no eigensolve): the Sturm
+    count below sigma must be k + 1 (no cached mode missing or extra), the Rayleigh quotient of
+    the mode must equal the cached eigenvalue, and the mass-normalised mode's ram, pile and
+    gravity participations must equal the cached ones (the orthonormality of the cached modes
+    on a sample: a scaled or mixed mode, or one not orthogonal to the rigid-body mode, differs).
 
     Parameters
     ----------
@@ -228,16 +231,63 @@ def modal_data_mismatch(data, spec, fmax: float) -> str | None:
     mass = solid_mass(spec)
     if not math.isclose(float(data.total_mass), mass, rel_tol=MASS_TOLERANCE):
         return f"total mass {float(data.total_mass):.6g} kg, not {mass:.6g} kg"
-    gaps = [k for k in range(f.size - 1) if f[k + 1] > f[k] * (1 + 1e-6) + 1e-9]
-    if not gaps:
+    k = _sampled_mode_index(f)
+    if k is None:
         return None
-    k = gaps[len(gaps) // 2]
-    shift = 0.5 * (f[k] + f[k + 1])
+    lam = (2.0 * math.pi * f[k]) ** 2
+    shift = lam * (1.0 + SAMPLE_SHIFT)
     model = assemble(to_skfem(build_mesh(spec)), spec.material)
-    count = sturm_count(model.stiffness, model.mass, (2.0 * math.pi * shift) ** 2)
-    if count != k + 1:
-        return (f"{k + 1} cached modes below {shift:.6g} Hz, the FE model has {count}")
+    mode = inverse_iteration_mode(model.stiffness, model.mass, shift)
+    if mode.count_below != k + 1:
+        return (f"{k + 1} cached modes up to {f[k]:.6g} Hz, the FE model has "
+                f"{mode.count_below}")
+    if abs(mode.eigenvalue - lam) > EIGENVALUE_TOLERANCE * lam:
+        return (f"mode {k} at {f[k]:.9g} Hz, the FE model's nearest at "
+                f"{math.sqrt(max(mode.eigenvalue, 0.0)) / (2.0 * math.pi):.9g} Hz")
+    if spec.interfaces is None:
+        return None
+    b_ram, b_pile, _, _ = interface_vectors(model, spec.interfaces)
+    computed = np.array([b_ram @ mode.shape, b_pile @ mode.shape,
+                         mode.shape @ (model.mass @ model.axial_free)])
+    cached = np.array([data.participation_ram[k], data.participation_pile[k],
+                       data.participation_gravity[k]])
+    scale = max(float(np.linalg.norm(cached[:2])), 1e-300)
+    sign = 1.0 if computed[:2] @ cached[:2] >= 0.0 else -1.0
+    error = float(np.max(np.abs(sign * computed - cached))) / scale
+    if not error <= PARTICIPATION_TOLERANCE:
+        return (f"mode {k}: participations {cached[0]:.6g}, {cached[1]:.6g}, "
+                f"{cached[2]:.3g} (ram, pile, gravity) are not those of the FE model's "
+                f"mass-normalised mode ({sign * computed[0]:.6g}, {sign * computed[1]:.6g}, "
+                f"{sign * computed[2]:.3g})")
     return None
+
+
+SAMPLE_SHIFT = 1e-6
+"""Relative offset of the sampling shift above the sampled eigenvalue (2 pi f_k)^2."""
+
+SAMPLE_GAP = 1e-3
+"""Least relative distance of the sampled eigenvalue from its neighbours: with
+:data:`SAMPLE_SHIFT` the inverse iteration converges by 1e-3 per step or faster."""
+
+EIGENVALUE_TOLERANCE = 1e-8
+"""Relative difference of the sampled mode's Rayleigh quotient from the cached eigenvalue that
+is a mismatch (both from the same FE model: they agree to the eigensolver's round-off, about
+1e-12)."""
+
+PARTICIPATION_TOLERANCE = 1e-6
+"""Difference of the sampled mode's participations from the cached ones, relative to its port
+participations, that is a mismatch (four inverse-iteration steps leave about 1e-12)."""
+
+
+def _sampled_mode_index(f: np.ndarray) -> int | None:
+    """The flexible mode to sample: the middle one of those isolated from their neighbours
+    (relative eigenvalue gap :data:`SAMPLE_GAP`), or None when none is."""
+    lam = f ** 2
+    isolated = [k for k in range(1, f.size)
+                if lam[k] > 0.0
+                and (lam[k] - lam[k - 1]) > SAMPLE_GAP * lam[k]
+                and (k + 1 == f.size or lam[k + 1] - lam[k] > SAMPLE_GAP * lam[k])]
+    return isolated[len(isolated) // 2] if isolated else None
 
 
 CHAIN_SUFFIX = ".chain.npz"

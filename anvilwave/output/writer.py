@@ -83,11 +83,36 @@ def result_command(directory: str | Path) -> str | None:
         return None
 
 
-def check_output(directory: str | Path, command: str | None = None) -> Path:
+def mark_result(directory: str | Path, command: str) -> Path:
+    """Write the :data:`MARKER` naming ``command`` into a result folder.
+
+    For commands that fill their folder over several runs (``batch`` resumes) rather than
+    through a :class:`ResultWriter`.
+
+    Parameters
+    ----------
+    directory : str or Path
+        The result folder (it exists).
+    command : str
+        The command whose result it holds.
+
+    Returns
+    -------
+    Path
+        The marker file.
+    """
+    path = Path(directory) / MARKER
+    path.write_text(json.dumps({"command": command}) + "\n")
+    return path
+
+
+def check_output(directory: str | Path, command: str | None = None, force: bool = False
+                 ) -> Path:
     """Refuse an output folder before any work.
 
     Refused: a file in the way (the folder itself or a folder above it), a location that
-    cannot be written, or a folder holding the result of another command.
+    cannot be written, or a folder holding the result of another command (unless ``force``:
+    that result is then replaced whole when the new one is written).
 
     Parameters
     ----------
@@ -95,6 +120,8 @@ def check_output(directory: str | Path, command: str | None = None) -> Path:
         The output folder (``--out``).
     command : str, optional
         The command that will write it; a folder holding another command's result is refused.
+    force : bool, default False
+        Accept a folder holding another command's result (``--force``).
 
     Returns
     -------
@@ -107,6 +134,15 @@ def check_output(directory: str | Path, command: str | None = None) -> Path:
         Naming ``--out`` and the rule.
     """
     directory = Path(directory)
+    try:
+        _check_location(directory, command, force)
+    except OSError as exc:  # a folder on the way that may not be looked into, say
+        raise _out_error(directory, f"cannot be written ({exc.strerror or exc})") from None
+    return directory
+
+
+def _check_location(directory: Path, command: str | None, force: bool) -> None:
+    """The checks of :func:`check_output` (OSErrors left to it)."""
     if directory.exists() and not directory.is_dir():
         raise _out_error(directory, "is a file, not a folder (choose a folder to write into)")
     existing = directory
@@ -116,18 +152,16 @@ def check_output(directory: str | Path, command: str | None = None) -> Path:
         existing = existing.parent
     if existing != directory and not existing.is_dir():
         raise _out_error(directory, f"cannot be made: {existing} is a file, not a folder")
-    if command is not None and directory.is_dir():
+    if command is not None and directory.is_dir() and not force:
         held = result_command(directory)
         if held is not None and held != command:
             raise _out_error(directory, f"holds the result of 'anvilwave {held}', not of "
-                                        f"'{command}' (choose another folder or remove it)")
-    try:  # a probe: permissions, read-only file systems, ACLs
-        fd, probe = tempfile.mkstemp(prefix=STAGING_PREFIX + "probe-", dir=existing)
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
-        raise _out_error(directory, f"cannot be written ({exc.strerror or exc})") from None
-    return directory
+                                        f"'{command}' (choose another folder, remove it or "
+                                        "give --force to replace it)")
+    # a probe: permissions, read-only file systems, ACLs
+    fd, probe = tempfile.mkstemp(prefix=STAGING_PREFIX + "probe-", dir=existing)
+    os.close(fd)
+    os.unlink(probe)
 
 
 class ResultWriter:
@@ -140,11 +174,19 @@ class ResultWriter:
     command : str, optional
         The command writing it: recorded in the folder's :data:`MARKER`; a folder holding
         another command's result is refused.
+    force : bool, default False
+        Replace a folder holding another command's result (``--force``).
 
     Attributes
     ----------
     staging : Path
         The folder being filled.
+
+    Notes
+    -----
+    A folder that holds a result (it has a :data:`MARKER`) is replaced whole by the new one, so
+    no file of an earlier result stays beside it; a folder without a marker keeps its other
+    files.
 
     Examples
     --------
@@ -152,14 +194,15 @@ class ResultWriter:
     ...     out.part("summary.json").write_text("{}")
     """
 
-    def __init__(self, directory: str | Path, command: str | None = None):
+    def __init__(self, directory: str | Path, command: str | None = None, force: bool = False):
         self.directory = Path(directory)
         self.command = command
+        self.force = force
         self._tmp: Path | None = None
         self._names: list[str] = []
 
     def __enter__(self) -> ResultWriter:
-        check_output(self.directory, self.command)
+        check_output(self.directory, self.command, self.force)
         try:
             self.directory.parent.mkdir(parents=True, exist_ok=True)
             remove_stale_staging(self.directory.parent)
@@ -198,14 +241,8 @@ class ResultWriter:
             if exc_type is None:
                 try:
                     if self.command is not None:
-                        (self._tmp / MARKER).write_text(
-                            json.dumps({"command": self.command}) + "\n")
-                    self.directory.mkdir(parents=True, exist_ok=True)
-                    for item in self._tmp.iterdir():
-                        target = self.directory / item.name
-                        if target.is_dir() and item.is_dir():
-                            shutil.rmtree(target)
-                        item.replace(target)
+                        mark_result(self._tmp, self.command)
+                    self._move_into_place()
                 except OSError as err:
                     raise _out_error(self.directory, f"cannot be written ({err.strerror or err})"
                                                      "; the result was not written") from None
@@ -216,3 +253,31 @@ class ResultWriter:
             if self._tmp is not None:
                 shutil.rmtree(self._tmp, ignore_errors=True)
         return False
+
+    def _move_into_place(self) -> None:
+        """Move the staged files into the result folder; an earlier result there is replaced
+        whole (renamed aside, the staging folder renamed into place, the old one removed)."""
+        if (self.directory / MARKER).is_file():
+            mode = self.directory.stat().st_mode & 0o7777
+            aside = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{os.getpid()}-old-",
+                                          dir=self.directory.parent))
+            try:
+                self.directory.replace(aside / "result")
+            except OSError:  # the folder cannot be renamed (the working directory, a mount)
+                shutil.rmtree(aside, ignore_errors=True)
+                for item in self.directory.iterdir():
+                    if item.is_dir() and not item.is_symlink():
+                        shutil.rmtree(item)
+                    else:
+                        item.unlink()
+            else:
+                self._tmp.chmod(mode)  # the old folder's permissions, not the staging's 0700
+                self._tmp.replace(self.directory)
+                shutil.rmtree(aside, ignore_errors=True)
+                return
+        self.directory.mkdir(parents=True, exist_ok=True)
+        for item in self._tmp.iterdir():
+            target = self.directory / item.name
+            if target.is_dir() and item.is_dir():
+                shutil.rmtree(target)
+            item.replace(target)

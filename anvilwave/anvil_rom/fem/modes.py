@@ -85,14 +85,92 @@ def sturm_count(stiffness: sp.spmatrix, mass: sp.spmatrix, sigma: float) -> int:
     ModeSolveError
         If no factorisation keeps symmetric pivots.
     """
+    lu = _symmetric_factor(stiffness, mass, sigma)
+    return int(np.count_nonzero(lu.U.diagonal() < 0.0))
+
+
+def _symmetric_factor(stiffness: sp.spmatrix, mass: sp.spmatrix, sigma: float):
+    """SuperLU factors of K - sigma M with symmetric pivots (the shift nudged if needed)."""
     for nudge in (0.0, 1e-9, -1e-9, 1e-7):
         shifted = sigma * (1.0 + nudge)
         A = (stiffness - shifted * mass).tocsc()
         lu = sla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                       options={"SymmetricMode": True})
         if np.array_equal(lu.perm_r, lu.perm_c):
-            return int(np.count_nonzero(lu.U.diagonal() < 0.0))
+            return lu
     raise ModeSolveError("Sturm count failed: the factorisation could not keep symmetric pivots")
+
+
+@dataclass
+class SampledMode:
+    """One eigenpair of (K, M) near a shift, with the inertia below the shift.
+
+    Parameters
+    ----------
+    count_below : int
+        Number of eigenvalues below the shift (Sturm count).
+    shape : numpy.ndarray
+        The eigenvector nearest the shift, mass-normalised (phi^T M phi = 1), shape (n_free,).
+    eigenvalue : float
+        Its Rayleigh quotient phi^T K phi [rad^2/s^2].
+    residual : float
+        ||K phi - lambda M phi|| / ||K phi||, the relative residual of the pair.
+    """
+
+    count_below: int
+    shape: np.ndarray
+    eigenvalue: float
+    residual: float
+
+
+def inverse_iteration_mode(stiffness: sp.spmatrix, mass: sp.spmatrix, sigma: float,
+                           iterations: int = 4) -> SampledMode:
+    """The eigenpair of (K, M) nearest ``sigma`` by shift-invert inverse iteration.
+
+    One symmetric factorisation K - sigma M = L D L^T gives both the inertia below the shift
+    (the Sturm count of :func:`sturm_count`) and the iteration x <- (K - sigma M)^-1 M x, which
+    converges to the eigenvector whose eigenvalue is nearest ``sigma`` by the factor
+    |lambda_k - sigma| / |lambda_j - sigma| per step, lambda_j the next nearest (Golub & Van
+    Loan 2013, sec. 8.2.2). With ``sigma`` a relative 1e-6 from a cached eigenvalue and its
+    neighbours a relative 1e-3 or more away, four steps reach round-off. The start vector is
+    fixed (a seeded random vector), so the result is reproducible.
+
+    Parameters
+    ----------
+    stiffness : scipy.sparse.spmatrix
+        K [N/m].
+    mass : scipy.sparse.spmatrix
+        M [kg].
+    sigma : float
+        The shift [rad^2/s^2].
+    iterations : int, default 4
+        Inverse-iteration steps.
+
+    Returns
+    -------
+    SampledMode
+        The inertia below ``sigma`` and the mass-normalised eigenpair nearest it.
+
+    Raises
+    ------
+    ModeSolveError
+        If no factorisation keeps symmetric pivots.
+
+    References
+    ----------
+    Golub, G.H., Van Loan, C.F. (2013). Matrix Computations, 4th ed. Johns Hopkins University
+    Press, sec. 8.2.2 (inverse iteration) and 8.4 (the symmetric-definite problem).
+    """
+    lu = _symmetric_factor(stiffness, mass, sigma)
+    count = int(np.count_nonzero(lu.U.diagonal() < 0.0))
+    x = np.random.default_rng(12345).standard_normal(stiffness.shape[0])
+    for _ in range(iterations):
+        x = lu.solve(mass @ x)
+        x /= np.sqrt(x @ (mass @ x))
+    kx, mx = stiffness @ x, mass @ x
+    eigenvalue = float(x @ kx)
+    residual = float(np.linalg.norm(kx - eigenvalue * mx) / max(np.linalg.norm(kx), 1e-300))
+    return SampledMode(count, x, eigenvalue, residual)
 
 
 def mesh_resolvable_frequency(model: AxisymmetricModel,
