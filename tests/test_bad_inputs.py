@@ -214,6 +214,7 @@ FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies o
                "compare-pda record shorter than 2L/c",
                "batch with a missing hammer anvil file: no half-made folder",
                "killed batch: no orphan workers, no staging",
+               "Ctrl-C on batch with workers",
                "a real file-size limit while writing: the old result kept",
                "cache entry with frequencies off by 1e-6",
                "cache entry with modes not mass-normalised",
@@ -252,7 +253,7 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 def test_the_count_is_stated():
     """docs/system-file.md states the count and the classes of the cases tested here."""
-    assert COUNT == len(BAD_INPUTS) + 27 and COUNT >= 52
+    assert COUNT == len(BAD_INPUTS) + 28 and COUNT >= 53
     assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
     docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
     words = {6: "six"}
@@ -758,3 +759,34 @@ def test_ctrl_c_on_drive_is_one_line_and_leaves_no_worker(tmp_path):
     assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"]
     assert _running_after(workers, 5.0) == []
     assert not out.exists() and not list(tmp_path.glob(".partial-*"))
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_ctrl_c_on_batch_is_one_line_and_leaves_no_worker(tmp_path):
+    """Ctrl-C (SIGINT to the process group, as a terminal sends it) while the LocalCluster's
+    workers run: one line, exit 130, no worker traceback, no worker left 5 s later."""
+    from .test_campaign import write_campaign
+
+    path = write_campaign(tmp_path / "c", positions=(("P1", 8.0), ("P2", 9.0), ("P3", 9.5)))
+    out = tmp_path / "campaign_out"
+    cmd = [sys.executable, "-m", "anvilwave", "batch", str(path), "--out", str(out),
+           "--workers", "2"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            start_new_session=True, text=True)
+
+    def workers() -> list[int]:
+        return [p for p in _descendants(proc.pid) if "spawn_main" in _cmdline(p)]
+
+    for _ in range(1800):
+        if len(workers()) >= 2 or proc.poll() is not None:
+            break
+        time.sleep(0.1)
+    assert proc.poll() is None and len(workers()) >= 2, "the batch ended before its workers ran"
+    family = _descendants(proc.pid)
+    time.sleep(1.0)  # the workers past their start-up, running cases
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    lines = [x for x in err.replace("\r", "\n").splitlines() if x.strip()]
+    assert proc.returncode == 130 and "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"], err
+    assert _running_after(family, 5.0) == []

@@ -1078,18 +1078,23 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
             client.close()
         return
     n = max(1, min(workers or os.cpu_count() or 1, n_cases))
-    # the worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches this
-    # process only, which prints one line and closes the cluster, instead of a traceback
-    # from every worker
-    main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
+    # SIGINT is blocked while the cluster starts: its threads and worker processes inherit
+    # the mask and never see a Ctrl-C, which reaches this process only (held pending until the
+    # mask is lifted, not lost), so it prints one line and closes the cluster instead of a
+    # traceback from every worker
+    blocking = (threading.current_thread() is threading.main_thread()
+                and hasattr(signal, "pthread_sigmask"))
+    if blocking:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     try:
         with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+            # workers' own logs only when critical: a worker losing the scheduler as the
+            # cluster closes is not news, and case failures are recorded with the case
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                   dashboard_address=":0", silence_logs=logging.ERROR)
+                                   dashboard_address=":0", silence_logs=logging.CRITICAL)
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGINT, previous)
+        if blocking:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     try:
         client = Client(cluster)
         try:
