@@ -118,10 +118,11 @@ from anvilwave.config.drive import load_srd_source
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import anvil_modal_data
 from anvilwave.hammer.database import available_hammers, load_hammer
-from anvilwave.inputs import InputError, Table, read_toml, toml_dumps
+from anvilwave.inputs import InputError, Table, active_record, read_toml, toml_dumps
 from anvilwave.output.campaign_plots import plot_campaign
 from anvilwave.output.plots import plot_driveability
 from anvilwave.output.tables import write_csv
+from anvilwave.output.writer import write_inputs, write_marker
 from anvilwave.pile.model import PileSoil
 
 ALLOWED_FAILURES = 3
@@ -730,7 +731,7 @@ def run_case(spec: dict) -> dict:
         summary = dict(result.summary)
         summary["driveability_wall_time [s]"] = summary.pop("wall_time [s]")
         summary.update(_identity(spec))
-        summary["system"] = str(system)
+        summary["system"] = system.name
         _write_case(folder, result, summary, cfg, spec, start)
         return _row(spec["name"], spec["axes"], summary)
     except Exception as exc:  # a failing case is recorded, never stops the campaign
@@ -1007,6 +1008,10 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     if plots:
 
         plot_campaign(campaign, rows, out)
+    record = active_record()
+    if record is not None:
+        write_inputs(out, record)
+    write_marker(out, "batch")
     counts = {s: sum(r["status"] == s for r in rows)
               for s in (STATUS_OK, STATUS_ERROR, STATUS_PENDING)}
     return BatchResult(cases=len(campaign.cases), ran=len(runnable), skipped=len(finished),
