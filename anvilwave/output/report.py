@@ -9,8 +9,10 @@ hashes, the settings of the command and the text of every TOML input as run; eve
 figure of the folder is embedded as a base64 data URI. The page uses no external resource
 (inline CSS, no fonts, no network) and prints on A4.
 
-The one inline script counts the figures the browser decoded into the ``data-figures``
-attribute of the page body (``"decoded/total"``); the page reads the same without it.
+The one inline script writes the count of figures the browser decoded into the
+``data-figures`` attribute of the page body (``"decoded/total"``) and their places on the page
+into ``data-figure-boxes`` (``"left,top,width,height;..."`` [CSS px]); the page reads the same
+without it.
 """
 
 from __future__ import annotations
@@ -112,11 +114,14 @@ figcaption { font-size: 9pt; color: #444; }
 
 SCRIPT = """
 window.addEventListener("load", function () {
-  var images = document.images, decoded = 0;
+  var images = document.images, decoded = 0, boxes = [];
   for (var i = 0; i < images.length; i++) {
     if (images[i].complete && images[i].naturalWidth > 0) { decoded++; }
+    var r = images[i].getBoundingClientRect();
+    boxes.push([r.left, r.top + window.scrollY, r.width, r.height].map(Math.round).join(","));
   }
   document.body.setAttribute("data-figures", decoded + "/" + images.length);
+  document.body.setAttribute("data-figure-boxes", boxes.join(";"));
 });
 """
 
@@ -564,11 +569,17 @@ def _input_texts(folder: Path, manifest: dict | None) -> str:
     return "<h2>Appendix: the input files as run</h2>\n" + "".join(parts)
 
 
+MAX_CASE_FIGURES = 6
+"""A campaign's case figures (``cases/<case>/*.png``) are embedded up to this many cases; a
+larger campaign's report shows its campaign plots only."""
+
+
 def figures(folder: Path) -> list[Path]:
     """The PNG figures of a result folder, in a report's order.
 
     The top folder's first, then the sub-folders' (sorted); the input copies and staging
-    folders are left out.
+    folders are left out, and the case figures of a campaign of more than
+    :data:`MAX_CASE_FIGURES` cases.
 
     Parameters
     ----------
@@ -583,6 +594,9 @@ def figures(folder: Path) -> list[Path]:
     found = [p for p in folder.rglob("*.png")
              if not any(part == INPUTS_DIR or part.startswith((STAGING_PREFIX, "."))
                         for part in p.relative_to(folder).parts[:-1])]
+    cases = folder / "cases"
+    if cases.is_dir() and sum(1 for c in cases.iterdir() if c.is_dir()) > MAX_CASE_FIGURES:
+        found = [p for p in found if not p.is_relative_to(cases)]
     return sorted(found, key=lambda p: (len(p.relative_to(folder).parts),
                                         p.relative_to(folder).as_posix()))
 
