@@ -1,4 +1,4 @@
-"""Bad inputs of drive, install, pda, match, compare-pda, build-fmus and the output folder
+"""Bad inputs of drive, install, pda, match, compare-pda, build-fmus, report and the output folder
 (issue 30): each case is a small file made in the test; each gives one line on stderr naming
 the file or option, the key, the row or table and the rule, exit status 2, no traceback, and
 no output folder (or the one there unchanged).
@@ -208,8 +208,13 @@ FAULT_CASES = ["disk full while writing", "cache entry with scaled frequencies o
 
 PDA_CASES = ["BTA of an intact pile with 2 % noise", "impact peak on the first sample"]
 
-CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda"})
-COUNT = len(BAD_INPUTS) + len(OUTPUT_CASES) + len(FAULT_CASES) + len(PDA_CASES)
+REPORT_CASES = ["report of a missing folder", "report of a folder that is no result",
+                "report of a file", "report --out below a file", "report --out is a folder"]
+"""Bad arguments of ``anvilwave report`` (test_bad_report)."""
+
+CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda", "report"})
+COUNT = (len(BAD_INPUTS) + len(OUTPUT_CASES) + len(FAULT_CASES) + len(PDA_CASES)
+         + len(REPORT_CASES))
 """Bad inputs and faults tested here."""
 
 
@@ -237,11 +242,40 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 def test_the_count_is_stated():
     """docs/system-file.md states the count and the classes of the cases tested here."""
-    assert COUNT == len(BAD_INPUTS) + 17 and COUNT >= 42
-    assert CLASSES == ["accepted", "fault", "output", "pda", "traceback", "vague"]
+    assert COUNT == len(BAD_INPUTS) + 22 and COUNT >= 47
+    assert CLASSES == ["accepted", "fault", "output", "pda", "report", "traceback", "vague"]
     docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
-    words = {6: "six"}
+    words = {7: "seven"}
     assert f"runs {COUNT} such cases in {words[len(CLASSES)]} classes" in " ".join(docs.split())
+
+
+@pytest.mark.parametrize("case", REPORT_CASES)
+def test_bad_report(tmp_path, capsys, case):
+    """A report of something that is no result folder, or to a file that cannot be written:
+    one line, exit 2, nothing written."""
+    result = tmp_path / "result"
+    result.mkdir()
+    (result / MARKER).write_text(json.dumps({"command": "pda"}))
+    args, words = [str(result)], []
+    if case == "report of a missing folder":
+        args, words = [str(tmp_path / "missing")], ["missing", "no such result folder"]
+    elif case == "report of a folder that is no result":
+        (tmp_path / "plain").mkdir()
+        args, words = [str(tmp_path / "plain")], ["plain", "not an anvilwave result", MARKER]
+    elif case == "report of a file":
+        (tmp_path / "file.csv").write_text("x\n")
+        args, words = [str(tmp_path / "file.csv")], ["file.csv", "is a file"]
+    elif case == "report --out below a file":
+        (tmp_path / "taken").write_text("x")
+        args += ["--out", str(tmp_path / "taken" / "r.html")]
+        words = ["--out", "r.html", "cannot be written"]
+    else:
+        args += ["--out", str(tmp_path)]
+        words = ["--out", "is a folder"]
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    code = cli.main(["report", *args])
+    _assert_one_line_exit_2(code, capsys, words)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
 
 
 @pytest.mark.parametrize("case", OUTPUT_CASES)

@@ -73,8 +73,9 @@ class InputRecord:
         self.context = dict(context or {})
 
     def add(self, path: str | Path) -> None:
-        """Record that ``path`` was read (a file not there, or one recorded already, is left
-        out).
+        """Record that ``path`` was read.
+
+        A file not there, or one recorded already, is left out.
 
         Parameters
         ----------
