@@ -79,7 +79,10 @@ pending for a case an interrupted run did not reach), ``refusal_depth [m]``, ``t
 [-]``, ``max_blow_count [1/m]``, ``max_compression_stress [Pa]``, ``max_tension_stress [Pa]``
 (negative: compression positive), ``driving_time [s]``, ``wall_time [s]`` (the case in its
 worker: loading, engine, depths and writing) and ``error``. The campaign plots go to
-``DIR/plots/`` (:mod:`anvilwave.output.campaign_plots`).
+``DIR/plots/`` (:mod:`anvilwave.output.campaign_plots`). Run inside
+:func:`anvilwave.inputs.record_inputs` (as the command line runs it), the campaign file and
+every file it reads are copied into ``DIR/inputs/`` with their SHA-256 hashes in
+``DIR/inputs.json``; the folder's marker names ``batch`` (:mod:`anvilwave.output.writer`).
 
 Reruns and failures. A rerun skips the finished cases and runs the others (those that failed
 included, after their input was fixed); a case whose input changed (its system.toml hash) runs

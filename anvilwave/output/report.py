@@ -109,6 +109,7 @@ figcaption { font-size: 9pt; color: #444; }
   table, pre { page-break-inside: auto; }
   tr, figure { page-break-inside: avoid; break-inside: avoid; }
   .wide { overflow: visible; }
+  .wide table { font-size: 7.5pt; }
 }
 """
 
@@ -255,6 +256,12 @@ def _esc(value) -> str:
     return html.escape(str(value), quote=True)
 
 
+def _words(label: str) -> str:
+    """A result name as words (``max_tension_stress`` -> ``max tension stress``): the table
+    headers wrap."""
+    return label.replace("_", " ")
+
+
 def _kv_table(entries: list[tuple[str, object]], heading: str = "") -> str:
     """A table of (name [unit], value) rows in practitioner units."""
     if not entries:
@@ -265,7 +272,7 @@ def _kv_table(entries: list[tuple[str, object]], heading: str = "") -> str:
         shown = _text(_scaled(value, factor))
         cls = ' class="num"' if isinstance(value, int | float) and not isinstance(value, bool) \
             else ""
-        rows.append(f"<tr><td>{_esc(label)}</td><td{cls}>{_esc(shown)}</td>"
+        rows.append(f"<tr><td>{_esc(_words(label))}</td><td{cls}>{_esc(shown)}</td>"
                     f"<td>{_esc(unit)}</td></tr>")
     head = f"<h3>{_esc(heading)}</h3>\n" if heading else ""
     return (f'{head}<table class="kv"><tr><th>quantity</th><th>value</th><th>unit</th></tr>\n'
@@ -304,7 +311,8 @@ def _rows_table(header: list[str], rows: list[list], heading: str = "",
     cells = []
     for j in keep:
         label, unit, _ = units[j]
-        cells.append(f"<th>{_esc(label)}" + (f"<br>[{_esc(unit)}]" if unit else "") + "</th>")
+        shown = f"<br>[{_esc(unit)}]" if unit else ""
+        cells.append(f"<th>{_esc(_words(label))}{shown}</th>")
     body = []
     for r in shown_rows:
         tds = []
@@ -423,7 +431,7 @@ def _comparison(content: dict) -> str:
             cells = "".join(
                 f'<td class="num">{_esc(_text(_scaled(content[m].get(k), factor)))}</td>'
                 for m in models)
-            rows.append(f"<tr><td>{_esc(label)}</td><td>{_esc(unit)}</td>{cells}</tr>")
+            rows.append(f"<tr><td>{_esc(_words(label))}</td><td>{_esc(unit)}</td>{cells}</tr>")
         head = "".join(f"<th>{_esc(m)}</th>" for m in models)
         parts.append("<h3>comparison.json: the models</h3>\n<table><tr><th>quantity</th>"
                      f"<th>unit</th>{head}</tr>\n" + "\n".join(rows) + "\n</table>\n")
@@ -436,6 +444,8 @@ def _comparison(content: dict) -> str:
 def _drive(folder: Path) -> str:
     parts = [_csv_section(folder, "driveability.csv", "Driveability (driveability.csv)",
                           DRIVE_COLUMNS)]
+    for graph in sorted(folder.glob("bearing_graph_*.csv")):
+        parts.append(_csv_section(folder, graph.name, f"Bearing graph ({graph.name})"))
     comparison = _json(folder / "anvil_comparison.json")
     if comparison:
         models = list(comparison)
@@ -450,7 +460,7 @@ def _drive(folder: Path) -> str:
             label, unit, factor = practitioner(k)
             cells = "".join(f"<td>{_esc(_text(_scaled(comparison[m].get(k), factor)))}</td>"
                             for m in models)
-            rows.append(f"<tr><td>{_esc(label)}</td><td>{_esc(unit)}</td>{cells}</tr>")
+            rows.append(f"<tr><td>{_esc(_words(label))}</td><td>{_esc(unit)}</td>{cells}</tr>")
         head = "".join(f"<th>{_esc(m)}</th>" for m in models)
         parts.append("<h3>The anvil models (anvil_comparison.json)</h3>\n<table><tr>"
                      f"<th>quantity</th><th>unit</th>{head}</tr>\n" + "\n".join(rows)
