@@ -12,6 +12,7 @@ The public API, all SI, with the names and units of the files the command line w
   matching, the paper's Fig. 4 and 5;
 - :func:`batch` - a wind-farm campaign on dask (:class:`BatchResult`);
 - :func:`compute_anvil_modes`, :func:`build_fmus` - the anvil's modes, the system's FMUs;
+- :func:`report` - a result folder as one self-contained HTML file for a client;
 - :class:`InputError` - every bad input, one line naming the file, the key and the rule.
 
 Layers, bottom to top (enforced by import-linter): ``anvilwave.inputs`` <- ``anvil_rom``
@@ -38,11 +39,16 @@ from anvilwave.api import (
     load_system,
     match,
     pda,
+    report,
     simulate,
 )
 from anvilwave.inputs import InputError
+from anvilwave.output.writer import software_version as _software_version
+
+__version__ = _software_version()
+"""The version of the installed anvilwave."""
 
 __all__ = ["BatchResult", "Blow", "ComparePdaResult", "DriveResult", "InputError",
            "InstallResult", "MatchResult", "PdaResult", "SystemConfig", "batch", "build_fmus",
            "compare_anvils", "compare_pda", "compute_anvil_modes", "drive", "install",
-           "load_system", "match", "pda", "simulate"]
+           "load_system", "match", "pda", "report", "simulate"]

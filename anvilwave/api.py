@@ -14,7 +14,8 @@ Every analysis returns a documented result dataclass whose names and units are t
 files the command line writes (``write(...)`` writes them): :class:`Blow` (``impact``),
 :class:`DriveResult` (``drive``), :class:`InstallResult` (``install``), :class:`PdaResult`
 (``pda``), :class:`MatchResult` (``match``), :class:`ComparePdaResult` (``compare-pda``) and
-:class:`BatchResult` (``batch``). All values are SI.
+:class:`BatchResult` (``batch``). All values are SI. :func:`report` turns a result folder into
+one self-contained HTML file for a client.
 """
 
 from __future__ import annotations
@@ -37,11 +38,12 @@ from anvilwave.analyses.pda import (
 )
 from anvilwave.config.system import SystemConfig
 from anvilwave.config.system import load_system as _load_system
+from anvilwave.output.report import write_report
 
 __all__ = ["Blow", "BatchResult", "ComparePdaResult", "DriveResult", "InstallResult",
            "MatchResult", "PdaResult", "SystemConfig", "batch", "build_fmus", "compare_anvils",
            "compare_pda", "compute_anvil_modes", "drive", "install", "load_system", "match",
-           "pda", "simulate"]
+           "pda", "report", "simulate"]
 
 
 def load_system(path: str | Path) -> SystemConfig:
@@ -179,3 +181,31 @@ def batch(campaign: str | Path, out_dir: str | Path, *, workers: int | None = No
     """
     return run_campaign(campaign, out_dir, workers=workers, scheduler=scheduler,
                         progress=progress, force=force)
+
+
+def report(result_dir: str | Path, out: str | Path | None = None) -> Path:
+    """The client report of a result folder: one self-contained HTML file (``report``).
+
+    It formats what the folder holds (summaries, tables in practitioner units, the inputs
+    with their SHA-256 hashes, every figure embedded) and runs no analysis
+    (:mod:`anvilwave.output.report`).
+
+    Parameters
+    ----------
+    result_dir : str or Path
+        A folder written by ``impact``, ``drive``, ``install``, ``batch``, ``compare``,
+        ``match``, ``pda`` or ``compare-pda`` (or their API ``write``).
+    out : str or Path, optional
+        The HTML file (default: ``report.html`` in ``result_dir``).
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    anvilwave.InputError
+        If ``result_dir`` holds no anvilwave result, or ``out`` cannot be written.
+    """
+    return write_report(result_dir, out)

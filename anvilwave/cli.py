@@ -40,9 +40,10 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmus import build_system_fmus
 from anvilwave.fea.impact import run_impact_fea
 from anvilwave.fmu.native_build import NativeBuildError
-from anvilwave.inputs import InputError
+from anvilwave.inputs import InputError, record_inputs
 from anvilwave.output.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.output.plots import plot_columns, plot_modes
+from anvilwave.output.report import REPORT_NAME
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter, check_output
 
@@ -66,7 +67,7 @@ def _modes(args: argparse.Namespace) -> int:
         result = compute_anvil_modes(spec, fmax=args.fmax)
     with ResultWriter(args.out, command="modes", force=args.force) as out:
         summary = {
-            "anvil": str(args.anvil),
+            "anvil": Path(args.anvil).name,
             "frequencies [Hz]": [float(f) for f in result.modes.frequencies],
             "total_mass [kg]": result.model.total_mass(),
             "fmax [Hz]": result.modes.fmax,
@@ -106,6 +107,19 @@ def _impact(args: argparse.Namespace) -> int:
           f"{s['peak_anvil_pile_force [N]'] / 1e6:.1f} MN; "
           f"{s['simulated_time [s]'] * 1e3:.1f} ms in {s['wall_time [s]']:.4f} s "
           f"({s['realtime_factor [-]']:.3g}x real time) -> {args.out}")
+    _maybe_report(args)
+    return 0
+
+
+def _maybe_report(args: argparse.Namespace) -> None:
+    """The report of the result just written, with ``--report``."""
+    if getattr(args, "report", False):
+        print(f"report -> {api.report(args.out)}")
+
+
+def _report(args: argparse.Namespace) -> int:
+    target = api.report(args.result_dir, args.out)
+    print(f"report -> {target}")
     return 0
 
 
@@ -141,7 +155,7 @@ def _fea(args: argparse.Namespace) -> int:
         result = run_impact_fea(config, progress=progress)
     columns = result.to_columns()
     summary = {
-        "system": str(args.system),
+        "system": Path(args.system).name,
         "model": "axisymmetric explicit FEA (ram + anvil + pile top)",
         "peak_ram_anvil_force [N]": float(result.ram_anvil_force.max()),
         "peak_anvil_pile_force [N]": float(result.anvil_pile_force.max()),
@@ -170,6 +184,7 @@ def _compare(args: argparse.Namespace) -> int:
     with ResultWriter(args.out, command="compare", force=args.force) as out:
         comparison, _ = _run_comparison(cfg, out, args.rom_engine, args.fea_mesh_size)
     _print_comparison(comparison, args.out)
+    _maybe_report(args)
     return 0
 
 
@@ -183,7 +198,7 @@ def _run_comparison(cfg, out, rom_engine: str, fea_mesh_size) -> tuple[dict, dic
     preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
     band = comparison_bandwidth(cfg)
     comparison = compare(runs, preload=preload, bandwidth=band)
-    comparison["system"] = cfg.source
+    comparison["system"] = Path(cfg.source).name
     for name, run in runs.items():
         write_csv(run.columns, out.part(f"{name}.csv"))
     out.part("comparison.json").write_text(json.dumps(comparison, indent=2) + "\n")
@@ -211,7 +226,7 @@ def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> d
     rom = ModelRun("rom", blow.columns, blow.wall_time, {"engine": "direct"})
     preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
     spectra = band_levels({"rom": rom, "lumped": runs["lumped"], "fea": runs["fea"]}, bandwidth)
-    result = {"system": str(system), **metrics(rom, runs["fea"], preload, bandwidth),
+    result = {"system": Path(system).name, **metrics(rom, runs["fea"], preload, bandwidth),
               "pile_head_force_spectra": spectra}
     write_csv(rom.columns, out.part("interfaces/rom.csv"))
     out.part("interfaces/comparison.json").write_text(json.dumps(result, indent=2) + "\n")
@@ -325,7 +340,7 @@ def _demo(args: argparse.Namespace) -> int:
         _say(len(steps), steps)
         rom, lumped, fea = comparison["rom"], comparison["lumped"], comparison["fea"]
         summary = {
-            "system": str(system),
+            "system": Path(system).name,
             "anvil_modes": modes.modes.n_modes, "anvil_fmax [Hz]": modes.modes.fmax,
             "anvil_fe_dof": modes.model.n_dof,
             "ram_model": ram_model,
@@ -410,6 +425,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "Displacement Method), lumped (rigid FE mass), classic (cushion-helmet "
                         "system), none (ram directly on the pile)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_impact)
 
     p = sub.add_parser(
@@ -467,6 +485,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fea-mesh-size", type=float, default=None, metavar="M",
                    help="FEA element size in the ram and the anvil [m]")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_compare)
 
     p = sub.add_parser(
@@ -504,6 +525,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "[h] (shaft set-up of Skov & Denver 1988; [installation] setup_soil)")
     p.add_argument("--workers", type=int, default=None,
                    help="processes over the depths (default: all cores)")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_drive)
 
     p = sub.add_parser(
@@ -517,6 +541,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.add_argument("--anvil", choices=("rom", "lumped", "classic", "none"), default=None,
                    help="anvil model (default: the system file's)")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_install)
 
     p = sub.add_parser(
@@ -533,6 +560,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                    help="address of an existing dask scheduler (e.g. tcp://host:8786, one "
                         "started by dask-jobqueue on Slurm or PBS)")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_batch)
 
     p = sub.add_parser(
@@ -548,6 +578,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="[m/s] (default sqrt(E / 7850))")
     p.add_argument("--jc", type=float, required=True, help="Case damping factor [-]")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_pda)
 
     p = sub.add_parser(
@@ -561,6 +594,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--zones", type=int, default=3, help="shaft resistance zones")
     p.add_argument("--imposed", choices=("velocity", "wave_down"), default="velocity")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_match)
 
     p = sub.add_parser(
@@ -572,7 +608,23 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("record", type=Path, help="gauge record (CSV)")
     p.add_argument("system", type=Path, help="system file (TOML)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    p.add_argument("--report", action="store_true",
+                   help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
+                        "report')")
     p.set_defaults(func=_compare_pda)
+
+    p = sub.add_parser(
+        "report", help="a result folder as one self-contained HTML file for a client",
+        description="Read a result folder written by impact, drive, install, batch, compare, "
+                    "match, pda or compare-pda (its summaries, tables, recorded inputs and "
+                    "figures; nothing is run) and write one HTML file with no external "
+                    "resources: version, date, the input files with their SHA-256 hashes and "
+                    "their text, the key settings, the tables in practitioner units and every "
+                    "figure embedded; printable on A4.")
+    p.add_argument("result_dir", type=Path, metavar="RESULT_DIR", help="a result folder")
+    p.add_argument("--out", type=Path, default=None, metavar="FILE",
+                   help=f"the HTML file (default: RESULT_DIR/{REPORT_NAME})")
+    p.set_defaults(func=_report)
 
     p = sub.add_parser(
         "cache", help="the modal-data cache: where it is and what it holds, or empty it",
@@ -595,8 +647,8 @@ def build_parser() -> argparse.ArgumentParser:
                                    "Then e.g. anvilwave impact DIR/table1.toml --out res.")
     p.add_argument("dir", type=Path, metavar="DIR", help="destination folder")
     p.set_defaults(func=_examples)
-    for p in sub.choices.values():  # every command that writes a result folder
-        if any("--out" in a.option_strings for a in p._actions):
+    for name, p in sub.choices.items():  # every command that writes a result folder
+        if name != "report" and any("--out" in a.option_strings for a in p._actions):
             p.add_argument("--force", action="store_true",
                            help="replace an output folder that holds another command's result "
                                 "(refused without it; a result is always replaced whole)")
@@ -640,6 +692,7 @@ def _drive(args: argparse.Namespace) -> int:
                     print(f"{graph.model:7s} Rut {r['srd [N]'] / 1e6:8.2f} MN: "
                           f"{r['blows_per_0.25m [-]']:8.1f} blows/0.25 m")
         print(f"-> {args.out}")
+        _maybe_report(args)
         return 0
     if args.compare_anvils:
         results = api.compare_anvils(cfg, bound=args.bound, workers=args.workers,
@@ -664,6 +717,7 @@ def _drive(args: argparse.Namespace) -> int:
               f"{s['max_tension_stress [Pa]'] / 1e6:6.1f} MPa; {s['depths_analysed [-]']} "
               f"depths in {s['wall_time [s]']:.1f} s")
     print(f"-> {args.out}")
+    _maybe_report(args)
     return 0
 
 
@@ -680,6 +734,7 @@ def _install(args: argparse.Namespace) -> int:
           f"{s['max_damage [-]']:.3g} at {s['max_damage_depth_below_head [m]']:.1f} m below "
           f"the head; {s['wall_time [s]']:.1f} s ({s['seconds_per_blow [s]'] * 1e3:.1f} ms "
           f"per blow) -> {args.out}")
+    _maybe_report(args)
     return 0
 
 
@@ -695,6 +750,7 @@ def _batch(args: argparse.Namespace) -> int:
     print(f"{r.cases} cases: {r.ok} ok, {r.error} failed, {r.pending} pending ({r.ran} run, "
           f"{r.skipped} finished before) on {r.workers} workers in {r.wall_time:.1f} s -> "
           f"{r.campaign_csv}")
+    _maybe_report(args)
     return 0 if r.error == 0 and r.pending == 0 else 1
 
 
@@ -707,6 +763,7 @@ def _pda(args: argparse.Namespace) -> int:
     print("  ".join(f"{k} {_si(v)}" for k, v in result.summary.items()
                     if isinstance(v, float | int)))
     print(f"-> {args.out}")
+    _maybe_report(args)
     return 0
 
 
@@ -718,6 +775,7 @@ def _match(args: argparse.Namespace) -> int:
     print(f"Rut {s['rut [N]'] / 1e6:.2f} MN (shaft {s['rut_shaft [N]'] / 1e6:.2f} MN, toe "
           f"{s['rut_toe [N]'] / 1e6:.2f} MN), match quality {s['match_quality [-]']:.3f} "
           f"-> {args.out}")
+    _maybe_report(args)
     return 0
 
 
@@ -725,6 +783,7 @@ def _compare_pda(args: argparse.Namespace) -> int:
     check_output(args.out, "compare-pda", args.force)
     api.compare_pda(args.record, args.system).write(args.out, force=args.force)
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
+    _maybe_report(args)
     return 0
 
 
@@ -776,9 +835,11 @@ def _user_error(exc: Exception) -> bool:
 def main(argv: list[str] | None = None) -> int:
     """Run the ``anvilwave`` command line.
 
-    A user error (an input error, a modal analysis that cannot be solved, or a native build
-    that fails) prints one line ``anvilwave: error: ...`` to stderr instead of a traceback; any
-    other exception propagates.
+    Every command runs inside :func:`anvilwave.inputs.record_inputs`, so that its result
+    folder records the input files it read. A user error (an input error, a modal analysis
+    that cannot be solved, or a native build that fails) prints one line
+    ``anvilwave: error: ...`` to stderr instead of a traceback; any other exception
+    propagates.
 
     Parameters
     ----------
@@ -794,7 +855,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return args.func(args)
+        with record_inputs(command=args.command, arguments=_arguments(args)):
+            return args.func(args)
     except BrokenPipeError:  # output piped into head, less ...
         return 0
     except KeyboardInterrupt:
@@ -805,6 +867,13 @@ def main(argv: list[str] | None = None) -> int:
             raise
         print(f"anvilwave: error: {_one_line(exc)}", file=sys.stderr)
         return 2
+
+
+def _arguments(args: argparse.Namespace) -> dict:
+    """The options of a command as its result records them (the files it reads are recorded
+    with their hashes instead; the output folder is where the record lies)."""
+    return {k: v for k, v in vars(args).items()
+            if k not in ("func", "command", "report") and not isinstance(v, Path)}
 
 
 def _one_line(exc: Exception) -> str:

@@ -41,6 +41,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.output.campaign_plots",
     "anvilwave.output.pda_plots",
     "anvilwave.output.plots",
+    "anvilwave.output.report",
     "anvilwave.output.tables",
     "anvilwave.output.writer",
     "anvilwave.pile.head_kernel",

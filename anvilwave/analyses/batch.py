@@ -79,7 +79,10 @@ pending for a case an interrupted run did not reach), ``refusal_depth [m]``, ``t
 [-]``, ``max_blow_count [1/m]``, ``max_compression_stress [Pa]``, ``max_tension_stress [Pa]``
 (negative: compression positive), ``driving_time [s]``, ``wall_time [s]`` (the case in its
 worker: loading, engine, depths and writing) and ``error``. The campaign plots go to
-``DIR/plots/`` (:mod:`anvilwave.output.campaign_plots`).
+``DIR/plots/`` (:mod:`anvilwave.output.campaign_plots`). Run inside
+:func:`anvilwave.inputs.record_inputs` (as the command line runs it), the campaign file and
+every file it reads are copied into ``DIR/inputs/`` with their SHA-256 hashes in
+``DIR/inputs.json``; the folder's marker names ``batch`` (:mod:`anvilwave.output.writer`).
 
 Reruns and failures. A rerun skips the finished cases and runs the others (those that failed
 included, after their input was fixed); a case whose input changed (its system.toml hash) runs
@@ -118,11 +121,16 @@ from anvilwave.config.drive import load_srd_source
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import anvil_modal_data
 from anvilwave.hammer.database import available_hammers, load_hammer
-from anvilwave.inputs import InputError, Table, read_toml, toml_dumps
+from anvilwave.inputs import InputError, Table, active_record, read_toml, toml_dumps
 from anvilwave.output.campaign_plots import plot_campaign
 from anvilwave.output.plots import plot_driveability
 from anvilwave.output.tables import write_csv
-from anvilwave.output.writer import check_output, mark_result, result_command
+from anvilwave.output.writer import (
+    check_output,
+    result_command,
+    write_inputs,
+    write_marker,
+)
 from anvilwave.pile.model import PileSoil
 
 ALLOWED_FAILURES = 3
@@ -731,7 +739,7 @@ def run_case(spec: dict) -> dict:
         summary = dict(result.summary)
         summary["driveability_wall_time [s]"] = summary.pop("wall_time [s]")
         summary.update(_identity(spec))
-        summary["system"] = str(system)
+        summary["system"] = system.name
         _write_case(folder, result, summary, cfg, spec, start)
         return _row(spec["name"], spec["axes"], summary)
     except Exception as exc:  # a failing case is recorded, never stops the campaign
@@ -979,7 +987,7 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     """The body of :func:`run_campaign` once the campaign file is read."""
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
-    mark_result(out, "batch")
+    write_marker(out, "batch")  # at once: no other command writes into a killed run's folder
     specs = {c.name: _spec(c, cases_dir, plots) for c in campaign.cases}
     finished = {c.name for c in campaign.cases
                 if _read_record(cases_dir / c.name / "summary.json", c.input_sha256)}
@@ -991,20 +999,28 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     if runnable:  # a hammer x anvil problem stops the campaign before its progress bar
         _prepare(campaign, runnable, out)
     bar = None
-    if progress:
+
+    def open_bar():  # once the cluster runs: Ctrl-C is seen from the moment the bar shows
+        if not progress:
+            return None
         from tqdm import tqdm
 
-        bar = tqdm(total=len(campaign.cases), initial=len(campaign.cases) - len(runnable),
-                   desc=f"campaign {campaign.name}", unit="case")
+        opened = tqdm(total=len(campaign.cases), initial=len(campaign.cases) - len(runnable),
+                      desc=f"campaign {campaign.name}", unit="case")
         for c in todo:
             if c.error is not None:
-                bar.write(f"{c.name}: {c.error}")
+                opened.write(f"{c.name}: {c.error}")
+        return opened
+
     n_workers = 0
     try:
         if runnable:
             with _dask_client(workers, scheduler, len(runnable)) as client:
                 n_workers = len(client.scheduler_info().get("workers", {}))
+                bar = open_bar()
                 _run_on(client, runnable, specs, bar)
+        else:
+            bar = open_bar()
     finally:
         if bar is not None:
             bar.close()
@@ -1014,6 +1030,10 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     if plots:
 
         plot_campaign(campaign, rows, out)
+    record = active_record()
+    if record is not None:
+        write_inputs(out, record)
+    write_marker(out, "batch")
     counts = {s: sum(r["status"] == s for r in rows)
               for s in (STATUS_OK, STATUS_ERROR, STATUS_PENDING)}
     return BatchResult(cases=len(campaign.cases), ran=len(runnable), skipped=len(finished),
@@ -1078,14 +1098,11 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
             client.close()
         return
     n = max(1, min(workers or os.cpu_count() or 1, n_cases))
-    # SIGINT is blocked while the cluster starts: its threads and worker processes inherit
-    # the mask and never see a Ctrl-C, which reaches this process only (held pending until the
-    # mask is lifted, not lost), so it prints one line and closes the cluster instead of a
-    # traceback from every worker
-    blocking = (threading.current_thread() is threading.main_thread()
-                and hasattr(signal, "pthread_sigmask"))
-    if blocking:
-        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    # the worker processes start with SIGINT ignored (inherited): a Ctrl-C reaches this
+    # process only, which prints one line and closes the cluster, instead of a traceback
+    # from every worker (one pressed while the cluster starts is not seen)
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main_thread else None
     try:
         with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
             # workers' own logs only when critical: a worker losing the scheduler as the
@@ -1093,8 +1110,8 @@ def _dask_client(workers: int | None, scheduler, n_cases: int):
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                    dashboard_address=":0", silence_logs=logging.CRITICAL)
     finally:
-        if blocking:
-            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
     try:
         client = Client(cluster)
         try:

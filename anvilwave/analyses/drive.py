@@ -65,6 +65,7 @@ import math
 import os
 import time
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import trapezoid
@@ -163,7 +164,7 @@ class DriveResult:
         columns = self.columns()
         write_csv(columns, out.part(prefix + "driveability.csv"))
         summary = dict(self.summary)
-        summary["system"] = self.source
+        summary["system"] = Path(self.source).name
         out.part(prefix + "summary.json").write_text(json.dumps(jsonable(summary), indent=2)
                                                      + "\n")
         plot_driveability(columns, summary, out.part(prefix + "driveability.png"), title=title)

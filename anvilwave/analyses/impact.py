@@ -189,7 +189,7 @@ def write_blows(blows: list[Blow], out, system: str, title: str = "") -> None:
     out : ResultWriter
         The writer (:mod:`anvilwave.output.writer`).
     system : str
-        The system file, recorded in the summary.
+        The system file, recorded in the summary (its name).
     title : str, default ""
         Title of the plot.
     """
@@ -197,7 +197,7 @@ def write_blows(blows: list[Blow], out, system: str, title: str = "") -> None:
         name = "impact.csv" if len(blows) == 1 else f"impact_blow{i + 1}.csv"
         write_csv(blow.columns, out.part(name))
     summary = dict(blows[0].summary)
-    summary["system"] = system
+    summary["system"] = Path(system).name
     if len(blows) > 1:
         summary["blows"] = [b.summary for b in blows]
     out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")

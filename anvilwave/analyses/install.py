@@ -36,6 +36,7 @@ import bisect
 import json
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -108,7 +109,7 @@ class InstallResult:
         write_dict_rows(self.fatigue, FATIGUE_COLUMNS, out.part("fatigue.csv"))
         write_dict_rows(self.spectra, SPECTRA_COLUMNS, out.part("spectra.csv"))
         summary = dict(self.summary)
-        summary["system"] = self.source
+        summary["system"] = Path(self.source).name
         out.part("summary.json").write_text(json.dumps(summary, indent=2) + "\n")
         plot_installation({"blows": self.blows, "fatigue": self.fatigue,
                            "spectra": self.spectra, "summary": summary},

@@ -257,7 +257,7 @@ def pda(record_path: str | Path, *, length: float, area: float,
     }
     content = dict(summary)
     content["details"] = {k: _finite(v) for k, v in result.details().items()}
-    content["inputs"] = {"record": str(record_path), "record_kind": kind,
+    content["inputs"] = {"record": Path(record_path).name, "record_kind": kind,
                          "length_below_gauges [m]": length, "area [m^2]": area,
                          "elastic_modulus [Pa]": elastic_modulus, "wave_speed [m/s]": c,
                          "case_damping [-]": jc, "t1_signal": t1_signal}
@@ -398,9 +398,9 @@ def match(record_path: str | Path, system_path: str | Path, *,
     except ValueError as exc:  # a record the match cannot use (no rising wave down ...)
         raise InputError(record_path, "", str(exc)) from None
     content = result.summary()
-    content["record"] = str(record_path)
+    content["record"] = Path(record_path).name
     content["record_kind"] = kind
-    content["system"] = str(system_path)
+    content["system"] = Path(system_path).name
     content["record_notes"] = notes
     return MatchResult(record=str(record_path), content=content, match=result, config=cfg)
 
@@ -598,8 +598,8 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
         }
     content["rom_minus_lumped_arrival [s]"] = (content["rom"]["force_arrival_time [s]"]
                                                - content["lumped"]["force_arrival_time [s]"])
-    content.update({"record": str(record_path), "record_kind": kind,
-                    "system": str(system_path), "record_notes": notes})
+    content.update({"record": Path(record_path).name, "record_kind": kind,
+                    "system": Path(system_path).name, "record_notes": notes})
     return ComparePdaResult(record=str(record_path), content=content, columns=columns)
 
 

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from anvilwave.hammer.impact import impact_velocity_from_energy
-from anvilwave.inputs import InputError, Table
+from anvilwave.inputs import InputError, Table, note_input
 from anvilwave.pile.soil.cpt import read_cpt_csv
 from anvilwave.pile.soil.models import SoilLayers, smith_damping_by_soil_type, soil_capacities
 from anvilwave.pile.soil.profile import (
@@ -579,6 +579,7 @@ def read_grlweap_tip_layers(path: Path) -> tuple:
         If a table's rows cannot be read.
     """
     runs = json.loads(Path(path).read_text())["soil_model"]["srd_tables_by_run"]
+    note_input(path)
     items = []
     for key, run in runs.items():
         try:
@@ -625,6 +626,7 @@ def read_grlweap_tip_tables(path: Path, pile_soil, source: str, fmt: str):
     """
     try:
         data = json.loads(Path(path).read_text())
+        note_input(path)
         runs = data["soil_model"]["srd_tables_by_run"]
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise InputError(path, "soil_model.srd_tables_by_run", f"cannot be read ({exc})") \

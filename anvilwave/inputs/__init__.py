@@ -12,6 +12,7 @@ import math
 import numbers
 import re
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +51,103 @@ class InputError(Exception):
         return (InputError, (self.source, self.key, self.rule))
 
 
+class InputRecord:
+    """The input files read while it is active (:func:`record_inputs`), in the order read.
+
+    Parameters
+    ----------
+    context : dict, optional
+        What the files were read for (e.g. ``{"command": "drive", "arguments": {...}}``),
+        recorded with them in a result folder's ``inputs.json``.
+
+    Attributes
+    ----------
+    files : list of Path
+        The files read (absolute, each once).
+    context : dict
+        As given.
+    """
+
+    def __init__(self, context: dict[str, Any] | None = None):
+        self.files: list[Path] = []
+        self.context = dict(context or {})
+
+    def add(self, path: str | Path) -> None:
+        """Record that ``path`` was read.
+
+        A file not there, or one recorded already, is left out.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file read.
+        """
+        path = Path(path).resolve()
+        if path.is_file() and path not in self.files:
+            self.files.append(path)
+
+
+_RECORDS: list[InputRecord] = []
+"""The active records, innermost last."""
+
+
+@contextmanager
+def record_inputs(**context: Any):
+    """Record the input files read by anvilwave while the block runs.
+
+    Every file read through :func:`read_text` (hence :func:`read_toml` and
+    :meth:`Table.from_file`) or announced with :func:`note_input` is recorded; a result folder
+    written inside the block saves a copy of each with its SHA-256
+    (:mod:`anvilwave.output.writer`).
+
+    Parameters
+    ----------
+    **context : dict, optional
+        Stored as :attr:`InputRecord.context` (the command and its arguments).
+
+    Yields
+    ------
+    InputRecord
+        The record, filled as the files are read.
+
+    Examples
+    --------
+    >>> with record_inputs(command="impact") as record:
+    ...     pass
+    >>> record.files
+    []
+    """
+    record = InputRecord(context)
+    _RECORDS.append(record)
+    try:
+        yield record
+    finally:
+        _RECORDS.remove(record)
+
+
+def active_record() -> InputRecord | None:
+    """The innermost active :class:`InputRecord`.
+
+    Returns
+    -------
+    InputRecord or None
+        None outside :func:`record_inputs`.
+    """
+    return _RECORDS[-1] if _RECORDS else None
+
+
+def note_input(path: str | Path) -> None:
+    """Record an input file read without :func:`read_text` (a mesh, a JSON table).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file read.
+    """
+    for record in _RECORDS:
+        record.add(path)
+
+
 def read_text(path: str | Path, encoding: str = "utf-8") -> str:
     """The text of an input file; a missing or unreadable file is an :class:`InputError`.
 
@@ -72,11 +170,13 @@ def read_text(path: str | Path, encoding: str = "utf-8") -> str:
     """
     path = Path(path)
     try:
-        return path.read_text(encoding=encoding)
+        text = path.read_text(encoding=encoding)
     except FileNotFoundError:
         raise InputError(path, "", "file not found") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(path, "", f"cannot be read ({exc})") from None
+    note_input(path)
+    return text
 
 
 def read_toml(path: str | Path) -> dict[str, Any]:

@@ -7,23 +7,177 @@ mixed into it. Every problem with the output location (a file in the way, a loca
 cannot be written, a disk that fills up) is one :class:`~anvilwave.inputs.InputError` naming
 ``--out``; the staging folder is removed, and the staging folders of killed runs (their
 process gone) are removed by the next run.
+
+A result written inside :func:`anvilwave.inputs.record_inputs` (every command of the command
+line runs inside one) records its inputs: a copy of every input file read, under
+:data:`INPUTS_DIR`, and the manifest :data:`INPUTS_MANIFEST` with their names relative to the
+first one's folder, SHA-256 hashes and sizes, the command and its settings, the version of
+anvilwave and the time. Nothing in it is an absolute path.
 """
 
 from __future__ import annotations
 
+import datetime
+import hashlib
 import json
 import os
 import shutil
 import tempfile
+from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-from anvilwave.inputs import InputError
+from anvilwave.inputs import InputError, InputRecord, active_record
 
 MARKER = ".anvilwave-result"
 """File in an output folder naming the command that wrote it (JSON: ``{"command": ...}``)."""
 
 STAGING_PREFIX = ".partial-"
 """Prefix of the staging folders (``.partial-<pid>-<random>``)."""
+
+INPUTS_DIR = "inputs"
+"""Folder of a result holding the copies of its input files."""
+
+INPUTS_MANIFEST = "inputs.json"
+"""The manifest of a result's inputs (JSON: ``files``, ``command``, ``arguments`` ...)."""
+
+MAX_COPY_BYTES = 50 * 2**20
+"""Input files larger than this [B] are hashed but not copied into :data:`INPUTS_DIR`."""
+
+
+def software_version() -> str:
+    """The version of the installed anvilwave.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.1.0"``; ``"unknown"`` when run from a checkout that is not installed.
+    """
+    try:
+        return version("anvilwave")
+    except PackageNotFoundError:
+        return "unknown"
+
+
+def file_sha256(path: str | Path) -> str:
+    """The SHA-256 hash of a file's bytes.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    str
+        The hash, 64 hexadecimal digits.
+    """
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(2**20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def portable(value):
+    """A JSON-able value with every absolute path replaced by its file name.
+
+    Parameters
+    ----------
+    value : object
+        A value of a summary (str, Path, number, list, tuple, dict, None).
+
+    Returns
+    -------
+    object
+        The same structure; a string or Path that is an absolute path becomes its last part.
+    """
+    if isinstance(value, Path) or (isinstance(value, str) and os.path.isabs(value)):
+        return Path(value).name
+    if isinstance(value, dict):
+        return {k: portable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [portable(v) for v in value]
+    return value
+
+
+def _input_names(files: list[Path]) -> list[str]:
+    """Names of the input copies: relative to the first file's folder where they lie below
+    it, else the file name (made unique with a number)."""
+    base = files[0].parent if files else Path()
+    names: list[str] = []
+    for path in files:
+        try:
+            name = path.relative_to(base).as_posix()
+        except ValueError:
+            name = path.name
+        stem, suffix, k = Path(name).with_suffix("").as_posix(), Path(name).suffix, 2
+        while name in names:
+            name, k = f"{stem}-{k}{suffix}", k + 1
+        names.append(name)
+    return names
+
+
+def write_inputs(directory: str | Path, record: InputRecord,
+                 exclude: str | Path | None = None) -> dict:
+    """Save the inputs of ``record`` into a result folder.
+
+    A copy of each file under :data:`INPUTS_DIR` (files above :data:`MAX_COPY_BYTES` are
+    hashed only) and the manifest :data:`INPUTS_MANIFEST`.
+
+    Parameters
+    ----------
+    directory : str or Path
+        The result folder (or its staging folder).
+    record : InputRecord
+        The files read (:func:`anvilwave.inputs.record_inputs`); its ``context`` goes into
+        the manifest.
+    exclude : str or Path, optional
+        Files below this folder are not inputs (a result read back by the command that
+        writes it).
+
+    Returns
+    -------
+    dict
+        The manifest written.
+    """
+    directory = Path(directory)
+    skip = [directory.resolve()] + ([Path(exclude).resolve()] if exclude is not None else [])
+    files = [p for p in record.files
+             if p.is_file() and not any(p.is_relative_to(s) for s in skip)]
+    entries = []
+    for path, name in zip(files, _input_names(files), strict=True):
+        size = path.stat().st_size
+        entry = {"name": name, "sha256": file_sha256(path), "bytes": size, "copy": None}
+        if size <= MAX_COPY_BYTES:
+            target = directory / INPUTS_DIR / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(path, target)
+            entry["copy"] = f"{INPUTS_DIR}/{name}"
+        entries.append(entry)
+    manifest = {
+        "anvilwave_version": software_version(),
+        "written": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+        **portable(record.context),
+        "files": entries,
+    }
+    (directory / INPUTS_MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n")
+    return manifest
+
+
+def write_marker(directory: str | Path, command: str) -> None:
+    """Mark a folder as the result of ``command`` (its :data:`MARKER`).
+
+    For the commands that fill their folder themselves (``batch``); :class:`ResultWriter`
+    writes it for the others.
+
+    Parameters
+    ----------
+    directory : str or Path
+        The result folder.
+    command : str
+        The command that wrote it.
+    """
+    (Path(directory) / MARKER).write_text(json.dumps({"command": command}) + "\n")
 
 
 def _out_error(directory: Path, rule: str) -> InputError:
@@ -81,29 +235,6 @@ def result_command(directory: str | Path) -> str | None:
         return str(json.loads((Path(directory) / MARKER).read_text())["command"])
     except (OSError, ValueError, KeyError, TypeError):
         return None
-
-
-def mark_result(directory: str | Path, command: str) -> Path:
-    """Write the :data:`MARKER` naming ``command`` into a result folder.
-
-    For commands that fill their folder over several runs (``batch`` resumes) rather than
-    through a :class:`ResultWriter`.
-
-    Parameters
-    ----------
-    directory : str or Path
-        The result folder (it exists).
-    command : str
-        The command whose result it holds.
-
-    Returns
-    -------
-    Path
-        The marker file.
-    """
-    path = Path(directory) / MARKER
-    path.write_text(json.dumps({"command": command}) + "\n")
-    return path
 
 
 def check_output(directory: str | Path, command: str | None = None, force: bool = False
@@ -241,7 +372,10 @@ class ResultWriter:
             if exc_type is None:
                 try:
                     if self.command is not None:
-                        mark_result(self._tmp, self.command)
+                        write_marker(self._tmp, self.command)
+                    record = active_record()
+                    if record is not None:
+                        write_inputs(self._tmp, record, exclude=self.directory)
                     self._move_into_place()
                 except OSError as err:
                     raise _out_error(self.directory, f"cannot be written ({err.strerror or err})"

@@ -18,7 +18,7 @@ from anvilwave.anvil_rom.fem.geometry import (
     estimated_triangles,
     mesh_budget_rule,
 )
-from anvilwave.inputs import InputError
+from anvilwave.inputs import InputError, note_input
 
 _TRI = ("triangle", "triangle6")
 _QUAD = ("quad", "quad8", "quad9")
@@ -178,6 +178,7 @@ def read_mesh(path: str | Path, source: str = "", key: str = "mesh") -> meshio.M
         mesh = meshio.read(path)
     except Exception as exc:  # meshio raises many kinds of errors for unreadable files
         raise InputError(source or path, key, f"meshio cannot read {path}: {exc}") from None
+    note_input(path)
     cells = [(c.type, c.data) for c in mesh.cells if c.type in _TRI + _QUAD]
     kinds = {("tri" if t in _TRI else "quad") for t, _ in cells}
     if not cells:
