@@ -21,6 +21,7 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmi import run_fmi
 from anvilwave.fea.impact import FeaConfig, run_impact_fea
 from anvilwave.inputs import InputError
+from anvilwave.output.figure_style import save_figure
 from anvilwave.pile.model import PileSoil
 from anvilwave.pile.post.spectra import band_numbers_between, third_octave_band_energies
 from anvilwave.pile.soil.models import SoilSpec
@@ -512,8 +513,7 @@ def plot_spectra(spectra: dict, path, title: str = "Pile-head force, one-third-o
         row.grid(alpha=0.3, which="both")
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("one-third-octave band centre frequency [Hz]")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
@@ -561,5 +561,4 @@ def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
