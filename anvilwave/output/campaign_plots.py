@@ -263,7 +263,7 @@ def plot_refusal_risk(campaign, rows: list[dict], refusal: dict, path: Path) -> 
     ax.set_facecolor("0.85")  # cells without a result
     for i in range(len(positions)):
         for j in range(len(combos)):
-            ax.text(j, i, text[i][j], ha="center", va="center", fontsize=6.5)
+            ax.text(j, i, text[i][j], ha="center", va="center", fontsize=7.5)
     ax.set_xticks(range(len(combos)), combos, fontsize=8, rotation=20, ha="right")
     ax.set_yticks(range(len(positions)), positions, fontsize=8)
     ax.set_xlabel(" / ".join(names))

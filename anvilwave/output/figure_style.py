@@ -68,13 +68,17 @@ def footer_text() -> str:
     return f"anvilwave {version()} \u00b7 {figure_date()}"
 
 
-def footer(fig):
+def footer(fig, below: bool = True):
     """Write the footer into a figure's bottom right corner (once; a second call keeps it).
 
     Parameters
     ----------
     fig : matplotlib.figure.Figure
         The figure.
+    below : bool, default True
+        Just below the figure's bottom edge, clear of its axis labels (for a figure saved
+        cropped to its content, ``bbox_inches="tight"``, which takes the footer in); else
+        inside the bottom edge.
 
     Returns
     -------
@@ -84,8 +88,9 @@ def footer(fig):
     for text in fig.texts:
         if text.get_gid() == FOOTER_GID:
             return text
-    return fig.text(0.995, 0.004, footer_text(), ha="right", va="bottom",
-                    fontsize=FOOTER_FONTSIZE, color="0.35", gid=FOOTER_GID)
+    return fig.text(0.995, -0.004 if below else 0.004, footer_text(), ha="right",
+                    va="top" if below else "bottom", fontsize=FOOTER_FONTSIZE, color="0.35",
+                    gid=FOOTER_GID)
 
 
 def save_figure(fig, path: str | Path, dpi: int = 110, tight: bool = True) -> Path:
@@ -114,7 +119,7 @@ def save_figure(fig, path: str | Path, dpi: int = 110, tight: bool = True) -> Pa
     import matplotlib.pyplot as plt
 
     path = Path(path)
-    footer(fig)
+    footer(fig, below=tight)
     tmp = path.with_name(f".{path.name}.part")
     fig.savefig(tmp, dpi=dpi, format="png", bbox_inches="tight" if tight else None,
                 pad_inches=0.08)

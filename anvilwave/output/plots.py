@@ -264,6 +264,8 @@ def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str
                     label=f"allowable 0.9 fy = {allowable / 1e6:.0f} MPa "
                           f"(fy {fy / 1e6:.0f} MPa)")
     axes[2].set_xlim(0.0, 1.1 * top_stress / 1e6)
+    for ax in axes[3:]:
+        ax.set_xlim(left=0.0)
     swp = summary.get("self_weight_penetration [m]")
     if swp is not None:
         for k, ax in enumerate(axes):
@@ -384,8 +386,9 @@ def plot_weld_damage(ax, depth, damage) -> None:
     damage = np.asarray(damage, dtype=float)
     positive = damage[damage > 0.0]
     if positive.size:
-        high = 10.0 ** np.ceil(np.log10(positive.max()))
-        low = min(10.0 ** np.floor(np.log10(positive.min())), high / 1e3)
+        top = float(np.ceil(np.log10(positive.max())))
+        high = 10.0 ** top
+        low = 10.0 ** min(float(np.floor(np.log10(positive.min()))), top - 3.0)
     else:
         low, high = 1e-6, 1.0
     shown = np.where(damage > 0.0, damage, low)
