@@ -43,6 +43,7 @@ from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError
 from anvilwave.output.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.output.plots import plot_columns, plot_modes
+from anvilwave.output.progress import Step
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter, check_output
 
@@ -207,7 +208,9 @@ def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> d
     returns its figures against the FEA for the summary."""
 
     cfg = without_soil(load_system(system))
-    blow = build_engine(cfg).run()[0]
+    with Step("    running the ROM with the interfaces resolved (tube head kernel and ram annuli; "
+              "computed once, then cached)..."):
+        blow = build_engine(cfg).run()[0]
     rom = ModelRun("rom", blow.columns, blow.wall_time, {"engine": "direct"})
     preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
     spectra = band_levels({"rom": rom, "lumped": runs["lumped"], "fea": runs["fea"]}, bandwidth)
@@ -297,7 +300,8 @@ def _demo(args: argparse.Namespace) -> int:
     print(f"anvilwave demo: {system.name} -> {args.out}")
     with ResultWriter(args.out, command="demo") as out:
         _say(1, steps)
-        modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
+        with Step("    meshing the anvil and solving its free-free modes..."):
+            modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
         save_modal_data(modes.modal_data, out.part("modes/modes.npz"))
         plot_modes(modes, out.part("modes/modes.png"))
         print(f"    {modes.modes.n_modes} modes up to {modes.modes.fmax:g} Hz, "
@@ -312,7 +316,8 @@ def _demo(args: argparse.Namespace) -> int:
             print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
 
-        fmus = build_system_fmus(cfg, out.staging / "fmus")
+        with Step("    building the FMUs (compiling the native anvils' C sources)..."):
+            fmus = build_system_fmus(cfg, out.staging / "fmus")
         print("    " + ", ".join(Path(fmus[k]).name
                                  for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil", "ssp")))
         _say(3, steps)
@@ -643,7 +648,8 @@ def _drive(args: argparse.Namespace) -> int:
         result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
                            progress=True, restrike=args.restrike)
         results = {result.model: result}
-    with ResultWriter(args.out, command="drive") as out:
+    with ResultWriter(args.out, command="drive") as out, \
+            Step("writing driveability.csv, summary.json and the figures..."):
         write_anvil_comparison(results, out, title=name)
     for model, result in results.items():
         for depth, blow in result.time_series.items():
@@ -666,7 +672,8 @@ def _install(args: argparse.Namespace) -> int:
     check_output(args.out, "install")
     result = api.install(args.system, anvil=args.anvil, progress=True)
     model = result.summary["anvil_model"]
-    with ResultWriter(args.out, command="install") as out:
+    with ResultWriter(args.out, command="install") as out, \
+            Step("writing blows.csv, fatigue.csv, spectra.csv, summary.json and the figure..."):
         result.write(out, title=f"{Path(args.system).name}: installation, {model} anvil")
     s = result.summary
     print(f"{Path(args.system).name} [{model}]: {s['total_blows [-]']} blows from "

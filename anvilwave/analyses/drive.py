@@ -83,6 +83,8 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.hammer.impact import equivalent_stroke
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
+from anvilwave.output.progress import Step
+from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv
 from anvilwave.pile.soil.models import toe_quake
 
@@ -434,18 +436,27 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     workers = max(1, min(workers, len(depths)))
     rows: list[dict] = []
     bar = None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(depths), desc="depths", unit="depth")
+    if depths:
+        # the first depth in-process, before the bar (and the workers, which then inherit
+        # its compiled kernels): on a first run it compiles this anvil model's kernels
+        with Step(f"{cfg.anvil.model} anvil: first depth {depths[0]:g} m (compiling its "
+                  "kernels on a first run, about 30 s)...", enabled=progress):
+            rows.append(analyse_depth(engine, cfg, srd, settings, depths[0],
+                                      restrike=restrike).row)
+        rest = depths[1:]
+        bar = progress_bar(len(depths), enabled=progress, warm=0, initial=1,
+                           desc=f"{cfg.anvil.model} anvil: depths", unit="depth")
+        workers = max(1, min(workers, len(rest)))
+    else:
+        rest = []
     try:
         if workers == 1:
-            for d in depths:
+            for d in rest:
                 rows.append(analyse_depth(engine, cfg, srd, settings, d,
                                           restrike=restrike).row)
                 if bar is not None:
                     bar.update(1)
-        else:
+        elif rest:
             import multiprocessing as mp
             from concurrent.futures import ProcessPoolExecutor
 
@@ -456,8 +467,8 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
                                          initializer=die_with_parent,
                                          initargs=(os.getpid(),)) as pool:
                     try:
-                        for row in pool.map(_work, depths, chunksize=max(1, len(depths)
-                                                                         // (4 * workers))):
+                        for row in pool.map(_work, rest, chunksize=max(1, len(rest)
+                                                                       // (4 * workers))):
                             rows.append(row)
                             if bar is not None:
                                 bar.update(1)
@@ -725,12 +736,17 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
     settings = _settings(cfg, bound)
     run_cfg = cfg.with_anvil_model(anvil) if anvil is not None else cfg
     srd = _srd(cfg)
-    engine = build_engine(run_cfg)
+    model = run_cfg.anvil.model
+    with Step(f"{model} anvil: building the engine (the modes of the anvil and the ram)...",
+              enabled=progress):
+        engine = build_engine(run_cfg)
     result = run_driveability(run_cfg, srd, settings, engine, workers=workers,
                               progress=progress, restrike=_restrike_settings(cfg, srd,
                                                                              restrike))
     for depth in settings.time_series_depths:
-        blow = time_series(engine, run_cfg, srd, settings, float(depth))
+        with Step(f"{model} anvil: recording the blow at {float(depth):g} m (compiling the "
+                  "recording kernel on a first run, about 15 s)...", enabled=progress):
+            blow = time_series(engine, run_cfg, srd, settings, float(depth))
         result.time_series[float(depth)] = None if blow is None else blow.columns
     return result
 
