@@ -291,7 +291,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     tips: list[float] = []  # tip depth after each blow (non-decreasing), for the refusal
     refusal_depth = None
     bar = None
-    first = Step(f"first blow at {tip:.2f} m (compiling the kernels on a first run, about "
+    warming = Step(f"first blow at {tip:.2f} m (compiling the kernels on a first run, about "
                  "30 s)...", enabled=progress).__enter__()
     try:
         for k in range(1, settings.max_blows + 1):
@@ -351,7 +351,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                                          "valid [-]": int(ok)})
                 pending_spectra.pop(0)
             if k == 1:  # compiled: the bar starts now, its rate and estimate are true
-                first.__exit__(None, None, None)
+                warming.__exit__(None, None, None)
                 bar = progress_bar(round(target - tip, 2), enabled=progress, warm=0,
                                    unit="m", desc="installation",
                                    bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} m "
@@ -368,7 +368,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
             if tip >= target:
                 break
     finally:
-        first.__exit__(None, None, None)
+        warming.__exit__(None, None, None)
         if bar is not None:
             bar.close()
     damage = miner.damage()

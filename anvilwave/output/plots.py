@@ -164,6 +164,11 @@ DRIVEABILITY_PANELS = ("SRD [MN]", "blows / 0.25 m", "stress [MPa]", "ENTHRU [kJ
 quantity against the tip depth, depth down)."""
 
 
+REFUSAL_IN_VIEW = 4.0
+"""The blow-count axis reaches the refusal criterion when it is at most this many times the
+largest blow count drawn; beyond, an arrow at the axis' edge points to it [-]."""
+
+
 def blows_for_plot(blows, refusal: float | None = None) -> np.ndarray:
     """Blow counts as plotted: no blows (the pile runs) as gaps, beyond refusal at its edge.
 
@@ -259,7 +264,12 @@ def plot_driveability(columns: dict, summary: dict, path: str | Path, title: str
                              label="equivalent stroke E / (m g)")
     axes[1].axvline(refusal, color="r", lw=1.2, ls="--", gid="refusal",
                     label=f"refusal {refusal:g} blows / 0.25 m")
-    axes[1].set_xlim(0.0, 1.1 * max(top_blows, refusal))
+    if refusal <= REFUSAL_IN_VIEW * top_blows:
+        axes[1].set_xlim(0.0, 1.1 * max(top_blows, refusal))
+    else:  # far beyond the curves: the axis keeps them readable, an arrow points to refusal
+        axes[1].set_xlim(0.0, 1.15 * top_blows)
+        axes[1].annotate(f"refusal {refusal:g} \u2192", xy=(1.0, 0.97), xycoords="axes fraction",
+                         ha="right", va="top", color="r", fontsize=8, gid="refusal_note")
     axes[2].axvline(allowable / 1e6, color="r", lw=1.2, ls="--", gid="allowable",
                     label=f"allowable 0.9 fy = {allowable / 1e6:.0f} MPa "
                           f"(fy {fy / 1e6:.0f} MPa)")
