@@ -386,8 +386,12 @@ def _run_row(depth, shaft, toe, energy, velocity, stroke) -> dict:
 
 
 def _stroke(cfg, energy: float) -> float:
-    """The equivalent stroke [m] of a blow energy ``energy`` [J]: E / (m g) of the ram."""
-    return equivalent_stroke(energy, float(np.sum(cfg.hammer.ram.mass)), cfg.gravity)
+    """The equivalent stroke [m] of a blow energy ``energy`` [J]: E / (m g) of the ram (NaN
+    without gravity)."""
+    mass = float(np.sum(cfg.hammer.ram.mass))
+    if not mass * cfg.gravity > 0.0:
+        return float("nan")
+    return equivalent_stroke(energy, mass, cfg.gravity)
 
 
 # worker state for the process pool (inherited by fork: the engine is built once)
