@@ -43,6 +43,7 @@ from anvilwave.fmu.native_build import NativeBuildError
 from anvilwave.inputs import InputError, record_inputs
 from anvilwave.output.examples import EXAMPLES_DIR, copy_examples
 from anvilwave.output.plots import plot_columns, plot_modes
+from anvilwave.output.progress import Step
 from anvilwave.output.report import REPORT_NAME
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import ResultWriter, check_output
@@ -222,7 +223,9 @@ def _interfaces_comparison(system: Path, runs: dict, out, bandwidth: float) -> d
     returns its figures against the FEA for the summary."""
 
     cfg = without_soil(load_system(system))
-    blow = build_engine(cfg).run()[0]
+    with Step("    running the ROM with the interfaces resolved (tube head kernel and ram annuli; "
+              "computed once, then cached)..."):
+        blow = build_engine(cfg).run()[0]
     rom = ModelRun("rom", blow.columns, blow.wall_time, {"engine": "direct"})
     preload = float(runs["lumped"].columns["anvil_pile_force [N]"][0])
     spectra = band_levels({"rom": rom, "lumped": runs["lumped"], "fea": runs["fea"]}, bandwidth)
@@ -312,7 +315,8 @@ def _demo(args: argparse.Namespace) -> int:
     print(f"anvilwave demo: {system.name} -> {args.out}")
     with ResultWriter(args.out, command="demo", force=args.force) as out:
         _say(1, steps)
-        modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
+        with Step("    meshing the anvil and solving its free-free modes..."):
+            modes = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax)
         save_modal_data(modes.modal_data, out.part("modes/modes.npz"))
         plot_modes(modes, out.part("modes/modes.png"))
         print(f"    {modes.modes.n_modes} modes up to {modes.modes.fmax:g} Hz, "
@@ -327,7 +331,8 @@ def _demo(args: argparse.Namespace) -> int:
             print(f"    ram: Smith rod of {ram.n_masses} masses")
         _say(2, steps)
 
-        fmus = build_system_fmus(cfg, out.staging / "fmus")
+        with Step("    building the FMUs (compiling the native anvils' C sources)..."):
+            fmus = build_system_fmus(cfg, out.staging / "fmus")
         print("    " + ", ".join(Path(fmus[k]).name
                                  for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil", "ssp")))
         _say(3, steps)
@@ -607,6 +612,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "zeroed at rest do).")
     p.add_argument("record", type=Path, help="gauge record (CSV)")
     p.add_argument("system", type=Path, help="system file (TOML)")
+    p.add_argument("--align", choices=("rom", "lumped"), default=None,
+                   help="shift the record so that its force arrival coincides with this "
+                        "model's (default: keep the record's time; the shift is reported "
+                        "and that model's arrival error is then 0 by construction)")
     p.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     p.add_argument("--report", action="store_true",
                    help=f"also write the client report, DIR/{REPORT_NAME} (see 'anvilwave "
@@ -701,7 +710,8 @@ def _drive(args: argparse.Namespace) -> int:
         result = api.drive(cfg, anvil=args.anvil, bound=args.bound, workers=args.workers,
                            progress=True, restrike=args.restrike)
         results = {result.model: result}
-    with ResultWriter(args.out, command="drive", force=args.force) as out:
+    with ResultWriter(args.out, command="drive", force=args.force) as out, \
+            Step("writing driveability.csv, summary.json and the figures..."):
         write_anvil_comparison(results, out, title=name)
     for model, result in results.items():
         for depth, blow in result.time_series.items():
@@ -725,7 +735,8 @@ def _install(args: argparse.Namespace) -> int:
     check_output(args.out, "install", args.force)
     result = api.install(args.system, anvil=args.anvil, progress=True)
     model = result.summary["anvil_model"]
-    with ResultWriter(args.out, command="install", force=args.force) as out:
+    with ResultWriter(args.out, command="install", force=args.force) as out, \
+            Step("writing blows.csv, fatigue.csv, spectra.csv, summary.json and the figure..."):
         result.write(out, title=f"{Path(args.system).name}: installation, {model} anvil")
     s = result.summary
     print(f"{Path(args.system).name} [{model}]: {s['total_blows [-]']} blows from "
@@ -781,7 +792,19 @@ def _match(args: argparse.Namespace) -> int:
 
 def _compare_pda(args: argparse.Namespace) -> int:
     check_output(args.out, "compare-pda", args.force)
-    api.compare_pda(args.record, args.system).write(args.out, force=args.force)
+    result = api.compare_pda(args.record, args.system, align=args.align or "none")
+    result.write(args.out, force=args.force)
+    c = result.content
+    if args.align:
+        print(f"record shifted by {c['record_time_shift [s]'] * 1e3:+.3f} ms onto the "
+              f"{args.align} anvil's force arrival (its arrival error is 0 by construction)")
+    else:
+        print("record time kept (t = 0 the ram impact; --align rom|lumped shifts it)")
+    for model in ("rom", "lumped"):
+        m = c[model]
+        print(f"{model:7s} peak force {m['peak_force_error [-]'] * 100:+6.1f} %, force RMS "
+              f"{m['force_normalised_rms_error [-]'] * 100:5.1f} %, arrival error "
+              f"{m['force_arrival_error [s]'] * 1e3:+.3f} ms")
     print(f"Fig. 4 and Fig. 5 -> {args.out}")
     _maybe_report(args)
     return 0

@@ -72,6 +72,8 @@ MODULES_SYSTEM = (
     "anvilwave.engine.fmi",
     "anvilwave.engine.fmus",
     "anvilwave.output.examples",
+    "anvilwave.output.figure_style",
+    "anvilwave.output.progress",
     "anvilwave.pile.model",
     "anvilwave.pile.pda.case_method",
     "anvilwave.pile.soil.cpt",

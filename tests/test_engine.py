@@ -340,7 +340,7 @@ def test_cli_impact_writes_results(tmp_path):
                  str(out)]) == 0
     summary = json.loads((out / "summary.json").read_text())
     for key in ("peak_ram_anvil_force [N]", "peak_anvil_pile_force [N]",
-                "peak_pile_compression_stress [Pa]", "transferred_energy_gauge [J]",
+                "peak_pile_compression_stress [Pa]", "transferred_energy_unzeroed [J]",
                 "permanent_set [m]", "energy_balance", "simulated_time [s]", "wall_time [s]"):
         assert key in summary
     columns = read_csv(out / "impact.csv")

@@ -89,7 +89,7 @@ def test_pda_summary_of_simulated_table1_gauges(table1):
     # EMX with the gauges zeroed: the transferred energy of the summary less the work of the
     # force at rest (3.7 MN) over the gauges' travel (about 15 mm): 56 kJ, 1.2 %
     travel = (blow["pile_head_displacement [m]"].max() - blow["pile_head_displacement [m]"][0])
-    difference = blow.summary["transferred_energy_gauge [J]"] - pda["EMX [J]"]
+    difference = blow.summary["transferred_energy_unzeroed [J]"] - pda["EMX [J]"]
     assert 0.0 < difference < 1.1 * rest * travel
     assert 0.0 < pda["RMX [N]"] < 2.0 * pda["FMX [N]"]
     short = pda_summary(anvilwave.simulate(table1)[0].columns, table1)
@@ -99,16 +99,25 @@ def test_pda_summary_of_simulated_table1_gauges(table1):
 @pytest.mark.slow
 def test_compare_pda_writes_fig4_and_fig5(tmp_path):
     out = tmp_path / "cmp"
-    content = run_compare_pda(RECORD, EXAMPLES / "table1.toml", out)
+    content = run_compare_pda(RECORD, EXAMPLES / "table1.toml", out, align="rom")
     for name in ("fig4_pile_top_force.png", "fig5_pile_top_velocity.png",
                  "compare_pda.json", "compare_pda.csv"):
         assert (out / name).stat().st_size > 0
+    # aligned on the ROM: the record is shifted, the ROM's arrival error is 0 by construction
+    assert content["arrival_aligned_on"] == "rom" and content["record_time_shift [s]"] != 0.0
+    assert abs(content["rom"]["force_arrival_error [s]"]) < 1e-9
     # the record is the ROM's with 2 % noise: the ROM matches it to the noise, the lumped
     # anvil (no wave travel through the anvil) arrives about 3 ms early
     assert content["rom"]["force_normalised_rms_error [-]"] < 0.03
     assert content["lumped"]["force_normalised_rms_error [-]"] > 0.1
     assert content["rom_minus_lumped_arrival [s]"] > 0.002
     assert content["rom"]["removed_rest_force [N]"] > 0.0
+    # the default keeps the record's time (its pre-trigger samples before the impact): no
+    # shift, and the ROM arrives earlier than the record by its pre-trigger time
+    kept = run_compare_pda(RECORD, EXAMPLES / "table1.toml", tmp_path / "kept")
+    assert kept["alignment"] == "none" and kept["record_time_shift [s]"] == 0.0
+    assert kept["rom"]["force_arrival_error [s]"] == pytest.approx(
+        content["record_time_shift [s]"], abs=1e-9)
 
 
 # ---------------------------------------------------------------------------------- bad records

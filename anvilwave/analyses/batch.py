@@ -124,6 +124,8 @@ from anvilwave.hammer.database import available_hammers, load_hammer
 from anvilwave.inputs import InputError, Table, active_record, read_toml, toml_dumps
 from anvilwave.output.campaign_plots import plot_campaign
 from anvilwave.output.plots import plot_driveability
+from anvilwave.output.progress import Step
+from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import (
     check_output,
@@ -997,16 +999,19 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
             record_error(cases_dir / c.name, specs[c.name], c.error, in_worker=False)
     runnable = [c for c in todo if c.error is None]
     if runnable:  # a hammer x anvil problem stops the campaign before its progress bar
-        _prepare(campaign, runnable, out)
+        with Step("checking every hammer x anvil model and computing their modes...",
+                  enabled=progress):
+            _prepare(campaign, runnable, out)
     bar = None
 
     def open_bar():  # once the cluster runs: Ctrl-C is seen from the moment the bar shows
         if not progress:
             return None
-        from tqdm import tqdm
-
-        opened = tqdm(total=len(campaign.cases), initial=len(campaign.cases) - len(runnable),
-                      desc=f"campaign {campaign.name}", unit="case")
+        # no estimate before a case per worker has finished: the first cases of each worker
+        # compile its kernels
+        opened = progress_bar(len(campaign.cases), warm=workers or os.cpu_count() or 1,
+                              initial=len(campaign.cases) - len(runnable),
+                              desc=f"campaign {campaign.name}", unit="case")
         for c in todo:
             if c.error is not None:
                 opened.write(f"{c.name}: {c.error}")
@@ -1015,7 +1020,9 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     n_workers = 0
     try:
         if runnable:
-            with _dask_client(workers, scheduler, len(runnable)) as client:
+            with Step("starting the dask workers...", enabled=progress) as starting, \
+                    _dask_client(workers, scheduler, len(runnable)) as client:
+                starting.__exit__(None, None, None)
                 n_workers = len(client.scheduler_info().get("workers", {}))
                 bar = open_bar()
                 _run_on(client, runnable, specs, bar)
@@ -1028,8 +1035,8 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
         rows = collect(campaign, out)
         _write_atomic(out / "campaign.csv", campaign_csv_text(campaign, rows))
     if plots:
-
-        plot_campaign(campaign, rows, out)
+        with Step(f"writing the campaign figures into {out / 'plots'}...", enabled=progress):
+            plot_campaign(campaign, rows, out)
     record = active_record()
     if record is not None:
         write_inputs(out, record)

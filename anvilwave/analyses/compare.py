@@ -21,6 +21,8 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmi import run_fmi
 from anvilwave.fea.impact import FeaConfig, run_impact_fea
 from anvilwave.inputs import InputError
+from anvilwave.output.figure_style import save_figure
+from anvilwave.output.progress import Step
 from anvilwave.pile.model import PileSoil
 from anvilwave.pile.post.spectra import band_numbers_between, third_octave_band_energies
 from anvilwave.pile.soil.models import SoilSpec
@@ -316,6 +318,10 @@ def metrics(run: ModelRun, reference: ModelRun | None, preload: float,
     return out
 
 
+ANVIL_NAMES = {"rom": "ROM anvil", "lumped": "lumped-mass anvil"}
+"""How the progress lines name the anvil models."""
+
+
 def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True,
                fea_mesh_size: float | None = None, progress=None) -> dict[str, ModelRun]:
     """Run the ROM, the lumped anvil and (optionally) the FEA on a free-pile copy of ``cfg``.
@@ -343,21 +349,31 @@ def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True
 
     cfg = without_soil(cfg)
     runs = {}
+    talk = progress is not None
     for model in ("rom", "lumped"):
         start = time.perf_counter()
-        if model == "rom" and rom_engine == "fmi":
-
-            blow = run_fmi(cfg.with_anvil_model("rom"), work_dir / "fmus")[0]
-        else:
-            blow = build_engine(cfg.with_anvil_model(model)).run()[0]
+        what = ("the ROM anvil through the FMUs (fmpy co-simulation)" if model == "rom"
+                and rom_engine == "fmi" else f"the {ANVIL_NAMES[model]} (in-process engine)")
+        with Step(f"    running {what}...", enabled=talk):
+            if model == "rom" and rom_engine == "fmi":
+                blow = run_fmi(cfg.with_anvil_model("rom"), work_dir / "fmus")[0]
+            else:
+                blow = build_engine(cfg.with_anvil_model(model)).run()[0]
         runs[model] = ModelRun(model, blow.columns, blow.wall_time,
                                {"time_step [s]": blow.time_step,
                                 "total_time [s]": time.perf_counter() - start,
                                 "engine": rom_engine if model == "rom" else "direct"})
     if fea:
-
         config = fea_config(cfg, mesh_size=fea_mesh_size)
-        result = run_impact_fea(config, progress=progress)
+        setup = Step("    running the reference FEA: meshing ram, anvil and pile top and "
+                     "assembling...", enabled=talk).__enter__()
+
+        def stepping(fraction: float) -> None:
+            setup.__exit__(None, None, None)  # the stepping has started: its bar takes over
+            progress(fraction)
+
+        result = run_impact_fea(config, progress=stepping if talk else None)
+        setup.__exit__(None, None, None)
         runs["fea"] = ModelRun("fea", result.to_columns(), result.wall_time,
                                {"n_dof": result.n_dof, "n_steps": result.n_steps,
                                 "time_step [s]": result.time_step,
@@ -512,8 +528,7 @@ def plot_spectra(spectra: dict, path, title: str = "Pile-head force, one-third-o
         row.grid(alpha=0.3, which="both")
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("one-third-octave band centre frequency [Hz]")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)
 
 
 def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
@@ -561,5 +576,4 @@ def plot_comparison(runs: dict[str, ModelRun], key: str, path, title: str,
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path, dpi=120)

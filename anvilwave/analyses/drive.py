@@ -81,8 +81,11 @@ from anvilwave.config.drive import (
 from anvilwave.config.install import InstallSettings, segment_soil_types, setup_pile_soil
 from anvilwave.config.system import depth_limit
 from anvilwave.engine.direct import build_engine
+from anvilwave.hammer.impact import equivalent_stroke
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
+from anvilwave.output.progress import Step
+from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv
 from anvilwave.pile.soil.models import toe_quake
 
@@ -95,7 +98,8 @@ COLUMNS = ("depth [m]", "srd [N]", "srd_shaft [N]", "srd_toe [N]", "blow_count [
            "max_pile_head_force [N]", "emx_gauge [J]", "emx_head [J]",
            "permanent_set [m]", "grlweap_set [m]", "impact_velocity [m/s]",
            "energy_residual_relative [-]", "toe_velocity_end [m/s]", "FMX [N]", "RMX [N]",
-           "case_damping [-]", "restrike_blow_count [1/m]", "restrike_setup_factor [-]")
+           "case_damping [-]", "restrike_blow_count [1/m]", "restrike_setup_factor [-]",
+           "stroke [m]")
 """Columns of ``driveability.csv`` (the DESIGN.md contract first, then extra columns)."""
 
 
@@ -293,12 +297,12 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
     energy, velocity = impact_at(settings, depth, cfg)
     weight = driving_weight(cfg, engine.static_head_force, settings.weight_on_soil)
     if shaft + toe <= weight:  # the pile runs (or stands) under its own weight: no blows
-        return DepthResult(_run_row(depth, shaft, toe, energy, velocity))
+        return DepthResult(_run_row(depth, shaft, toe, energy, velocity, _stroke(cfg, energy)))
     eng = engine.with_pile_soil(ps)
     try:
         state = eng.static_state()
     except ValueError:  # no static equilibrium: the SRD does not carry the weight
-        return DepthResult(_run_row(depth, shaft, toe, energy, velocity))
+        return DepthResult(_run_row(depth, shaft, toe, energy, velocity, _stroke(cfg, energy)))
     blow = None
     for k in range(settings.blows_per_depth):
         last = k == settings.blows_per_depth - 1
@@ -328,6 +332,7 @@ def analyse_depth(engine, cfg, srd: SrdSource, settings: DriveSettings, depth: f
         "energy_residual_relative [-]": residual,
         "toe_velocity_end [m/s]": float(getattr(blow, "toe_velocity_end", float("nan"))),
         "restrike_blow_count [1/m]": float("nan"), "restrike_setup_factor [-]": float("nan"),
+        "stroke [m]": _stroke(cfg, energy),
     }
     row.update(_case_method(blow, replace(cfg, pile_soil=ps)))
     if restrike is not None:
@@ -369,14 +374,25 @@ def _case_method(blow, cfg) -> dict:
             else float(p["RMX [N]"]), "case_damping [-]": p["case_damping [-]"]}
 
 
-def _run_row(depth, shaft, toe, energy, velocity) -> dict:
+def _run_row(depth, shaft, toe, energy, velocity, stroke) -> dict:
     """The row of a depth where the SRD does not carry the driving weight: no blow needed
-    (blow count 0; the stresses and energies of a blow are not computed)."""
+    (blow count 0, as GRLWEAP lists a pile run; the stresses and energies of a blow are not
+    computed). The plots leave these depths out of the blow-count curve."""
     row = {name: float("nan") for name in COLUMNS}
     row.update({"depth [m]": float(depth), "srd [N]": shaft + toe, "srd_shaft [N]": shaft,
                 "srd_toe [N]": toe, "blow_count [1/m]": 0.0, "blows_per_0.25m [-]": 0.0,
-                "energy_setting [J]": energy, "impact_velocity [m/s]": float(velocity)})
+                "energy_setting [J]": energy, "impact_velocity [m/s]": float(velocity),
+                "stroke [m]": stroke})
     return row
+
+
+def _stroke(cfg, energy: float) -> float:
+    """The equivalent stroke [m] of a blow energy ``energy`` [J]: E / (m g) of the ram (NaN
+    without gravity)."""
+    mass = float(np.sum(cfg.hammer.ram.mass))
+    if not mass * cfg.gravity > 0.0:
+        return float("nan")
+    return equivalent_stroke(energy, mass, cfg.gravity)
 
 
 # worker state for the process pool (inherited by fork: the engine is built once)
@@ -425,18 +441,27 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
     workers = max(1, min(workers, len(depths)))
     rows: list[dict] = []
     bar = None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(depths), desc="depths", unit="depth")
+    if depths:
+        # the first depth in-process, before the bar (and the workers, which then inherit
+        # its compiled kernels): on a first run it compiles this anvil model's kernels
+        with Step(f"{cfg.anvil.model} anvil: first depth {depths[0]:g} m (compiling its "
+                  "kernels on a first run, about 30 s)...", enabled=progress):
+            rows.append(analyse_depth(engine, cfg, srd, settings, depths[0],
+                                      restrike=restrike).row)
+        rest = depths[1:]
+        bar = progress_bar(len(depths), enabled=progress, warm=0, initial=1,
+                           desc=f"{cfg.anvil.model} anvil: depths", unit="depth")
+        workers = max(1, min(workers, len(rest)))
+    else:
+        rest = []
     try:
         if workers == 1:
-            for d in depths:
+            for d in rest:
                 rows.append(analyse_depth(engine, cfg, srd, settings, d,
                                           restrike=restrike).row)
                 if bar is not None:
                     bar.update(1)
-        else:
+        elif rest:
             import multiprocessing as mp
             from concurrent.futures import ProcessPoolExecutor
 
@@ -447,8 +472,8 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
                                          initializer=die_with_parent,
                                          initargs=(os.getpid(),)) as pool:
                     try:
-                        for row in pool.map(_work, depths, chunksize=max(1, len(depths)
-                                                                         // (4 * workers))):
+                        for row in pool.map(_work, rest, chunksize=max(1, len(rest)
+                                                                       // (4 * workers))):
                             rows.append(row)
                             if bar is not None:
                                 bar.update(1)
@@ -572,10 +597,12 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
     if refused.size and refused[0] > 0:
         # the last interval at the refusal blow count would be infinite; count it to refusal
         total = float(trapezoid(np.where(np.isfinite(n), n, 4.0 * settings.refusal), z))
+    blows = int(round(total))  # a count of blows (the integral is not more precise than 1)
+    pile = cfg.pile_soil.pile
     return {
         "refusal_depth [m]": refusal_depth,
-        "total_blows [-]": total,
-        "driving_time [s]": total / settings.blow_rate * 60.0,
+        "total_blows [-]": blows,
+        "driving_time [s]": blows / settings.blow_rate * 60.0,
         "self_weight_penetration [m]": swp,
         "driving_weight [N]": weight,
         "pile_run_depths [m]": runs,
@@ -592,6 +619,8 @@ def summarise(rows: list[dict], cfg, settings: DriveSettings, head_load: float) 
         "bound": settings.bound,
         "srd_multiplier [-]": settings.multiplier,
         "refusal_criterion [blows/0.25m]": settings.refusal,
+        "yield_strength [Pa]": float(pile.yield_strength),
+        "allowable_driving_stress [Pa]": float(pile.allowable_driving_stress),
         "blow_rate [blows/min]": settings.blow_rate,
         "blows_per_depth [-]": settings.blows_per_depth,
         "weight_on_soil": settings.weight_on_soil,
@@ -712,12 +741,17 @@ def drive(cfg, *, anvil: str | None = None, bound: str | None = None,
     settings = _settings(cfg, bound)
     run_cfg = cfg.with_anvil_model(anvil) if anvil is not None else cfg
     srd = _srd(cfg)
-    engine = build_engine(run_cfg)
+    model = run_cfg.anvil.model
+    with Step(f"{model} anvil: building the engine (the modes of the anvil and the ram)...",
+              enabled=progress):
+        engine = build_engine(run_cfg)
     result = run_driveability(run_cfg, srd, settings, engine, workers=workers,
                               progress=progress, restrike=_restrike_settings(cfg, srd,
                                                                              restrike))
     for depth in settings.time_series_depths:
-        blow = time_series(engine, run_cfg, srd, settings, float(depth))
+        with Step(f"{model} anvil: recording the blow at {float(depth):g} m (compiling the "
+                  "recording kernel on a first run, about 15 s)...", enabled=progress):
+            blow = time_series(engine, run_cfg, srd, settings, float(depth))
         result.time_series[float(depth)] = None if blow is None else blow.columns
     return result
 

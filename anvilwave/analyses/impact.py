@@ -245,7 +245,10 @@ def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge:
     Returns
     -------
     dict
-        The summary entries, named ``name [unit]``.
+        The summary entries, named ``name [unit]``. Two transferred energies:
+        ``"EMX [J]"`` (:func:`pda_summary`: the gauges zeroed at rest, as a PDA reports it)
+        and ``"transferred_energy_unzeroed [J]"`` (the total gauge force, the weight at rest
+        included; larger by that weight's work over the gauges' travel).
     """
     c = result.columns
     t = c["time [s]"]
@@ -260,7 +263,7 @@ def summarise(result, config, engine: str, anvil_model: str, pile_area_at_gauge:
         "peak_pile_compression_stress [Pa]": getattr(result, "pile_max_compression_stress",
                                                      None),
         "peak_pile_tension_stress [Pa]": getattr(result, "pile_max_tension_stress", None),
-        "transferred_energy_gauge [J]": float(np.max(transferred_energy(
+        "transferred_energy_unzeroed [J]": float(np.max(transferred_energy(
             t, c["gauge_force [N]"], c["gauge_velocity [m/s]"]))),
         "simulated_time [s]": float(t[-1] - t[0]),
         "time_step [s]": result.time_step,

@@ -47,6 +47,8 @@ from anvilwave.config.install import InstallSettings, segment_soil_types, setup_
 from anvilwave.engine.direct import build_engine
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_installation
+from anvilwave.output.progress import Step
+from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv, write_dict_rows
 from anvilwave.pile.post.fatigue import StreamingMinerDamage, sn_curve
 from anvilwave.pile.post.spectra import third_octave_band_energies
@@ -150,7 +152,10 @@ def install(cfg, *, anvil: str | None = None, progress: bool = False) -> Install
                                                           "[driveability] table")
     srd = cfg.srd if cfg.srd is not None else load_srd_source(None, cfg.source, cfg.pile_soil)
     settings = cfg.install if cfg.install is not None else InstallSettings()
-    return run_installation(cfg, srd, cfg.drive, settings, build_engine(cfg), progress=progress)
+    with Step(f"{cfg.anvil.model} anvil: building the engine (the modes of the anvil and the "
+              "ram)...", enabled=progress):
+        engine = build_engine(cfg)
+    return run_installation(cfg, srd, cfg.drive, settings, engine, progress=progress)
 
 
 def fatigue_sections(pile_soil, settings: InstallSettings):
@@ -287,11 +292,8 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
     tips: list[float] = []  # tip depth after each blow (non-decreasing), for the refusal
     refusal_depth = None
     bar = None
-    if progress:
-        from tqdm import tqdm
-
-        bar = tqdm(total=round(target - tip, 2), unit="m", desc="installation",
-                   bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} m [{elapsed}<{remaining}]")
+    warming = Step(f"first blow at {tip:.2f} m (compiling the kernels on a first run, about "
+                 "30 s)...", enabled=progress).__enter__()
     try:
         for k in range(1, settings.max_blows + 1):
             restart = bool(pending_pauses) and tip >= pending_pauses[0][0]
@@ -349,6 +351,12 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
                                          "band_energy_level [dB]": float(level),
                                          "valid [-]": int(ok)})
                 pending_spectra.pop(0)
+            if k == 1:  # compiled: the bar starts now, its rate and estimate are true
+                warming.__exit__(None, None, None)
+                bar = progress_bar(round(target - tip, 2), enabled=progress, warm=0,
+                                   unit="m", desc="installation",
+                                   bar_format="{l_bar}{bar}| {n:.2f}/{total:.2f} m "
+                                              "[{elapsed}<{remaining}]")
             tip += set_m
             if bar is not None:
                 bar.update(min(set_m, max(bar.total - bar.n, 0.0)))
@@ -361,6 +369,7 @@ def run_installation(cfg, srd, drive, settings: InstallSettings, engine, *,
             if tip >= target:
                 break
     finally:
+        warming.__exit__(None, None, None)
         if bar is not None:
             bar.close()
     damage = miner.damage()

@@ -60,7 +60,7 @@ RAW_MARKER = "strain_1 ["
 ONSET_FRACTION = 0.2
 """compare-pda: a force 'arrives' when it first exceeds this fraction of its peak (as
 :data:`anvilwave.analyses.compare.ARRIVAL_FRACTION`)."""
-ALIGNMENTS = ("rom", "lumped", "none")
+ALIGNMENTS = ("none", "rom", "lumped")
 """compare-pda: put the record's force arrival on that model's, or keep the record's time."""
 
 
@@ -497,14 +497,20 @@ class ComparePdaResult:
 
 
 def compare_pda(record_path: str | Path, system_path: str | Path, *,
-                align: str = "rom", modal_data=None) -> ComparePdaResult:
+                align: str | bool = "none", modal_data=None) -> ComparePdaResult:
     """The paper's Fig. 4 (pile-top force) and Fig. 5 (pile-top velocity) for a record.
 
     The system is simulated with the ROM anvil and with the lumped (rigid) anvil of its anvil
     file, over its ``[simulation] duration``; the gauge signals are compared with the record.
     The simulated force has its value at rest (the weights of the anvil and the pile above
-    the gauges) removed, as gauges zeroed at rest do. The arrival of the aligned model says
-    nothing; the other's difference to it is the anvil's wave travel the lumped model lacks.
+    the gauges) removed, as gauges zeroed at rest do.
+
+    By default the record keeps its own time (t = 0 is the ram impact in the simulations), and
+    each model's ``force_arrival_error [s]`` (its force arrival, :func:`onset_time`, minus the
+    record's) is a result. With ``align`` the record is shifted onto one model's arrival
+    first (the shift is ``record_time_shift [s]``): that model's arrival error is then zero by
+    construction (``arrival_aligned_on``), and only the other's difference to it, the anvil's
+    wave travel the lumped model lacks, says something.
 
     Parameters
     ----------
@@ -512,10 +518,10 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
         Gauge record or raw channels CSV.
     system_path : str or pathlib.Path
         The system file.
-    align : {"rom", "lumped", "none"}
-        The record's time is shifted so that its force arrival (:func:`onset_time`)
-        coincides with the ``"rom"`` or ``"lumped"`` model's, or kept (``"none"``: a record
-        whose t = 0 is the ram impact).
+    align : {"none", "rom", "lumped"} or bool, default "none"
+        Keep the record's time (``"none"`` or False: a record whose t = 0 is the ram impact),
+        or shift it so that its force arrival (:func:`onset_time`) coincides with the
+        ``"rom"`` (or True) or ``"lumped"`` model's.
     modal_data : ModalData or path, optional
         Precomputed modal data of the anvil (default: from the cache or computed).
 
@@ -532,6 +538,8 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
         or its time does not overlap the simulated window.
     """
 
+    if align is True or align is False:
+        align = "rom" if align else "none"
     if align not in ALIGNMENTS:
         raise InputError(system_path, "align", f"must be one of {', '.join(ALIGNMENTS)}, got "
                                                f"{align!r}")
@@ -582,7 +590,8 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
     content = {"measured": {"peak_force [N]": float(f_m.max()),
                             "peak_velocity [m/s]": float(v_m.max()),
                             "force_arrival_time [s]": onset_time(grid, f_m)},
-               "alignment": align, "record_time_shift [s]": shift}
+               "alignment": align, "record_time_shift [s]": shift,
+               "arrival_aligned_on": None if align == "none" else align}
     for model in runs:
         f, v = columns[f"{model}_force [N]"], columns[f"{model}_velocity [m/s]"]
         content[model] = {
@@ -596,6 +605,10 @@ def compare_pda(record_path: str | Path, system_path: str | Path, *,
             "force_arrival_time [s]": onset_time(runs[model]["time"], runs[model]["force"]),
             "removed_rest_force [N]": runs[model]["rest_force"],
         }
+        # zero by construction for the model the record was aligned on
+        content[model]["force_arrival_error [s]"] = (
+            content[model]["force_arrival_time [s]"]
+            - content["measured"]["force_arrival_time [s]"])
     content["rom_minus_lumped_arrival [s]"] = (content["rom"]["force_arrival_time [s]"]
                                                - content["lumped"]["force_arrival_time [s]"])
     content.update({"record": Path(record_path).name, "record_kind": kind,

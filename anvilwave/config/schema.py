@@ -85,6 +85,9 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "pile.material_damping_model": ("-", "segment", "'segment' (2 zeta sqrt(k m) per spring) "
                                                     "or 'uniform' (GRLWEAP: 2 zeta EA/c at "
                                                     "mid-length)"),
+    "pile.yield_strength": ("Pa", 355e6, "steel yield strength fy (default S355); the "
+                            "driveability plot's allowable driving stress is 0.9 fy "
+                            "(API RP 2A-WSD)"),
     "pile.sections": ("-", REQUIRED, "[[pile.sections]], head first"),
     "pile.sections.length": ("m", REQUIRED, "section length"),
     "pile.sections.outer_diameter": ("m", REQUIRED, "outer diameter"),

@@ -3,7 +3,8 @@
 ``DIR/plots/envelope_<position>.png``
     Blow count (blows per 0.25 m) against the tip depth of one position: a panel per hammer
     (x energy schedule), in it for every anvil model the best-estimate SRD as a line and the
-    lower-upper bound band shaded; the refusal criterion marked.
+    lower-upper bound band shaded; the refusal criterion marked. Depths where the pile runs
+    under its own weight (no blows) are gaps in the curves, not blow counts of 0.
 ``DIR/plots/refusal_risk.png`` and ``refusal_risk.csv``
     Positions (rows) against hammer x anvil model (x energy schedule) (columns): each cell's
     colour is the largest blow count over the bounds divided by the refusal criterion (1 or
@@ -22,6 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.output.figure_style import save_figure
+from anvilwave.output.plots import blows_for_plot
 from anvilwave.output.tables import read_csv
 
 BOUND_STYLE = {"lower": ":", "best": "-", "upper": "--"}
@@ -36,11 +39,10 @@ def _pyplot():
     return plt
 
 
-def _save(fig, path: Path) -> None:
-    """Write a figure atomically (a partial PNG never sits under the final name)."""
-    tmp = path.with_name(f".{path.name}.part")
-    fig.savefig(tmp, dpi=110, format="png")
-    os.replace(tmp, path)
+RISK_DPI = 110
+"""Resolution of the campaign figures [dots per inch]."""
+RISK_MIN_WIDTH = 11.5
+"""Smallest width of the refusal-risk figure [in] (1265 px at :data:`RISK_DPI`)."""
 
 
 def _combo_axes(campaign) -> list[str]:
@@ -130,9 +132,8 @@ def plot_envelopes(campaign, rows: list[dict], out: Path, refusal: dict, path: P
     panels = list(dict.fromkeys(_combo_label(r, panel_axes) for r in rows))
     models = list(dict.fromkeys(r["anvil_model"] for r in rows))
     criterion = next((v for v in refusal.values() if v), 250.0)
-    cap = 2.0 * criterion
     fig, axes = plt.subplots(1, len(panels), figsize=(1.0 + 5.0 * len(panels), 7.0),
-                             sharey=True, squeeze=False)
+                             sharey=True, squeeze=False, constrained_layout=True)
     top = 1.0
     for ax, panel in zip(axes[0], panels, strict=True):
         for k, model in enumerate(models):
@@ -142,7 +143,7 @@ def plot_envelopes(campaign, rows: list[dict], out: Path, refusal: dict, path: P
                 if _combo_label(r, panel_axes) == panel and r["anvil_model"] == model:
                     data = _blows(out, r["case"])
                     if data is not None:
-                        curves[r["bound"]] = (data[0], np.minimum(data[1], cap))
+                        curves[r["bound"]] = (data[0], blows_for_plot(data[1], criterion))
             if "lower" in curves and "upper" in curves and \
                     curves["lower"][0].shape == curves["upper"][0].shape:
                 ax.fill_betweenx(curves["lower"][0], curves["lower"][1], curves["upper"][1],
@@ -151,27 +152,22 @@ def plot_envelopes(campaign, rows: list[dict], out: Path, refusal: dict, path: P
                 if bound in curves:
                     z, n = curves[bound]
                     ax.plot(n, z, BOUND_STYLE[bound], color=color,
-                            lw=1.8 if bound == "best" else 1.0, label=f"{model} anvil: {bound}")
-                    top = max(top, float(np.nanmax(n)) if n.size else 0.0)
+                            lw=1.8 if bound == "best" else 1.0, label=f"{model} anvil: {bound}",
+                            gid="blow_count")
+                    if np.isfinite(n).any():
+                        top = max(top, float(np.nanmax(n)))
         ax.set_title(panel, fontsize=10)
         ax.set_xlabel("blows / 0.25 m (band: lower to upper SRD)")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7, loc="lower left")
     for ax in axes[0]:
-        if criterion <= 1.5 * top:
-            ax.axvline(criterion, color="r", lw=1.0, ls="--", label="refusal")
-            ax.set_xlim(0.0, 1.1 * max(top, criterion))
-        else:
-            ax.set_xlim(0.0, 1.15 * top)
+        ax.axvline(criterion, color="r", lw=1.0, ls="--", gid="refusal",
+                   label=f"refusal {criterion:g} blows / 0.25 m")
+        ax.set_xlim(0.0, 1.1 * max(top, criterion))
+        ax.legend(fontsize=7, loc="lower left")
     axes[0][0].invert_yaxis()
     axes[0][0].set_ylabel("tip depth below mudline [m]")
-    note = "" if criterion <= 1.5 * top else f" (refusal at {criterion:g} blows / 0.25 m)"
-    fig.suptitle(f"{campaign.name}: blow count envelopes, position {rows[0]['position']}"
-                 f"{note}")
-    fig.tight_layout()
-    _save(fig, path)
-    plt.close(fig)
-    return path
+    fig.suptitle(f"{campaign.name}: blow count envelopes, position {rows[0]['position']}")
+    return save_figure(fig, path, dpi=RISK_DPI)
 
 
 def refusal_risk_table(campaign, rows: list[dict], refusal: dict) -> list[dict]:
@@ -259,27 +255,25 @@ def plot_refusal_risk(campaign, rows: list[dict], refusal: dict, path: Path) -> 
         if e["status"] != "ok":
             cell += f"\n({e['status']})"
         text[i][j] = cell
-    width = 2.5 + 2.2 * len(combos)
-    height = 1.6 + 0.42 * len(positions)
-    fig, ax = plt.subplots(figsize=(width, height))
+    width = max(RISK_MIN_WIDTH, 3.0 + 2.2 * len(combos))
+    height = max(4.0, 2.0 + 0.42 * len(positions))
+    fig, ax = plt.subplots(figsize=(width, height), constrained_layout=True)
     image = ax.imshow(np.ma.masked_invalid(risk), cmap="RdYlGn_r", vmin=0.0, vmax=1.2,
                       aspect="auto")
     ax.set_facecolor("0.85")  # cells without a result
     for i in range(len(positions)):
         for j in range(len(combos)):
-            ax.text(j, i, text[i][j], ha="center", va="center", fontsize=6.5)
+            ax.text(j, i, text[i][j], ha="center", va="center", fontsize=7.5)
     ax.set_xticks(range(len(combos)), combos, fontsize=8, rotation=20, ha="right")
     ax.set_yticks(range(len(positions)), positions, fontsize=8)
     ax.set_xlabel(" / ".join(names))
     ax.set_ylabel("position")
-    bar = fig.colorbar(image, ax=ax, fraction=0.04)
+    bar = fig.colorbar(image, ax=ax, fraction=0.04, pad=0.02)
     bar.set_label("max blows per 0.25 m / refusal criterion\n(worst bound; 1 = refusal)",
                   fontsize=8)
     ax.set_title(f"{campaign.name}: refusal risk (cells: max blows / 0.25 m per bound "
                  f"{'/'.join(b[0].upper() for b in campaign.bounds)})", fontsize=9)
-    fig.tight_layout()
-    _save(fig, path)
-    plt.close(fig)
+    save_figure(fig, path, dpi=RISK_DPI)
     csv_path = path.with_suffix(".csv")
     columns = ["position", *names, "status"]
     for b in campaign.bounds:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from anvilwave.output.figure_style import save_figure
 from anvilwave.pile.pda.signal_matching import davisson_1972_offset_limit
 
 
@@ -64,9 +65,7 @@ def plot_pda(columns: dict, result, path: str | Path, title: str = "") -> Path:
     axes[0].set_title(f"{title}\nRTL {result.rtl / 1e6:.2f} MN, RMX {result.rmx / 1e6:.2f} MN, "
                       f"FMX {result.fmx / 1e6:.2f} MN, CSX {result.csx / 1e6:.0f} MPa, "
                       f"BTA {result.bta:.2f}")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)
 
 
 def plot_match(columns: dict, path: str | Path, title: str = "") -> Path:
@@ -99,9 +98,7 @@ def plot_match(columns: dict, path: str | Path, title: str = "") -> Path:
         ax.legend(loc="upper right")
     axes[1].set_xlabel("time [ms]")
     axes[0].set_title(title)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)
 
 
 def plot_static_load_test(result, cfg, path: str | Path) -> Path:
@@ -144,9 +141,7 @@ def plot_static_load_test(result, cfg, path: str | Path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(loc="lower left")
     ax.set_title("Simulated static load test")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)
 
 
 def plot_compare_pda(columns: dict, quantity: str, path: str | Path, title: str) -> Path:
@@ -186,6 +181,4 @@ def plot_compare_pda(columns: dict, quantity: str, path: str | Path, title: str)
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path, dpi=120)

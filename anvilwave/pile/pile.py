@@ -6,6 +6,7 @@ A pile file (or the ``[pile]`` table of a system file) is TOML::
     segment_length = 0.5        # [m] target segment length (Ligthart & Orlando use 0.5 m)
     gauge_depth = 1.0           # [m] depth of the PDA gauges below the pile head
     material_damping = 0.01     # [-] pile damping, fraction of critical of one segment
+    yield_strength = 355e6      # [Pa] steel yield strength fy (default: S355)
     [[pile.sections]]           # from the head down
     length = 80.0               # [m]
     outer_diameter = 8.0        # [m]
@@ -84,6 +85,14 @@ DEFAULT_GAUGE_DEPTH = 1.0
 """Default gauge depth below the pile head [m]."""
 DEFAULT_MATERIAL_DAMPING = 0.01
 """Default pile damping, fraction of critical of one segment [-]."""
+DEFAULT_YIELD_STRENGTH = 355e6
+"""Default yield strength fy of the pile steel [Pa]: structural steel S355 (EN 10025-2, 355 MPa
+nominal up to 16 mm; the common grade of offshore monopiles and jacket piles, whose thicker
+plates have a lower nominal fy: give ``[pile] yield_strength``)."""
+ALLOWABLE_DRIVING_STRESS_RATIO = 0.9
+"""Allowable driving stress over the yield strength [-]: the dynamic compression and tension
+during driving should stay below 80 to 90 % of fy (API RP 2A-WSD, pile installation; DNV
+practice for steel piles takes 0.9 fy); the driveability plot draws 0.9 fy."""
 
 
 @dataclass(frozen=True)
@@ -143,6 +152,9 @@ class PileSpec:
     material_damping_model : {"segment", "uniform"}
         ``"segment"`` (each spring's own 2 zeta sqrt(k m*)) or ``"uniform"``
         (GRLWEAP: 2 zeta EA/c at mid-length for every spring).
+    yield_strength : float, default DEFAULT_YIELD_STRENGTH
+        Yield strength fy of the pile steel [Pa]; the allowable driving stress is
+        ``ALLOWABLE_DRIVING_STRESS_RATIO * yield_strength``.
     """
 
     sections: tuple[Section, ...]
@@ -150,6 +162,12 @@ class PileSpec:
     gauge_depth: float = DEFAULT_GAUGE_DEPTH
     material_damping: float = DEFAULT_MATERIAL_DAMPING
     material_damping_model: str = "segment"
+    yield_strength: float = DEFAULT_YIELD_STRENGTH
+
+    @property
+    def allowable_driving_stress(self) -> float:
+        """Allowable driving stress, compression or tension [Pa]: 0.9 fy."""
+        return ALLOWABLE_DRIVING_STRESS_RATIO * self.yield_strength
 
     @property
     def length(self) -> float:
@@ -547,7 +565,9 @@ def pile_from_table(table: Table) -> PileSpec:
             f"{segment_length / c:.2g} s ({steps:.3g} steps and {steps * n_segments:.3g} "
             f"segment updates per 25 ms blow; limit {MAX_SEGMENTS} segments); use at least "
             f"{length / MAX_SEGMENTS:.3g} m")
-    pile = PileSpec(sections, segment_length, gauge_depth, damping, damping_model)
+    yield_strength = table.number("yield_strength", DEFAULT_YIELD_STRENGTH, gt=0.0, unit="Pa")
+    pile = PileSpec(sections, segment_length, gauge_depth, damping, damping_model,
+                    yield_strength)
     if discretise(pile).count < 2:
         raise table.error("segment_length",
                           f"must give at least 2 segments over the {length:g} m pile")
