@@ -8,12 +8,21 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import anvilwave
 from anvilwave.anvil_rom.fem.elasticity import assemble
 from anvilwave.anvil_rom.fem.geometry import STEEL
 from anvilwave.anvil_rom.fem.mesh import mesh_outline, to_skfem
+from anvilwave.output.examples import EXAMPLES_DIR
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "anvilwave" / "examples"
+EXAMPLES = EXAMPLES_DIR
+"""The shipped examples: the checkout's, or the installed package's where the tests run against
+an installed wheel (``.ci/run``)."""
+FROM_CHECKOUT = Path(anvilwave.__file__).resolve().is_relative_to(ROOT)
+"""Whether the anvilwave under test is this checkout (else an installed distribution)."""
+DEMO_IN_WHEEL = os.environ.get("ANVILWAVE_CI_DEMO") == "wheel"
+"""``.ci/run`` runs the demo's tests (tests/test_compare.py) against the installed wheel,
+outside the checkout, instead of in the checkout: the demo runs once."""
 SHARED = ROOT.parent / "shared"
 """The shared reference data beside the repository (never copied into it)."""
 NEEDS_SHARED = {"grlweap_s4000.toml"}
