@@ -830,3 +830,20 @@ def test_ctrl_c_on_batch_is_one_line_and_leaves_no_worker(tmp_path):
     assert proc.returncode == 130 and "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert [x for x in lines if x.startswith("anvilwave")] == ["anvilwave: interrupted"], err
     assert _running_after(family, 5.0) == []
+
+
+def test_drive_on_workers_equals_drive_in_process(tmp_path):
+    """The depths run on 2 worker processes (in chunks, in order) give the rows of the
+    in-process run to the bit: the same kernels on the same inputs."""
+    import anvilwave
+    from anvilwave.config.system import load_system
+
+    cfg = load_system(_system(tmp_path, "[driveability]\nstart = 1.0\nstop = 10.0\nstep = 0.5\n"
+                                        "blows_per_depth = 3\n"))
+    serial = anvilwave.drive(cfg, workers=1)
+    parallel = anvilwave.drive(cfg, workers=2)
+    assert len(serial.rows) == len(parallel.rows) == 19
+    for a, b in zip(serial.rows, parallel.rows, strict=True):
+        assert a.keys() == b.keys()
+        for key in a:
+            assert a[key] == b[key] or (a[key] != a[key] and b[key] != b[key]), key

@@ -399,10 +399,10 @@ def _stroke(cfg, energy: float) -> float:
 _WORK: dict = {}
 
 
-def _work(depth: float) -> dict:
+def _work(depths: list[float]) -> list[dict]:
     w = _WORK
-    return analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth,
-                         restrike=w["restrike"]).row
+    return [analyse_depth(w["engine"], w["cfg"], w["srd"], w["settings"], depth,
+                          restrike=w["restrike"]).row for depth in depths]
 
 
 def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, *,
@@ -468,17 +468,29 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
             _WORK.update(engine=engine, cfg=cfg, srd=srd, settings=settings,
                          restrike=restrike)
             try:
+                size = max(1, len(rest) // (4 * workers))
+                chunks = [rest[i:i + size] for i in range(0, len(rest), size)]
                 with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
                                          initializer=die_with_parent,
                                          initargs=(os.getpid(),)) as pool:
+                    # futures of their own, not pool.map: on a Ctrl-C, map cancels the
+                    # pending ones while the pool's thread fails them for its dead workers,
+                    # and concurrent.futures then raises InvalidStateError from that thread
+                    futures = [pool.submit(_work, chunk) for chunk in chunks]
                     try:
-                        for row in pool.map(_work, rest, chunksize=max(1, len(rest)
-                                                                       // (4 * workers))):
-                            rows.append(row)
+                        for future, chunk in zip(futures, chunks, strict=True):
+                            rows.extend(future.result())
                             if bar is not None:
-                                bar.update(1)
-                    except BaseException:  # Ctrl-C, an error: the depths not started are
-                        pool.shutdown(wait=False, cancel_futures=True)  # never started
+                                bar.update(len(chunk))
+                    except KeyboardInterrupt:
+                        # the workers end on the Ctrl-C too (die_with_parent); killed here in
+                        # case it reached this process only, so the pending depths fail with
+                        # the broken pool and the pool closes at once
+                        for process in list(getattr(pool, "_processes", {}).values()):
+                            process.kill()
+                        raise
+                    except BaseException:  # an error: the depths not started never start
+                        pool.shutdown(wait=False, cancel_futures=True)
                         raise
             finally:
                 _WORK.clear()
