@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = EXAMPLES_DIR
 """The shipped examples: the checkout's, or the installed package's where the tests run against
 an installed wheel (``.ci/run``)."""
-FROM_CHECKOUT = Path(anvilwave.__file__).resolve().is_relative_to(ROOT)
+FROM_CHECKOUT = Path(anvilwave.__file__).resolve().parent == ROOT / "anvilwave"
 """Whether the anvilwave under test is this checkout (else an installed distribution)."""
 DEMO_IN_WHEEL = os.environ.get("ANVILWAVE_CI_DEMO") == "wheel"
 """``.ci/run`` runs the demo's tests (tests/test_compare.py) against the installed wheel,
@@ -79,3 +79,24 @@ def modal_cache(tmp_path_factory) -> Path:
         os.environ.pop("ANVILWAVE_CACHE_DIR", None)
     else:
         os.environ["ANVILWAVE_CACHE_DIR"] = saved
+
+
+HEAVY_MODULES = ("test_modal_ram", "test_ram_annuli", "test_example_numbers", "test_cache",
+                 "test_driveability", "test_installation", "test_readme_outputs",
+                 "test_tube_head", "test_study_pile_port", "test_compare", "test_setup",
+                 "test_campaign")
+"""Test modules with the longest tests (minutes under load): collected first, so that with
+``--dist worksteal`` (pyproject) the two workers start on them and end together, instead of one
+starting a long test when the other is done."""
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """Put the tests of :data:`HEAVY_MODULES` first, in that order (stable: each module's tests
+    stay together and in their order, so module fixtures are built once per worker)."""
+    rank = {name: i for i, name in enumerate(HEAVY_MODULES)}
+    def key(item) -> int:
+        module = getattr(item, "module", None)
+        name = module.__name__.rsplit(".", 1)[-1] if module is not None else ""
+        return rank.get(name, len(HEAVY_MODULES))
+
+    items.sort(key=key)
