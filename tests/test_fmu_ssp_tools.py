@@ -41,6 +41,7 @@ from anvilwave.engine.fmus import (  # noqa: E402
     load_anvil_modal_data,
     system_parameters,
 )
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS  # noqa: E402
 from anvilwave.fmu.fmi_build import build_ram_fmu  # noqa: E402
 from anvilwave.fmu.fmi_master import BlowMaster  # noqa: E402
 from anvilwave.fmu.native_units import build_native_ram_fmu  # noqa: E402
@@ -62,7 +63,7 @@ def systems(tmp_path_factory):
     lumped_cfg = cfg.with_anvil_model("lumped")
     lumped = system_parameters(lumped_cfg, modal)
     step = fmus["ssp_step"]
-    experiment = (-0.5 * step, float(cfg.duration), step)
+    experiment = (-FIRST_CONTACT_STEPS * step, float(cfg.duration), step)
     if fmus["ram_implementation"] == "native":  # the Ram of build-fmus (the default)
         ram = build_native_ram_fmu(cfg.hammer, out / "lumped" / "Ram.fmu",
                                    default_experiment=experiment, **lumped["Ram"])
@@ -74,7 +75,7 @@ def systems(tmp_path_factory):
                             "PileSoil": fmus["PileSoil"]},
                            {"Ram": lumped["Ram"], "Anvil": lumped["AnvilLumped"],
                             "PileSoil": lumped["PileSoil"]},
-                           name="anvilwave table1 lumped", start_time=-0.5 * step,
+                           name="anvilwave table1 lumped", start_time=experiment[0],
                            stop_time=cfg.duration, step_size=step)
     h = fmus["time_step"]
     n = int(round(cfg.duration / h))
@@ -94,22 +95,21 @@ def systems(tmp_path_factory):
 
 
 def check_peaks(tool: str, model: str, peaks, systems, lumped_ram_tolerance=0.01,
-                names=("F_ram", "F_pile")) -> None:
+                tolerances=None) -> None:
     """Peaks (F_ram, F_pile) [N] within 1 % of the FMI engine's (module docstring)."""
     references = dict(zip(("F_ram", "F_pile"), systems["engine"][model], strict=True))
-    tolerances = {"F_ram": 0.01, "F_pile": 0.01}
+    tolerances = dict(tolerances or {"F_ram": 0.01, "F_pile": 0.01})
     what = {"F_ram": "FMI engine", "F_pile": "FMI engine"}
     if model == "lumped":
         references["F_ram"] = systems["engine"]["lumped_ram_on_the_ssp_step"]
-        tolerances["F_ram"] = lumped_ram_tolerance
+        tolerances["F_ram"] = max(tolerances["F_ram"], lumped_ram_tolerance)
         what["F_ram"] = "fmpy master on the SSP step"
     for name, peak in zip(("F_ram", "F_pile"), peaks, strict=True):
         reference = references[name]
         print(f"\n{tool} {model} {name}: {peak / 1e6:.2f} MN, {what[name]} "
               f"{reference / 1e6:.2f} MN ({peak / reference - 1:+.3%})")
         assert np.isfinite(peak)
-        if name in names:
-            assert abs(peak / reference - 1.0) <= tolerances[name]
+        assert abs(peak / reference - 1.0) <= tolerances[name]
 
 
 def omsimulator(tmp_path_factory) -> Path:
@@ -153,20 +153,21 @@ def test_omsimulator_runs_system_ssp(systems, model, tmp_path, tmp_path_factory)
 def test_fmpy_ssp_runner_runs_system_ssp(systems, model):
     """fmpy's own SSP runner ignores the SSP's bindings and experiment: it gets the step and
     stop time as arguments; the FMUs' defaults are the SSP's values. It never reads the units'
-    outputs before the first step (every input is 0 there), so the anvil's first contact sample
-    is computed from the ram at 0, not from its real state, and the missed impulse comes back
-    as the input-extrapolation correction added to F_ram at the next sample: a spike in the
-    F_ram series (measured +66 % ROM, +75 % lumped, native and pythonfmu anvils alike: both
-    take no acceleration across the zero start inputs, anvilwave/fmu/coupling.py; +151 % with
-    the native anvil before it did). Only the pile force is checked here (within 1 %); the
-    spike is an open item (docs/fmi.md)."""
+    outputs before the first step (every input is 0 there), so the anvil's outputs at the
+    first two points come from zero inputs: the ram's two contact-free steps
+    (``contact_mid_step``) and the anvil's acting with the forces its neighbours hold while
+    they came from the start's inputs (anvilwave/fmu/coupling.py, step 4) make that
+    irrelevant. Peak F_ram within 3 % (measured -0.09 % ROM; the lumped anvil against the fmpy
+    master on the SSP step, +0.00 %) and F_pile within 1 % (+0.98 %, the step's effect, h/4
+    against h) of the engine; before, the missed first-contact impulse came back as a spike
+    in F_ram (+66 % ROM, +75 % lumped)."""
     from fmpy.ssp.simulation import simulate_ssp
 
     result = simulate_ssp(str(systems["ssp"][model]), start_time=0.0,
                           stop_time=systems["duration"], step_size=systems["step"])
     check_peaks("fmpy simulate_ssp", model, (result["Ram.F_toe"].max(),
                                              result["PileSoil.F_head"].max()), systems,
-                names=("F_pile",))
+                tolerances={"F_ram": 0.03, "F_pile": 0.01})
 
 
 LIBCOSIM_RUN = """

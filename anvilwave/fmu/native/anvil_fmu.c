@@ -23,7 +23,9 @@
  *   at a new communication point keep the velocities of the point before (the neighbours'
  *   accelerations); the outputs use the inputs extrapolated to the unit's time; fmi2DoStep
  *   steps with the forces at the step start and keeps their difference to the forces of the
- *   last output read since the step before as an impulse correction of the force outputs.
+ *   last output read since the step before as an impulse correction of the force outputs,
+ *   except when that output came from the start time's inputs: then it steps with the forces
+ *   of that output, with no correction.
  *   With inputs set at the unit's time before the outputs are read (the DESIGN.md order),
  *   nothing changes.
  * - The ROM reads its modes from the modal-data resource named by the String parameter
@@ -93,6 +95,7 @@ typedef struct {
     double evaluated[2];         /* forces of the last output evaluation, uncorrected [N] */
     double sent[2];              /* ... of the last output read since the last step [N] */
     int has_evaluated, has_sent;
+    int evaluated_at_start, sent_at_start; /* from the start time's inputs */
     char reason[MESSAGE_SIZE];
 } Instance;
 
@@ -282,6 +285,7 @@ static void start_extrapolation(Instance *inst)
     inst->previous_velocity[0] = inst->previous_velocity[1] = 0.0;
     inst->correction[0] = inst->correction[1] = 0.0;
     inst->has_evaluated = inst->has_sent = 0;
+    inst->evaluated_at_start = inst->sent_at_start = 0;
 }
 
 /* Python: InputExtrapolation.note_inputs, before new inputs are stored. While the point before
@@ -375,6 +379,7 @@ static void compute_outputs(Instance *inst)
         inst->evaluated[0] = force_ram;
         inst->evaluated[1] = force_pile;
         inst->has_evaluated = 1;
+        inst->evaluated_at_start = inst->input_time == inst->input_start;
         r[ANVIL_F_RAM] += inst->correction[0];
         r[ANVIL_F_PILE] += inst->correction[1];
     }
@@ -620,6 +625,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         inst->sent[0] = inst->evaluated[0];
         inst->sent[1] = inst->evaluated[1];
         inst->has_sent = 1;
+        inst->sent_at_start = inst->evaluated_at_start;
     }
     return fmi2OK;
 }
@@ -865,6 +871,10 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         double u_ram, v_ram, u_pile, v_pile, force_ram, force_pile;
         extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
         anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
+        if (inst->has_sent && inst->sent_at_start) { /* Python: InputExtrapolation.step_forces */
+            force_ram = inst->sent[0];
+            force_pile = inst->sent[1];
+        }
         if (inst->has_sent) {
             inst->correction[0] = force_ram - inst->sent[0];
             inst->correction[1] = force_pile - inst->sent[1];

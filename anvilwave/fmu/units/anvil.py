@@ -244,7 +244,7 @@ class AnvilSlaveBase(UnitSlave):
             outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *x.extrapolated(inputs))
         if x is None:
             return
-        x.evaluated = (outputs[0], outputs[1])
+        x.evaluate(outputs[0], outputs[1])
         outputs[0] += x.correction[0]
         outputs[1] += x.correction[1]
 
@@ -261,7 +261,7 @@ class AnvilSlaveBase(UnitSlave):
             self.component.step(self.outputs[0], self.outputs[1], h)
             return
         unit = self.component
-        force_ram, force_pile = unit.forces(*x.extrapolated(self.inputs))
+        force_ram, force_pile = x.step_forces(*unit.forces(*x.extrapolated(self.inputs)))
         x.stepped(force_ram, force_pile)
         unit.step(force_ram, force_pile, h)
 
@@ -299,9 +299,8 @@ class AnvilSlaveBase(UnitSlave):
             The values [SI].
         """
         values = super().get_real(vrs)
-        x = self.extrapolation
-        if x is not None and x.evaluated is not None:
-            x.sent = x.evaluated
+        if self.extrapolation is not None:
+            self.extrapolation.read()
         return values
 
     def do_step(self, current_time: float, step_size: float) -> bool:
