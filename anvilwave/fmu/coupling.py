@@ -64,6 +64,51 @@ INPUT_EXTRAPOLATION_DESCRIPTION = (
 """Description of the ``input_extrapolation`` parameter of the anvil FMUs."""
 
 
+def approach_input(u_ram: float, v_ram: float, u_top: float, v_top: float, h: float,
+                   touched: bool) -> tuple[float, float]:
+    """The ram toe as the anvil's contact sees it before the first contact.
+
+    Until the ram contact has carried a force (``touched``), at a communication point after a
+    step h a toe that is open by more than it closes in one step (gap u_top - u_ram > 0 and
+    > (v_ram - v_top) h) is taken out of reach (1 m above the top face, at its velocity): the
+    contact dashpot's lead across the gap (the equivalent overlap d + c d'/k of the static
+    correction) starts at most a step before the first contact, as in the engine, which
+    starts half a step before it. So a master that gives the anvil the ram's state at the
+    second point (the DESIGN.md order, OMSimulator) and a Jacobi one, whose anvil acts from the
+    third point on (step 4 of the module docstring), start alike from the ram's
+    ``contact_mid_step`` (the first contact mid third step). The native anvil
+    (``anvilwave/fmu/native/anvil_fmu.c``, ``approach_input``) does the same operations.
+
+    Parameters
+    ----------
+    u_ram : float
+        Ram toe displacement [m], positive down.
+    v_ram : float
+        Ram toe velocity [m/s], positive down.
+    u_top : float
+        Anvil top face displacement of the modes (no contact force) [m].
+    v_top : float
+        Anvil top face velocity of the modes [m/s].
+    h : float
+        The last communication step [s]; 0 before the first step (nothing changed).
+    touched : bool
+        The ram contact has carried a force.
+
+    Returns
+    -------
+    u_ram : float
+        The toe displacement the contact sees [m].
+    v_ram : float
+        The toe velocity the contact sees [m/s].
+    """
+    if touched or h == 0.0:
+        return u_ram, v_ram
+    gap = u_top - u_ram
+    if gap > 0.0 and gap > (v_ram - v_top) * h:
+        return u_top - 1.0, v_top
+    return u_ram, v_ram
+
+
 def extrapolated_input(displacement: float, velocity: float, previous_velocity: float,
                        age: float, interval: float) -> tuple[float, float]:
     """A neighbour's displacement and velocity ``age`` after they were received.
