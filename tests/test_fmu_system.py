@@ -465,7 +465,8 @@ def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int,
     fmus = system["fmus"]
     ram = system["fmus"]["parameters"]["Ram"]
     parameters = {"ram": {"contact_displacement": ram["contact_displacement"],
-                          "contact_time": 0.0}, "anvil": dict(anvil or {})}
+                          "contact_time": 0.0, "contact_mid_step": True},  # the SSP's start
+                  "anvil": dict(anvil or {})}
     with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"], parameters,
                     exchange=exchange) as master:
         return master.run_blows(1, n_steps, step_ns * 1e-9, start_time=start_ns * 1e-9)[0]
