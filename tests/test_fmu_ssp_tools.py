@@ -16,8 +16,9 @@ compared with the fmpy master on the SSP's own step instead, within 1 % for OMSi
 (+2.2 % measured).
 
 OMSimulator is a test host found at ROOT/../shared/tools/omsimulator (skipped where
-absent); its command line starts at 0 (not at the SSP's -h/8), which the ram's mid-step
-placement of the first contact makes irrelevant. The units are those ``build-fmus`` makes by
+absent); its command line runs 0 - 1 s whatever the SSP says (its library runs the SSP's
+window), which the ram's placement of the first contact (contact_mid_step) makes
+irrelevant. The units are those ``build-fmus`` makes by
 default: native anvils, Ram and PileSoil (measured with them: OMSimulator ROM F_ram +0.17 %,
 F_pile -0.06 %; lumped F_ram +0.000 % of the fmpy master on the SSP step, F_pile +0.003 %).
 """
@@ -41,6 +42,7 @@ from anvilwave.engine.fmus import (  # noqa: E402
     load_anvil_modal_data,
     system_parameters,
 )
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS  # noqa: E402
 from anvilwave.fmu.fmi_build import build_ram_fmu  # noqa: E402
 from anvilwave.fmu.fmi_master import BlowMaster  # noqa: E402
 from anvilwave.fmu.native_units import build_native_ram_fmu  # noqa: E402
@@ -62,7 +64,7 @@ def systems(tmp_path_factory):
     lumped_cfg = cfg.with_anvil_model("lumped")
     lumped = system_parameters(lumped_cfg, modal)
     step = fmus["ssp_step"]
-    experiment = (-0.5 * step, float(cfg.duration), step)
+    experiment = (-FIRST_CONTACT_STEPS * step, float(cfg.duration), step)
     if fmus["ram_implementation"] == "native":  # the Ram of build-fmus (the default)
         ram = build_native_ram_fmu(cfg.hammer, out / "lumped" / "Ram.fmu",
                                    default_experiment=experiment, **lumped["Ram"])
@@ -74,7 +76,7 @@ def systems(tmp_path_factory):
                             "PileSoil": fmus["PileSoil"]},
                            {"Ram": lumped["Ram"], "Anvil": lumped["AnvilLumped"],
                             "PileSoil": lumped["PileSoil"]},
-                           name="anvilwave table1 lumped", start_time=-0.5 * step,
+                           name="anvilwave table1 lumped", start_time=experiment[0],
                            stop_time=cfg.duration, step_size=step)
     h = fmus["time_step"]
     n = int(round(cfg.duration / h))
@@ -94,22 +96,21 @@ def systems(tmp_path_factory):
 
 
 def check_peaks(tool: str, model: str, peaks, systems, lumped_ram_tolerance=0.01,
-                names=("F_ram", "F_pile")) -> None:
+                tolerances=None) -> None:
     """Peaks (F_ram, F_pile) [N] within 1 % of the FMI engine's (module docstring)."""
     references = dict(zip(("F_ram", "F_pile"), systems["engine"][model], strict=True))
-    tolerances = {"F_ram": 0.01, "F_pile": 0.01}
+    tolerances = dict(tolerances or {"F_ram": 0.01, "F_pile": 0.01})
     what = {"F_ram": "FMI engine", "F_pile": "FMI engine"}
     if model == "lumped":
         references["F_ram"] = systems["engine"]["lumped_ram_on_the_ssp_step"]
-        tolerances["F_ram"] = lumped_ram_tolerance
+        tolerances["F_ram"] = max(tolerances["F_ram"], lumped_ram_tolerance)
         what["F_ram"] = "fmpy master on the SSP step"
     for name, peak in zip(("F_ram", "F_pile"), peaks, strict=True):
         reference = references[name]
         print(f"\n{tool} {model} {name}: {peak / 1e6:.2f} MN, {what[name]} "
               f"{reference / 1e6:.2f} MN ({peak / reference - 1:+.3%})")
         assert np.isfinite(peak)
-        if name in names:
-            assert abs(peak / reference - 1.0) <= tolerances[name]
+        assert abs(peak / reference - 1.0) <= tolerances[name]
 
 
 def omsimulator(tmp_path_factory) -> Path:
@@ -124,26 +125,72 @@ def omsimulator(tmp_path_factory) -> Path:
     return binary
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("model", ["rom", "lumped"])
-def test_omsimulator_runs_system_ssp(systems, model, tmp_path, tmp_path_factory):
-    """OMSimulator 2.1.1 on the SSP as written; only the stop time is given on its command line
-    (its command line replaced the SSP's start and stop times by its defaults, 0 and 1 s, in
-    our runs); its fixed step is the SSP's own (the oms annotation), checked in the result."""
-    binary = omsimulator(tmp_path_factory)
-    result = tmp_path / "oms.csv"
-    run = subprocess.run([str(binary), str(systems["ssp"][model]), f"--resultFile={result}",
-                          f"--stopTime={systems['duration']!r}", f"--tempDir={tmp_path}"],
-                         capture_output=True, text=True, cwd=tmp_path, timeout=900)
-    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-    assert "error" not in run.stdout.lower(), run.stdout[-3000:]
-    with result.open() as f:
+def read_oms_csv(path: Path) -> tuple[np.ndarray, dict[str, int]]:
+    """OMSimulator's CSV result: the data and a column per ``Unit.variable``."""
+    with path.open() as f:
         rows = list(csv.reader(f))
     header, data = rows[0], np.array(rows[1:], dtype=float)
     column = {name.rsplit(".", 2)[-2] + "." + name.rsplit(".", 1)[-1]: j
               for j, name in enumerate(header) if "." in name}
+    return data, column
+
+
+@pytest.mark.slow
+def test_omsimulator_runs_system_ssp_from_its_command_line(systems, tmp_path, tmp_path_factory):
+    """A plain ``OMSimulator system.ssp``: no start, stop or step on its command line (only
+    where the result goes). Its fixed step is the SSP's (the oms annotation), checked in the
+    result's time column. Its command line replaces the SSP's start and stop times by its own
+    (0 and 1 s: the library reads ``ssd:DefaultExperiment``, the command line then sets its
+    flags' values; test_omsimulator_runs_the_window_of_system_ssp runs the SSP's window): the
+    ram's start does not depend on the start time and the blow is over long before 1 s, so
+    the peaks are those of the SSP's window (measured +0.17 % ROM F_ram, -0.06 % F_pile;
+    7.5 s for the 200,000 steps)."""
+    binary = omsimulator(tmp_path_factory)
+    result = tmp_path / "oms.csv"
+    run = subprocess.run([str(binary), str(systems["ssp"]["rom"]), f"--resultFile={result}",
+                          f"--tempDir={tmp_path}"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=900)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert "error" not in run.stdout.lower(), run.stdout[-3000:]
+    data, column = read_oms_csv(result)
     steps = np.diff(data[:, 0])
     assert np.allclose(steps[steps > 0], systems["step"], rtol=1e-6)
+    assert data[0, 0] == 0.0 and data[-1, 0] == pytest.approx(1.0)  # its command line's
+    check_peaks("OMSimulator", "rom", (data[:, column["Ram.F_toe"]].max(),
+                                       data[:, column["PileSoil.F_head"]].max()), systems)
+
+
+OMS_LUA = """model, status = oms_importFile("{ssp}")
+oms_setResultFile(model, "{result}", 1)
+oms_instantiate(model)
+oms_initialize(model)
+oms_simulate(model)
+oms_terminate(model)
+oms_delete(model)
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("model", ["rom", "lumped"])
+def test_omsimulator_runs_the_window_of_system_ssp(systems, model, tmp_path, tmp_path_factory):
+    """OMSimulator's library on the SSP as written (a Lua script: import, instantiate,
+    initialize, simulate; nothing set): it runs the SSP's DefaultExperiment, start -2.5 steps
+    to the stop time, at the SSP's step (docs/fmi.md), and gives the engine's peaks."""
+    binary = omsimulator(tmp_path_factory)
+    result = tmp_path / "oms.csv"
+    script = tmp_path / "run.lua"
+    script.write_text(OMS_LUA.format(ssp=systems["ssp"][model], result=result))
+    run = subprocess.run([str(binary), str(script), f"--tempDir={tmp_path}"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=900)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert "error" not in run.stdout.lower(), run.stdout[-3000:]
+    data, column = read_oms_csv(result)
+    steps = np.diff(data[:, 0])
+    steps = steps[steps > 0]
+    # the window is 5002.5 steps: the last one is the half step to the stop time
+    assert np.allclose(steps[:-1], systems["step"], rtol=1e-6) and steps[-1] <= systems["step"]
+    assert data[0, 0] == pytest.approx(-FIRST_CONTACT_STEPS * systems["step"], rel=1e-9)
+    assert data[-1, 0] == pytest.approx(systems["duration"], rel=1e-9)
     check_peaks("OMSimulator", model, (data[:, column["Ram.F_toe"]].max(),
                                        data[:, column["PileSoil.F_head"]].max()), systems)
 
@@ -153,20 +200,21 @@ def test_omsimulator_runs_system_ssp(systems, model, tmp_path, tmp_path_factory)
 def test_fmpy_ssp_runner_runs_system_ssp(systems, model):
     """fmpy's own SSP runner ignores the SSP's bindings and experiment: it gets the step and
     stop time as arguments; the FMUs' defaults are the SSP's values. It never reads the units'
-    outputs before the first step (every input is 0 there), so the anvil's first contact sample
-    is computed from the ram at 0, not from its real state, and the missed impulse comes back
-    as the input-extrapolation correction added to F_ram at the next sample: a spike in the
-    F_ram series (measured +66 % ROM, +75 % lumped, native and pythonfmu anvils alike: both
-    take no acceleration across the zero start inputs, anvilwave/fmu/coupling.py; +151 % with
-    the native anvil before it did). Only the pile force is checked here (within 1 %); the
-    spike is an open item (docs/fmi.md)."""
+    outputs before the first step (every input is 0 there), so the anvil's outputs at the
+    first two points come from zero inputs: the ram's two contact-free steps
+    (``contact_mid_step``) and the anvil's acting with the forces its neighbours hold while
+    they came from the start's inputs (anvilwave/fmu/coupling.py, step 4) make that
+    irrelevant. Peak F_ram within 3 % (measured -0.09 % ROM; the lumped anvil against the fmpy
+    master on the SSP step, +0.00 %) and F_pile within 1 % (+0.98 %, the step's effect, h/4
+    against h) of the engine; before, the missed first-contact impulse came back as a spike
+    in F_ram (+66 % ROM, +75 % lumped)."""
     from fmpy.ssp.simulation import simulate_ssp
 
     result = simulate_ssp(str(systems["ssp"][model]), start_time=0.0,
                           stop_time=systems["duration"], step_size=systems["step"])
     check_peaks("fmpy simulate_ssp", model, (result["Ram.F_toe"].max(),
                                              result["PileSoil.F_head"].max()), systems,
-                names=("F_pile",))
+                tolerances={"F_ram": 0.03, "F_pile": 0.01})
 
 
 LIBCOSIM_RUN = """

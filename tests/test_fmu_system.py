@@ -45,6 +45,7 @@ from anvilwave.config.system import load_system  # noqa: E402
 from anvilwave.engine.direct import COLUMNS, build_engine  # noqa: E402
 from anvilwave.engine.fmi import run_fmi  # noqa: E402
 from anvilwave.engine.fmus import SSP_STEP_DIVISOR, build_system_fmus, load_anvil_modal_data  # noqa: E402
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS, OUT_OF_REACH_TIME  # noqa: E402
 from anvilwave.fmu.fmi_build import (  # noqa: E402
     SHIM_INNER_LIBRARY,
     build_ram_fmu,
@@ -191,15 +192,16 @@ def test_system_ssp_is_valid_ssp_1_0(system):
     assert f'baseStepSize="{step!r}"' in xml and "osp:FixedStepAlgorithm" in xml
     assert f'stepSize="{step!r}"' in xml and "oms:FixedStepMaster" in xml  # OMSimulator's
     assert SSP_STEP_DIVISOR <= 4  # the SSP step is at least h/4 of the fmpy master's h
-    assert f'startTime="{-0.5 * fmus["ssp_step"]!r}"' in xml  # the engine's time axis
+    start = -FIRST_CONTACT_STEPS * fmus["ssp_step"]  # the engine's time axis: contact at 0
+    assert f'startTime="{start!r}"' in xml
     assert 'name="anvilwave_table1"' in xml  # an identifier (OMSimulator)
     assert "<ssc:String" not in xml  # OMSimulator imports no String connector
     # the pythonfmu FMUs' DefaultExperiment is the SSP's
     for kind in ("Ram", "PileSoil"):
         experiment = read_model_description(str(fmus[kind])).defaultExperiment
         assert (float(experiment.startTime), float(experiment.stopTime),
-                float(experiment.stepSize)) == (-0.5 * fmus["ssp_step"],
-                                                system["cfg"].duration, fmus["ssp_step"])
+                float(experiment.stepSize)) == (start, system["cfg"].duration,
+                                                fmus["ssp_step"])
 
 
 def test_build_rejects_an_anvil_model_without_fmus(system, tmp_path):
@@ -238,13 +240,13 @@ def test_ram_fmu_from_the_hammer_database(system, tmp_path):
         fmu.fmu.exitInitializationMode()
         v = hammer.impact_velocity
         assert fmu.get("v_toe") == v
-        # contact_displacement 0 reached in the middle of the first step (contact_mid_step):
-        # before it, half the default step h_d (no DefaultExperiment given: 1e-5 s) away
-        np.testing.assert_allclose(fmu.get("u_toe"), -0.5e-5 * v, rtol=1e-12)
+        # contact_displacement 0 reached in the middle of the third step (contact_mid_step):
+        # before the first step the toe is out of reach, OUT_OF_REACH_TIME of free flight away
+        np.testing.assert_allclose(fmu.get("u_toe"), -OUT_OF_REACH_TIME * v, rtol=1e-12)
         h = 4e-5
         fmu.fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=h)
-        # free flight over the step from -v h / 2: at +v h / 2, up to gravity (g h^2 / 2)
-        np.testing.assert_allclose(fmu.get("u_toe"), 0.5 * v * h, rtol=0, atol=2 * 9.81 * h * h)
+        # free flight over the step from -2.5 v h: at -1.5 v h, up to gravity (g h^2 / 2)
+        np.testing.assert_allclose(fmu.get("u_toe"), -1.5 * v * h, rtol=0, atol=2 * 9.81 * h * h)
     finally:
         fmu.close()
 
@@ -463,7 +465,8 @@ def fmpy_run(system, exchange: str, step_ns: int, n_steps: int, start_ns: int,
     fmus = system["fmus"]
     ram = system["fmus"]["parameters"]["Ram"]
     parameters = {"ram": {"contact_displacement": ram["contact_displacement"],
-                          "contact_time": 0.0}, "anvil": dict(anvil or {})}
+                          "contact_time": 0.0, "contact_mid_step": True},  # the SSP's start
+                  "anvil": dict(anvil or {})}
     with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"], parameters,
                     exchange=exchange) as master:
         return master.run_blows(1, n_steps, step_ns * 1e-9, start_time=start_ns * 1e-9)[0]

@@ -32,6 +32,7 @@ from fmpy.fmi1 import FMICallException  # noqa: E402
 from fmpy.fmi2 import FMU2Slave  # noqa: E402
 
 from anvilwave.fmu import native_units as nu  # noqa: E402
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS, OUT_OF_REACH_TIME  # noqa: E402
 from anvilwave.hammer.database import load_hammer  # noqa: E402
 from anvilwave.hammer.ram import ram_advance, stable_time_step  # noqa: E402
 from anvilwave.inputs import InputError, Table  # noqa: E402
@@ -142,7 +143,7 @@ def test_native_ram_reproduces_the_numba_kernel(built):
         unit.close()
     mass = hammer.ram.mass.copy()
     stiffness = hammer.ram.stiffness
-    u = np.full(mass.size, 1e-3 + 6.0 * (-0.5 * H))
+    u = np.full(mass.size, 1e-3 - 6.0 * FIRST_CONTACT_STEPS * H)  # placed at the first step
     v = np.full(mass.size, 6.0)
     n_sub = substeps(H, float(stable_time_step(mass, stiffness)))
     assert mass.size > 1 and n_sub >= 1
@@ -319,10 +320,11 @@ def test_native_ram_equals_the_pythonfmu_ram_from_any_start(tmp_path, mid_step):
     """One formula, two implementations: the native Ram and the pythonfmu Ram built with the
     same parameters and DefaultExperiment give the same toe series on the same held forces
     (rtol 1e-12; bitwise on this machine), from the start times of START_TIMES, with
-    contact_mid_step on (the default: the first contact mid first step, so every start gives
+    contact_mid_step on (the default: the first contact mid third step, so every start gives
     the same series) and off (the contact at contact_time). Before the first step both report
-    the toe half the DefaultExperiment's step h_d before the contact (mid step) or at
-    contact_time's free-flight position (off)."""
+    the toe OUT_OF_REACH_TIME of free flight before the contact (mid step: whatever the
+    DefaultExperiment's step h_d, here not the master's) or at contact_time's free-flight
+    position (off)."""
     pytest.importorskip("pythonfmu")
     from anvilwave.fmu.fmi_build import build_ram_fmu
 
@@ -361,7 +363,7 @@ def test_native_ram_equals_the_pythonfmu_ram_from_any_start(tmp_path, mid_step):
         assert np.ptp(expected[:, 1]) > 1.0  # the blow reverses the ram
         _close(got, expected)
         np.testing.assert_allclose(first, first_python, rtol=RTOL)
-        offset = -0.5 * h_d if mid_step else t0
+        offset = -OUT_OF_REACH_TIME if mid_step else t0
         np.testing.assert_allclose(first, [1e-3 + 6.0 * offset, 6.0], rtol=RTOL)
     exact = all(np.array_equal(series["native", t][1], series["python", t][1])
                 for t in START_TIMES)
@@ -402,7 +404,8 @@ def test_native_fmus_default_experiment_is_the_systems(table1_fmus):
     for kind in ("Ram", "Anvil", "AnvilLumped", "PileSoil"):
         experiment = read_model_description(str(fmus[kind])).defaultExperiment
         assert (float(experiment.startTime), float(experiment.stopTime),
-                float(experiment.stepSize)) == (-0.5 * step, float(cfg.duration), step), kind
+                float(experiment.stepSize)) == (-FIRST_CONTACT_STEPS * step, float(cfg.duration),
+                                                step), kind
 
 
 @pytest.mark.parametrize("exchange", ["design", "jacobi"])

@@ -27,12 +27,12 @@ takes them as parameters).
 unit steps, then the outputs are exchanged, so the anvil's forces reach ram and pile one step
 late). Its anvil has ``input_extrapolation`` on (:mod:`anvilwave.fmu.coupling`: the inputs
 extrapolated to the unit's time, the missed contact impulse given back), and its fixed step is
-the engine's step h over :data:`SSP_STEP_DIVISOR`, from -step/2 (the engine's time axis: the
+the engine's step h over :data:`SSP_STEP_DIVISOR`, from -2.5 step (the engine's time axis: the
 first contact at 0). Every parameter value of the SSP is also the FMUs' default (they are built
 with them, ``input_extrapolation`` included: in the DESIGN.md order of the fmpy master it
 changes no bit), so a tool that ignores the SSP's bindings runs the same system, and every
 FMU's DefaultExperiment (native or pythonfmu) is the SSP's. The ram (native or pythonfmu)
-places the first contact in the middle of the first step whatever the start time
+places the first contact in the middle of the third step whatever the start time
 (:mod:`anvilwave.fmu.units.ram`, ``anvilwave/fmu/native/ram_model.c``). Measured on Table 1
 (modal ram, ROM anvil) with libcosim at h/4: peak forces within 0.3 % of the fmpy master
 (DESIGN.md order) on the same step.
@@ -50,6 +50,7 @@ from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
 from anvilwave.config.system import SystemConfig
 from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS
 from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
 from anvilwave.fmu.native_build import NativeBuildError, build_native_anvil_fmu, find_compiler
 from anvilwave.fmu.native_units import (
@@ -169,7 +170,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         computed from the system's anvil file (as :func:`anvilwave.engine.direct.build_engine`).
     time_step : float or None, default None
         Master step h [s] (default: the engine's); the SSP's default experiment starts at
-        -step/2 with the fixed step h / :data:`SSP_STEP_DIVISOR`.
+        -2.5 step (:data:`anvilwave.fmu.coupling.FIRST_CONTACT_STEPS` steps before the first
+        contact) with the fixed step h / :data:`SSP_STEP_DIVISOR`.
     ssp : bool, default True
         Write ``system.ssp``.
     native_anvil : bool or None, default True
@@ -240,7 +242,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                              "AnvilLumped": 2}
     result["ram_implementation"] = "native" if native_ram else "pythonfmu"
     result["pile_soil_implementation"] = "native" if native_pile else "pythonfmu"
-    experiment = (-0.5 * step, float(cfg.duration), step)  # the SSP's (module docstring)
+    start = -FIRST_CONTACT_STEPS * step  # the first contact at 0 (module docstring)
+    experiment = (start, float(cfg.duration), step)  # the SSP's
     with tempfile.TemporaryDirectory(prefix="anvilwave_system_") as tmp:
         stem = cfg.anvil.spec.name if cfg.anvil.spec is not None else "anvil"
         if native_ram:
@@ -284,7 +287,7 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
             {"Ram": result["Ram"], "Anvil": result[kind], "PileSoil": result["PileSoil"]},
             {"Ram": parameters["Ram"], "Anvil": parameters[kind],
              "PileSoil": parameters["PileSoil"]},
-            name=f"anvilwave {Path(cfg.source).stem}", start_time=-0.5 * step,
+            name=f"anvilwave {Path(cfg.source).stem}", start_time=start,
             stop_time=cfg.duration, step_size=step)
     return result
 

@@ -23,7 +23,16 @@ in ``anvilwave/fmu/native/anvil_fmu.c``):
    it: s = 0 when they were just set) and keeps their difference to the forces of the last
    output read since the step before (what the neighbours hold over this step) as an impulse
    correction, added to the force outputs until the next step: the neighbours get back in the
-   next step the impulse they missed, so that anvil, ram and pile exchange the same momentum.
+   next step the impulse they missed, so that anvil, ram and pile exchange the same momentum;
+4. except when that output came from the inputs of the start time (a master's initial values:
+   the zeros of fmpy's SSP runner, or the ram's initial outputs, out of reach): then the step
+   applies the forces the neighbours hold, with no correction. A Jacobi master's neighbours
+   hold over the second step the outputs of the first point, computed from the start's inputs
+   whatever the states were: the anvil acts with them too, so that the system starts, in
+   every master, from the neighbours' real states at the second point (with the ram's
+   ``contact_mid_step``, half a step before the first contact: the engine's start). Giving
+   back an impulse missed there instead made a spike in the ram force (+66 % on the Table 1
+   peak under fmpy's SSP runner, +75 % with the lumped anvil).
 
 With inputs set at the unit's own time before the outputs are read (the DESIGN.md order of the
 fmpy master) the age is 0 and the correction 0: the results are bitwise those with the option
@@ -40,12 +49,64 @@ step set the error).
 
 from __future__ import annotations
 
+FIRST_CONTACT_STEPS = 2.5
+"""The ram's ``contact_mid_step``: communication steps from the start to the first contact [-]
+(:mod:`anvilwave.fmu.units.ram`, ``anvilwave/fmu/native/ram_model.c``)."""
+
+OUT_OF_REACH_TIME = 1.0
+"""The ram's ``contact_mid_step``: free flight to the contact reported before the first step [s]."""
+
 INPUT_EXTRAPOLATION_DESCRIPTION = (
     "For Jacobi-type masters (every unit steps, then the outputs are exchanged): extrapolate "
     "the neighbour displacements from their velocities to the unit's time and give the "
     "neighbours back the contact impulse they missed; off: the inputs as they are (DESIGN.md "
     "step order, where it changes nothing) [-]")
 """Description of the ``input_extrapolation`` parameter of the anvil FMUs."""
+
+
+def approach_input(u_ram: float, v_ram: float, u_top: float, v_top: float, h: float,
+                   touched: bool) -> tuple[float, float]:
+    """The ram toe as the anvil's contact sees it before the first contact.
+
+    Until the ram contact has carried a force (``touched``), at a communication point after a
+    step h a toe that is open by more than it closes in one step (gap u_top - u_ram > 0 and
+    > (v_ram - v_top) h) is taken out of reach (1 m above the top face, at its velocity): the
+    contact dashpot's lead across the gap (the equivalent overlap d + c d'/k of the static
+    correction) starts at most a step before the first contact, as in the engine, which
+    starts half a step before it. So a master that gives the anvil the ram's state at the
+    second point (the DESIGN.md order, OMSimulator) and a Jacobi one, whose anvil acts from the
+    third point on (step 4 of the module docstring), start alike from the ram's
+    ``contact_mid_step`` (the first contact mid third step). The native anvil
+    (``anvilwave/fmu/native/anvil_fmu.c``, ``approach_input``) does the same operations.
+
+    Parameters
+    ----------
+    u_ram : float
+        Ram toe displacement [m], positive down.
+    v_ram : float
+        Ram toe velocity [m/s], positive down.
+    u_top : float
+        Anvil top face displacement of the modes (no contact force) [m].
+    v_top : float
+        Anvil top face velocity of the modes [m/s].
+    h : float
+        The last communication step [s]; 0 before the first step (nothing changed).
+    touched : bool
+        The ram contact has carried a force.
+
+    Returns
+    -------
+    u_ram : float
+        The toe displacement the contact sees [m].
+    v_ram : float
+        The toe velocity the contact sees [m/s].
+    """
+    if touched or h == 0.0:
+        return u_ram, v_ram
+    gap = u_top - u_ram
+    if gap > 0.0 and gap > (v_ram - v_top) * h:
+        return u_top - 1.0, v_top
+    return u_ram, v_ram
 
 
 def extrapolated_input(displacement: float, velocity: float, previous_velocity: float,
@@ -102,6 +163,8 @@ class InputExtrapolation:
         self.correction = [0.0, 0.0]  # impulse correction of F_ram, F_pile [N]
         self.evaluated = None  # (F_ram, F_pile) of the last output evaluation, uncorrected [N]
         self.sent = None  # ... of the last output read since the last step [N]
+        self.evaluated_at_start = False  # that evaluation used the start time's inputs
+        self.sent_at_start = False  # ... the one read since the last step (step 4)
 
     def note_inputs(self, inputs) -> None:
         """Before new inputs are stored: at a new point keep the velocities of the last one.
@@ -135,6 +198,45 @@ class InputExtrapolation:
         u_pile, v_pile = extrapolated_input(inputs[2], inputs[3], self.previous_velocity[1], age,
                                             self.interval)
         return u_ram, v_ram, u_pile, v_pile
+
+    def evaluate(self, force_ram: float, force_pile: float) -> None:
+        """An output evaluation gave these forces (uncorrected).
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram-anvil contact force [N].
+        force_pile : float
+            Anvil-pile contact force [N].
+        """
+        self.evaluated = (force_ram, force_pile)
+        self.evaluated_at_start = self.input_time == self.start
+
+    def read(self) -> None:
+        """The outputs were read: the neighbours hold the forces of the last evaluation."""
+        if self.evaluated is not None:
+            self.sent = self.evaluated
+            self.sent_at_start = self.evaluated_at_start
+
+    def step_forces(self, force_ram: float, force_pile: float) -> tuple[float, float]:
+        """The forces a step applies (module docstring, steps 3 and 4).
+
+        Parameters
+        ----------
+        force_ram : float
+            Ram-anvil contact force at the step start, from the extrapolated inputs [N].
+        force_pile : float
+            Anvil-pile contact force at the step start, from the extrapolated inputs [N].
+
+        Returns
+        -------
+        tuple of float
+            (F_ram, F_pile) [N]: the forces given, or those the neighbours hold when they were
+            computed from the start time's inputs.
+        """
+        if self.sent is not None and self.sent_at_start:
+            return self.sent
+        return force_ram, force_pile
 
     def stepped(self, force_ram: float, force_pile: float) -> None:
         """The step applies these forces: the impulse correction follows from them.

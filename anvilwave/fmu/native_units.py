@@ -138,7 +138,7 @@ VARIABLES: dict[str, tuple[UnitVariable, ...]] = {
                      "Time of the first contact when contact_mid_step is off; the ram starts at "
                      "the experiment's start time in free flight at v_impact towards it [s]"),
         UnitVariable("contact_mid_step", 6, "parameter", None,
-                     "The first contact in the middle of the first communication step, "
+                     "The first contact in the middle of the third communication step, "
                      "whatever the start time and step (as the engine starts; contact_time is "
                      "then unused) [-]", "Boolean"),
         UnitVariable("F_toe", 7, "input", "N",
@@ -501,12 +501,11 @@ def build_native_ram_fmu(hammer, out_path: str | Path, *, validate: bool = True,
     fmi_version : {2, 3}, default 2
         FMI version of the FMU (:func:`build_unit_fmu`).
     default_experiment : tuple of float or None, optional
-        (start, stop, step) [s] as :func:`build_unit_fmu`'s (its step is where the ram reports
-        its toe before the first step, as the pythonfmu Ram).
+        (start, stop, step) [s] as :func:`build_unit_fmu`'s.
     **parameters
         As the pythonfmu Ram's (``v_impact`` [m/s], ``mass`` [kg], ``gravity`` [m/s^2],
         ``contact_displacement`` [m], ``contact_time`` [s], ``contact_mid_step``, default on:
-        the first contact in the middle of the first step, :mod:`anvilwave.fmu.units.ram`).
+        the first contact in the middle of the third step, :mod:`anvilwave.fmu.units.ram`).
 
     Returns
     -------
@@ -590,8 +589,8 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
     default_experiment : tuple of float or None, optional
         (start, stop, step) [s]: the system's, the FMU's ``DefaultExperiment`` (default
         :data:`anvilwave.fmu.native_build.DEFAULT_EXPERIMENT`); the Ram also gets it in its
-        resource (array ``default_experiment``: its toe before the first step is half that
-        step before the contact, as the pythonfmu Ram's).
+        resource (array ``default_experiment``, checked; the ram's start does not depend on
+        it).
 
     Returns
     -------

@@ -23,7 +23,9 @@
  *   at a new communication point keep the velocities of the point before (the neighbours'
  *   accelerations); the outputs use the inputs extrapolated to the unit's time; fmi2DoStep
  *   steps with the forces at the step start and keeps their difference to the forces of the
- *   last output read since the step before as an impulse correction of the force outputs.
+ *   last output read since the step before as an impulse correction of the force outputs,
+ *   except when that output came from the start time's inputs: then it steps with the forces
+ *   of that output, with no correction.
  *   With inputs set at the unit's time before the outputs are read (the DESIGN.md order),
  *   nothing changes.
  * - The ROM reads its modes from the modal-data resource named by the String parameter
@@ -93,6 +95,10 @@ typedef struct {
     double evaluated[2];         /* forces of the last output evaluation, uncorrected [N] */
     double sent[2];              /* ... of the last output read since the last step [N] */
     int has_evaluated, has_sent;
+    int evaluated_at_start, sent_at_start; /* from the start time's inputs */
+    /* before the first contact (Python: approach_input) */
+    int touched;                 /* the ram contact has carried a force */
+    double last_step;            /* the last communication step [s]; 0: none yet */
     char reason[MESSAGE_SIZE];
 } Instance;
 
@@ -273,15 +279,19 @@ static int extrapolating(const Instance *inst)
     return inst->built && inst->boolean[ANVIL_INPUT_EXTRAPOLATION];
 }
 
-/* Python: InputExtrapolation(time), a fresh state at the unit's time. */
+/* Python: InputExtrapolation(time), a fresh state at the unit's time (and the approach's:
+ * AnvilSlaveBase.start_component). */
 static void start_extrapolation(Instance *inst)
 {
+    inst->touched = 0;
+    inst->last_step = 0.0;
     inst->input_start = inst->time;
     inst->input_time = inst->time;
     inst->input_interval = 0.0;
     inst->previous_velocity[0] = inst->previous_velocity[1] = 0.0;
     inst->correction[0] = inst->correction[1] = 0.0;
     inst->has_evaluated = inst->has_sent = 0;
+    inst->evaluated_at_start = inst->sent_at_start = 0;
 }
 
 /* Python: InputExtrapolation.note_inputs, before new inputs are stored. While the point before
@@ -295,6 +305,22 @@ static void note_inputs(Instance *inst)
         inst->input_interval = inst->input_time > inst->input_start ?
                                inst->time - inst->input_time : 0.0;
         inst->input_time = inst->time;
+    }
+}
+
+/* Python: approach_input and AnvilSlaveBase.approached. Until the ram contact has carried a
+ * force, after a step h a toe open by more than it closes in one step is taken out of reach
+ * (1 m above the top face, at its velocity): the contact dashpot's lead across the gap starts
+ * at most a step before the first contact, as in the engine. */
+static void approach_input(Instance *inst, double *u_ram, double *v_ram)
+{
+    double u_top, v_top, gap;
+    if (inst->touched || inst->last_step == 0.0) return;
+    anvil_unit_outputs(&inst->unit, 0.0, 0.0, &u_top, &v_top, NULL, NULL);
+    gap = u_top - *u_ram;
+    if (gap > 0.0 && gap > (*v_ram - v_top) * inst->last_step) {
+        *u_ram = u_top - 1.0;
+        *v_ram = v_top;
     }
 }
 
@@ -358,14 +384,11 @@ static void compute_outputs(Instance *inst)
 {
     double *r = inst->real;
     double force_ram, force_pile, u_top, u_bottom;
-    if (extrapolating(inst)) {
-        double u_ram, v_ram, u_pile, v_pile;
-        extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
-        anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
-    } else {
-        anvil_unit_forces(&inst->unit, r[ANVIL_U_RAM], r[ANVIL_V_RAM], r[ANVIL_U_PILE],
-                          r[ANVIL_V_PILE], &force_ram, &force_pile);
-    }
+    double u_ram = r[ANVIL_U_RAM], v_ram = r[ANVIL_V_RAM], u_pile = r[ANVIL_U_PILE],
+           v_pile = r[ANVIL_V_PILE];
+    if (extrapolating(inst)) extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
+    approach_input(inst, &u_ram, &v_ram);
+    anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
     anvil_unit_outputs(&inst->unit, force_ram, force_pile, &u_top, NULL, &u_bottom, NULL);
     r[ANVIL_F_RAM] = force_ram;
     r[ANVIL_F_PILE] = force_pile;
@@ -375,6 +398,7 @@ static void compute_outputs(Instance *inst)
         inst->evaluated[0] = force_ram;
         inst->evaluated[1] = force_pile;
         inst->has_evaluated = 1;
+        inst->evaluated_at_start = inst->input_time == inst->input_start;
         r[ANVIL_F_RAM] += inst->correction[0];
         r[ANVIL_F_PILE] += inst->correction[1];
     }
@@ -620,6 +644,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         inst->sent[0] = inst->evaluated[0];
         inst->sent[1] = inst->evaluated[1];
         inst->has_sent = 1;
+        inst->sent_at_start = inst->evaluated_at_start;
     }
     return fmi2OK;
 }
@@ -864,7 +889,12 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         /* Python: AnvilSlaveBase.advance and InputExtrapolation.stepped */
         double u_ram, v_ram, u_pile, v_pile, force_ram, force_pile;
         extrapolated_inputs(inst, &u_ram, &v_ram, &u_pile, &v_pile);
+        approach_input(inst, &u_ram, &v_ram);
         anvil_unit_forces(&inst->unit, u_ram, v_ram, u_pile, v_pile, &force_ram, &force_pile);
+        if (inst->has_sent && inst->sent_at_start) { /* Python: InputExtrapolation.step_forces */
+            force_ram = inst->sent[0];
+            force_pile = inst->sent[1];
+        }
         if (inst->has_sent) {
             inst->correction[0] = force_ram - inst->sent[0];
             inst->correction[1] = force_pile - inst->sent[1];
@@ -874,11 +904,14 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         inst->has_sent = 0;
         anvil_unit_set_step(&inst->unit, h);
         anvil_unit_step(&inst->unit, force_ram, force_pile);
+        if (force_ram > 0.0) inst->touched = 1;
     } else {
         if (!inst->outputs_valid) compute_outputs(inst);
         anvil_unit_set_step(&inst->unit, h);
         anvil_unit_step(&inst->unit, inst->real[ANVIL_F_RAM], inst->real[ANVIL_F_PILE]);
+        if (inst->real[ANVIL_F_RAM] > 0.0) inst->touched = 1;
     }
+    inst->last_step = h;
     inst->outputs_valid = 0;
     if (inst->unit.lcp_failed)
         return fail(inst, "step at t = %.9g s: the rings' contact problem found no solution in "

@@ -14,8 +14,8 @@
  * the toe and modal_participation_gravity (1) [kg^1/2] of the rigid mode: every mode exact
  * over the step for the held force (no sub-steps); its toe sum runs in the loop's order where
  * the numba kernel may reassociate it, so the two agree to rounding. Optional:
- * default_experiment (3) [s], start, stop and step of the FMU's DefaultExperiment (its step is
- * h_d below; without it h_d is 1e-5 s, the pythonfmu Ram's first_step_hint).
+ * default_experiment (3) [s], start, stop and step of the FMU's DefaultExperiment (checked,
+ * unused by the ram).
  *
  * Variables (value references of the pythonfmu Ram unit): parameters v_impact [m/s] (0: the
  * hammer's), mass [kg] (0: the hammer's; else the segment masses are scaled to it), gravity
@@ -23,12 +23,13 @@
  * on); input F_toe [N]; outputs u_toe [m], v_toe [m/s] (states, no feedthrough).
  *
  * Start (fmu/units/ram.py RamSlave.start_component and advance, the same operations): with
- * contact_mid_step the first contact falls in the middle of the first communication step,
+ * contact_mid_step the first contact falls in the middle of the third communication step,
  * whatever the start time and step: until the first fmi2DoStep every mass is at
- * contact_displacement + v_impact (-0.5 h_d) (h_d: the DefaultExperiment's step), and at the
- * first fmi2DoStep (step h) the unit starts again from contact_displacement - v_impact (0.5 h)
- * before it steps. With it off the toe reaches contact_displacement at contact_time:
- * u = contact_displacement + v_impact (t_s - contact_time) at the start time t_s.
+ * contact_displacement - v_impact OUT_OF_REACH_TIME (out of reach of any contact), and at the
+ * first fmi2DoStep (step h) the unit starts again from contact_displacement - v_impact
+ * (FIRST_CONTACT_STEPS h) before it steps. With it off the toe reaches contact_displacement at
+ * contact_time: u = contact_displacement + v_impact (t_s - contact_time) at the start time t_s.
+ * The default_experiment resource is checked but not used.
  */
 #include <math.h>
 #include <stdio.h>
@@ -38,7 +39,8 @@
 #include "unit_model.h"
 
 #define MAX_SUBSTEPS 1.0e8 /* more sub-steps in one communication step: refused */
-#define FIRST_STEP_HINT 1e-5 /* h_d [s] without a DefaultExperiment (fmu/units/ram.py) */
+#define FIRST_CONTACT_STEPS 2.5 /* steps from the start to the first contact (fmu/units/ram.py) */
+#define OUT_OF_REACH_TIME 1.0 /* free flight to the contact before the first step [s] */
 
 enum {
     V_IMPACT, MASS, GRAVITY, CONTACT_DISPLACEMENT, CONTACT_TIME, CONTACT_MID_STEP, F_TOE, U_TOE,
@@ -62,7 +64,6 @@ typedef struct {
     double *mass;      /* (n) [kg] */
     double *stiffness; /* (n - 1) [N/m] */
     double total_mass, impact_velocity;
-    double default_step; /* h_d [s] */
     /* a modal ram: its toe modes, the rigid-body mode first (n_modes 0: a rod) */
     size_t n_modes;
     double *omega, *participation; /* (n_modes) [rad/s], [kg^-1/2] */
@@ -140,7 +141,6 @@ static void *load(const FmuResource *res, char *reason, size_t reason_size)
     m->stiffness = copy_array(stiffness, nk);
     m->total_mass = total[0];
     m->impact_velocity = velocity[0];
-    m->default_step = FIRST_STEP_HINT;
     {
         size_t n_experiment;
         const double *experiment = fmu_resource_array(res, "default_experiment",
@@ -151,7 +151,6 @@ static void *load(const FmuResource *res, char *reason, size_t reason_size)
                      "a positive step");
             return NULL;
         }
-        if (experiment != NULL) m->default_step = experiment[2];
     }
     if (m->mass == NULL || m->stiffness == NULL) {
         free_model(m);
@@ -359,7 +358,7 @@ static void *start(const void *p, const double *slots, double start_time, char *
     if (placed)
         offset = start_time - slots[CONTACT_TIME];
     else /* until the first step tells h (header) */
-        offset = -0.5 * m->default_step;
+        offset = -OUT_OF_REACH_TIME;
     u0 = slots[CONTACT_DISPLACEMENT] + velocity * offset;
     if (m->n_modes > 0) {
         s = (RamState *)start_modal(m, gravity, u0, velocity, reason, reason_size);
@@ -428,8 +427,8 @@ static int step(void *p, const double *slots, double h, char *reason, size_t rea
     double toe_force = slots[F_TOE], dt;
     size_t last, i;
     long k, n_sub;
-    if (!s->placed) { /* the first contact in the middle of this step (header) */
-        double u0 = s->contact_displacement - s->velocity * (0.5 * h);
+    if (!s->placed) { /* the first contact in the middle of the third step (header) */
+        double u0 = s->contact_displacement - s->velocity * (FIRST_CONTACT_STEPS * h);
         if (s->modal != NULL) {
             s->modal->start_u = s->modal->u = u0;
             s->modal->start_v = s->modal->v = s->velocity;

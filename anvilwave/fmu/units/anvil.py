@@ -49,7 +49,11 @@ from anvilwave.anvil_rom.unit import (
     modal_unit_outputs,
     modal_unit_step,
 )
-from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION, InputExtrapolation
+from anvilwave.fmu.coupling import (
+    INPUT_EXTRAPOLATION_DESCRIPTION,
+    InputExtrapolation,
+    approach_input,
+)
 from anvilwave.fmu.units.base import UnitSlave
 from anvilwave.inputs import InputError
 
@@ -109,6 +113,8 @@ class AnvilSlaveBase(UnitSlave):
 
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.02, step_size=1e-5)
     extrapolation: InputExtrapolation | None = None  # with input_extrapolation, once built
+    touched = False  # the ram contact has carried a force (approach_input)
+    last_step = 0.0  # the last communication step [s] (0: none yet)
 
     parameter_fallbacks: ClassVar[dict] = {
         "ram_contact_stiffness": None,
@@ -218,6 +224,33 @@ class AnvilSlaveBase(UnitSlave):
         modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
         self.extrapolation = (InputExtrapolation(self.start_time)
                               if self.parameters["input_extrapolation"] else None)
+        self.touched = False
+        self.last_step = 0.0
+
+    def approached(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
+        """The inputs as the contacts see them before the first contact (``approach_input``).
+
+        Parameters
+        ----------
+        u_ram : float
+            Ram toe displacement [m].
+        v_ram : float
+            Ram toe velocity [m/s].
+        u_pile : float
+            Pile head displacement [m].
+        v_pile : float
+            Pile head velocity [m/s].
+
+        Returns
+        -------
+        tuple of float
+            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        """
+        if self.touched or self.last_step == 0.0:
+            return u_ram, v_ram, u_pile, v_pile
+        u_top, v_top, _, _ = self.component.outputs(0.0, 0.0)
+        u_ram, v_ram = approach_input(u_ram, v_ram, u_top, v_top, self.last_step, self.touched)
+        return u_ram, v_ram, u_pile, v_pile
 
     def compute_outputs(self, inputs, outputs) -> None:
         """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] from the current inputs.
@@ -234,17 +267,14 @@ class AnvilSlaveBase(UnitSlave):
         """
         unit = self.component
         x = self.extrapolation
+        state = self.approached(*(inputs if x is None else x.extrapolated(inputs)))
         if unit.rings is not None:  # the pile port in rings: F_pile their sum
-            outputs[:] = ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings,
-                                           *(inputs if x is None else x.extrapolated(inputs)))
-        elif x is None:
-            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, inputs[0], inputs[1], inputs[2],
-                                       inputs[3])
+            outputs[:] = ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings, *state)
         else:
-            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *x.extrapolated(inputs))
+            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *state)
         if x is None:
             return
-        x.evaluated = (outputs[0], outputs[1])
+        x.evaluate(outputs[0], outputs[1])
         outputs[0] += x.correction[0]
         outputs[1] += x.correction[1]
 
@@ -257,13 +287,17 @@ class AnvilSlaveBase(UnitSlave):
             Communication step [s].
         """
         x = self.extrapolation
-        if x is None:
-            self.component.step(self.outputs[0], self.outputs[1], h)
-            return
         unit = self.component
-        force_ram, force_pile = unit.forces(*x.extrapolated(self.inputs))
-        x.stepped(force_ram, force_pile)
+        if x is None:
+            force_ram, force_pile = self.outputs[0], self.outputs[1]
+        else:
+            force_ram, force_pile = x.step_forces(
+                *unit.forces(*self.approached(*x.extrapolated(self.inputs))))
+            x.stepped(force_ram, force_pile)
         unit.step(force_ram, force_pile, h)
+        if force_ram > 0.0:
+            self.touched = True
+        self.last_step = h
 
     # input extrapolation: the unit's time, the inputs' time, the forces read
     def set_real(self, vrs, values):
@@ -299,9 +333,8 @@ class AnvilSlaveBase(UnitSlave):
             The values [SI].
         """
         values = super().get_real(vrs)
-        x = self.extrapolation
-        if x is not None and x.evaluated is not None:
-            x.sent = x.evaluated
+        if self.extrapolation is not None:
+            self.extrapolation.read()
         return values
 
     def do_step(self, current_time: float, step_size: float) -> bool:

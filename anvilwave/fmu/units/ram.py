@@ -19,19 +19,25 @@ sub-steps). Any communication step ``h`` is accepted.
 Start: every mass moves at ``v_impact`` and the ram is undeformed, in free flight towards the
 anvil; its toe reaches ``contact_displacement`` (the anvil top face at rest: the ``u_top``
 output of the anvil after its initialization) at the first contact. With ``contact_mid_step``
-(the default) the first contact falls in the middle of the first communication step, whatever
-the master's start time t_s and step h: at its first ``fmi2DoStep`` the unit places its free
-flight so that the toe is at contact_displacement - v_impact h / 2 at t_s. Before that step
-(the outputs at t_s) it does not know h yet and reports the toe at contact_displacement -
-v_impact h_d / 2, h_d the step of the FMU's DefaultExperiment (a gap: no contact force, and the
-position a master with that step extrapolates correctly). This is the in-process engine's start
-(it starts half a step before the first contact), so the results do not depend on where a
-master starts or on where the contact would fall on its time grid: a contact force sampled at
-the steps' ends and held over them is off by up to a step's worth of impulse at the first
-contact when that falls anywhere but mid-step (+36 % on the lumped anvil's ram peak of Table 1
-at 20 us for a contact on a communication point, measured). With ``contact_mid_step`` off the
-toe reaches ``contact_displacement`` at ``contact_time`` instead: u = contact_displacement +
-v_impact (t - contact_time) from the start time on.
+(the default) the first contact falls in the middle of the third communication step
+(:data:`anvilwave.fmu.coupling.FIRST_CONTACT_STEPS` steps after the start), whatever the
+master's start time t_s and step h: at its first ``fmi2DoStep`` the unit places its free flight
+so that the toe is at contact_displacement - 2.5 v_impact h at t_s. Before that step (the
+outputs at t_s) it does not know h and reports the toe
+:data:`~anvilwave.fmu.coupling.OUT_OF_REACH_TIME` of free flight before the contact, out of
+reach of any contact for any step. The two contact-free steps make the start the same for every
+master: the anvil's outputs at the first two communication points come from inputs that are
+either the ram's initial outputs (out of reach) or a master's initial values (the zeros of
+fmpy's SSP runner), never from the ram's state near the contact, and a Jacobi-type master's
+anvil sees the ram's real state from the second point on
+(:mod:`anvilwave.fmu.coupling`). The contact then starts half a step after a communication point,
+as the in-process engine starts (half a step before the first contact), so the results do not
+depend on where a master starts or on where the contact would fall on its time grid: a contact
+force sampled at the steps' ends and held over them is off by up to a step's worth of impulse
+at the first contact when that falls anywhere but mid-step (+36 % on the lumped anvil's ram
+peak of Table 1 at 20 us for a contact on a communication point, measured). With
+``contact_mid_step`` off the toe reaches ``contact_displacement`` at ``contact_time`` instead:
+u = contact_displacement + v_impact (t - contact_time) from the start time on.
 
 The ram data come from a hammer: ``hammer`` names a hammer of the database
 (``anvilwave/hammer/data``,
@@ -47,6 +53,7 @@ from typing import ClassVar
 import numpy as np
 from pythonfmu import DefaultExperiment
 
+from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS, OUT_OF_REACH_TIME
 from anvilwave.fmu.units.base import UnitSlave
 from anvilwave.hammer.database import available_hammers, load_hammer
 from anvilwave.hammer.modal_ram import ModalRamUnit
@@ -197,8 +204,6 @@ class RamSlave(UnitSlave):
         "contact_time": 0.0,
         "contact_mid_step": True,
     }
-    first_step_hint: ClassVar[float] = 1e-5
-    """h_d [s] when the build gives no DefaultExperiment step (module docstring)."""
 
     def register_variables(self) -> None:
         """Register the ram's parameters, input ``F_toe`` and outputs ``u_toe``, ``v_toe``."""
@@ -217,7 +222,7 @@ class RamSlave(UnitSlave):
         p("contact_time", "s", "Time of the first contact when contact_mid_step is off; the ram "
                                "starts at the experiment's start time in free flight at "
                                "v_impact towards it [s]")
-        p("contact_mid_step", None, "The first contact in the middle of the first "
+        p("contact_mid_step", None, "The first contact in the middle of the third "
                                     "communication step, whatever the start time and step "
                                     "(as the engine starts; contact_time is then unused) [-]",
           bool)
@@ -290,7 +295,7 @@ class RamSlave(UnitSlave):
         if self.placed:
             offset = self.start_time - par["contact_time"]
         else:  # until the first step tells h (module docstring)
-            offset = -0.5 * float(self.default_step or self.first_step_hint)
+            offset = -OUT_OF_REACH_TIME
         self.component.start(par["contact_displacement"] + self.velocity * offset,
                              self.velocity)
 
@@ -316,8 +321,8 @@ class RamSlave(UnitSlave):
         h : float
             Communication step [s].
         """
-        if not self.placed:  # the first contact in the middle of this step
+        if not self.placed:  # the first contact in the middle of the third step
             self.component.start(self.parameters["contact_displacement"]
-                                 - self.velocity * (0.5 * h), self.velocity)
+                                 - self.velocity * (FIRST_CONTACT_STEPS * h), self.velocity)
             self.placed = True
         self.component.step(self.inputs[0], h)
