@@ -253,7 +253,7 @@ def test_native_three_unit_system_in_a_c_host_with_an_empty_environment_equals_t
                mds[kind].guid, str(folders["PileSoil"]), mds["PileSoil"].guid, str(steps),
                repr(h), str(csv),
                "--vr", vrs("Ram", ("F_toe", "u_toe", "v_toe", "contact_displacement",
-                                   "contact_time")),
+                                   "contact_time", "contact_mid_step")),
                "--vr", vrs(kind, ("u_ram", "v_ram", "u_pile", "v_pile", "F_ram", "F_pile",
                                   "u_top", "u_bottom", "initial_pile_head_displacement")),
                "--vr", vrs("PileSoil", ("F_head", "u_head", "v_head"))]

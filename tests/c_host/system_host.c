@@ -4,13 +4,15 @@
  *
  *   system_host <ram_dir> <ram_guid> <anvil_dir> <anvil_id> <anvil_guid> <pile_dir>
  *               <pile_guid> <steps> <h> <csv>
- *               --vr <ram: F_toe,u_toe,v_toe,contact_displacement,contact_time>
+ *               --vr <ram: F_toe,u_toe,v_toe,contact_displacement,contact_time,
+ *                          contact_mid_step>
  *               --vr <anvil: u_ram,v_ram,u_pile,v_pile,F_ram,F_pile,u_top,u_bottom,
  *                            initial_pile_head_displacement>
  *               --vr <pile: F_head,u_head,v_head>
  *
  * Start (as BlowMaster._start_blow): the pile at rest at t0 = -h/2; the anvil resting on the
- * pile head; the ram in free flight towards the anvil top face, touching it at t0 + h/2.
+ * pile head; the ram in free flight towards the anvil top face, touching it at t0 + h/2
+ * (contact_time given, contact_mid_step off).
  * Each step: outputs of ram and pile -> anvil inputs -> contact forces -> forces to ram and
  * pile -> every unit steps. Writes t, F_ram, F_pile [s, N, N] per communication point to csv;
  * prints the peak forces; exit 0 on success, 1 on any FMI error (reasons on stderr).
@@ -33,6 +35,7 @@ typedef struct {
     fmi2TerminateTYPE *terminate;
     fmi2GetRealTYPE *get;
     fmi2SetRealTYPE *set;
+    fmi2SetBooleanTYPE *set_boolean;
     fmi2DoStepTYPE *step;
     fmi2Component c;
 } Unit;
@@ -79,9 +82,10 @@ static int load(Unit *u, const char *dir, const char *id, const char *guid, cons
     SYM(terminate, "fmi2Terminate");
     SYM(get, "fmi2GetReal");
     SYM(set, "fmi2SetReal");
+    SYM(set_boolean, "fmi2SetBoolean");
     SYM(step, "fmi2DoStep");
     if (!u->instantiate || !u->free_instance || !u->setup || !u->enter || !u->exit_init ||
-        !u->terminate || !u->get || !u->set || !u->step) {
+        !u->terminate || !u->get || !u->set || !u->set_boolean || !u->step) {
         fprintf(stderr, "system_host: %s lacks FMI functions\n", path);
         return 0;
     }
@@ -106,12 +110,12 @@ static int parse_vrs(const char *text, fmi2ValueReference *vr, int n)
 int main(int argc, char **argv)
 {
     Unit ram, anvil, pile;
-    fmi2ValueReference rv[5], av[9], pv[3];
+    fmi2ValueReference rv[6], av[9], pv[3];
     long steps, n;
     double h, t0, head, top, row[12], peak_ram = 0.0, peak_pile = 0.0, value;
     FILE *csv;
     if (argc != 17 || strcmp(argv[11], "--vr") || strcmp(argv[13], "--vr") ||
-        strcmp(argv[15], "--vr") || !parse_vrs(argv[12], rv, 5) || !parse_vrs(argv[14], av, 9) ||
+        strcmp(argv[15], "--vr") || !parse_vrs(argv[12], rv, 6) || !parse_vrs(argv[14], av, 9) ||
         !parse_vrs(argv[16], pv, 3)) {
         fprintf(stderr, "usage: see system_host.c\n");
         return 2;
@@ -151,6 +155,10 @@ int main(int argc, char **argv)
     CHECK(ram.set(ram.c, &rv[3], 1, &top));
     value = t0 + 0.5 * h;
     CHECK(ram.set(ram.c, &rv[4], 1, &value));
+    {
+        fmi2Boolean off = fmi2False;
+        CHECK(ram.set_boolean(ram.c, &rv[5], 1, &off));
+    }
     CHECK(ram.exit_init(ram.c));
     /* row: u_toe v_toe | u_head v_head | F_ram F_pile u_top u_bottom */
     for (n = 0; n <= steps; n++) {
