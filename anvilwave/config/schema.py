@@ -11,6 +11,8 @@ be given, ``None`` that it is optional with a computed default described in the 
 
 from __future__ import annotations
 
+from anvilwave.pile.pile import DEFAULT_GAUGE_DEPTH
+
 REQUIRED = "required"
 
 SYSTEM: dict[str, tuple[str, object, str]] = {
@@ -80,7 +82,7 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.classic.*_cushion.round_out": ("m", 0.0, "round-out deformation"),
     # [pile]
     "pile.segment_length": ("m", 0.5, "target segment length (upper bound per section)"),
-    "pile.gauge_depth": ("m", 2.0, "gauge position below the head"),
+    "pile.gauge_depth": ("m", DEFAULT_GAUGE_DEPTH, "gauge position below the head"),
     "pile.material_damping": ("-", 0.01, "fraction of critical per segment"),
     "pile.material_damping_model": ("-", "segment", "'segment' (2 zeta sqrt(k m) per spring) "
                                                     "or 'uniform' (GRLWEAP: 2 zeta EA/c at "
