@@ -228,9 +228,32 @@ REPORT_CASES = ["report of a missing folder", "report of a folder that is no res
                 "report of a file", "report --out below a file", "report --out is a folder"]
 """Bad arguments of ``anvilwave report`` (test_bad_report)."""
 
-CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda", "report"})
+MISSING = "missing.toml"
+EVERY_COMMAND_CASES = [
+    ("modes", lambda t: ["modes", str(t / MISSING)], [MISSING]),
+    ("impact", lambda t: ["impact", str(t / MISSING)], [MISSING]),
+    ("build-fmus", lambda t: ["build-fmus", str(t / MISSING)], [MISSING]),
+    ("fea", lambda t: ["fea", str(t / MISSING)], [MISSING]),
+    ("compare", lambda t: ["compare", str(t / MISSING)], [MISSING]),
+    ("demo", lambda t: ["demo", "--system", str(t / MISSING)], [MISSING]),
+    ("drive", lambda t: ["drive", str(t / MISSING)], [MISSING]),
+    ("install", lambda t: ["install", str(t / MISSING)], [MISSING]),
+    ("batch", lambda t: ["batch", str(t / MISSING)], [MISSING]),
+    ("pda", lambda t: ["pda", str(t / "missing.csv"), "--length", "4", "--area", "0.06",
+                       "--jc", "0.3"],
+     ["missing.csv"]),
+    ("pda --length", lambda t: ["pda", str(_record(t)), "--length", "-4", "--area", "0.06",
+                                "--jc", "0.3"],
+     ["length", "positive", "-4"]),
+    ("match", lambda t: ["match", str(t / "missing.csv"), str(_system(t))], ["missing.csv"]),
+    ("compare-pda", lambda t: ["compare-pda", str(_record(t)), str(t / MISSING)], [MISSING]),
+]
+"""A missing or impossible input to every command that reads one
+(test_every_command_refuses_a_missing_input)."""
+
+CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda", "report", "missing"})
 COUNT = (len(BAD_INPUTS) + len(OUTPUT_CASES) + len(FAULT_CASES) + len(PDA_CASES)
-         + len(REPORT_CASES))
+         + len(REPORT_CASES) + len(EVERY_COMMAND_CASES))
 """Bad inputs and faults tested here."""
 
 
@@ -258,10 +281,11 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 def test_the_count_is_stated():
     """docs/system-file.md states the count and the classes of the cases tested here."""
-    assert COUNT == len(BAD_INPUTS) + 33 and COUNT >= 58
-    assert CLASSES == ["accepted", "fault", "output", "pda", "report", "traceback", "vague"]
+    assert COUNT == len(BAD_INPUTS) + 46 and COUNT >= 71
+    assert CLASSES == ["accepted", "fault", "missing", "output", "pda", "report", "traceback",
+                       "vague"]
     docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
-    words = {7: "seven"}
+    words = {8: "eight"}
     assert f"runs {COUNT} such cases in {words[len(CLASSES)]} classes" in " ".join(docs.split())
 
 
@@ -847,3 +871,14 @@ def test_drive_on_workers_equals_drive_in_process(tmp_path):
         assert a.keys() == b.keys()
         for key in a:
             assert a[key] == b[key] or (a[key] != a[key] and b[key] != b[key]), key
+
+
+
+@pytest.mark.parametrize("case, argv, words", EVERY_COMMAND_CASES,
+                         ids=[c[0] for c in EVERY_COMMAND_CASES])
+def test_every_command_refuses_a_missing_input(tmp_path, capsys, case, argv, words):
+    """Each command given an input file that is not there (or a negative pile length): one
+    line naming it, exit 2, no output folder."""
+    out = tmp_path / "out"
+    code = cli.main([*argv(tmp_path), "--out", str(out)])
+    _assert_one_line_exit_2(code, capsys, words, out)
