@@ -668,25 +668,32 @@ def _descendants(pid: int) -> list[int]:
     return out
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
-def test_killed_batch_leaves_no_worker_and_no_staging(tmp_path):
-    """``batch`` on its LocalCluster (2 workers, their nannies) killed by SIGKILL while the
-    cases run: 5 s later no process of it runs and no staging file or folder is left."""
+def _start_batch(tmp_path: Path, **popen) -> subprocess.Popen:
+    """``anvilwave batch`` of a tiny 9-case campaign on 2 workers, started in a process."""
     from .test_campaign import write_campaign
 
     path = write_campaign(tmp_path / "c", positions=(("P1", 8.0), ("P2", 9.0), ("P3", 9.5)))
-    out = tmp_path / "campaign_out"
-    cmd = [sys.executable, "-m", "anvilwave", "batch", str(path), "--out", str(out),
-           "--workers", "2"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    def workers() -> list[int]:  # the LocalCluster's worker processes (multiprocessing spawn)
-        return [p for p in _descendants(proc.pid) if "spawn_main" in _cmdline(p)]
+    cmd = [sys.executable, "-m", "anvilwave", "batch", str(path), "--out",
+           str(tmp_path / "campaign_out"), "--workers", "2"]
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, **popen)
 
+
+def _batch_workers(pid: int) -> list[int]:
+    """The LocalCluster's worker processes below ``pid`` (multiprocessing spawn)."""
+    return [p for p in _descendants(pid) if "spawn_main" in _cmdline(p)]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_killed_batch_leaves_no_worker_and_no_staging(tmp_path):
+    """``batch`` on its LocalCluster (2 worker processes) killed by SIGKILL while the cases
+    run: 5 s later no process of it runs and no staging file or folder is left."""
+    proc = _start_batch(tmp_path, stderr=subprocess.DEVNULL)
     for _ in range(1800):  # until both workers run (startup of the cluster first)
-        if len(workers()) >= 2 or proc.poll() is not None:
+        if len(_batch_workers(proc.pid)) >= 2 or proc.poll() is not None:
             break
         time.sleep(0.1)
-    assert proc.poll() is None and len(workers()) >= 2, "the batch ended before its workers ran"
+    assert proc.poll() is None and len(_batch_workers(proc.pid)) >= 2, \
+        "the batch ended before its workers ran"
     family = _descendants(proc.pid)  # the workers and multiprocessing's resource tracker
     proc.send_signal(signal.SIGKILL)
     proc.wait()
@@ -827,14 +834,7 @@ def test_ctrl_c_on_batch_is_one_line_and_leaves_no_worker(tmp_path):
     delivered: the numerical libraries' threads take it, ignored; docs/batch.md says so.)"""
     import threading
 
-    from .test_campaign import write_campaign
-
-    path = write_campaign(tmp_path / "c", positions=(("P1", 8.0), ("P2", 9.0), ("P3", 9.5)))
-    out = tmp_path / "campaign_out"
-    cmd = [sys.executable, "-m", "anvilwave", "batch", str(path), "--out", str(out),
-           "--workers", "2"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            start_new_session=True, text=True)
+    proc = _start_batch(tmp_path, stderr=subprocess.PIPE, start_new_session=True, text=True)
     err_parts: list[str] = []
     reader = threading.Thread(target=lambda: err_parts.extend(iter(
         lambda: proc.stderr.read(1), "")), daemon=True)
@@ -845,7 +845,7 @@ def test_ctrl_c_on_batch_is_one_line_and_leaves_no_worker(tmp_path):
         time.sleep(0.1)
     assert proc.poll() is None, "the batch ended before its cases ran"
     family = _descendants(proc.pid)
-    assert len([p for p in family if "spawn_main" in _cmdline(p)]) >= 2
+    assert len(_batch_workers(proc.pid)) >= 2
     os.killpg(proc.pid, signal.SIGINT)
     proc.wait(timeout=120)
     reader.join(timeout=10)
