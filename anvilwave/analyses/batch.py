@@ -1040,7 +1040,6 @@ def _run_campaign(campaign, out: Path, workers, scheduler, progress: bool, plots
     record = active_record()
     if record is not None:
         write_inputs(out, record)
-    write_marker(out, "batch")
     counts = {s: sum(r["status"] == s for r in rows)
               for s in (STATUS_OK, STATUS_ERROR, STATUS_PENDING)}
     return BatchResult(cases=len(campaign.cases), ran=len(runnable), skipped=len(finished),
