@@ -67,6 +67,12 @@ import numpy as np
 
 from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 from anvilwave.fmu.units.base import DEFAULTS_FILE, UnitSlave
+from anvilwave.fmu.vendoring import (
+    PACKAGE_PREFIX,
+    license_text,
+    pythonfmu_license_text,
+    vendored_unit,
+)
 from anvilwave.hammer.database import Hammer, available_hammers
 from anvilwave.hammer.modal_ram import toe_modes_table
 from anvilwave.inputs import InputError, toml_dumps
@@ -81,6 +87,10 @@ AUTHOR = "anvilwave"
 """``author`` of the FMUs' modelDescription.xml (with ``version``: anvilwave's, and
 ``license``: the project's)."""
 LICENSE = "MIT"
+LICENSE_FILES = {"anvilwave": "documentation/licenses/anvilwave.txt",
+                 "pythonfmu": "documentation/licenses/pythonfmu.txt"}
+"""Licence texts in the pythonfmu FMUs (the FMI 3.0 layout; also in ``resources/`` beside the
+code they cover: ``resources/anvilwave_fmu_<digest>/LICENSE``, ``resources/pythonfmu/LICENSE``)."""
 FORMAT = "anvilwave-fmu-parameters"
 
 KINDS: dict[str, Path] = {
@@ -184,7 +194,7 @@ def build_fmu(kind: str | Path, out_dir: str | Path, parameters: dict[str, Any] 
         built = _pythonfmu_build(script, scratch / "build", staged)
         shim = _compile_shim(scratch, status_shim)
         final = scratch / built.name
-        _post_process(built, final, slave, shim, content.get("default_experiment"))
+        _post_process(built, final, slave, shim, content.get("default_experiment"), script)
         if validate:
             _validate(final)
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -455,7 +465,7 @@ def python_runtime() -> dict[str, Any]:
     it as program name, Python finds the venv and its site-packages); ``library``: its shared
     libpython (``sysconfig`` ``LIBDIR`` / ``INSTSONAME``; None for a Python without one, whose
     FMUs run in Python hosts only); ``version``: ``"3.X"``; ``site``: its site-packages folders
-    and the folder holding the ``anvilwave.fmu`` package (for a checkout that is not installed).
+    (numpy, scipy, numba; the units' anvilwave code is inside the FMU).
 
     Returns
     -------
@@ -477,7 +487,6 @@ def python_runtime() -> dict[str, Any]:
             library = str(Path(folder) / name)
             break
     sites = [p for p in site.getsitepackages() if Path(p).is_dir()]
-    sites.append(str(UNITS_DIR.parents[2]))
     return {"executable": sys.executable, "library": library, "version": version,
             "site": sites}
 
@@ -529,7 +538,8 @@ def _stage_resources(resources, stage: Path, script: Path) -> list[Path]:
         res = Path(res)
         if not res.is_file():
             raise InputError(str(res), "", "resource file not found")
-        if res.name in reserved or (stage / res.name).exists():
+        if res.name in reserved or res.name.startswith(PACKAGE_PREFIX) or \
+                (stage / res.name).exists():
             raise InputError(str(res), "", f"resource name {res.name!r} is reserved or "
                                            "given twice")
         shutil.copy2(res, stage / res.name)
@@ -643,7 +653,8 @@ def _compile_shim(scratch: Path, wanted: bool | None) -> Path | None:
 
 
 def _post_process(built: Path, final: Path, slave, shim: Path | None,
-                  experiment: dict[str, float] | None = None) -> None:
+                  experiment: dict[str, float] | None = None,
+                  script: Path | None = None) -> None:
     with zipfile.ZipFile(built) as zin:
         root = ET.fromstring(zin.read("modelDescription.xml"))
         identifier = root.find("CoSimulation").get("modelIdentifier")
@@ -666,6 +677,14 @@ def _post_process(built: Path, final: Path, slave, shim: Path | None,
                 files[f"binaries/linux64/{SHIM_INNER_LIBRARY}"] = data
                 data = shim.read_bytes()
             files[item.filename] = data
+    if script is not None:  # the unit's anvilwave code, the script importing it (vendoring)
+        _, vendored = vendored_unit(script)
+        files.update(vendored)
+        files[LICENSE_FILES["anvilwave"]] = license_text()
+        pythonfmu_license = pythonfmu_license_text()
+        if pythonfmu_license is not None:
+            files[LICENSE_FILES["pythonfmu"]] = pythonfmu_license
+            files["resources/pythonfmu/LICENSE"] = pythonfmu_license
     _exact_start_values(root, slave.parameters)
     root.attrib.pop("generationDateAndTime", None)  # identical builds, identical files
     root.set("author", AUTHOR)

@@ -45,8 +45,6 @@ from numba import njit
 from anvilwave.anvil_rom.arrays import aligned_zeros
 from anvilwave.anvil_rom.chain import chain_from_modes
 from anvilwave.anvil_rom.fem.geometry import AnvilSpec, Interfaces, Material, validate_outline
-from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
-from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 from anvilwave.anvil_rom.rom import modal_transition, residual_flexibility
 from anvilwave.hammer.ram import RamRod
 from anvilwave.inputs import InputError
@@ -437,11 +435,14 @@ def _toe_modes(sections_bytes: bytes, n_sections: int, material: Material, fmax:
     if annuli > 1:  # vertices at the annuli's edges: each facet in one annulus
         if inner > 0.0:
             raise InputError(source, "ram", "a ram face in annuli needs a solid toe")
+        from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii  # lazy: FEM (skfem)
+
         outline = split_outline_at_radii(outline, outline[:, 1].max(),
                                          np.linspace(0.0, outer, annuli + 1)[1:-1])
     spec = AnvilSpec("ram", material, outline=outline, interfaces=toe, mesh_size=mesh_size,
                      fmax=fmax, source=source)
     if modes is None:
+        from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes  # lazy: FEM (skfem)
 
         data = compute_anvil_modes(spec, fmax=fmax).modal_data
     else:
