@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -100,3 +102,30 @@ def pytest_collection_modifyitems(session, config, items):
         return rank.get(name, len(HEAVY_MODULES))
 
     items.sort(key=key)
+
+
+PLAIN_HOST_PACKAGES = ("fmpy", "numpy", "scipy", "numba")
+"""What a Python needs to run the pythonfmu units (their anvilwave and pythonfmu code is in the
+FMU): the Python of the tests that take the FMUs to a host without anvilwave."""
+
+
+@pytest.fixture(scope="session")
+def plain_python(request) -> Path:
+    """A venv with only :data:`PLAIN_HOST_PACKAGES` (no anvilwave, no pythonfmu): its python.
+
+    Made once in pytest's cache folder and reused by later sessions while it imports them;
+    skipped with the reason when pip cannot install them (no package index reachable).
+    """
+    folder = Path(request.config.cache.mkdir("plain-fmu-host")) / "venv"
+    python = folder / "bin" / "python"
+    probe = [str(python), "-I", "-c", "import " + ", ".join(PLAIN_HOST_PACKAGES)]
+    if python.exists() and subprocess.run(probe, capture_output=True).returncode == 0:
+        return python
+    subprocess.run([sys.executable, "-m", "venv", "--clear", str(folder)], check=True)
+    pip = subprocess.run([str(python), "-m", "pip", "install", "-q", *PLAIN_HOST_PACKAGES],
+                         capture_output=True, text=True, timeout=1800)
+    if pip.returncode != 0 or subprocess.run(probe, capture_output=True).returncode != 0:
+        lines = (pip.stderr or pip.stdout).strip().splitlines()
+        pytest.skip("a venv with " + ", ".join(PLAIN_HOST_PACKAGES) + " cannot be made (pip "
+                    "cannot reach a package index?): " + (lines[-1] if lines else "no output"))
+    return python

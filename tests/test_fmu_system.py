@@ -21,6 +21,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -656,3 +657,53 @@ def test_python_anvils_give_the_native_numbers(system, tmp_path):
                 blows.append(master.run_blows(1, 400, fmus["time_step"])[0])
         for name in ("F_ram", "F_pile"):
             assert relative_difference(blows[1][name], blows[0][name]) <= 1e-11, (kind, name)
+
+
+STEP_MULTIPLES = (1, 2, 4)
+"""Master steps over the FMUs' DefaultExperiment step h_d (the SSP's: the engine's step / 4)."""
+
+
+@pytest.fixture(scope="module")
+def native_ram_system(system, tmp_path_factory):
+    """Table 1's FMUs with the native Ram (and PileSoil), when they can be built here."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fmus = build_system_fmus(system["cfg"], tmp_path_factory.mktemp("native_ram"),
+                                 system["modal"], native_anvil=None, ssp=False)
+    if fmus["ram_implementation"] != "native":
+        pytest.skip("the native Ram is not built here (its shipped binaries are not current)")
+    return fmus
+
+
+@pytest.mark.parametrize("ram", ["pythonfmu", "native"])
+def test_ram_first_contact_at_multiples_of_the_default_step(system, native_ram_system, ram):
+    """The ram places its first contact (contact_mid_step) from the master's first step, not
+    from its DefaultExperiment: Table 1 (modal ram, ROM anvil) under the fmpy master (DESIGN.md
+    order) at h = 1, 2 and 4 h_d, from the SSP's start (-2.5 h), 0 and 0.37 h, gives the peak
+    ram-anvil and anvil-pile forces of the engine run at the same step h (the reference: the
+    step changes the discretisation) within 1e-3. Measured: +0.002 %, +0.003 %, +0.006 % at
+    1, 2, 4 h_d for both, from every start (the same bits), pythonfmu and native Ram alike:
+    the ram flies 2 steps longer than the engine's (which starts h/2 before the contact), so
+    gravity adds 2 g h to its impact velocity, 2 g h / v = 6.5e-5 at 20 us. Before the ram
+    deferred its placement to the first step, the ram peak at 4 h_d was -4.3 % (it placed the
+    toe h_d / 2 before the contact whatever the master's step). The issue's bar is 0.5 %."""
+    native(system)  # the ROM anvil of both systems is the native one
+    fmus = system["fmus"] if ram == "pythonfmu" else native_ram_system
+    assert fmus["ram_implementation"] == ram
+    cfg, h_d = system["cfg"], system["fmus"]["ssp_step"]
+    assert read_model_description(str(fmus["Ram"])).defaultExperiment.stepSize == repr(h_d)
+    for multiple in STEP_MULTIPLES:
+        h = multiple * h_d
+        blow = build_engine(dataclasses.replace(cfg, time_step=h), system["modal"]).run()[0]
+        engine = np.array([blow.columns[name].max() for name in FORCES])
+        n = int(round(cfg.duration / h)) + 3  # the contact 2 steps later than the engine's
+        for start in (-FIRST_CONTACT_STEPS * h, 0.0, 0.37 * h):
+            with BlowMaster(fmus["Ram"], fmus["Anvil"], fmus["PileSoil"],
+                            {"ram": {"contact_mid_step": True}}) as master:
+                record = master.run_blows(1, n, h, start_time=start)[0]
+            peaks = np.array([np.nanmax(record["F_ram"]), np.nanmax(record["F_pile"])])
+            print(f"\n{ram} Ram, h = {multiple} h_d, start {start / h:+.2f} h: peaks "
+                  f"{peaks[0] / 1e6:.3f}, {peaks[1] / 1e6:.3f} MN, against the engine "
+                  f"{100 * (peaks[0] / engine[0] - 1):+.4f} %, "
+                  f"{100 * (peaks[1] / engine[1] - 1):+.4f} %")
+            np.testing.assert_allclose(peaks, engine, rtol=1e-3)

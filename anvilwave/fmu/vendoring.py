@@ -1,4 +1,4 @@
-"""The anvilwave code a pythonfmu unit carries in its ``resources/`` (so that it runs without anvilwave).
+"""The anvilwave code a pythonfmu unit carries in its ``resources/`` (it runs without anvilwave).
 
 :func:`vendored_unit` collects the import closure of a slave script inside anvilwave (the modules
 its module-level imports reach, and theirs; function-local imports, which the project marks
