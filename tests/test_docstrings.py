@@ -98,6 +98,8 @@ MODULES_FMU = (
     "anvilwave.fmu.units.base",
     "anvilwave.fmu.units.pile_soil",
     "anvilwave.fmu.units.ram",
+    "anvilwave.fmu.units.vendor_init",
+    "anvilwave.fmu.vendoring",
 )
 """The FMI package."""
 MODULES_KERNELS = (

@@ -193,6 +193,30 @@ def test_the_python_that_built_it_gone_the_one_on_the_path_runs_it(host, fmus, t
            f"{VENV_BIN}/python" in run.stderr
 
 
+@pytest.mark.parametrize("kind", ["Ram", "PileSoil"])
+def test_the_builders_venv_gone_a_python_without_anvilwave_runs_it(host, fmus, tmp_path, kind,
+                                                                  plain_python):
+    """The Python that built the FMU and its site-packages gone, only a venv with fmpy, numpy,
+    scipy and numba on the PATH (no anvilwave, no pythonfmu): the shim starts that venv's
+    python, the unit runs its own copy of its anvilwave code (resources/anvilwave_fmu_*) and
+    gives the outputs of fmpy in this Python on the same inputs, bitwise."""
+    fmu_dir = unpack(fmus[kind], tmp_path / kind)
+    _runtime(fmu_dir, executable="/gone/bin/python", library="/gone/lib/libpython.so.1.0",
+             site="/gone/lib/site-packages")
+    md = read_model_description(str(fmus[kind]))
+    csv = tmp_path / "host.csv"
+    run = subprocess.run(host_command(host, fmu_dir, md, kind, csv, 200, 1),
+                         env={"PATH": f"{plain_python.parent}:/usr/bin:/bin"},
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert f"running its unit in {plain_python.parent}/python" in run.stderr
+    assert "No module named" not in run.stderr
+    table = np.loadtxt(csv, delimiter=",", skiprows=1)
+    n_in = len(UNITS[kind][0])
+    expected = fmpy_outputs(fmus[kind], kind, table[:, 0], table[:, 1:1 + n_in])
+    assert np.array_equal(table[:, 1 + n_in:], expected)
+
+
 def test_no_python_at_all_is_a_clear_error(host, fmus, tmp_path):
     """No recorded Python and none on the PATH: fmi2Instantiate fails with the reason, the
     host exits normally (status 1, no crash)."""

@@ -419,11 +419,10 @@ def test_native_system_peaks_do_not_depend_on_the_start_time(table1_fmus, exchan
     contact at contact_time 0), which a start elsewhere with contact_mid_step off misses by
     1.5 to 5 % (measured at the SSP step).
 
-    At the SSP's step h = h_d (the DefaultExperiment's): before its first step the ram reports
-    its toe h_d / 2 before the contact, right for that step only. At another step the ROM
-    anvil's contact dashpot already acts on that position at t_s (a small gap closing at 6 m/s):
-    measured, the DESIGN-order ram peak at h = 4 h_d is 436.4 MN against 455.8 MN with the
-    engine's start (-4.3 %), the same with the pythonfmu Ram (the same numbers)."""
+    At other master steps (2 and 4 h_d, h_d the DefaultExperiment's): the ram places its first
+    contact from the master's first step, so the peaks are the engine's at that step within
+    0.01 % (tests/test_fmu_system.py, test_ram_first_contact_at_multiples_of_the_default_step;
+    -4.3 % at 4 h_d when the ram placed it from h_d)."""
     from anvilwave.fmu.fmi_master import BlowMaster
 
     cfg, fmus = table1_fmus

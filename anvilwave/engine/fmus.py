@@ -10,8 +10,9 @@ same names instead (same variables and value references, same numbers to round-o
 build needs a C compiler: without one, ``native_anvil=True`` stops with an
 :class:`~anvilwave.inputs.InputError` naming what is missing, and ``native_anvil=None`` (what
 ``impact --engine fmi`` uses) falls back to the pythonfmu anvils with a warning. Ram and
-PileSoil are pythonfmu units (their status shim runs them in C hosts when the Python that built
-them, with anvilwave, is still installed: :mod:`anvilwave.fmu.fmi_build`) unless native.
+PileSoil are pythonfmu units (they carry their anvilwave code and need a Python with numpy,
+scipy and numba; their status shim runs them in C hosts: :mod:`anvilwave.fmu.fmi_build`) unless
+native.
 
 Ram and PileSoil units. By default (``native_units=None``) ``Ram.fmu`` and ``PileSoil.fmu`` are
 the native units of :mod:`anvilwave.fmu.native_units` (generic C binaries shipped with
@@ -329,7 +330,7 @@ def _native_unit_wanted(kind: str, native_units: bool | None,
         return True
     if native_units is None:
         warnings.warn(f"the native {kind} FMU is not used ({reason}): building the pythonfmu "
-                      f"{kind} unit (it runs where anvilwave's Python is installed)",
+                      f"{kind} unit (it runs in a Python with numpy, scipy and numba)",
                       stacklevel=3)
         return False
     raise InputError(f"native {kind} FMU", "native_units",

@@ -18,7 +18,8 @@
    :mod:`anvilwave.fmu.units.base`), and so that the FMU runs in a host that is not Python: the shim
    loads the libpython of the Python that built the FMU (recorded in
    ``resources/anvilwave_python.txt``, :func:`python_runtime`), initializes it with that
-   Python's executable (a venv's: its site-packages, so anvilwave imports), never finalizes it,
+   Python's executable (a venv's: its site-packages, so numpy, scipy and numba import), never
+   finalizes it,
    and works around pythonfmu 0.7.0's double release of its Python state at unload (the
    "free(): corrupted unsorted chunks" abort of C hosts at exit). Without a compiler the stock
    binary stays and a warning says so: a slave error is then reported as ``fmi2Discard`` by
@@ -26,11 +27,26 @@
 6. checks the result with ``fmpy.validation.validate_fmu`` (when fmpy is installed) and moves
    the ``.fmu`` into ``out_dir`` in one step.
 
-The FMUs run in a Python that has anvilwave (and pythonfmu) installed: the slave scripts import
-their classes from :mod:`anvilwave.fmu.units`. In a Python host (fmpy, libcosimpy) that is the
-host's
-Python; in a C host it is the Python that built the FMU, or, when that one is gone, the first
-``python3.X`` of the same version on the PATH (the shim logs a warning naming it).
+The FMUs carry the Python code they run, so that they run in a Python without anvilwave and
+without pythonfmu (:mod:`anvilwave.fmu.vendoring`): the import closure of the slave class
+inside anvilwave (its module-level imports followed; no command line, analyses, output layer or
+matplotlib) is copied into ``resources/anvilwave_fmu_<digest>/`` with its imports renamed to
+that package, the slave script imports its classes from it, and pythonfmu's build adds its own
+Python part (``resources/pythonfmu/``). ``<digest>`` comes from the copied files: a package
+name per code, so that it never clashes with an installed anvilwave and two FMUs of different
+builds in one process each run their own code. When the process already has an anvilwave whose
+files are byte for byte those of the FMU (fmpy in the venv that built it), the package's modules
+are that anvilwave's (:mod:`anvilwave.fmu.units.vendor_init`): one copy in the process, its
+numba kernels cached as usual. The licence texts of anvilwave and pythonfmu are in
+``documentation/licenses/`` (and beside the code in ``resources/``). Identical builds stay
+byte-identical: the copied files are read in sorted order, no ``.pyc``, fixed zip timestamps.
+
+The host Python needs numpy, scipy and numba (of versions that run anvilwave's code) and nothing
+else. In a Python host (fmpy, libcosimpy) that is the host's Python; in a C host it is the
+Python that built the FMU, or, when that one is gone, the first ``python3.X`` of the same
+version on the PATH (the shim logs a warning naming it). The first instantiation in a process
+without an identical anvilwave compiles the units' numba kernels (seconds; their cache goes
+beside the FMU's extracted copy).
 
 Helpers per FMU type: :func:`build_anvil_fmu` (``Anvil.fmu`` / ``AnvilLumped.fmu`` from a
 modal-data file), :func:`build_ram_fmu` (``Ram.fmu`` from a hammer: its segments embedded as

@@ -12,8 +12,8 @@ files already in the process (see there). ``<digest>`` is the first 16 hex digit
 :func:`~anvilwave.fmu.units.vendor_init.closure_digest` of the original files (that module
 included): the same code, the same package name and bytes; any change, another name.
 
-The closure of the Ram takes about 20 modules (the lumped and modal ram, the pile model for its
-sub-steps, the hammer database with its data), the PileSoil's about 10, the anvils' about 10;
+The closure of the Ram takes 21 modules (the lumped and modal ram, the pile model for its
+sub-steps, the hammer database with its data), the PileSoil's 10, the anvils' 9;
 none imports the command line, the analyses, the output layer or matplotlib: the units need the
 standard library, numpy, scipy, numba and pythonfmu (which pythonfmu's build puts into the FMU).
 """
