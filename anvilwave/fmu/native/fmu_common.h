@@ -19,10 +19,7 @@
 #ifndef FMU_COMMON_H
 #define FMU_COMMON_H
 
-#include <stdarg.h>
 #include <stddef.h>
-
-#include "fmi2Functions.h"
 
 #define FMU_MESSAGE_SIZE 2048
 #define FMU_MAX_STEP 1.0e3
@@ -35,12 +32,6 @@
 
 /* A malloc'ed copy of text (NULL when out of memory). */
 char *fmu_copy_string(const char *text);
-
-/* Log "<model> <name>: <message>" through the host logger (nothing when logger is NULL); a %
- * in the message is escaped, since hosts treat the message as a printf format. */
-void fmu_log_va(fmi2CallbackLogger logger, fmi2ComponentEnvironment environment,
-                const char *model, const char *name, fmi2Status status, const char *category,
-                const char *format, va_list args);
 
 /* The resources folder of fmuResourceLocation (file:///path, file:/path,
  * file://localhost/path; percent-encoded), without a trailing slash; "" when there is none or
