@@ -437,9 +437,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
-        description="Build the FMI 2.0 co-simulation units of a system (native C anvils with "
-                    "the modal data embedded, needing a C compiler; native ram and pile/soil "
-                    "from shipped Linux x86-64 and Windows x64 binaries, no compiler needed) "
+        description="Build the FMI 2.0 (or 3.0) co-simulation units of a system (native C "
+                    "anvils with the modal data embedded, ram and pile/soil, all from shipped "
+                    "Linux x86-64 and Windows x64 binaries: no compiler needed) "
                     "and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
                     "system's parameter values, for Jacobi-type masters such as libcosim.",
     )

@@ -75,17 +75,18 @@ from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION
 from anvilwave.fmu.native_units import (
     COMMON_SOURCES,
     DEFAULT_EXPERIMENT,
+    FMI3_COSIMULATION,
     FMI3_PLATFORMS,
     MODEL_SOURCES,
     NATIVE_DIR,
     PLATFORMS,
     RESOURCE,
-    UNITS,
     NativeBuildError,
     _zip,
     check_staged_fmu,
     check_unit_fmu_3,
     default_experiment_values,
+    description_body,
     resource_text,
     sources_digest,
     unit_binaries,
@@ -119,7 +120,7 @@ class Variable:
     causality : {"parameter", "input", "output"}
         ``"parameter"`` (variability fixed), ``"input"`` or ``"output"`` (continuous).
     unit : str or None
-        A unit of :data:`UNITS` or None.
+        A unit of :data:`anvilwave.fmu.native_units.UNITS` or None.
     description : str
         FMI variable description.
     """
@@ -762,20 +763,7 @@ def model_description(model: str, guid: str, variables, values: dict[str, Any],
     files = ET.SubElement(cs, "SourceFiles")
     for name in (*COMMON_SOURCES, *MODEL_SOURCES["Anvil"]):
         ET.SubElement(files, "File", name=name)
-    units = ET.SubElement(root, "UnitDefinitions")
-    used = {v.unit for v in variables if v.unit is not None}
-    for name, exponents in UNITS.items():
-        if name in used:
-            unit = ET.SubElement(units, "Unit", name=name)
-            ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None}, experiment)
     index = {}
     for vr, v in enumerate(variables):
         index[v.name] = vr + 1
@@ -840,27 +828,9 @@ def model_description_3(model: str, token: str, variables, values: dict[str, Any
         "fmiVersion": "3.0", "modelName": model, "instantiationToken": token,
         "description": DESCRIPTIONS[model], "generationTool": "anvilwave fmu.native_build",
         "variableNamingConvention": "structured"})
-    ET.SubElement(root, "CoSimulation", {
-        "modelIdentifier": model, "needsExecutionTool": "false",
-        "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "false",
-        "canSerializeFMUState": "false", "providesDirectionalDerivatives": "false",
-        "providesAdjointDerivatives": "false", "canHandleVariableCommunicationStepSize": "true",
-        "providesIntermediateUpdate": "false", "canReturnEarlyAfterIntermediateUpdate": "false",
-        "hasEventMode": "false"})
-    units = ET.SubElement(root, "UnitDefinitions")
-    used = {v.unit for v in variables if v.unit is not None} | {"s"}  # "s": time
-    for name, exponents in {**UNITS, "s": {"s": 1}}.items():
-        if name in used:
-            unit = ET.SubElement(units, "Unit", name=name)
-            ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    ET.SubElement(root, "CoSimulation", {"modelIdentifier": model, **FMI3_COSIMULATION})
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None} | {"s"},
+                          experiment)  # "s": time
     ET.SubElement(mv, "Float64", name="time", valueReference=str(len(variables)),
                   causality="independent", variability="continuous",
                   description="Simulation time [s]", unit="s")

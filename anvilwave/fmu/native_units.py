@@ -1,15 +1,16 @@
-"""The native Ram and PileSoil FMUs: generic C binaries, the model as a resource.
+"""The native units: generic C binaries, the model as a resource; the Ram and PileSoil FMUs.
 
-Unlike the native anvils (:mod:`anvilwave.fmu.native_build`, compiled per build), the Ram and
-PileSoil units are one binary per unit kind and platform, compiled once from
-``anvilwave/fmu/native/`` (``unit_fmu.c``, ``fmu_common.c`` and ``ram_model.c`` or
-``pile_soil_model.c``) and shipped in ``anvilwave/fmu/native/binaries/<platform>/``. Every
-build copies them into the FMU and writes what is particular to it into
+Every native unit (Ram, PileSoil, and the anvils of :mod:`anvilwave.fmu.native_build`) is one
+binary per unit kind and platform, compiled once from ``anvilwave/fmu/native/`` (the FMI 2.0
+and 3.0 layers ``unit_fmu.c`` and ``unit_fmi3.c`` over the shared instance ``unit_core.c``,
+``fmu_common.c``, and ``ram_model.c``, ``pile_soil_model.c`` or ``anvil_unit.c`` with
+``anvil_model.c``) and shipped in ``anvilwave/fmu/native/binaries/<platform>/``. Every build
+copies them into the FMU and writes what is particular to it into
 ``resources/anvilwave_unit.txt`` (the ``anvilwave-unit`` text format of
-``anvilwave/fmu/native/fmu_common.h``: GUID, parameter start values, the kernel arrays as
-exact hexadecimal floats), so that building FMUs needs no C compiler and the FMU runs on Linux
-x86-64 and Windows x64 without Python. The same binaries hold the FMI 3.0 co-simulation API
-(``unit_fmi3.c``): ``fmi_version=3`` packs them as an FMI 3.0 FMU.
+``anvilwave/fmu/native/fmu_common.h``: model identifier, GUID, parameter start values, the
+kernel arrays as exact hexadecimal floats), so that building FMUs needs no C compiler and the
+FMU runs on Linux x86-64 and Windows x64 without Python. The same binaries hold the FMI 3.0
+co-simulation API: ``fmi_version=3`` packs them as an FMI 3.0 FMU.
 
 The numerics are those of the Python kernels, operation for operation (``-ffp-contract=off``):
 :func:`anvilwave.hammer.ram.ram_advance` and :func:`anvilwave.hammer.ram.stable_time_step` for
@@ -340,6 +341,50 @@ DESCRIPTIONS = {
                 "signals out (SI units, z down, compression positive)",
 }
 _UNIT_EXPONENTS = {**UNITS, "s": {"s": 1}, "Pa": {"kg": 1, "m": -1, "s": -2}}
+
+
+FMI3_COSIMULATION = {
+    "needsExecutionTool": "false", "canBeInstantiatedOnlyOncePerProcess": "false",
+    "canGetAndSetFMUState": "false", "canSerializeFMUState": "false",
+    "providesDirectionalDerivatives": "false", "providesAdjointDerivatives": "false",
+    "canHandleVariableCommunicationStepSize": "true", "providesIntermediateUpdate": "false",
+    "canReturnEarlyAfterIntermediateUpdate": "false", "hasEventMode": "false"}
+"""The ``CoSimulation`` capabilities of every native FMI 3.0 unit (besides its identifier)."""
+
+
+def description_body(root: ET.Element, units: set[str],
+                     experiment: tuple[float, float, float]) -> ET.Element:
+    """The parts every native ``modelDescription.xml`` shares, after ``CoSimulation``.
+
+    ``UnitDefinitions`` (SI base-unit exponents, sorted by name), ``LogCategories`` and
+    ``DefaultExperiment``.
+
+    Parameters
+    ----------
+    root : xml.etree.ElementTree.Element
+        The ``fmiModelDescription`` element (FMI 2.0 or 3.0).
+    units : set of str
+        Names of the units the variables use.
+    experiment : tuple of float
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    xml.etree.ElementTree.Element
+        The (empty) ``ModelVariables`` element, appended to ``root``.
+    """
+    definitions = ET.SubElement(root, "UnitDefinitions")
+    for name in sorted(units):
+        unit = ET.SubElement(definitions, "Unit", name=name)
+        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
+    categories = ET.SubElement(root, "LogCategories")
+    for name, text in (("logStatusError", "Errors (always reported)"),
+                       ("logStatusWarning", "Warnings (always reported)"),
+                       ("logCalls", "Every FMI call, with debug logging on")):
+        ET.SubElement(categories, "Category", name=name, description=text)
+    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
+                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
+    return ET.SubElement(root, "ModelVariables")
 
 
 # ---------------------------------------------------------------------------- binaries
@@ -903,18 +948,7 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float],
     files = ET.SubElement(cs, "SourceFiles")
     for name in (*COMMON_SOURCES, *MODEL_SOURCES[kind]):
         ET.SubElement(files, "File", name=name)
-    units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables if v.unit is not None}):
-        unit = ET.SubElement(units, "Unit", name=name)
-        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None}, experiment)
     index: dict[str, int] = {}
     for position, v in enumerate(variables, start=1):
         index[v.name] = position
@@ -978,25 +1012,9 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
         "description": DESCRIPTIONS[kind], "author": AUTHOR, "version": package_version(),
         "license": LICENSE, "copyright": f"{AUTHOR}, {LICENSE} licence",
         "generationTool": GENERATION_TOOL, "variableNamingConvention": "structured"})
-    ET.SubElement(root, "CoSimulation", {
-        "modelIdentifier": kind, "needsExecutionTool": "false",
-        "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "false",
-        "canSerializeFMUState": "false", "providesDirectionalDerivatives": "false",
-        "providesAdjointDerivatives": "false", "canHandleVariableCommunicationStepSize": "true",
-        "providesIntermediateUpdate": "false", "canReturnEarlyAfterIntermediateUpdate": "false",
-        "hasEventMode": "false"})
-    units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables if v.unit is not None} | {"s"}):  # "s": time
-        unit = ET.SubElement(units, "Unit", name=name)
-        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    ET.SubElement(root, "CoSimulation", {"modelIdentifier": kind, **FMI3_COSIMULATION})
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None} | {"s"},
+                          experiment)  # "s": time
     ET.SubElement(mv, "Float64", name="time", valueReference="0", causality="independent",
                   variability="continuous", description="Simulation time [s]", unit="s")
     for v in variables:

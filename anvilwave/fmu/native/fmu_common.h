@@ -1,20 +1,26 @@
 /*
- * fmu_common.h -- what every native anvilwave FMU shares: strings, logging through the host's
- * logger callback, the resources folder of fmuResourceLocation, and the reader of the
- * text resource "anvilwave-unit" (model data of the generic Ram and PileSoil binaries).
+ * fmu_common.h -- what every native anvilwave FMU shares: strings, the resources folder of
+ * fmuResourceLocation, and the reader of the text resource "anvilwave-unit", which holds what
+ * a build makes particular for the generic binaries (Ram, PileSoil, Anvil / AnvilLumped).
  *
  * The text resource (resources/anvilwave_unit.txt), ASCII, whitespace-separated tokens:
  *
  *     anvilwave-unit 1            magic and format version
- *     kind <kind>                 the unit kind (Ram, PileSoil), that of the binary
- *     guid <guid>                 the GUID of modelDescription.xml
- *     start <name> <value>        the start value of a Real parameter (any number of lines)
+ *     kind <kind>                 the model identifier (Ram, PileSoil, Anvil, AnvilLumped): it
+ *                                 picks the model (variable table) among the binary's
+ *     guid <guid>                 the GUID of modelDescription.xml (FMI 3.0: the
+ *                                 instantiationToken)
+ *     start <name> <value>        the start value of a Real parameter, or of a Boolean one as 0
+ *                                 or 1 (any number of lines; a parameter without one keeps the
+ *                                 default of the binary's variable table)
  *     array <name> <n> <v1> ... <vn>   a named array of n Reals (any number of lines)
  *     end
  *
  * Reals are written as C99 hexadecimal floating constants (Python float.hex(), e.g.
- * 0x1.3a5p+3), which strtod reads exactly on every platform. Lines starting with # are
- * comments.
+ * 0x1.3a5p+3), read exactly on every platform. Lines starting with # are comments. The
+ * anvils have no arrays: the ROM's modes are the binary modal-data resource named by its
+ * String parameter modal_data_file (anvil_model.h), whose start value is the table's
+ * "modal_data.bin".
  */
 #ifndef FMU_COMMON_H
 #define FMU_COMMON_H
