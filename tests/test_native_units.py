@@ -611,3 +611,53 @@ def test_fmi3_units_validate_and_equal_the_fmi2_units(built, tmp_path, kind):
     for name in outputs:
         assert np.array_equal(runs[0][name], runs[1][name]), name
     assert np.ptp(runs[0][outputs[0]]) > 0.0
+
+
+def test_build_fmus_fmi3_builds_every_unit_as_fmi3(table1_fmus, tmp_path, capsys):
+    """``build-fmus --fmi-version 3``: the four native units (anvils included) as FMI 3.0
+    FMUs that validate with fmpy; the anvils give the FMI 2.0 build's outputs bit for bit
+    under fmpy.simulate_fmu (a ram toe pressing 0.1 mm, as the Wine test). The pythonfmu
+    anvils have no FMI 3.0 variant: ``--python-anvil --fmi-version 3`` is refused, one line,
+    exit 2, nothing written."""
+    from anvilwave.cli import main
+
+    out = tmp_path / "fmus"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(out),
+                 "--fmi-version", "3"]) == 0
+    for kind in ("Ram", "Anvil", "AnvilLumped", "PileSoil"):
+        md = read_model_description(str(out / f"{kind}.fmu"))
+        assert md.fmiVersion == "3.0", kind
+        assert not fmpy.validation.validate_fmu(str(out / f"{kind}.fmu")), kind
+    signal = np.array([(0.0, 1e-4), (1.0, 1e-4)], dtype=[("time", float), ("u_ram", float)])
+    outputs = ["F_ram", "F_pile", "u_top", "u_bottom"]
+    for kind in ("Anvil", "AnvilLumped"):
+        runs = [fmpy.simulate_fmu(str(p), start_time=0.0, stop_time=2e-3, step_size=1e-5,
+                                  output_interval=1e-5, input=signal, output=outputs)
+                for p in (out / f"{kind}.fmu", table1_fmus[1][kind])]
+        for name in outputs:
+            assert np.array_equal(runs[0][name], runs[1][name]), (kind, name)
+        assert runs[0]["F_ram"].max() > 0.0
+    capsys.readouterr()
+    refused = tmp_path / "refused"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(refused),
+                 "--fmi-version", "3", "--python-anvil"]) == 2
+    message = capsys.readouterr().err.strip()
+    assert "FMI 3.0 anvils are the native anvils" in message and "\n" not in message
+    assert not refused.exists()
+
+
+def test_the_shipped_binaries_are_package_data():
+    """Every shipped binary and its digest file match a package-data pattern of pyproject.toml
+    (so the wheel carries them: build-fmus needs no compiler after pip install)."""
+    import fnmatch
+
+    project = tomllib.loads((nu.NATIVE_DIR.parents[2] / "pyproject.toml").read_text())
+    patterns = project["tool"]["setuptools"]["package-data"]["anvilwave.fmu"]
+    files = [nu.BINARIES_DIR / nu.DIGEST_FILE] + [
+        nu.BINARIES_DIR / platform / f"{kind}{spec['suffix']}"
+        for platform, spec in nu.PLATFORMS.items() for kind in nu.BINARY_KINDS]
+    for path in files:
+        relative = path.relative_to(nu.NATIVE_DIR.parent).as_posix()
+        assert any(fnmatch.fnmatch(relative, p) for p in patterns), relative
+    sources = [name for kind in nu.BINARY_KINDS for name in nu.unit_sources(kind)]
+    assert all(any(fnmatch.fnmatch(f"native/{name}", p) for p in patterns) for name in sources)
