@@ -114,7 +114,7 @@ class Variable:
     name : str
         FMI variable name.
     slot : str
-        The ``AnvilSlot`` of ``anvilwave/fmu/native/anvil_fmu.h`` without its ``ANVIL_`` prefix.
+        Its slot name in ``anvilwave/fmu/native/anvil_unit.c`` (the name in upper case).
     kind : {"Real", "Boolean", "String"}
         FMI type.
     causality : {"parameter", "input", "output"}
