@@ -93,6 +93,9 @@ static const char *type_name(UnitType type)
 static long find_slot(Unit *u, const char *function, unsigned int vr, UnitType type)
 {
     size_t i;
+    if (vr < u->m->n_variables && u->m->variables[vr].vr == vr && /* the anvils' tables */
+        u->m->variables[vr].type == type)
+        return (long)vr;
     for (i = 0; i < u->m->n_variables; i++)
         if (u->m->variables[i].vr == vr) {
             if (u->m->variables[i].type == type) return (long)i;
