@@ -133,7 +133,7 @@ def _build_fmus(args: argparse.Namespace) -> int:
                                    native_units=False if args.python_units else None,
                                    fmi_version=args.fmi_version)
     except NativeBuildError as exc:
-        raise InputError(str(args.system), "", f"the native anvil FMU cannot be built here "
+        raise InputError(str(args.system), "", f"the native anvil FMU cannot be built "
                                                f"({_one_line(exc)}); --python-anvil builds "
                                                "the Python one") from None
     names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
@@ -437,9 +437,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser(
         "build-fmus", help="write the Ram, Anvil, AnvilLumped and PileSoil FMUs and system.ssp",
-        description="Build the FMI 2.0 co-simulation units of a system (native C anvils with "
-                    "the modal data embedded, needing a C compiler; native ram and pile/soil "
-                    "from shipped Linux x86-64 and Windows x64 binaries, no compiler needed) "
+        description="Build the FMI 2.0 (or 3.0) co-simulation units of a system (native C "
+                    "anvils with the modal data embedded, ram and pile/soil, all from shipped "
+                    "Linux x86-64 and Windows x64 binaries: no compiler needed) "
                     "and an SSP 1.0 file connecting ram, anvil and pile/soil with the "
                     "system's parameter values, for Jacobi-type masters such as libcosim.",
     )
@@ -447,11 +447,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--anvil", choices=("rom", "lumped"), default=None,
                    help="anvil unit of system.ssp (default: [anvil] model of the file)")
     p.add_argument("--python-anvil", action="store_true",
-                   help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of in C "
-                        "(no C compiler needed; they run in the Python that built them)")
+                   help="build Anvil.fmu and AnvilLumped.fmu with pythonfmu instead of the "
+                        "native C units (they run in the Python that built them)")
     p.add_argument("--fmi-version", type=int, choices=(2, 3), default=2,
-                   help="FMI version of the native Ram.fmu and PileSoil.fmu (3: FMI 3.0 "
-                        "co-simulation, the same numbers; the anvils stay FMI 2.0)")
+                   help="FMI version of the native units (3: FMI 3.0 co-simulation for the "
+                        "anvils, Ram.fmu and PileSoil.fmu, the same numbers; not with "
+                        "--python-anvil or --python-units)")
     p.add_argument("--python-units", action="store_true",
                    help="build Ram.fmu and PileSoil.fmu with pythonfmu instead of the native "
                         "units (they run in the Python that built them; the pile and soil "

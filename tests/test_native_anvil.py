@@ -1,10 +1,11 @@
 """The native (C) anvil FMUs of :mod:`anvilwave.fmu.native_build`: the numbers of the Python
 kernels, a
-clean validation, errors as fmi2Error with the reason, and a plain C host without Python.
+clean validation, errors as fmi2Error with the reason, a plain C host without Python, and the
+FMI 3.0 variant bit for bit.
 
 The FMUs are built once per module from a coarse modal-data file of the s2 anvil (mesh 0.03 m,
-modes to 20 kHz: about 50 modes), as in ``test_fmu_anvil.py``. Building needs the system C
-compiler; without one the module is skipped with the reason.
+modes to 20 kHz: about 50 modes), as in ``test_fmu_anvil.py``. Building needs no C compiler
+(the shipped binaries); the tests that compile the sources or a C host skip without one.
 """
 
 from __future__ import annotations
@@ -67,7 +68,6 @@ def _compiler() -> str:
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
     """The modal data and the native Anvil / AnvilLumped FMUs, built once."""
-    _compiler()
     root = tmp_path_factory.mktemp("native_anvil")
     spec = load_anvil(EXAMPLES / "anvils" / "s2.toml")
     spec = type(spec)(**{**spec.__dict__, "mesh_size": 0.03})
@@ -474,10 +474,15 @@ def test_model_description_units_structure_and_sources(built):
         names = set(zf.namelist())
         build_xml = zf.read("sources/buildDescription.xml")
     source_files = md.buildConfigurations[0].sourceFileSets[0].sourceFiles  # <SourceFiles>
-    assert source_files == ["anvil_fmu.c", "anvil_model.c", "fmu_common.c"]
+    assert source_files == ["unit_core.c", "unit_fmu.c", "unit_fmi3.c", "fmu_common.c",
+                            "anvil_unit.c", "anvil_model.c"]
     assert {f"sources/{f}" for f in source_files} <= names
-    assert {"binaries/linux64/Anvil.so", f"resources/{MODAL_RESOURCE}",
-            "sources/anvil_config.h", "sources/fmi2Functions.h"} <= names
+    assert {"binaries/linux64/Anvil.so", "binaries/win64/Anvil.dll",
+            f"resources/{MODAL_RESOURCE}", "resources/anvilwave_unit.txt",
+            "sources/unit_core.h", "sources/fmi2Functions.h", "sources/fmi3Functions.h"} <= names
+    with zipfile.ZipFile(built["AnvilLumped"]) as zf:  # one binary serves both anvils
+        assert zf.read("binaries/linux64/AnvilLumped.so") == \
+            (NATIVE_DIR / "binaries" / "linux64" / "Anvil.so").read_bytes()
     assert not any(n.endswith((".py", ".npz")) for n in names)  # no Python inside
     xml = built["root"] / "buildDescription.xml"
     xml.write_bytes(build_xml)
@@ -580,7 +585,6 @@ BAD_FILES = {
     ("Anvil", {"damping_ratio": -0.1}, "damping_ratio: must be in [0, 1)"),
     ("Anvil", {"fmax": 100.0}, "below the first flexible mode"),
     ("Anvil", {"fmax": 1e6}, "exceeds the 20000 Hz the modes were computed for"),
-    ("Anvil", {"gravity": float("inf")}, "gravity: must be finite"),
     ("Anvil", {"modal_data_file": "missing.bin"}, "modal-data file not found"),
     *[("Anvil", {"modal_data_file": name}, reason) for name, (_, reason) in BAD_FILES.items()],
     ("AnvilLumped", {"mass": -5.0}, "mass: must be positive"),
@@ -620,7 +624,7 @@ def test_calls_out_of_rule_give_fmi2error_and_the_host_survives(built):
         assert "no Integer variable" in fmu.errors()[-1]
         with pytest.raises(FMICallException):
             fmu.fmu.getReal([999])
-        assert "no variable has value reference 999" in fmu.errors()[-1]
+        assert "fmi2GetReal: unknown value reference 999" in fmu.errors()[-1]
         with pytest.raises(FMICallException):
             fmu.fmu.setReal([fmu.vr("static_correction")], [1.0])
         assert "a Boolean variable" in fmu.errors()[-1]
@@ -639,7 +643,7 @@ def test_calls_out_of_rule_give_fmi2error_and_the_host_survives(built):
         with pytest.raises(FMICallException) as error:
             fmu.fmu.doStep(0.0, -1e-6)
         assert error.value.status == 3
-        assert "communication step: must be positive" in fmu.errors()[-1]
+        assert "communication step must be finite and positive" in fmu.errors()[-1]
         fmu.fmu.reset()
         fmu.initialize()
         with pytest.raises(FMICallException):
@@ -658,7 +662,7 @@ def test_a_wrong_guid_is_refused_with_the_reason(built):
     finally:
         fmu.fmu.freeLibrary()
         shutil.rmtree(fmu.unzip, ignore_errors=True)
-    assert "does not match this binary's" in fmu.errors()[-1]
+    assert "does not match the resource's" in fmu.errors()[-1]
 
 
 def test_debug_logging_traces_the_calls(built):
@@ -695,15 +699,24 @@ def test_build_rejects_bad_input_and_writes_nothing(built, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_a_missing_compiler_is_named(built, tmp_path, monkeypatch):
-    monkeypatch.setenv("CC", "no-such-cc")
-    with pytest.raises(NativeBuildError, match="no-such-cc"):
-        build_native_anvil_fmu(built["data"], tmp_path, **CONTACTS)
-    monkeypatch.delenv("CC")
-    monkeypatch.setenv("PATH", str(tmp_path))
-    with pytest.raises(NativeBuildError, match="no C compiler found"):
-        build_native_anvil_fmu(built["data"], tmp_path, **CONTACTS)
-    assert list(tmp_path.iterdir()) == []
+@pytest.mark.parametrize("case", ["a non-finite parameter", "a non-finite input"])
+def test_non_finite_values_are_refused_when_set(built, case):
+    """A non-finite Real is refused by fmi2SetReal (fmi2Error, the reason logged, the value
+    not stored): the instance initializes and steps with the values it had."""
+    fmu = Driven(built["Anvil"])
+    try:
+        fmu.fmu.setupExperiment(startTime=0.0)
+        name = "gravity" if case == "a non-finite parameter" else "u_ram"
+        with pytest.raises(FMICallException) as error:
+            fmu.set(**{name: float("inf")})
+        assert error.value.status == 3 and f"{name} must be finite" in fmu.errors()[-1]
+        fmu.fmu.enterInitializationMode()
+        fmu.fmu.exitInitializationMode()
+        fmu.fmu.doStep(0.0, 1e-6)
+        weight = built["data"].total_mass * 9.81
+        assert fmu.fmu.getReal([fmu.vr_out[1]])[0] == pytest.approx(weight, rel=1e-9)
+    finally:
+        fmu.close()
 
 
 # ---------------------------------------------------------------------------- a C host
@@ -831,3 +844,61 @@ def test_ring_outputs_equal_the_python_kernels(built_rings, case):
     print(f"\nnative Anvil with rings vs Python ({case}): max relative difference "
           f"{difference:.2e}")
     assert difference <= 1e-12
+
+
+# ---------------------------------------------------------------------------- FMI 3.0
+@pytest.mark.parametrize("kind", ["Anvil", "AnvilLumped"])
+@pytest.mark.parametrize("extrapolation", [False, True])
+def test_fmi3_anvil_validates_and_equals_the_fmi2_anvil(built, tmp_path, kind, extrapolation):
+    """The FMI 3.0 anvil (the same binary, the fmi3 API) validates with fmpy and, under
+    fmpy.simulate_fmu with the same ram toe input (a blow: closing at 4 m/s, then lifting),
+    gives the FMI 2.0 anvil's outputs bit for bit, with and without input extrapolation (one
+    model behind both APIs)."""
+    path = build_native_anvil_fmu(built["data"], tmp_path, lumped=kind == "AnvilLumped",
+                                  fmi_version=3, **CONTACTS)
+    md = read_model_description(str(path))
+    assert md.fmiVersion == "3.0" and md.coSimulation.modelIdentifier == kind
+    assert not validate_fmu(str(path))
+    with zipfile.ZipFile(path) as zf:
+        names = set(zf.namelist())
+    assert {f"binaries/x86_64-linux/{kind}.so", f"binaries/x86_64-windows/{kind}.dll",
+            "sources/buildDescription.xml", "resources/anvilwave_unit.txt"} <= names
+    variables = {v.name: v for v in md.modelVariables}
+    if kind == "Anvil":
+        assert variables["modal_data_file"].start == MODAL_RESOURCE
+    t = np.linspace(0.0, 2e-3, 201)
+    signal = np.array(list(zip(t, np.where(t < 1e-3, -1e-6 + 4.0 * t - 2.0e3 * t**2, -1e-3),
+                               strict=True)), dtype=[("time", float), ("u_ram", float)])
+    runs = [simulate_fmu(str(p), stop_time=2e-3, step_size=1e-5, output_interval=1e-5,
+                         input=signal, output=list(OUTPUTS),
+                         start_values={"input_extrapolation": extrapolation})
+            for p in (path, built[kind])]
+    assert len(runs[0]) == len(runs[1]) == 201
+    for name in OUTPUTS:
+        assert np.array_equal(runs[0][name], runs[1][name]), name
+    assert runs[0]["F_ram"].max() > 1e6  # the blow happened
+
+
+@pytest.mark.parametrize("kind", ["Anvil", "AnvilLumped"])
+def test_every_start_value_reaches_its_variable(built, kind):
+    """The binary's variable table and the build's: after fmi2Instantiate every parameter
+    reads back (by its value reference and type) the start value of modelDescription.xml,
+    which the binary took from resources/anvilwave_unit.txt by name (a name or reference that
+    differed would read the table's default or fail)."""
+    fmu = Driven(built[kind])
+    try:
+        parameters = [v for v in fmu.variables.values() if v.causality == "parameter"]
+        assert len(parameters) == (4 if kind == "Anvil" else 1) + 8
+        for v in parameters:
+            if v.type == "Real":
+                assert fmu.fmu.getReal([v.valueReference]) == [float(v.start)], v.name
+            elif v.type == "Boolean":
+                assert fmu.fmu.getBoolean([v.valueReference]) == [v.start in (True, "true")], \
+                    v.name
+            else:
+                value = fmu.fmu.getString([v.valueReference])[0]
+                assert (value.decode() if isinstance(value, bytes) else value) == v.start
+        assert float(fmu.variables["ram_contact_stiffness"].start) == \
+            CONTACTS["ram_contact_stiffness"]  # a build value, not a default
+    finally:
+        fmu.close()

@@ -380,15 +380,10 @@ def test_native_ram_equals_the_pythonfmu_ram_from_any_start(tmp_path, mid_step):
 @pytest.fixture(scope="module")
 def table1_fmus(tmp_path_factory):
     """The FMUs of Table 1 as ``build-fmus`` makes them by default: native anvils, native Ram
-    and PileSoil (skipped without a C compiler for the anvils)."""
+    and PileSoil."""
     from anvilwave.config.system import load_system
     from anvilwave.engine.fmus import build_system_fmus, load_anvil_modal_data
-    from anvilwave.fmu.native_build import NativeBuildError, find_compiler
 
-    try:
-        find_compiler()
-    except NativeBuildError as exc:
-        pytest.skip(f"the native anvils need a C compiler: {exc}")
     cfg = load_system(EXAMPLES / "table1.toml")
     fmus = build_system_fmus(cfg, tmp_path_factory.mktemp("table1_native"),
                              load_anvil_modal_data(cfg), native_anvil=True)
@@ -493,10 +488,11 @@ def test_unknown_parameter_is_an_input_error(tmp_path):
 # ---------------------------------------------------------------------------- binaries
 def test_shipped_binaries_are_built_from_the_current_sources():
     recorded = json.loads((nu.BINARIES_DIR / nu.DIGEST_FILE).read_text())
-    assert {kind: recorded[kind] for kind in nu.UNIT_KINDS} == \
-        {kind: nu.sources_digest(kind) for kind in nu.UNIT_KINDS}
-    assert (nu.BINARIES_DIR / "linux64" / "Ram.so").is_file()
-    assert (nu.BINARIES_DIR / "win64" / "Ram.dll").is_file()
+    assert {kind: recorded[kind] for kind in nu.BINARY_KINDS} == \
+        {kind: nu.sources_digest(kind) for kind in nu.BINARY_KINDS}
+    for kind in nu.BINARY_KINDS:
+        assert (nu.BINARIES_DIR / "linux64" / f"{kind}.so").is_file()
+        assert (nu.BINARIES_DIR / "win64" / f"{kind}.dll").is_file()
 
 
 @pytest.mark.parametrize("platform", list(nu.PLATFORMS))
@@ -509,7 +505,7 @@ def test_sources_compile_warning_free_and_equal_the_shipped_binary(platform, tmp
     recorded = json.loads((nu.BINARIES_DIR / nu.DIGEST_FILE).read_text())["compilers"]
     same_compiler = recorded.get(platform) == nu.compiler_version(platform)
     suffix = nu.PLATFORMS[platform]["suffix"]
-    for kind in nu.UNIT_KINDS:
+    for kind in nu.BINARY_KINDS:
         fresh = nu.compile_unit(kind, platform, tmp_path / f"{kind}{suffix}")
         shipped = nu.BINARIES_DIR / platform / f"{kind}{suffix}"
         assert fresh.stat().st_size > 0  # compiled warning-free (-Werror)
@@ -522,17 +518,21 @@ def test_sources_compile_warning_free_and_equal_the_shipped_binary(platform, tmp
             listing = subprocess.run([objdump, "-p" if platform == "win64" else "-T",
                                       str(shipped)], capture_output=True, text=True).stdout
             for name in ("fmi2Instantiate", "fmi2DoStep", "fmi2GetReal", "fmi2SetReal",
-                         "fmi2FreeInstance"):
+                         "fmi2FreeInstance", "fmi3InstantiateCoSimulation", "fmi3DoStep",
+                         "fmi3GetFloat64"):
                 assert name in listing
 
 
 UNIT_HOST = Path(__file__).resolve().parent / "c_host" / "unit_host.c"
 
 
-def test_the_win64_binaries_run_under_wine_with_the_linux_numbers(built, tmp_path):
+def test_the_win64_binaries_run_under_wine_with_the_linux_numbers(built, table1_fmus,
+                                                                  tmp_path):
     """tests/c_host/unit_host.c cross-compiled with mingw-w64 runs the shipped win64 DLLs of
-    an FMU under Wine; 2000 steps of a constant input give the linux64 binary's outputs (the
-    same operations: bitwise on this machine, rtol 1e-12 as above)."""
+    an FMU under Wine (Ram, PileSoil, and Table 1's Anvil and AnvilLumped, one DLL for both,
+    reading its modal data from the resources folder); 2000 steps of a constant input give
+    the linux64 binary's outputs (the same operations; rtol 1e-12 as above: the two C
+    runtimes' exp and cos may differ in the last bit)."""
     mingw, wine = shutil.which("x86_64-w64-mingw32-gcc"), shutil.which("wine")
     gcc = nu.platform_compiler("linux64")
     if not (mingw and wine and gcc):
@@ -545,12 +545,16 @@ def test_the_win64_binaries_run_under_wine_with_the_linux_numbers(built, tmp_pat
                               str(UNIT_HOST), *libs], capture_output=True, text=True)
         assert run.returncode == 0, run.stderr
     cases = {"Ram": ("F_toe", 1e7, "u_toe", "v_toe"),
-             "PileSoil": ("F_head", 3.5e6, "u_head", "F_gauge")}
+             "PileSoil": ("F_head", 3.5e6, "u_head", "F_gauge"),
+             # the ram toe held 0.1 mm down: the anvil pressed onto the pile, ringing
+             "Anvil": ("u_ram", 1e-4, "u_top", "u_bottom"),
+             "AnvilLumped": ("u_ram", 1e-4, "u_top", "u_bottom")}
+    fmus = {**table1_fmus[1], **built}
     for kind, (name_in, value, out1, out2) in cases.items():
         folder = tmp_path / kind
-        with zipfile.ZipFile(built[kind]) as zf:
+        with zipfile.ZipFile(fmus[kind]) as zf:
             zf.extractall(folder)
-        md = read_model_description(str(built[kind]))
+        md = read_model_description(str(fmus[kind]))
         vr = {v.name: v.valueReference for v in md.modelVariables}
         tail = [md.guid, str(vr[name_in]), repr(value), str(vr[out1]), str(vr[out2]), "2000",
                 "1e-5"]
@@ -571,6 +575,8 @@ def test_the_win64_binaries_run_under_wine_with_the_linux_numbers(built, tmp_pat
         b = np.array(windows.stdout.split()[:2], dtype=float)
         assert np.all(a != 0.0)
         np.testing.assert_allclose(b, a, rtol=RTOL)
+        print(f"\n{kind}: linux64 {a[0]:.17g} {a[1]:.17g}; win64 under Wine "
+              f"{b[0]:.17g} {b[1]:.17g}")
 
 
 @pytest.mark.parametrize("kind", nu.UNIT_KINDS)
@@ -604,3 +610,53 @@ def test_fmi3_units_validate_and_equal_the_fmi2_units(built, tmp_path, kind):
     for name in outputs:
         assert np.array_equal(runs[0][name], runs[1][name]), name
     assert np.ptp(runs[0][outputs[0]]) > 0.0
+
+
+def test_build_fmus_fmi3_builds_every_unit_as_fmi3(table1_fmus, tmp_path, capsys):
+    """``build-fmus --fmi-version 3``: the four native units (anvils included) as FMI 3.0
+    FMUs that validate with fmpy; the anvils give the FMI 2.0 build's outputs bit for bit
+    under fmpy.simulate_fmu (a ram toe pressing 0.1 mm, as the Wine test). The pythonfmu
+    anvils have no FMI 3.0 variant: ``--python-anvil --fmi-version 3`` is refused, one line,
+    exit 2, nothing written."""
+    from anvilwave.cli import main
+
+    out = tmp_path / "fmus"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(out),
+                 "--fmi-version", "3"]) == 0
+    for kind in ("Ram", "Anvil", "AnvilLumped", "PileSoil"):
+        md = read_model_description(str(out / f"{kind}.fmu"))
+        assert md.fmiVersion == "3.0", kind
+        assert not fmpy.validation.validate_fmu(str(out / f"{kind}.fmu")), kind
+    signal = np.array([(0.0, 1e-4), (1.0, 1e-4)], dtype=[("time", float), ("u_ram", float)])
+    outputs = ["F_ram", "F_pile", "u_top", "u_bottom"]
+    for kind in ("Anvil", "AnvilLumped"):
+        runs = [fmpy.simulate_fmu(str(p), start_time=0.0, stop_time=2e-3, step_size=1e-5,
+                                  output_interval=1e-5, input=signal, output=outputs)
+                for p in (out / f"{kind}.fmu", table1_fmus[1][kind])]
+        for name in outputs:
+            assert np.array_equal(runs[0][name], runs[1][name]), (kind, name)
+        assert runs[0]["F_ram"].max() > 0.0
+    capsys.readouterr()
+    refused = tmp_path / "refused"
+    assert main(["build-fmus", str(EXAMPLES / "table1.toml"), "--out", str(refused),
+                 "--fmi-version", "3", "--python-anvil"]) == 2
+    message = capsys.readouterr().err.strip()
+    assert "FMI 3.0 anvils are the native anvils" in message and "\n" not in message
+    assert not refused.exists()
+
+
+def test_the_shipped_binaries_are_package_data():
+    """Every shipped binary and its digest file match a package-data pattern of pyproject.toml
+    (so the wheel carries them: build-fmus needs no compiler after pip install)."""
+    import fnmatch
+
+    project = tomllib.loads((nu.NATIVE_DIR.parents[2] / "pyproject.toml").read_text())
+    patterns = project["tool"]["setuptools"]["package-data"]["anvilwave.fmu"]
+    files = [nu.BINARIES_DIR / nu.DIGEST_FILE] + [
+        nu.BINARIES_DIR / platform / f"{kind}{spec['suffix']}"
+        for platform, spec in nu.PLATFORMS.items() for kind in nu.BINARY_KINDS]
+    for path in files:
+        relative = path.relative_to(nu.NATIVE_DIR.parent).as_posix()
+        assert any(fnmatch.fnmatch(relative, p) for p in patterns), relative
+    sources = [name for kind in nu.BINARY_KINDS for name in nu.unit_sources(kind)]
+    assert all(any(fnmatch.fnmatch(f"native/{name}", p) for p in patterns) for name in sources)

@@ -185,7 +185,7 @@ def test_pile_port_rings_refusals(table1, tmp_path):
 @pytest.mark.parametrize("native", [None, False])
 def test_fmi_engine_with_rings_equals_direct(table1, tmp_path, native):
     """The FMI engine on a system with three rings (F_pile the rings' sum) gives the direct
-    engine's blow with the native C anvil (when a compiler is found) and with the pythonfmu
+    engine's blow with the native C anvil (its shipped binary) and with the pythonfmu
     anvil: forces to 1e-9 of their peaks (measured ~1e-11: round-off of the separate calls)."""
     from anvilwave.engine.fmi import run_fmi
 

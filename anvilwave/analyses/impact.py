@@ -153,7 +153,7 @@ def build_fmus(system: SystemConfig | str | Path, out_dir: str | Path, *,
     modal_data : ModalData or path, optional
         The anvil's modal data (default: from the cache or computed).
     native_anvil : bool
-        The anvils in C (default; compiled per build), else with pythonfmu.
+        The anvils in C (default; the shipped binaries), else with pythonfmu.
     native_units : bool, optional
         The Ram and PileSoil units: the shipped native binaries (True), pythonfmu (False), or
         native where they support the system and pythonfmu otherwise (None, default).

@@ -2,8 +2,9 @@
 
 :func:`run_fmi` is the ``--engine fmi`` counterpart of :meth:`anvilwave.engine.direct.Engine.run`
 (``--engine direct``): it builds the system's FMUs
-(:func:`anvilwave.engine.fmus.build_system_fmus`: the native anvil when a C compiler is found, else
-the pythonfmu anvil with a warning; Ram and PileSoil by pythonfmu), drives them with
+(:func:`anvilwave.engine.fmus.build_system_fmus`: the native anvil from its shipped binary, else
+the pythonfmu anvil with a warning; Ram and PileSoil native where they support the system),
+drives them with
 :class:`anvilwave.fmu.fmi_master.BlowMaster` at the engine's time step (DESIGN.md step order,
 consecutive blows as the engine: the pile keeps its permanent set and soil state, ram and
 anvil restart) and returns per blow the engine's result columns
@@ -145,8 +146,9 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     time_step : float or None, default None
         Master step h [s] (default: the engine's, ``build_engine(cfg).time_step``).
     native_anvil : bool or None, default None
-        The anvil FMUs to build (``build_system_fmus``): None (default) native when a C
-        compiler is found, else pythonfmu with a warning; True native; False pythonfmu.
+        The anvil FMUs to build (``build_system_fmus``): None (default) native when the
+        shipped binaries are current, else pythonfmu with a warning; True native; False
+        pythonfmu.
 
     Returns
     -------

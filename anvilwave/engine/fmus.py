@@ -2,17 +2,16 @@
 ``system.ssp`` (the system layer's side of :mod:`anvilwave.fmu.ssp`, which knows no system files).
 
 Anvil units. ``Anvil.fmu`` and ``AnvilLumped.fmu`` are native by default
-(:func:`anvilwave.fmu.native_build.build_native_anvil_fmu`: C, no Python at run time, the C sources
-inside, so that tools that are not Python can run them); ``native_anvil=False`` (command line
-``build-fmus --python-anvil``) builds the pythonfmu anvils of :mod:`anvilwave.fmu.units.anvil`
-under the
-same names instead (same variables and value references, same numbers to round-off). The native
-build needs a C compiler: without one, ``native_anvil=True`` stops with an
-:class:`~anvilwave.inputs.InputError` naming what is missing, and ``native_anvil=None`` (what
-``impact --engine fmi`` uses) falls back to the pythonfmu anvils with a warning. Ram and
-PileSoil are pythonfmu units (they carry their anvilwave code and need a Python with numpy,
-scipy and numba; their status shim runs them in C hosts: :mod:`anvilwave.fmu.fmi_build`) unless
-native.
+(:func:`anvilwave.fmu.native_build.build_native_anvil_fmu`: C, no Python at run time, the
+generic binaries shipped with anvilwave for Linux x86-64 and Windows x64, so that building
+needs no C compiler, and the C sources inside, so that tools elsewhere can compile them);
+``native_anvil=False`` (command line ``build-fmus --python-anvil``) builds the pythonfmu anvils
+of :mod:`anvilwave.fmu.units.anvil` under the same names instead (same variables and value
+references, same numbers to round-off). Without current shipped binaries ``native_anvil=True``
+stops with an :class:`~anvilwave.inputs.InputError` naming the reason, and
+``native_anvil=None`` falls back to the pythonfmu anvils with a warning. Ram and PileSoil are
+pythonfmu units (they carry their anvilwave code and need a Python with numpy, scipy and numba;
+their status shim runs them in C hosts: :mod:`anvilwave.fmu.fmi_build`) unless native.
 
 Ram and PileSoil units. By default (``native_units=None``) ``Ram.fmu`` and ``PileSoil.fmu`` are
 the native units of :mod:`anvilwave.fmu.native_units` (generic C binaries shipped with
@@ -53,7 +52,7 @@ from anvilwave.config.system import SystemConfig
 from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
 from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS
 from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
-from anvilwave.fmu.native_build import NativeBuildError, build_native_anvil_fmu, find_compiler
+from anvilwave.fmu.native_build import NativeBuildError, build_native_anvil_fmu
 from anvilwave.fmu.native_units import (
     build_native_pile_soil_fmu,
     build_native_ram_fmu,
@@ -176,14 +175,16 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     ssp : bool, default True
         Write ``system.ssp``.
     native_anvil : bool or None, default True
-        True: native anvils (InputError without a C compiler); False: the pythonfmu anvils;
-        None: native when a C compiler is found, else pythonfmu with a warning.
+        True: native anvils (InputError without current shipped binaries); False: the
+        pythonfmu anvils; None: native when the binaries are current, else pythonfmu with a
+        warning.
     native_units : bool or None, default None
         Ram and PileSoil (module docstring): None native where supported, else pythonfmu
         with a warning; True native (InputError when not supported); False pythonfmu.
     fmi_version : int, default 2
-        3 builds the native Ram and PileSoil as FMI 3.0 co-simulation units (the same binaries
-        and numbers; InputError when they cannot be native); the anvils stay FMI 2.0.
+        3 builds every unit as a native FMI 3.0 co-simulation unit (the same binaries and
+        numbers); InputError when one of them cannot be native (the pythonfmu units are FMI
+        2.0 only).
 
     Returns
     -------
@@ -199,8 +200,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     ------
     InputError
         If the anvil model is not "rom" or "lumped", the system needs the in-process engine
-        (a tube pile head, a ram face in annuli), ``fmi_version`` is not 2 or 3 (or 3 without
-        native units), or the native units asked for cannot be built.
+        (a tube pile head, a ram face in annuli), ``fmi_version`` is not 2 or 3 (or 3 with a
+        pythonfmu unit), or the native units asked for cannot be built.
     """
 
     if cfg.anvil.model not in ANVIL_FMU:
@@ -217,7 +218,12 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                          "the ram face in annuli runs in the in-process engine only (Ram.fmu "
                          "and the anvil FMUs have one toe port): use the direct engine "
                          "(--engine direct, compare --rom-engine direct)")
-    native = _native_anvil_wanted(native_anvil)  # before the modes: a missing compiler first
+    if fmi_version == 3:
+        if native_anvil is False:
+            raise InputError(cfg.source, "fmi_version", "FMI 3.0 anvils are the native anvils: "
+                                                        "not with the pythonfmu anvils")
+        native_anvil = True
+    native = _native_anvil_wanted(native_anvil)  # before the modes: missing binaries first
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)
     rest = parameters.pop("_rest")
@@ -239,8 +245,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         native_units = True
     native_ram = _native_unit_wanted("Ram", native_units, native_ram_support(cfg.hammer.ram))
     native_pile = _native_unit_wanted("PileSoil", native_units, (True, ""))
-    result["fmi_version"] = {"Ram": fmi_version, "PileSoil": fmi_version, "Anvil": 2,
-                             "AnvilLumped": 2}
+    result["fmi_version"] = {"Ram": fmi_version, "PileSoil": fmi_version,
+                             "Anvil": fmi_version, "AnvilLumped": fmi_version}
     result["ram_implementation"] = "native" if native_ram else "pythonfmu"
     result["pile_soil_implementation"] = "native" if native_pile else "pythonfmu"
     start = -FIRST_CONTACT_STEPS * step  # the first contact at 0 (module docstring)
@@ -258,10 +264,12 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         if native:
 
             result["Anvil"] = build_native_anvil_fmu(modal, out_dir / "Anvil.fmu",
+                                                     fmi_version=fmi_version,
                                                      default_experiment=experiment,
                                                      **parameters["Anvil"])
             result["AnvilLumped"] = build_native_anvil_fmu(modal, out_dir / "AnvilLumped.fmu",
                                                            lumped=True,
+                                                           fmi_version=fmi_version,
                                                            default_experiment=experiment,
                                                            **parameters["AnvilLumped"])
         else:
@@ -295,23 +303,20 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
 
 def _native_anvil_wanted(native_anvil: bool | None) -> bool:
     """Whether to build the native anvils (module docstring); InputError when they are asked
-    for and cannot be built here."""
+    for and their shipped binaries are missing or not current."""
     if native_anvil is False:
         return False
-
     try:
-        find_compiler()
+        unit_binaries("Anvil")
     except NativeBuildError as exc:
         if native_anvil is None:
             warnings.warn(f"the native anvil FMUs cannot be built ({exc}): using the pythonfmu "
                           "anvils (the same numbers)", stacklevel=3)
             return False
-        raise InputError("native Anvil FMU", "compiler",
+        raise InputError("native Anvil FMU", "binaries",
                          f"{exc}; or build the pythonfmu anvils instead (anvilwave build-fmus "
                          "--python-anvil, build_system_fmus(native_anvil=False))") from None
     return True
-
-
 
 
 def _native_unit_wanted(kind: str, native_units: bool | None,

@@ -7,7 +7,7 @@ first-order error that the stiff contacts amplify: 77 % on the Table 1 ram peak 
 the anvil's parameter ``input_extrapolation`` on (:class:`InputExtrapolation` in the pythonfmu
 anvils of :mod:`anvilwave.fmu.units.anvil`; the native anvil does the same operations in the same
 order
-in ``anvilwave/fmu/native/anvil_fmu.c``):
+in ``anvilwave/fmu/native/anvil_unit.c``):
 
 1. inputs set at a new communication point t_in keep the velocities of the point before
    (t_in - d): a = (v - v_before) / d is the neighbour's acceleration (0 at the first point,
@@ -77,7 +77,7 @@ def approach_input(u_ram: float, v_ram: float, u_top: float, v_top: float, h: fl
     second point (the DESIGN.md order, OMSimulator) and a Jacobi one, whose anvil acts from the
     third point on (step 4 of the module docstring), start alike from the ram's
     ``contact_mid_step`` (the first contact mid third step). The native anvil
-    (``anvilwave/fmu/native/anvil_fmu.c``, ``approach_input``) does the same operations.
+    (``anvilwave/fmu/native/anvil_unit.c``, ``approach_input``) does the same operations.
 
     Parameters
     ----------
@@ -114,7 +114,7 @@ def extrapolated_input(displacement: float, velocity: float, previous_velocity: 
     """A neighbour's displacement and velocity ``age`` after they were received.
 
     a = (velocity - previous_velocity) / interval (0 for interval 0). The native anvil
-    (``anvilwave/fmu/native/anvil_fmu.c``, ``extrapolated_input``) does the same operations in
+    (``anvilwave/fmu/native/anvil_unit.c``, ``extrapolated_input``) does the same operations in
     the same order.
 
     Parameters

@@ -1,34 +1,40 @@
-"""Build the native anvil FMUs: FMI 2.0 co-simulation in C, no Python at run time.
+"""Build the native anvil FMUs: FMI 2.0 or 3.0 co-simulation in C, no Python at run time, no
+C compiler at build time.
 
 :func:`build_native_anvil_fmu` writes ``Anvil.fmu`` (the Mode Displacement Method ROM) or
 ``AnvilLumped.fmu`` (the rigid lumped mass) with the variables of the pythonfmu units of
-:mod:`anvilwave.fmu.units.anvil` (same names, value references, types, causalities and parameters,
-so
-the two can be swapped) and the numerics of :mod:`anvilwave.anvil_rom.unit`, in C
-(``anvilwave/fmu/native/anvil_model.c``; the FMI layer is ``anvilwave/fmu/native/anvil_fmu.c``).
-The FMU holds
+:mod:`anvilwave.fmu.units.anvil` (same names, value references, types, causalities and
+parameters, so the two can be swapped) and the numerics of :mod:`anvilwave.anvil_rom.unit`, in
+C (``anvilwave/fmu/native/anvil_model.c``, the unit ``anvil_unit.c``, the FMI layers shared
+with the Ram and PileSoil units ``unit_core.c``, ``unit_fmu.c``, ``unit_fmi3.c``). Like those
+units (:mod:`anvilwave.fmu.native_units`) the anvil is a generic binary, compiled once per
+platform and shipped with anvilwave (``anvilwave/fmu/native/binaries/``: ``Anvil.so`` for
+Linux x86-64, ``Anvil.dll`` for Windows x64; one binary serves Anvil and AnvilLumped, the
+resource's kind picks the model). The FMU holds
 
 - ``modelDescription.xml`` with ``UnitDefinitions`` (SI base-unit exponents), the ``unit`` of
-  every Real, ``ModelStructure`` (``Outputs``: the forces are a direct feedthrough of the
-  inputs; ``InitialUnknowns``) and the ``SourceFiles`` of a source FMU;
-- ``sources/``: every ``.c`` / ``.h`` needed (the FMI 2.0 headers, BSD-2-Clause, keep their
-  license text), the generated ``anvil_config.h`` (model identifier, GUID, variable table with
-  the build's start values) and ``buildDescription.xml`` (FMI 3.0 format, as FMI 2.0.4 allows);
+  every Real, ``ModelStructure`` (the forces are a direct feedthrough of the inputs) and, in
+  FMI 2.0, the ``SourceFiles`` of a source FMU;
+- ``resources/anvilwave_unit.txt``: what the build makes particular, in the ``anvilwave-unit``
+  text format of ``anvilwave/fmu/native/fmu_common.h`` (the model identifier as its kind, the
+  GUID, the start value of every Real and Boolean parameter as an exact hexadecimal float);
 - ``resources/modal_data.bin`` (ROM only): the modal data in the documented little-endian
   binary format ``anvilwave-modal`` version 1 (version 2 with a pile port in rings;
-  ``anvilwave/fmu/native/anvil_model.h``,
-  :func:`modal_resource_bytes`), read by ``fmi2Instantiate`` from ``fmuResourceLocation``;
-- ``binaries/linux64/<modelIdentifier>.so`` compiled from ``sources/`` with the system C
-  compiler (``compiler``, else ``$CC``, else ``cc`` / ``gcc`` on the PATH), without
-  floating-point contraction so that the numbers are those of the Python kernels.
+  ``anvilwave/fmu/native/anvil_model.h``, :func:`modal_resource_bytes`), named by the String
+  parameter ``modal_data_file``;
+- ``binaries/linux64/<modelIdentifier>.so`` and ``binaries/win64/<modelIdentifier>.dll``
+  (FMI 3.0: ``x86_64-linux``, ``x86_64-windows``), copies of the shipped binaries;
+- ``sources/``: every ``.c`` / ``.h`` of the binary (the FMI headers, BSD-2-Clause, keep their
+  license text) and ``buildDescription.xml``, so that a tool on another platform (macOS)
+  compiles the FMU itself (``anvilwave/fmu/native/README.md``).
 
 The modal data come as physics objects or plain arrays, never from system files: a
-:class:`~anvilwave.anvil_rom.fem.modalfile.ModalData` (all stored modes are embedded; ``fmax`` [Hz],
-``damping_ratio`` [-] and ``static_correction`` stay run-time parameters, as in the pythonfmu
-Anvil), a :class:`~anvilwave.anvil_rom.rom.ModalAnvil` (the ROM as it is: its modes, circular
-frequencies bit for bit, its damping ratio, and its static correction through the elastic
-flexibility it implies, G = R + sum p p^T / omega^2), a mapping of plain arrays with the
-ModalData names (``frequencies``, ``participation_ram``, ``participation_pile``,
+:class:`~anvilwave.anvil_rom.fem.modalfile.ModalData` (all stored modes are embedded; ``fmax``
+[Hz], ``damping_ratio`` [-] and ``static_correction`` stay run-time parameters, as in the
+pythonfmu Anvil), a :class:`~anvilwave.anvil_rom.rom.ModalAnvil` (the ROM as it is: its modes,
+circular frequencies bit for bit, its damping ratio, and its static correction through the
+elastic flexibility it implies, G = R + sum p p^T / omega^2), a mapping of plain arrays with
+the ModalData names (``frequencies``, ``participation_ram``, ``participation_pile``,
 ``participation_gravity``, ``elastic_flexibility``, ``total_mass``, ``fmax``,
 ``damping_ratio``), or the path of a modal-data ``.npz`` file. The lumped anvil also takes a
 mass [kg].
@@ -37,14 +43,13 @@ Build-time checks: parameter names and types, and the values through the same ph
 the Python units build (:class:`~anvilwave.anvil_rom.unit.ContactParameters`,
 :meth:`~anvilwave.anvil_rom.rom.ModalAnvil.from_modal_data`,
 :meth:`~anvilwave.anvil_rom.rom.ModalAnvil.rigid`):
-:class:`~anvilwave.inputs.InputError`, nothing written. A missing compiler or an unsupported
-platform: :class:`NativeBuildError` naming what is missing. With ``validate`` the FMU is checked
-with ``fmpy.validation.validate_fmu`` and instantiated, initialized and stepped once.
+:class:`~anvilwave.inputs.InputError`, nothing written. Shipped binaries missing or built from
+other sources: :class:`NativeBuildError`. With ``validate`` the FMU is checked with
+``fmpy.validation.validate_fmu`` and, on Linux x86-64, run once.
 """
 
 from __future__ import annotations
 
-import ctypes
 import hashlib
 import json
 import math
@@ -52,12 +57,10 @@ import numbers
 import os
 import shutil
 import struct
-import subprocess
 import sys
 import tempfile
 import uuid
 import xml.etree.ElementTree as ET
-import zipfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -69,14 +72,28 @@ from anvilwave.anvil_rom.fem.modalfile import ModalData, check_modal_data, load_
 from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.anvil_rom.unit import ContactParameters
 from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION
+from anvilwave.fmu.native_units import (
+    COMMON_SOURCES,
+    DEFAULT_EXPERIMENT,
+    FMI3_COSIMULATION,
+    FMI3_PLATFORMS,
+    MODEL_SOURCES,
+    NATIVE_DIR,
+    PLATFORMS,
+    RESOURCE,
+    NativeBuildError,
+    _zip,
+    check_staged_fmu,
+    check_unit_fmu_3,
+    default_experiment_values,
+    description_body,
+    resource_text,
+    sources_digest,
+    unit_binaries,
+    unit_sources,
+)
 from anvilwave.inputs import InputError
 
-NATIVE_DIR = Path(__file__).resolve().parent / "native"
-"""The C sources and headers of the native anvil FMU."""
-C_SOURCES = ("anvil_fmu.c", "anvil_model.c", "fmu_common.c")
-C_HEADERS = ("anvil_fmu.h", "anvil_model.h", "fmu_common.h", "fmi2Functions.h",
-             "fmi2FunctionTypes.h", "fmi2TypesPlatform.h")
-CONFIG_HEADER = "anvil_config.h"
 MODAL_RESOURCE = "modal_data.bin"
 """Name of the embedded modal data in ``resources/`` (start value of ``modal_data_file``)."""
 MODAL_MAGIC = b"anvilwave-modal\x00"
@@ -84,19 +101,7 @@ MODAL_VERSION = 1
 MODAL_VERSION_RINGS = 2
 """Version 2: version 1 and the rings of a pile port split across the wall."""
 MODAL_HEADER_BYTES = 80
-PLATFORM = "linux64"
-CFLAGS = ("-shared", "-fPIC", "-O2", "-std=c99", "-ffp-contract=off", "-fvisibility=hidden",
-          "-Wall", "-Wextra")
-"""Compiler options (``-ffp-contract=off``: no fused multiply-add, as in the Python kernels)."""
 GRAVITY = 9.81  # [m/s^2], anvil_rom.unit.GRAVITY
-
-
-class NativeBuildError(RuntimeError):
-    """The native FMU cannot be built here.
-
-    No C compiler, an unsupported platform, the compiler failed, or the built FMU does not pass
-    its check.
-    """
 
 
 # ---------------------------------------------------------------------------- variables
@@ -109,13 +114,13 @@ class Variable:
     name : str
         FMI variable name.
     slot : str
-        The ``AnvilSlot`` of ``anvilwave/fmu/native/anvil_fmu.h`` without its ``ANVIL_`` prefix.
+        Its slot name in ``anvilwave/fmu/native/anvil_unit.c`` (the name in upper case).
     kind : {"Real", "Boolean", "String"}
         FMI type.
     causality : {"parameter", "input", "output"}
         ``"parameter"`` (variability fixed), ``"input"`` or ``"output"`` (continuous).
     unit : str or None
-        A unit of :data:`UNITS` or None.
+        A unit of :data:`anvilwave.fmu.native_units.UNITS` or None.
     description : str
         FMI variable description.
     """
@@ -191,14 +196,6 @@ FALLBACKS: dict[str, Any] = {
     "modal_data_file": MODAL_RESOURCE, "input_extrapolation": False,
 }
 """Start values of parameters the build does not set (contact stiffnesses have none)."""
-
-UNITS: dict[str, dict[str, int]] = {
-    "m": {"m": 1}, "m/s": {"m": 1, "s": -1}, "m/s2": {"m": 1, "s": -2},
-    "N": {"kg": 1, "m": 1, "s": -2}, "N/m": {"kg": 1, "s": -2}, "N.s/m": {"kg": 1, "s": -1},
-    "Hz": {"s": -1}, "kg": {"kg": 1}, "1": {},
-}
-"""SI base-unit exponents of the anvil's units (as in
-:data:`anvilwave.fmu.fmi_build.UNIT_DEFINITIONS`)."""
 
 DESCRIPTIONS = {
     "Anvil": "anvilwave anvil (native): Mode Displacement Method ROM with compression-only ram "
@@ -480,10 +477,12 @@ def native_modal_data(modal, source: str = "native Anvil FMU build") -> NativeMo
 
 # ---------------------------------------------------------------------------- the build
 def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
-                           compiler: str | None = None, validate: bool = True,
+                           validate: bool = True, fmi_version: int = 2,
                            default_experiment: tuple[float, float, float] | None = None,
                            **parameters) -> Path:
     """Build the native ``Anvil.fmu`` (ROM) or, with ``lumped``, ``AnvilLumped.fmu``.
+
+    No C compiler is needed: the FMU carries the shipped binaries (:func:`unit_binaries`).
 
     Parameters
     ----------
@@ -497,11 +496,12 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
         ``AnvilLumped.fmu``). Written in one step; nothing is written when the build fails.
     lumped : bool, default False
         The rigid lumped-mass anvil (mass default: the modal data's total mass [kg]).
-    compiler : str or None, optional
-        C compiler command (default: ``$CC``, else ``cc`` or ``gcc`` on the PATH).
     validate : bool, default True
-        Check the FMU with fmpy (``validate_fmu``, then instantiate, initialize and step it
-        once); needs fmpy.
+        Check the FMU with fmpy (``validate_fmu``, then, on Linux x86-64, instantiate,
+        initialize and step it once); needs fmpy.
+    fmi_version : {2, 3}, default 2
+        3: an FMI 3.0 co-simulation FMU (the same binaries, which hold both APIs, under the
+        FMI 3.0 platform folders).
     default_experiment : tuple of float or None, optional
         (start time, stop time, step) [s] of the system the FMU is built for, its
         ``DefaultExperiment`` (as :func:`anvilwave.fmu.fmi_build.build_fmu`'s; default
@@ -524,50 +524,58 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
     Raises
     ------
     InputError
-        If the modal data, a parameter or ``default_experiment`` is invalid.
+        If the modal data, a parameter, ``fmi_version`` or ``default_experiment`` is invalid.
     NativeBuildError
-        If no C compiler is found, the platform is not supported, the compiler fails or the
-        built FMU does not pass its check.
+        If no current binary is shipped or the built FMU does not pass its check.
 
     References
     ----------
     Modelica Association. Functional Mock-up Interface for Model Exchange and Co-Simulation,
-    FMI 2.0.4. https://fmi-standard.org
+    FMI 2.0.4; Functional Mock-up Interface, FMI 3.0. https://fmi-standard.org
     """
     model = "AnvilLumped" if lumped else "Anvil"
     source = f"native {model} FMU build"
+    if fmi_version not in (2, 3):
+        raise InputError(source, "fmi_version", f"must be 2 or 3, got {fmi_version!r}")
     variables = anvil_variables(lumped)
     data, defaults = _modal_defaults(modal, lumped, source)
     values = _start_values(variables, {**defaults, **parameters}, source, set(parameters))
     _check_physics(data, values, lumped)
     experiment = default_experiment_values(default_experiment, source)
-    cc = find_compiler(compiler)
+    binaries = unit_binaries(model)
     out_path = Path(out_path)
     target = out_path if out_path.suffix == ".fmu" else out_path / f"{model}.fmu"
+    resource = modal_resource_bytes(data) if data is not None else b""
+    starts = resource_starts(variables, values)
+    guid = _guid(model, fmi_version, variables, values, resource, binaries,
+                 None if default_experiment is None else experiment)
     with tempfile.TemporaryDirectory(prefix="anvilwave_native_") as scratch:
         stage = Path(scratch) / "fmu"
-        sources = stage / "sources"
-        sources.mkdir(parents=True)
-        resource = b""
+        (stage / "resources").mkdir(parents=True)
         if data is not None:
-            resource = modal_resource_bytes(data)
-            (stage / "resources").mkdir()
             (stage / "resources" / MODAL_RESOURCE).write_bytes(resource)
-        for name in C_SOURCES + C_HEADERS:
+        (stage / "resources" / RESOURCE).write_text(resource_text(model, guid, starts, {}),
+                                                    encoding="ascii")
+        sources = stage / "sources"
+        sources.mkdir()
+        for name in unit_sources("Anvil"):
             shutil.copyfile(NATIVE_DIR / name, sources / name)
-        guid = _guid(model, variables, values, resource, sources,
-                     None if default_experiment is None else experiment)
-        (sources / CONFIG_HEADER).write_text(config_header(model, guid, variables, values),
-                                             encoding="ascii")
         (sources / "buildDescription.xml").write_bytes(build_description(model))
+        for platform, path in binaries.items():
+            folder = stage / "binaries" / (platform if fmi_version == 2
+                                           else FMI3_PLATFORMS[platform])
+            folder.mkdir(parents=True)
+            shutil.copyfile(path, folder / f"{model}{PLATFORMS[platform]['suffix']}")
+        describe = model_description if fmi_version == 2 else model_description_3
         (stage / "modelDescription.xml").write_bytes(
-            model_description(model, guid, variables, values, experiment))
-        binary = stage / "binaries" / PLATFORM / f"{model}.so"
-        compile_binary(cc, sources, binary)
+            describe(model, guid, variables, values, experiment))
         archive = Path(scratch) / f"{model}.fmu"
         _zip(stage, archive)
         if validate:
-            _validate(archive, stage, model, guid)
+            if fmi_version == 2:
+                _validate(archive, stage, model, guid)
+            else:
+                check_unit_fmu_3(archive, model, list(OUTPUTS))
         target.parent.mkdir(parents=True, exist_ok=True)
         part = target.with_name(target.name + ".part")
         shutil.copyfile(archive, part)
@@ -575,47 +583,32 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
     return target
 
 
-DEFAULT_EXPERIMENT = (0.0, 0.02, 1e-5)
-"""The ``DefaultExperiment`` (start, stop, step) [s] of a native FMU built without one (that of
-the pythonfmu units' classes)."""
+def resource_starts(variables, values: dict[str, Any]) -> dict[str, float]:
+    """The start values the resource holds: Real parameters, and Booleans as 0.0 or 1.0.
 
-
-def default_experiment_values(default_experiment, source: str) -> tuple[float, float, float]:
-    """(start, stop, step) of a ``default_experiment`` argument.
+    The String parameter ``modal_data_file`` is not among them: its start value is always
+    the embedded :data:`MODAL_RESOURCE` (the binary's table).
 
     Parameters
     ----------
-    default_experiment : tuple of float or None
-        (start, stop, step) [s]; None: :data:`DEFAULT_EXPERIMENT`.
-    source : str
-        Name of the source in error messages.
+    variables : sequence of Variable
+        The FMU's variables.
+    values : dict of str to Any
+        Start values of the parameters [SI].
 
     Returns
     -------
-    tuple of float
-        (start, stop, step) [s].
-
-    Raises
-    ------
-    InputError
-        Unless start is finite, stop > start and step > 0.
+    dict of str to float
+        ``{name: start}`` [SI].
     """
-    if default_experiment is None:
-        return DEFAULT_EXPERIMENT
-    try:
-        start, stop, step = (float(x) for x in default_experiment)
-    except (TypeError, ValueError):
-        start = stop = step = math.nan
-    if not (math.isfinite(start) and math.isfinite(stop) and stop > start and
-            math.isfinite(step) and step > 0.0):
-        raise InputError(source, "default_experiment",
-                         f"must be (start, stop > start, step > 0) [s], got "
-                         f"{default_experiment!r}")
-    return start, stop, step
+    return {v.name: float(values[v.name]) for v in variables
+            if v.causality == "parameter" and v.kind in ("Real", "Boolean")}
 
 
 def find_compiler(compiler: str | None = None) -> str:
     """The C compiler command: ``compiler``, else ``$CC``, else ``cc`` or ``gcc`` on the PATH.
+
+    Building FMUs needs none; this finds one for compiling an FMU's ``sources/`` or a C host.
 
     Parameters
     ----------
@@ -630,12 +623,8 @@ def find_compiler(compiler: str | None = None) -> str:
     Raises
     ------
     NativeBuildError
-        Naming what is missing (the compiler, or a supported platform).
+        Naming what is missing.
     """
-    if not (sys.platform.startswith("linux") and sys.maxsize > 2**32):
-        raise NativeBuildError(f"the native anvil FMU is built for {PLATFORM} only (this is "
-                               f"{sys.platform}); its sources/ can be compiled by the importing "
-                               "tool")
     wanted = compiler or os.environ.get("CC")
     if wanted:
         found = shutil.which(wanted.split()[0]) if wanted.split() else None
@@ -649,42 +638,6 @@ def find_compiler(compiler: str | None = None) -> str:
         raise NativeBuildError("no C compiler found (neither $CC nor cc or gcc on the PATH): "
                                "install gcc (e.g. apt-get install gcc) or pass compiler=...")
     return found
-
-
-def compile_binary(compiler: str, sources: Path, binary: Path) -> Path:
-    """Compile the ``.c`` files of ``sources`` into the shared library ``binary``.
-
-    Parameters
-    ----------
-    compiler : str
-        C compiler command.
-    sources : pathlib.Path
-        Folder of the C sources and headers.
-    binary : pathlib.Path
-        The shared library to write.
-
-    Returns
-    -------
-    pathlib.Path
-        ``binary``.
-
-    Raises
-    ------
-    NativeBuildError
-        If the compiler cannot run or fails.
-    """
-    binary.parent.mkdir(parents=True, exist_ok=True)
-    files = sorted(str(p) for p in sources.glob("*.c"))
-    cmd = [*compiler.split(), *CFLAGS, "-I", str(sources), "-o", str(binary), *files, "-lm",
-           "-Wl,-z,defs"]
-    try:
-        run = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    except OSError as exc:
-        raise NativeBuildError(f"cannot run the C compiler {compiler!r}: {exc}") from None
-    if run.returncode != 0 or not binary.is_file():
-        raise NativeBuildError(f"compiling {binary.name} failed ({' '.join(cmd)}):\n"
-                               f"{run.stderr.strip()}")
-    return binary
 
 
 # ---------------------------------------------------------------------------- parameters
@@ -751,78 +704,22 @@ def _check_physics(data, values: dict[str, Any], lumped: bool) -> None:
 
 
 # ---------------------------------------------------------------------------- files
-def _guid(model: str, variables, values: dict[str, Any], resource: bytes, sources: Path,
-          experiment: tuple[float, float, float] | None = None) -> str:
+def _guid(model: str, fmi_version: int, variables, values: dict[str, Any], resource: bytes,
+          binaries: dict[str, Path], experiment: tuple[float, float, float] | None = None
+          ) -> str:
     """A GUID from the content (same inputs, same GUID: reproducible builds)."""
     digest = hashlib.sha256()
-    digest.update(model.encode())
+    digest.update(f"{model} FMI {fmi_version}".encode())
     if experiment is not None:
         digest.update(" ".join(x.hex() for x in experiment).encode())
     digest.update(json.dumps([[v.name, v.kind, v.causality, v.unit] for v in variables]).encode())
     digest.update(json.dumps({k: (v.hex() if isinstance(v, float) else v)
                               for k, v in values.items()}, sort_keys=True).encode())
     digest.update(resource)
-    for path in sorted(sources.iterdir()):
-        digest.update(path.name.encode())
-        digest.update(path.read_bytes())
+    digest.update(sources_digest("Anvil").encode())
+    for platform in sorted(binaries):
+        digest.update(binaries[platform].read_bytes())
     return str(uuid.UUID(bytes=digest.digest()[:16], version=4))
-
-
-def config_header(model: str, guid: str, variables, values: dict[str, Any]) -> str:
-    """``anvil_config.h``: model identifier, GUID and the variable table with start values.
-
-    Parameters
-    ----------
-    model : str
-        Model identifier, ``"Anvil"`` or ``"AnvilLumped"``.
-    guid : str
-        GUID of the FMU.
-    variables : sequence of Variable
-        The FMU's variables, in value-reference order.
-    values : dict of str to Any
-        Start values of the parameters [SI].
-
-    Returns
-    -------
-    str
-        Content of the header.
-    """
-    lines = [
-        f"/* anvil_config.h -- the {model} FMU of this build: model identifier, GUID and its",
-        " * variables (value reference, type, causality, slot, name, start value). Written by",
-        " * anvilwave/fmu/native_build.py together with modelDescription.xml, which holds the",
-        " * same table;",
-        " * rebuild rather than edit. */",
-        "#ifndef ANVIL_CONFIG_H",
-        "#define ANVIL_CONFIG_H",
-        "",
-        '#include "anvil_fmu.h"',
-        "",
-        f'#define ANVIL_MODEL_IDENTIFIER "{model}"',
-        f'#define ANVIL_GUID "{guid}"',
-        f"#define ANVIL_LUMPED {1 if model == 'AnvilLumped' else 0}",
-        "",
-        "static const AnvilVariable ANVIL_VARIABLES[] = {",
-        "    /* {vr, type, causality, slot, name, Real start, Boolean start, String start} */",
-    ]
-    for vr, v in enumerate(variables):
-        value = values.get(v.name)
-        real = boolean = "0"
-        string = "NULL"
-        comment = ""
-        if v.kind == "Real":
-            start = float(value) if v.causality == "parameter" else 0.0
-            real = start.hex()
-            comment = f" /* {start!r} */"
-        elif v.kind == "Boolean":
-            boolean = "1" if value else "0"
-        else:
-            string = json.dumps(value, ensure_ascii=True)
-        lines.append(f"    {{{vr}, ANVIL_{v.kind.upper()}, ANVIL_{v.causality.upper()}, "
-                     f"ANVIL_{v.slot},")
-        lines.append(f"     \"{v.name}\", {real}{comment}, {boolean}, {string}}},")
-    lines += ["};", "", "#endif /* ANVIL_CONFIG_H */", ""]
-    return "\n".join(lines)
 
 
 def model_description(model: str, guid: str, variables, values: dict[str, Any],
@@ -864,22 +761,9 @@ def model_description(model: str, guid: str, variables, values: dict[str, Any],
         "canNotUseMemoryManagementFunctions": "true", "canGetAndSetFMUstate": "false",
         "canSerializeFMUstate": "false", "providesDirectionalDerivative": "false"})
     files = ET.SubElement(cs, "SourceFiles")
-    for name in C_SOURCES:
+    for name in (*COMMON_SOURCES, *MODEL_SOURCES["Anvil"]):
         ET.SubElement(files, "File", name=name)
-    units = ET.SubElement(root, "UnitDefinitions")
-    used = {v.unit for v in variables if v.unit is not None}
-    for name, exponents in UNITS.items():
-        if name in used:
-            unit = ET.SubElement(units, "Unit", name=name)
-            ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in exponents.items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None}, experiment)
     index = {}
     for vr, v in enumerate(variables):
         index[v.name] = vr + 1
@@ -911,6 +795,74 @@ def model_description(model: str, guid: str, variables, values: dict[str, Any],
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
 
 
+def model_description_3(model: str, token: str, variables, values: dict[str, Any],
+                        experiment: tuple[float, float, float] = DEFAULT_EXPERIMENT) -> bytes:
+    """``modelDescription.xml`` of the anvil as FMI 3.0 co-simulation.
+
+    The variables and value references of the FMI 2.0 FMU (Reals as Float64) and the
+    independent variable ``time``, whose value reference follows theirs.
+
+    Parameters
+    ----------
+    model : str
+        Model identifier, ``"Anvil"`` or ``"AnvilLumped"``.
+    token : str
+        Instantiation token of the FMU (the GUID of the resource).
+    variables : sequence of Variable
+        The FMU's variables, in value-reference order.
+    values : dict of str to Any
+        Start values of the parameters [SI].
+    experiment : tuple of float, default DEFAULT_EXPERIMENT
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    bytes
+        Content of the file (UTF-8).
+
+    References
+    ----------
+    Modelica Association. Functional Mock-up Interface, FMI 3.0. https://fmi-standard.org
+    """
+    root = ET.Element("fmiModelDescription", {
+        "fmiVersion": "3.0", "modelName": model, "instantiationToken": token,
+        "description": DESCRIPTIONS[model], "generationTool": "anvilwave fmu.native_build",
+        "variableNamingConvention": "structured"})
+    ET.SubElement(root, "CoSimulation", {"modelIdentifier": model, **FMI3_COSIMULATION})
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None} | {"s"},
+                          experiment)  # "s": time
+    ET.SubElement(mv, "Float64", name="time", valueReference=str(len(variables)),
+                  causality="independent", variability="continuous",
+                  description="Simulation time [s]", unit="s")
+    for vr, v in enumerate(variables):
+        attrs = {"name": v.name, "valueReference": str(vr), "description": v.description,
+                 "causality": v.causality,
+                 "variability": "fixed" if v.causality == "parameter" else "continuous"}
+        if v.kind == "String":
+            ET.SubElement(ET.SubElement(mv, "String", attrs), "Start", value=values[v.name])
+            continue
+        if v.kind == "Boolean":
+            attrs["start"] = "true" if values[v.name] else "false"
+            ET.SubElement(mv, "Boolean", attrs)
+            continue
+        if v.unit is not None:
+            attrs["unit"] = v.unit
+        if v.causality == "parameter":
+            attrs["start"] = repr(float(values[v.name]))
+        elif v.causality == "input":
+            attrs["start"] = "0.0"
+        ET.SubElement(mv, "Float64", attrs)
+    structure = ET.SubElement(root, "ModelStructure")
+    vrs = {v.name: vr for vr, v in enumerate(variables)}
+    for name in OUTPUTS:
+        ET.SubElement(structure, "Output", valueReference=str(vrs[name]),
+                      dependencies=" ".join(str(vrs[i]) for i in FEEDTHROUGH[model][name]))
+    for name in OUTPUTS:
+        ET.SubElement(structure, "InitialUnknown", valueReference=str(vrs[name]))
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
+
+
 def build_description(model: str) -> bytes:
     """``sources/buildDescription.xml`` (FMI 3.0 format, optional in an FMI 2.0.4 source FMU).
 
@@ -936,7 +888,7 @@ def build_description(model: str) -> bytes:
                                        "equal those of anvilwave's Python kernels")
     files = ET.SubElement(config, "SourceFileSet", language="C99",
                           compilerOptions="-ffp-contract=off")
-    for name in C_SOURCES:
+    for name in (*COMMON_SOURCES, *MODEL_SOURCES["Anvil"]):
         ET.SubElement(files, "SourceFile", name=name)
     ET.SubElement(config, "Library", name="m", external="true",
                   description="the C math library (exp, cos, sqrt)")
@@ -944,101 +896,12 @@ def build_description(model: str) -> bytes:
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
 
 
-def _zip(stage: Path, archive: Path) -> None:
-    """The FMU archive of ``stage``: sorted entries with a fixed date (reproducible)."""
-    with zipfile.ZipFile(archive, "w", zipfile.ZIP_DEFLATED) as zf:
-        for path in sorted(p for p in stage.rglob("*") if p.is_file()):
-            info = zipfile.ZipInfo(path.relative_to(stage).as_posix(), (1980, 1, 1, 0, 0, 0))
-            info.compress_type = zipfile.ZIP_DEFLATED
-            info.external_attr = (0o755 if path.suffix == ".so" else 0o644) << 16
-            zf.writestr(info, path.read_bytes())
-
-
 def _validate(archive: Path, stage: Path, model: str, guid: str) -> None:
     """fmpy's validation, then instantiate, initialize and step the staged anvil FMU once
     (:func:`check_staged_fmu` with the anvil's output references)."""
     names = [v.name for v in anvil_variables(model == "AnvilLumped")]
     check_staged_fmu(archive, stage, model, guid, [names.index(name) for name in OUTPUTS],
+                     run=sys.platform.startswith("linux") and sys.maxsize > 2**32,
                      moment="at rest")
 
-
-def check_staged_fmu(archive: Path, stage: Path, model: str, guid: str, outputs: list[int],
-                     *, run: bool = True, moment: str = "at the start") -> None:
-    """fmpy's validation, then instantiate, initialize and step a staged FMU once.
-
-    Skipped without fmpy (optional for building).
-
-    Parameters
-    ----------
-    archive : pathlib.Path
-        The ``.fmu``.
-    stage : pathlib.Path
-        The unpacked FMU (the folder the archive was made from).
-    model : str
-        Its model identifier.
-    guid : str
-        Its GUID.
-    outputs : list of int
-        Value references of the outputs that must be finite after initialization.
-    run : bool
-        Instantiate and step it (False: validation only, e.g. a binary for another
-        platform).
-    moment : str
-        When the outputs are read, for the message (``"at rest"``, ``"at the start"``).
-
-    Raises
-    ------
-    NativeBuildError
-        If the FMU does not validate, instantiate or initialize, or its outputs are not
-        finite.
-    """
-    try:
-        from fmpy.fmi1 import FMICallException
-        from fmpy.fmi2 import (
-            FMU2Slave,
-            fmi2CallbackAllocateMemoryTYPE,
-            fmi2CallbackFreeMemoryTYPE,
-            fmi2CallbackFunctions,
-            fmi2CallbackLoggerTYPE,
-        )
-        from fmpy.logging import addLoggerProxy
-        from fmpy.validation import validate_fmu
-    except ImportError:  # fmpy is optional for building
-        return
-    from fmpy import calloc, free
-
-    problems = validate_fmu(str(archive))
-    if problems:
-        raise NativeBuildError(f"{archive.name} does not validate: " + "; ".join(problems))
-    if not run:
-        return
-    messages: list[str] = []
-    callbacks = fmi2CallbackFunctions()
-    callbacks.logger = fmi2CallbackLoggerTYPE(
-        lambda env, name, status, category, message: messages.append(message.decode()))
-    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-    addLoggerProxy(ctypes.byref(callbacks))
-    fmu = FMU2Slave(guid=guid, unzipDirectory=str(stage), modelIdentifier=model,
-                    instanceName="build_check")
-    try:
-        fmu.instantiate(callbacks=callbacks)
-    except Exception as exc:  # noqa: BLE001 - reported with the FMU's own messages
-        fmu.freeLibrary()
-        raise NativeBuildError(f"{archive.name}: fmi2Instantiate failed ({exc}): "
-                               + "; ".join(messages)) from None
-    try:
-        fmu.setupExperiment(startTime=0.0)
-        fmu.enterInitializationMode()
-        fmu.exitInitializationMode()
-        values = fmu.getReal(outputs)
-        fmu.doStep(0.0, 1e-5)
-        fmu.terminate()
-    except FMICallException as exc:
-        raise NativeBuildError(f"{archive.name} does not initialize ({exc}): "
-                               + "; ".join(messages)) from None
-    finally:
-        fmu.freeInstance()
-    if not all(math.isfinite(x) for x in values):
-        raise NativeBuildError(f"{archive.name}: outputs {moment} are not finite: {values}")
 

@@ -1,15 +1,16 @@
-"""The native Ram and PileSoil FMUs: generic C binaries, the model as a resource.
+"""The native units: generic C binaries, the model as a resource; the Ram and PileSoil FMUs.
 
-Unlike the native anvils (:mod:`anvilwave.fmu.native_build`, compiled per build), the Ram and
-PileSoil units are one binary per unit kind and platform, compiled once from
-``anvilwave/fmu/native/`` (``unit_fmu.c``, ``fmu_common.c`` and ``ram_model.c`` or
-``pile_soil_model.c``) and shipped in ``anvilwave/fmu/native/binaries/<platform>/``. Every
-build copies them into the FMU and writes what is particular to it into
+Every native unit (Ram, PileSoil, and the anvils of :mod:`anvilwave.fmu.native_build`) is one
+binary per unit kind and platform, compiled once from ``anvilwave/fmu/native/`` (the FMI 2.0
+and 3.0 layers ``unit_fmu.c`` and ``unit_fmi3.c`` over the shared instance ``unit_core.c``,
+``fmu_common.c``, and ``ram_model.c``, ``pile_soil_model.c`` or ``anvil_unit.c`` with
+``anvil_model.c``) and shipped in ``anvilwave/fmu/native/binaries/<platform>/``. Every build
+copies them into the FMU and writes what is particular to it into
 ``resources/anvilwave_unit.txt`` (the ``anvilwave-unit`` text format of
-``anvilwave/fmu/native/fmu_common.h``: GUID, parameter start values, the kernel arrays as
-exact hexadecimal floats), so that building FMUs needs no C compiler and the FMU runs on Linux
-x86-64 and Windows x64 without Python. The same binaries hold the FMI 3.0 co-simulation API
-(``unit_fmi3.c``): ``fmi_version=3`` packs them as an FMI 3.0 FMU.
+``anvilwave/fmu/native/fmu_common.h``: model identifier, GUID, parameter start values, the
+kernel arrays as exact hexadecimal floats), so that building FMUs needs no C compiler and the
+FMU runs on Linux x86-64 and Windows x64 without Python. The same binaries hold the FMI 3.0
+co-simulation API: ``fmi_version=3`` packs them as an FMI 3.0 FMU.
 
 The numerics are those of the Python kernels, operation for operation (``-ffp-contract=off``):
 :func:`anvilwave.hammer.ram.ram_advance` and :func:`anvilwave.hammer.ram.stable_time_step` for
@@ -32,6 +33,7 @@ changing a C source.
 
 from __future__ import annotations
 
+import ctypes
 import hashlib
 import json
 import math
@@ -42,6 +44,7 @@ import sys
 import tempfile
 import uuid
 import xml.etree.ElementTree as ET
+import zipfile
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -49,25 +52,175 @@ from typing import Any
 
 import numpy as np
 
-from anvilwave.fmu.native_build import (
-    DEFAULT_EXPERIMENT,
-    NATIVE_DIR,
-    UNITS,
-    NativeBuildError,
-    _zip,
-    check_staged_fmu,
-    default_experiment_values,
-)
 from anvilwave.hammer.database import load_hammer
 from anvilwave.inputs import InputError
 from anvilwave.pile.model import PileSoil, load_pile_soil
 
+# ---------------------------------------------------------------------------- shared
+NATIVE_DIR = Path(__file__).resolve().parent / "native"
+"""The C sources and headers of the native anvil FMU."""
+
+class NativeBuildError(RuntimeError):
+    """The native FMU cannot be built here.
+
+    No C compiler, an unsupported platform, the compiler failed, or the built FMU does not pass
+    its check.
+    """
+
+
+UNITS: dict[str, dict[str, int]] = {
+    "m": {"m": 1}, "m/s": {"m": 1, "s": -1}, "m/s2": {"m": 1, "s": -2},
+    "N": {"kg": 1, "m": 1, "s": -2}, "N/m": {"kg": 1, "s": -2}, "N.s/m": {"kg": 1, "s": -1},
+    "Hz": {"s": -1}, "kg": {"kg": 1}, "1": {},
+}
+"""SI base-unit exponents of the anvil's units (as in
+:data:`anvilwave.fmu.fmi_build.UNIT_DEFINITIONS`)."""
+
+
+DEFAULT_EXPERIMENT = (0.0, 0.02, 1e-5)
+"""The ``DefaultExperiment`` (start, stop, step) [s] of a native FMU built without one (that of
+the pythonfmu units' classes)."""
+
+
+def default_experiment_values(default_experiment, source: str) -> tuple[float, float, float]:
+    """(start, stop, step) of a ``default_experiment`` argument.
+
+    Parameters
+    ----------
+    default_experiment : tuple of float or None
+        (start, stop, step) [s]; None: :data:`DEFAULT_EXPERIMENT`.
+    source : str
+        Name of the source in error messages.
+
+    Returns
+    -------
+    tuple of float
+        (start, stop, step) [s].
+
+    Raises
+    ------
+    InputError
+        Unless start is finite, stop > start and step > 0.
+    """
+    if default_experiment is None:
+        return DEFAULT_EXPERIMENT
+    try:
+        start, stop, step = (float(x) for x in default_experiment)
+    except (TypeError, ValueError):
+        start = stop = step = math.nan
+    if not (math.isfinite(start) and math.isfinite(stop) and stop > start and
+            math.isfinite(step) and step > 0.0):
+        raise InputError(source, "default_experiment",
+                         f"must be (start, stop > start, step > 0) [s], got "
+                         f"{default_experiment!r}")
+    return start, stop, step
+
+
+def _zip(stage: Path, archive: Path) -> None:
+    """The FMU archive of ``stage``: sorted entries with a fixed date (reproducible)."""
+    with zipfile.ZipFile(archive, "w", zipfile.ZIP_DEFLATED) as zf:
+        for path in sorted(p for p in stage.rglob("*") if p.is_file()):
+            info = zipfile.ZipInfo(path.relative_to(stage).as_posix(), (1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            info.external_attr = (0o755 if path.suffix == ".so" else 0o644) << 16
+            zf.writestr(info, path.read_bytes())
+
+
+def check_staged_fmu(archive: Path, stage: Path, model: str, guid: str, outputs: list[int],
+                     *, run: bool = True, moment: str = "at the start") -> None:
+    """fmpy's validation, then instantiate, initialize and step a staged FMU once.
+
+    Skipped without fmpy (optional for building).
+
+    Parameters
+    ----------
+    archive : pathlib.Path
+        The ``.fmu``.
+    stage : pathlib.Path
+        The unpacked FMU (the folder the archive was made from).
+    model : str
+        Its model identifier.
+    guid : str
+        Its GUID.
+    outputs : list of int
+        Value references of the outputs that must be finite after initialization.
+    run : bool
+        Instantiate and step it (False: validation only, e.g. a binary for another
+        platform).
+    moment : str
+        When the outputs are read, for the message (``"at rest"``, ``"at the start"``).
+
+    Raises
+    ------
+    NativeBuildError
+        If the FMU does not validate, instantiate or initialize, or its outputs are not
+        finite.
+    """
+    try:
+        from fmpy.fmi1 import FMICallException
+        from fmpy.fmi2 import (
+            FMU2Slave,
+            fmi2CallbackAllocateMemoryTYPE,
+            fmi2CallbackFreeMemoryTYPE,
+            fmi2CallbackFunctions,
+            fmi2CallbackLoggerTYPE,
+        )
+        from fmpy.logging import addLoggerProxy
+        from fmpy.validation import validate_fmu
+    except ImportError:  # fmpy is optional for building
+        return
+    from fmpy import calloc, free
+
+    problems = validate_fmu(str(archive))
+    if problems:
+        raise NativeBuildError(f"{archive.name} does not validate: " + "; ".join(problems))
+    if not run:
+        return
+    messages: list[str] = []
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(
+        lambda env, name, status, category, message: messages.append(message.decode()))
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    addLoggerProxy(ctypes.byref(callbacks))
+    fmu = FMU2Slave(guid=guid, unzipDirectory=str(stage), modelIdentifier=model,
+                    instanceName="build_check")
+    try:
+        fmu.instantiate(callbacks=callbacks)
+    except Exception as exc:  # noqa: BLE001 - reported with the FMU's own messages
+        fmu.freeLibrary()
+        raise NativeBuildError(f"{archive.name}: fmi2Instantiate failed ({exc}): "
+                               + "; ".join(messages)) from None
+    try:
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        values = fmu.getReal(outputs)
+        fmu.doStep(0.0, 1e-5)
+        fmu.terminate()
+    except FMICallException as exc:
+        raise NativeBuildError(f"{archive.name} does not initialize ({exc}): "
+                               + "; ".join(messages)) from None
+    finally:
+        fmu.freeInstance()
+    if not all(math.isfinite(x) for x in values):
+        raise NativeBuildError(f"{archive.name}: outputs {moment} are not finite: {values}")
+
+
 UNIT_KINDS = ("Ram", "PileSoil")
-COMMON_SOURCES = ("unit_fmu.c", "unit_fmi3.c", "fmu_common.c")
-MODEL_SOURCES = {"Ram": "ram_model.c", "PileSoil": "pile_soil_model.c"}
-UNIT_HEADERS = ("unit_model.h", "fmu_common.h", "fmi2Functions.h", "fmi2FunctionTypes.h",
-                "fmi2TypesPlatform.h", "fmi3Functions.h", "fmi3FunctionTypes.h",
-                "fmi3PlatformTypes.h")
+"""The unit kinds built here (the anvils: :mod:`anvilwave.fmu.native_build`)."""
+BINARY_KINDS = ("Ram", "PileSoil", "Anvil")
+"""The shipped binaries: one per kind and platform (``Anvil`` serves Anvil and AnvilLumped)."""
+BINARY_OF = {"Ram": "Ram", "PileSoil": "PileSoil", "Anvil": "Anvil", "AnvilLumped": "Anvil"}
+"""The binary of each model identifier."""
+COMMON_SOURCES = ("unit_core.c", "unit_fmu.c", "unit_fmi3.c", "fmu_common.c")
+"""The FMI layers and the instance shared by every native unit."""
+MODEL_SOURCES = {"Ram": ("ram_model.c",), "PileSoil": ("pile_soil_model.c",),
+                 "Anvil": ("anvil_unit.c", "anvil_model.c")}
+UNIT_HEADERS = ("unit_core.h", "unit_model.h", "fmu_common.h", "fmi2Functions.h",
+                "fmi2FunctionTypes.h", "fmi2TypesPlatform.h", "fmi3Functions.h",
+                "fmi3FunctionTypes.h", "fmi3PlatformTypes.h")
+MODEL_HEADERS = {"Ram": (), "PileSoil": (), "Anvil": ("anvil_model.h",)}
 FMI3_PLATFORMS = {"linux64": "x86_64-linux", "win64": "x86_64-windows"}
 """The FMI 3.0 names of the binaries' folders (one binary holds the FMI 2.0 and 3.0 API)."""
 RESOURCE = "anvilwave_unit.txt"
@@ -190,14 +343,74 @@ DESCRIPTIONS = {
 _UNIT_EXPONENTS = {**UNITS, "s": {"s": 1}, "Pa": {"kg": 1, "m": -1, "s": -2}}
 
 
-# ---------------------------------------------------------------------------- binaries
-def sources_digest(kind: str) -> str:
-    """SHA-256 of the C sources and headers of a unit kind (names and bytes, sorted).
+FMI3_COSIMULATION = {
+    "needsExecutionTool": "false", "canBeInstantiatedOnlyOncePerProcess": "false",
+    "canGetAndSetFMUState": "false", "canSerializeFMUState": "false",
+    "providesDirectionalDerivatives": "false", "providesAdjointDerivatives": "false",
+    "canHandleVariableCommunicationStepSize": "true", "providesIntermediateUpdate": "false",
+    "canReturnEarlyAfterIntermediateUpdate": "false", "hasEventMode": "false"}
+"""The ``CoSimulation`` capabilities of every native FMI 3.0 unit (besides its identifier)."""
+
+
+def description_body(root: ET.Element, units: set[str],
+                     experiment: tuple[float, float, float]) -> ET.Element:
+    """The parts every native ``modelDescription.xml`` shares, after ``CoSimulation``.
+
+    ``UnitDefinitions`` (SI base-unit exponents, sorted by name), ``LogCategories`` and
+    ``DefaultExperiment``.
 
     Parameters
     ----------
-    kind : {"Ram", "PileSoil"}
-        Unit kind.
+    root : xml.etree.ElementTree.Element
+        The ``fmiModelDescription`` element (FMI 2.0 or 3.0).
+    units : set of str
+        Names of the units the variables use.
+    experiment : tuple of float
+        (start, stop, step) of the ``DefaultExperiment`` [s].
+
+    Returns
+    -------
+    xml.etree.ElementTree.Element
+        The (empty) ``ModelVariables`` element, appended to ``root``.
+    """
+    definitions = ET.SubElement(root, "UnitDefinitions")
+    for name in sorted(units):
+        unit = ET.SubElement(definitions, "Unit", name=name)
+        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
+    categories = ET.SubElement(root, "LogCategories")
+    for name, text in (("logStatusError", "Errors (always reported)"),
+                       ("logStatusWarning", "Warnings (always reported)"),
+                       ("logCalls", "Every FMI call, with debug logging on")):
+        ET.SubElement(categories, "Category", name=name, description=text)
+    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
+                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
+    return ET.SubElement(root, "ModelVariables")
+
+
+# ---------------------------------------------------------------------------- binaries
+def unit_sources(kind: str) -> tuple[str, ...]:
+    """The C files of a binary kind: its ``.c`` sources, then its headers.
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil", "Anvil"}
+        Binary kind (:data:`BINARY_KINDS`).
+
+    Returns
+    -------
+    tuple of str
+        File names in ``anvilwave/fmu/native/``.
+    """
+    return (*COMMON_SOURCES, *MODEL_SOURCES[kind], *UNIT_HEADERS, *MODEL_HEADERS[kind])
+
+
+def sources_digest(kind: str) -> str:
+    """SHA-256 of the C sources and headers of a binary kind (names and bytes, sorted).
+
+    Parameters
+    ----------
+    kind : {"Ram", "PileSoil", "Anvil"}
+        Binary kind (:data:`BINARY_KINDS`).
 
     Returns
     -------
@@ -205,7 +418,7 @@ def sources_digest(kind: str) -> str:
         Hexadecimal digest.
     """
     digest = hashlib.sha256()
-    for name in sorted((*COMMON_SOURCES, MODEL_SOURCES[kind], *UNIT_HEADERS)):
+    for name in sorted(unit_sources(kind)):
         digest.update(name.encode())
         digest.update((NATIVE_DIR / name).read_bytes())
     return digest.hexdigest()
@@ -231,12 +444,12 @@ def platform_compiler(platform: str) -> str | None:
 
 
 def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = None) -> Path:
-    """Compile the unit kind for a platform into ``binary`` (warnings are errors).
+    """Compile the binary kind for a platform into ``binary`` (warnings are errors).
 
     Parameters
     ----------
-    kind : {"Ram", "PileSoil"}
-        Unit kind.
+    kind : {"Ram", "PileSoil", "Anvil"}
+        Binary kind (:data:`BINARY_KINDS`).
     platform : str
         A platform of :data:`PLATFORMS`.
     binary : pathlib.Path
@@ -261,7 +474,7 @@ def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = 
                                "on the PATH")
     binary = Path(binary).resolve()
     binary.parent.mkdir(parents=True, exist_ok=True)
-    sources = [*COMMON_SOURCES, MODEL_SOURCES[kind]]
+    sources = [*COMMON_SOURCES, *MODEL_SOURCES[kind]]
     # relative names from the sources folder: nothing of the build machine in the binary
     cmd = [compiler, *COMMON_FLAGS, *WARNING_FLAGS, *spec["flags"], "-I.", "-o", str(binary),
            *sources, *spec["libs"]]
@@ -277,7 +490,7 @@ def compile_unit(kind: str, platform: str, binary: Path, compiler: str | None = 
 
 def rebuild_binaries(platforms: tuple[str, ...] | None = None,
                      out_dir: Path = BINARIES_DIR) -> dict[str, dict[str, Path]]:
-    """Compile the shipped binaries of every unit kind and record the sources' digests.
+    """Compile the shipped binaries of every binary kind and record the sources' digests.
 
     Parameters
     ----------
@@ -304,8 +517,8 @@ def rebuild_binaries(platforms: tuple[str, ...] | None = None,
         suffix = PLATFORMS[platform]["suffix"]
         built[platform] = {kind: compile_unit(kind, platform,
                                               out_dir / platform / f"{kind}{suffix}")
-                           for kind in UNIT_KINDS}
-    record = {kind: sources_digest(kind) for kind in UNIT_KINDS}
+                           for kind in BINARY_KINDS}
+    record = {kind: sources_digest(kind) for kind in BINARY_KINDS}
     record["compilers"] = {platform: compiler_version(platform) for platform in platforms}
     (out_dir / DIGEST_FILE).write_text(json.dumps(record, indent=2, sort_keys=True) + "\n",
                                        encoding="ascii")
@@ -335,12 +548,12 @@ def compiler_version(platform: str) -> str | None:
 
 
 def unit_binaries(kind: str) -> dict[str, Path]:
-    """The shipped binaries of a unit kind.
+    """The shipped binaries of a unit kind (model identifier).
 
     Parameters
     ----------
-    kind : {"Ram", "PileSoil"}
-        Unit kind.
+    kind : {"Ram", "PileSoil", "Anvil", "AnvilLumped"}
+        Model identifier (its binary: :data:`BINARY_OF`).
 
     Returns
     -------
@@ -352,6 +565,7 @@ def unit_binaries(kind: str) -> dict[str, Path]:
     NativeBuildError
         When none is shipped or they were built from other sources than the current ones.
     """
+    kind = BINARY_OF[kind]
     digests_path = BINARIES_DIR / DIGEST_FILE
     found = {p: BINARIES_DIR / p / f"{kind}{spec['suffix']}" for p, spec in PLATFORMS.items()}
     found = {p: path for p, path in found.items() if path.is_file()}
@@ -654,7 +868,7 @@ def build_unit_fmu(kind: str, arrays: Mapping[str, np.ndarray], values: Mapping[
                                                     encoding="ascii")
         sources = stage / "sources"
         sources.mkdir()
-        for name in (*COMMON_SOURCES, MODEL_SOURCES[kind], *UNIT_HEADERS):
+        for name in unit_sources(kind):
             shutil.copyfile(NATIVE_DIR / name, sources / name)
         for platform, path in binaries.items():
             folder = stage / "binaries" / (platform if fmi_version == 2
@@ -732,20 +946,9 @@ def unit_model_description(kind: str, guid: str, starts: Mapping[str, float],
         "canNotUseMemoryManagementFunctions": "true", "canGetAndSetFMUstate": "false",
         "canSerializeFMUstate": "false", "providesDirectionalDerivative": "false"})
     files = ET.SubElement(cs, "SourceFiles")
-    for name in (*COMMON_SOURCES, MODEL_SOURCES[kind]):
+    for name in (*COMMON_SOURCES, *MODEL_SOURCES[kind]):
         ET.SubElement(files, "File", name=name)
-    units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables if v.unit is not None}):
-        unit = ET.SubElement(units, "Unit", name=name)
-        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None}, experiment)
     index: dict[str, int] = {}
     for position, v in enumerate(variables, start=1):
         index[v.name] = position
@@ -809,25 +1012,9 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
         "description": DESCRIPTIONS[kind], "author": AUTHOR, "version": package_version(),
         "license": LICENSE, "copyright": f"{AUTHOR}, {LICENSE} licence",
         "generationTool": GENERATION_TOOL, "variableNamingConvention": "structured"})
-    ET.SubElement(root, "CoSimulation", {
-        "modelIdentifier": kind, "needsExecutionTool": "false",
-        "canBeInstantiatedOnlyOncePerProcess": "false", "canGetAndSetFMUState": "false",
-        "canSerializeFMUState": "false", "providesDirectionalDerivatives": "false",
-        "providesAdjointDerivatives": "false", "canHandleVariableCommunicationStepSize": "true",
-        "providesIntermediateUpdate": "false", "canReturnEarlyAfterIntermediateUpdate": "false",
-        "hasEventMode": "false"})
-    units = ET.SubElement(root, "UnitDefinitions")
-    for name in sorted({v.unit for v in variables if v.unit is not None} | {"s"}):  # "s": time
-        unit = ET.SubElement(units, "Unit", name=name)
-        ET.SubElement(unit, "BaseUnit", {k: str(e) for k, e in _UNIT_EXPONENTS[name].items()})
-    categories = ET.SubElement(root, "LogCategories")
-    for name, text in (("logStatusError", "Errors (always reported)"),
-                       ("logStatusWarning", "Warnings (always reported)"),
-                       ("logCalls", "Every FMI call, with debug logging on")):
-        ET.SubElement(categories, "Category", name=name, description=text)
-    ET.SubElement(root, "DefaultExperiment", startTime=repr(experiment[0]),
-                  stopTime=repr(experiment[1]), stepSize=repr(experiment[2]))
-    mv = ET.SubElement(root, "ModelVariables")
+    ET.SubElement(root, "CoSimulation", {"modelIdentifier": kind, **FMI3_COSIMULATION})
+    mv = description_body(root, {v.unit for v in variables if v.unit is not None} | {"s"},
+                          experiment)  # "s": time
     ET.SubElement(mv, "Float64", name="time", valueReference="0", causality="independent",
                   variability="continuous", description="Simulation time [s]", unit="s")
     for v in variables:
@@ -855,7 +1042,7 @@ def unit_model_description_3(kind: str, token: str, starts: Mapping[str, float],
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
 
 
-def check_unit_fmu_3(archive: Path, kind: str) -> None:
+def check_unit_fmu_3(archive: Path, kind: str, outputs: list[str] | None = None) -> None:
     """fmpy's validation of an FMI 3.0 unit and one short simulation.
 
     Skipped without fmpy; the simulation is skipped off linux64.
@@ -864,8 +1051,10 @@ def check_unit_fmu_3(archive: Path, kind: str) -> None:
     ----------
     archive : pathlib.Path
         The ``.fmu``.
-    kind : {"Ram", "PileSoil"}
-        Unit kind.
+    kind : str
+        Unit kind (model identifier).
+    outputs : list of str or None, optional
+        The outputs that must be finite (default: those of :data:`VARIABLES` of ``kind``).
 
     Raises
     ------
@@ -887,7 +1076,8 @@ def check_unit_fmu_3(archive: Path, kind: str) -> None:
                               output_interval=1e-5)
     except Exception as exc:  # noqa: BLE001 - reported as a build error
         raise NativeBuildError(f"{archive.name} does not simulate: {exc}") from None
-    outputs = [v.name for v in VARIABLES[kind] if v.causality == "output"]
+    if outputs is None:
+        outputs = [v.name for v in VARIABLES[kind] if v.causality == "output"]
     if not all(np.all(np.isfinite(result[name])) for name in outputs):
         raise NativeBuildError(f"{archive.name}: outputs are not finite")
 

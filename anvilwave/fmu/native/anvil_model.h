@@ -1,7 +1,7 @@
 /*
  * anvil_model.h -- the anvilwave anvil in plain C99: the Mode Displacement Method ROM (or the
  * rigid lumped mass) with its two compression-only contacts, and the reader of the binary
- * modal-data resource. No FMI here; anvil_fmu.c maps FMI 2.0 variables onto these functions.
+ * modal-data resource. No FMI here; anvil_unit.c maps the FMI variables onto these functions.
  *
  * The numerics are those of anvil_rom/rom.py and anvil_rom/unit.py (ModalAnvil, AnvilUnit and
  * their kernels modal_transition, modal_step, modal_interface, anvil_contact_forces,

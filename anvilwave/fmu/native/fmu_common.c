@@ -19,25 +19,6 @@ char *fmu_copy_string(const char *text)
     return copy;
 }
 
-void fmu_log_va(fmi2CallbackLogger logger, fmi2ComponentEnvironment environment,
-                const char *model, const char *name, fmi2Status status, const char *category,
-                const char *format, va_list args)
-{
-    char message[FMU_MESSAGE_SIZE], escaped[2 * FMU_MESSAGE_SIZE];
-    size_t i, j;
-    int n;
-    if (logger == NULL) return;
-    n = snprintf(message, sizeof message, "%s %s: ", model, name);
-    if (n < 0 || (size_t)n >= sizeof message) n = 0;
-    vsnprintf(message + n, sizeof message - (size_t)n, format, args);
-    for (i = 0, j = 0; message[i] != '\0' && j + 2 < sizeof escaped; i++) {
-        escaped[j++] = message[i];
-        if (message[i] == '%') escaped[j++] = '%';
-    }
-    escaped[j] = '\0';
-    logger(environment, name, status, category, escaped);
-}
-
 static int hex_digit(char c)
 {
     if (c >= '0' && c <= '9') return c - '0';

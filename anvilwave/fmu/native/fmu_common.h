@@ -1,28 +1,31 @@
 /*
- * fmu_common.h -- what every native anvilwave FMU shares: strings, logging through the host's
- * logger callback, the resources folder of fmuResourceLocation, and the reader of the
- * text resource "anvilwave-unit" (model data of the generic Ram and PileSoil binaries).
+ * fmu_common.h -- what every native anvilwave FMU shares: strings, the resources folder of
+ * fmuResourceLocation, and the reader of the text resource "anvilwave-unit", which holds what
+ * a build makes particular for the generic binaries (Ram, PileSoil, Anvil / AnvilLumped).
  *
  * The text resource (resources/anvilwave_unit.txt), ASCII, whitespace-separated tokens:
  *
  *     anvilwave-unit 1            magic and format version
- *     kind <kind>                 the unit kind (Ram, PileSoil), that of the binary
- *     guid <guid>                 the GUID of modelDescription.xml
- *     start <name> <value>        the start value of a Real parameter (any number of lines)
+ *     kind <kind>                 the model identifier (Ram, PileSoil, Anvil, AnvilLumped): it
+ *                                 picks the model (variable table) among the binary's
+ *     guid <guid>                 the GUID of modelDescription.xml (FMI 3.0: the
+ *                                 instantiationToken)
+ *     start <name> <value>        the start value of a Real parameter, or of a Boolean one as 0
+ *                                 or 1 (any number of lines; a parameter without one keeps the
+ *                                 default of the binary's variable table)
  *     array <name> <n> <v1> ... <vn>   a named array of n Reals (any number of lines)
  *     end
  *
  * Reals are written as C99 hexadecimal floating constants (Python float.hex(), e.g.
- * 0x1.3a5p+3), which strtod reads exactly on every platform. Lines starting with # are
- * comments.
+ * 0x1.3a5p+3), read exactly on every platform. Lines starting with # are comments. The
+ * anvils have no arrays: the ROM's modes are the binary modal-data resource named by its
+ * String parameter modal_data_file (anvil_model.h), whose start value is the table's
+ * "modal_data.bin".
  */
 #ifndef FMU_COMMON_H
 #define FMU_COMMON_H
 
-#include <stdarg.h>
 #include <stddef.h>
-
-#include "fmi2Functions.h"
 
 #define FMU_MESSAGE_SIZE 2048
 #define FMU_MAX_STEP 1.0e3
@@ -35,12 +38,6 @@
 
 /* A malloc'ed copy of text (NULL when out of memory). */
 char *fmu_copy_string(const char *text);
-
-/* Log "<model> <name>: <message>" through the host logger (nothing when logger is NULL); a %
- * in the message is escaped, since hosts treat the message as a printf format. */
-void fmu_log_va(fmi2CallbackLogger logger, fmi2ComponentEnvironment environment,
-                const char *model, const char *name, fmi2Status status, const char *category,
-                const char *format, va_list args);
 
 /* The resources folder of fmuResourceLocation (file:///path, file:/path,
  * file://localhost/path; percent-encoded), without a trailing slash; "" when there is none or

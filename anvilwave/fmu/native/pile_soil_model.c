@@ -38,17 +38,17 @@ enum {
 };
 
 static const UnitVariable VARIABLES[] = {
-    {1, UNIT_PARAMETER, "static_head_load", 0.0, UNIT_REAL},
-    {2, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL},
-    {17, UNIT_INPUT, "F_head", 0.0, UNIT_REAL},
-    {18, UNIT_OUTPUT, "u_head", 0.0, UNIT_REAL},
-    {19, UNIT_OUTPUT, "v_head", 0.0, UNIT_REAL},
-    {20, UNIT_OUTPUT, "F_gauge", 0.0, UNIT_REAL},
-    {21, UNIT_OUTPUT, "v_gauge", 0.0, UNIT_REAL},
-    {22, UNIT_OUTPUT, "u_head_total", 0.0, UNIT_REAL},
-    {23, UNIT_OUTPUT, "u_pile_toe", 0.0, UNIT_REAL},
-    {24, UNIT_OUTPUT, "max_compression_stress", 0.0, UNIT_REAL},
-    {25, UNIT_OUTPUT, "max_tension_stress", 0.0, UNIT_REAL},
+    {1, UNIT_PARAMETER, "static_head_load", 0.0, UNIT_REAL, NULL},
+    {2, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL, NULL},
+    {17, UNIT_INPUT, "F_head", 0.0, UNIT_REAL, NULL},
+    {18, UNIT_OUTPUT, "u_head", 0.0, UNIT_REAL, NULL},
+    {19, UNIT_OUTPUT, "v_head", 0.0, UNIT_REAL, NULL},
+    {20, UNIT_OUTPUT, "F_gauge", 0.0, UNIT_REAL, NULL},
+    {21, UNIT_OUTPUT, "v_gauge", 0.0, UNIT_REAL, NULL},
+    {22, UNIT_OUTPUT, "u_head_total", 0.0, UNIT_REAL, NULL},
+    {23, UNIT_OUTPUT, "u_pile_toe", 0.0, UNIT_REAL, NULL},
+    {24, UNIT_OUTPUT, "max_compression_stress", 0.0, UNIT_REAL, NULL},
+    {25, UNIT_OUTPUT, "max_tension_stress", 0.0, UNIT_REAL, NULL},
 };
 
 enum { CAPACITY, TENSION, STIFFNESS, SMITH, DASHPOT };
@@ -82,8 +82,10 @@ static void free_model(void *p)
     free(m);
 }
 
-static void *load(const FmuResource *res, char *reason, size_t reason_size)
+static void *load(const FmuResource *res, const char *resources, char *reason,
+                  size_t reason_size)
 {
+    (void)resources;
     size_t n_pile, n_soil, n_probes, n_stress, n, i, r;
     const double *pile = fmu_resource_array(res, "pile", &n_pile);
     const double *soil = fmu_resource_array(res, "soil", &n_soil);
@@ -324,9 +326,10 @@ static double head_displacement(const PileState *s)
     return s->u[0] + s->m->probes[HEAD_EXTRAPOLATION] * (s->u[0] - s->u[1]);
 }
 
-static void *start(const void *p, const double *slots, double start_time, char *reason,
-                   size_t reason_size)
+static void *start(void *p, const double *slots, char *const *strings,
+                   double start_time, char *reason, size_t reason_size)
 {
+    (void)strings;
     const PileModel *m = (const PileModel *)p;
     double head_load = slots[STATIC_HEAD_LOAD], gravity = slots[GRAVITY];
     size_t n = m->n, i;
@@ -389,8 +392,9 @@ static double spring_force(const PileState *s, size_t j)
     return s->m->k[j] * (s->u[j] - s->u[j + 1]) + s->m->c[j] * (s->v[j] - s->v[j + 1]);
 }
 
-static void outputs(const void *p, double *slots)
+static void outputs(void *p, double *slots, double time)
 {
+    (void)time;
     const PileState *s = (const PileState *)p;
     const double *probes = s->m->probes;
     double face = head_displacement(s), force, w;
@@ -493,8 +497,10 @@ static void sweep(PileState *s, double head_force, double dt)
     u[last] += dt * v_new;
 }
 
-static int step(void *p, const double *slots, double h, char *reason, size_t reason_size)
+static int step(void *p, const double *slots, double time, double h, char *reason,
+                size_t reason_size)
 {
+    (void)time;
     PileState *s = (PileState *)p;
     double dt;
     long k, n_sub;
@@ -515,5 +521,9 @@ static int step(void *p, const double *slots, double h, char *reason, size_t rea
     return 1;
 }
 
-const UnitModel UNIT_MODEL = {"PileSoil", VARIABLES, sizeof VARIABLES / sizeof VARIABLES[0],
-                              load, free_model, start, free_state, outputs, step};
+static const UnitModel MODEL = {"PileSoil", VARIABLES, sizeof VARIABLES / sizeof VARIABLES[0],
+                                0, 0, load, free_model, start, free_state, outputs, step,
+                                NULL, NULL};
+
+const UnitModel *const UNIT_MODELS[] = {&MODEL};
+const size_t N_UNIT_MODELS = 1;

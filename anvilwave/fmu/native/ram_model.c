@@ -48,15 +48,15 @@ enum {
 };
 
 static const UnitVariable VARIABLES[] = {
-    {1, UNIT_PARAMETER, "v_impact", 0.0, UNIT_REAL},
-    {2, UNIT_PARAMETER, "mass", 0.0, UNIT_REAL},
-    {3, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL},
-    {4, UNIT_PARAMETER, "contact_displacement", 0.0, UNIT_REAL},
-    {5, UNIT_PARAMETER, "contact_time", 0.0, UNIT_REAL},
-    {6, UNIT_PARAMETER, "contact_mid_step", 1.0, UNIT_BOOLEAN},
-    {7, UNIT_INPUT, "F_toe", 0.0, UNIT_REAL},
-    {8, UNIT_OUTPUT, "u_toe", 0.0, UNIT_REAL},
-    {9, UNIT_OUTPUT, "v_toe", 0.0, UNIT_REAL},
+    {1, UNIT_PARAMETER, "v_impact", 0.0, UNIT_REAL, NULL},
+    {2, UNIT_PARAMETER, "mass", 0.0, UNIT_REAL, NULL},
+    {3, UNIT_PARAMETER, "gravity", 9.81, UNIT_REAL, NULL},
+    {4, UNIT_PARAMETER, "contact_displacement", 0.0, UNIT_REAL, NULL},
+    {5, UNIT_PARAMETER, "contact_time", 0.0, UNIT_REAL, NULL},
+    {6, UNIT_PARAMETER, "contact_mid_step", 1.0, UNIT_BOOLEAN, NULL},
+    {7, UNIT_INPUT, "F_toe", 0.0, UNIT_REAL, NULL},
+    {8, UNIT_OUTPUT, "u_toe", 0.0, UNIT_REAL, NULL},
+    {9, UNIT_OUTPUT, "v_toe", 0.0, UNIT_REAL, NULL},
 };
 
 typedef struct {
@@ -110,8 +110,10 @@ static double *copy_array(const double *values, size_t n)
     return copy;
 }
 
-static void *load(const FmuResource *res, char *reason, size_t reason_size)
+static void *load(const FmuResource *res, const char *resources, char *reason,
+                  size_t reason_size)
 {
+    (void)resources;
     size_t n, nk, one_a, one_b, i;
     const double *mass = fmu_resource_array(res, "mass", &n);
     const double *stiffness = fmu_resource_array(res, "stiffness", &nk);
@@ -323,9 +325,10 @@ static void free_state(void *p)
 static void *start_rod(const RamModel *m, double gravity, int scale, double ratio, double u0,
                        double velocity, char *reason, size_t reason_size);
 
-static void *start(const void *p, const double *slots, double start_time, char *reason,
-                   size_t reason_size)
+static void *start(void *p, const double *slots, char *const *strings,
+                   double start_time, char *reason, size_t reason_size)
 {
+    (void)strings;
     const RamModel *m = (const RamModel *)p;
     double gravity = slots[GRAVITY], wanted = slots[MASS], velocity = slots[V_IMPACT];
     double ratio = 1.0, u0, offset;
@@ -408,8 +411,9 @@ static void *start_rod(const RamModel *m, double gravity, int scale, double rati
     return s;
 }
 
-static void outputs(const void *p, double *slots)
+static void outputs(void *p, double *slots, double time)
 {
+    (void)time;
     const RamState *s = (const RamState *)p;
     if (s->modal != NULL) {
         slots[U_TOE] = s->modal->u;
@@ -421,8 +425,10 @@ static void outputs(const void *p, double *slots)
 }
 
 /* ram.py ram_advance */
-static int step(void *p, const double *slots, double h, char *reason, size_t reason_size)
+static int step(void *p, const double *slots, double time, double h, char *reason,
+                size_t reason_size)
 {
+    (void)time;
     RamState *s = (RamState *)p;
     double toe_force = slots[F_TOE], dt;
     size_t last, i;
@@ -474,5 +480,9 @@ static int step(void *p, const double *slots, double h, char *reason, size_t rea
     return 1;
 }
 
-const UnitModel UNIT_MODEL = {"Ram", VARIABLES, sizeof VARIABLES / sizeof VARIABLES[0],
-                              load, free_model, start, free_state, outputs, step};
+static const UnitModel MODEL = {"Ram", VARIABLES, sizeof VARIABLES / sizeof VARIABLES[0],
+                                0, 0, load, free_model, start, free_state, outputs, step,
+                                NULL, NULL};
+
+const UnitModel *const UNIT_MODELS[] = {&MODEL};
+const size_t N_UNIT_MODELS = 1;

@@ -1,176 +1,73 @@
 /*
- * unit_fmi3.c -- the FMI 3.0 co-simulation layer of the generic native units (Ram, PileSoil),
- * compiled into the same binary as the FMI 2.0 layer (unit_fmu.c): the fmi3 functions next to
- * the fmi2 ones, one model (unit_model.h), one resource (resources/anvilwave_unit.txt, whose
- * GUID is the FMI 3.0 instantiationToken).
+ * unit_fmi3.c -- the FMI 3.0 co-simulation layer of every native unit (Ram, PileSoil, Anvil,
+ * AnvilLumped), compiled into the same binary as the FMI 2.0 layer (unit_fmu.c): the fmi3
+ * functions over the same instance (unit_core.c, unit_core.h), one model (unit_model.h), one
+ * resource (resources/anvilwave_unit.txt, whose GUID is the FMI 3.0 instantiationToken).
  *
- * The same behaviour as unit_fmu.c: the Float64 variables of the unit plus the independent
- * variable time (value reference 0); fmi3SetFloat64 refuses non-finite values, parameters
- * after initialization, outputs and unknown value references; fmi3DoStep refuses a
- * non-finite, non-positive or too large step and reports non-finite outputs; errors go to
- * the logMessage callback with the reason and return fmi3Error. Co-simulation only, no event
- * mode, no intermediate update, no FMU state: the other functions return fmi3Error with the
- * reason. Nothing here aborts or exits the host; no global mutable state.
+ * The variables of the FMI 2.0 unit (Float64 for the Reals, Boolean, String) and the
+ * independent variable time (the model's time_vr); the same rules and messages. Co-simulation
+ * only, no event mode, no intermediate update, no FMU state, scalars only: the other functions
+ * return fmi3Error with the reason logged.
  */
-#include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fmi3Functions.h"
-#include "fmu_common.h"
-#include "unit_model.h"
+#include "unit_core.h"
 
-#define TIME_VR 0
+#define STATUS(x) ((fmi3Status)(x))
 
-typedef enum { S3_INSTANTIATED, S3_INITIALIZATION, S3_STEP, S3_TERMINATED, S3_ERROR } State3;
-
-typedef struct {
-    char *name;
-    fmi3InstanceEnvironment environment;
-    fmi3LogMessageCallback logger;
-    int logging_on;
-    State3 state;
-    FmuResource resource;
-    void *model;
-    void *unit;
-    double *slots;
-    double start_time, time;
-    char reason[FMU_MESSAGE_SIZE];
-} Instance3;
-
-static const char *STATE_NAMES[] = {"instantiated", "initialization mode", "step mode",
-                                    "terminated", "error"};
-
-static void log3(fmi3LogMessageCallback logger, fmi3InstanceEnvironment environment,
-                 const char *name, fmi3Status status, const char *category, const char *format,
-                 va_list args)
+static void log_fmi3(const Unit *u, int status, const char *category, const char *message)
 {
-    char message[FMU_MESSAGE_SIZE];
-    int n;
-    if (logger == NULL) return;
-    n = snprintf(message, sizeof message, "%s %s: ", UNIT_MODEL.kind, name);
-    if (n < 0 || (size_t)n >= sizeof message) n = 0;
-    vsnprintf(message + n, sizeof message - (size_t)n, format, args);
-    logger(environment, status, category, message);
+    fmi3LogMessageCallback logger = (fmi3LogMessageCallback)u->host.callback;
+    if (logger != NULL) logger(u->host.environment, (fmi3Status)status, category, message);
 }
 
-static fmi3Status refuse(Instance3 *inst, const char *format, ...)
+static void set_host(UnitHost *host, fmi3InstanceEnvironment environment,
+                     fmi3LogMessageCallback logMessage)
 {
-    va_list args;
-    va_start(args, format);
-    log3(inst->logger, inst->environment, inst->name, fmi3Error, "logStatusError", format,
-         args);
-    va_end(args);
-    return fmi3Error;
+    host->log = log_fmi3;
+    host->callback = (void (*)(void))logMessage;
+    host->environment = environment;
 }
 
-static fmi3Status fail(Instance3 *inst, const char *format, ...)
+/* An instantiation refused before there is an instance. */
+static fmi3Instance refuse_instantiation(const char *name, fmi3InstanceEnvironment environment,
+                                         fmi3LogMessageCallback logMessage, const char *message)
 {
-    va_list args;
-    va_start(args, format);
-    log3(inst->logger, inst->environment, inst->name, fmi3Error, "logStatusError", format,
-         args);
-    va_end(args);
-    inst->state = S3_ERROR;
-    return fmi3Error;
-}
-
-static void log_instantiate(fmi3LogMessageCallback logger, fmi3InstanceEnvironment environment,
-                            const char *name, const char *format, ...)
-{
-    va_list args;
-    va_start(args, format);
-    log3(logger, environment, name, fmi3Error, "logStatusError", format, args);
-    va_end(args);
+    Unit quiet;
+    memset(&quiet, 0, sizeof quiet);
+    set_host(&quiet.host, environment, logMessage);
+    quiet.name = (char *)(name != NULL ? name : "");
+    unit_log(&quiet, UNIT_STATUS_ERROR, "logStatusError", "%s", message);
+    return NULL;
 }
 
 static fmi3Status unsupported(fmi3Instance instance, const char *function)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    if (inst == NULL) return fmi3Error;
-    return refuse(inst, "%s: not supported by this FMU (co-simulation, Float64 variables)",
-                  function);
+    return STATUS(unit_unsupported((Unit *)instance, function, "(co-simulation, no event "
+                                   "mode, no FMU state)"));
 }
 
-#define REQUIRE(inst, function, condition)                                                       \
-    do {                                                                                         \
-        if (!(condition))                                                                        \
-            return refuse((inst), "%s: not allowed in state %s", (function),                    \
-                          STATE_NAMES[(inst)->state]);                                           \
-    } while (0)
-
-/* The slot of a variable of this type, -1 when there is none. */
-static long find_slot(fmi3ValueReference vr, UnitType type)
+/* Scalar variables only: as many values as value references. */
+static int scalars(fmi3Instance instance, const char *function, size_t nValueReferences,
+                   size_t nValues)
 {
-    size_t i;
-    for (i = 0; i < UNIT_MODEL.n_variables; i++)
-        if (UNIT_MODEL.variables[i].vr == vr && UNIT_MODEL.variables[i].type == type)
-            return (long)i;
-    return -1;
+    if (nValues == nValueReferences) return 1;
+    unit_log((Unit *)instance, UNIT_STATUS_ERROR, "logStatusError", "%s: %lu values for %lu "
+             "value references (scalars only)", function, (unsigned long)nValues,
+             (unsigned long)nValueReferences);
+    return 0;
 }
 
-static void start_values(Instance3 *inst)
-{
-    size_t i;
-    for (i = 0; i < UNIT_MODEL.n_variables; i++) {
-        const UnitVariable *v = &UNIT_MODEL.variables[i];
-        double value = v->start;
-        if (v->causality == UNIT_PARAMETER) fmu_resource_start(&inst->resource, v->name, &value);
-        inst->slots[i] = v->causality == UNIT_OUTPUT ? 0.0 : value;
-    }
-}
-
-static void drop_unit(Instance3 *inst)
-{
-    if (inst->unit != NULL) UNIT_MODEL.free_state(inst->unit);
-    inst->unit = NULL;
-}
-
-static int build(Instance3 *inst)
-{
-    if (inst->unit != NULL) return 1;
-    inst->reason[0] = '\0';
-    inst->unit = UNIT_MODEL.start(inst->model, inst->slots, inst->start_time, inst->reason,
-                                  sizeof inst->reason);
-    if (inst->unit == NULL) return 0;
-    UNIT_MODEL.outputs(inst->unit, inst->slots);
-    return 1;
-}
-
-static const char *non_finite_output(const Instance3 *inst)
-{
-    size_t i;
-    for (i = 0; i < UNIT_MODEL.n_variables; i++)
-        if (UNIT_MODEL.variables[i].causality == UNIT_OUTPUT && !isfinite(inst->slots[i]))
-            return UNIT_MODEL.variables[i].name;
-    return NULL;
-}
-
-static void free3(Instance3 *inst)
-{
-    if (inst == NULL) return;
-    drop_unit(inst);
-    if (inst->model != NULL) UNIT_MODEL.free_model(inst->model);
-    fmu_resource_free(&inst->resource);
-    free(inst->slots);
-    free(inst->name);
-    free(inst);
-}
-
-/* ------------------------------------------------------------------ implemented */
+/* ------------------------------------------------------------------ life cycle */
 const char *fmi3GetVersion(void) { return fmi3Version; }
 
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn,
                                size_t nCategories, const fmi3String categories[])
 {
-    Instance3 *inst = (Instance3 *)instance;
-    (void)nCategories;
-    (void)categories;
-    if (inst == NULL) return fmi3Error;
-    inst->logging_on = loggingOn ? 1 : 0;
-    return fmi3OK;
+    return STATUS(unit_set_debug_logging((Unit *)instance, "fmi3SetDebugLogging", loggingOn,
+                                         nCategories, categories));
 }
 
 fmi3Instance fmi3InstantiateCoSimulation(
@@ -180,73 +77,28 @@ fmi3Instance fmi3InstantiateCoSimulation(
     size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
     fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate)
 {
-    const char *name = instanceName != NULL ? instanceName : "";
-    Instance3 *inst;
-    char *path;
+    UnitHost host;
+    Unit *u;
+    char *folder;
     size_t n;
     (void)visible;
     (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables;
     (void)nRequiredIntermediateVariables;
     (void)intermediateUpdate;
-    if (eventModeUsed) {
-        log_instantiate(logMessage, instanceEnvironment, name,
-                        "fmi3InstantiateCoSimulation: this FMU has no event mode");
-        return NULL;
-    }
-    if (resourcePath == NULL || resourcePath[0] == '\0') {
-        log_instantiate(logMessage, instanceEnvironment, name, "fmi3InstantiateCoSimulation: "
-                        "no resource path: this unit reads its model from resources/%s",
-                        FMU_UNIT_RESOURCE);
-        return NULL;
-    }
-    inst = (Instance3 *)calloc(1, sizeof *inst);
-    if (inst == NULL) return NULL;
-    inst->name = fmu_copy_string(name);
-    inst->slots = (double *)calloc(UNIT_MODEL.n_variables, sizeof(double));
-    inst->environment = instanceEnvironment;
-    inst->logger = logMessage;
-    inst->logging_on = loggingOn ? 1 : 0;
-    n = strlen(resourcePath);
-    /* the resource path ends with a separator (FMI 3.0); tolerate one without */
-    path = (char *)malloc(n + strlen(FMU_UNIT_RESOURCE) + 2);
-    if (inst->name == NULL || inst->slots == NULL || path == NULL) {
-        free(path);
-        free3(inst);
-        return NULL;
-    }
-    snprintf(path, n + strlen(FMU_UNIT_RESOURCE) + 2, "%s%s%s", resourcePath,
-             (resourcePath[n - 1] == '/' || resourcePath[n - 1] == '\\') ? "" : "/",
-             FMU_UNIT_RESOURCE);
-    if (!fmu_resource_read(path, &inst->resource, inst->reason, sizeof inst->reason)) {
-        log_instantiate(logMessage, instanceEnvironment, name,
-                        "fmi3InstantiateCoSimulation: %s", inst->reason);
-        free(path);
-        free3(inst);
-        return NULL;
-    }
-    free(path);
-    if (strcmp(inst->resource.kind, UNIT_MODEL.kind) != 0 || instantiationToken == NULL ||
-        strcmp(instantiationToken, inst->resource.guid) != 0) {
-        log_instantiate(logMessage, instanceEnvironment, name, "fmi3InstantiateCoSimulation: "
-                        "instantiation token %s (%s unit) does not match the resource's %s (%s "
-                        "unit): modelDescription.xml and resources from different builds",
-                        instantiationToken != NULL ? instantiationToken : "(null)",
-                        UNIT_MODEL.kind, inst->resource.guid, inst->resource.kind);
-        free3(inst);
-        return NULL;
-    }
-    inst->model = UNIT_MODEL.load(&inst->resource, inst->reason, sizeof inst->reason);
-    if (inst->model == NULL) {
-        log_instantiate(logMessage, instanceEnvironment, name,
-                        "fmi3InstantiateCoSimulation: resources/%s: %s", FMU_UNIT_RESOURCE,
-                        inst->reason);
-        free3(inst);
-        return NULL;
-    }
-    start_values(inst);
-    inst->state = S3_INSTANTIATED;
-    return inst;
+    if (eventModeUsed)
+        return refuse_instantiation(instanceName, instanceEnvironment, logMessage,
+                                    "fmi3InstantiateCoSimulation: this FMU has no event mode");
+    set_host(&host, instanceEnvironment, logMessage);
+    /* the resource path ends with a separator (FMI 3.0); the core takes the folder */
+    folder = fmu_copy_string(resourcePath != NULL ? resourcePath : "");
+    if (folder == NULL) return NULL;
+    n = strlen(folder);
+    while (n > 1 && (folder[n - 1] == '/' || folder[n - 1] == '\\')) folder[--n] = '\0';
+    u = unit_instantiate("fmi3InstantiateCoSimulation", instanceName, "instantiation token",
+                         instantiationToken, folder, &host, loggingOn);
+    free(folder);
+    return u;
 }
 
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
@@ -260,9 +112,9 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
     (void)resourcePath;
     (void)visible;
     (void)loggingOn;
-    log_instantiate(logMessage, instanceEnvironment, instanceName != NULL ? instanceName : "",
-                    "fmi3InstantiateModelExchange: this FMU supports co-simulation only");
-    return NULL;
+    return refuse_instantiation(instanceName, instanceEnvironment, logMessage,
+                                "fmi3InstantiateModelExchange: this FMU supports "
+                                "co-simulation only");
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(
@@ -278,534 +130,206 @@ fmi3Instance fmi3InstantiateScheduledExecution(
     (void)clockUpdate;
     (void)lockPreemption;
     (void)unlockPreemption;
-    log_instantiate(logMessage, instanceEnvironment, instanceName != NULL ? instanceName : "",
-                    "fmi3InstantiateScheduledExecution: this FMU supports co-simulation only");
-    return NULL;
+    return refuse_instantiation(instanceName, instanceEnvironment, logMessage,
+                                "fmi3InstantiateScheduledExecution: this FMU supports "
+                                "co-simulation only");
 }
 
-void fmi3FreeInstance(fmi3Instance instance) { free3((Instance3 *)instance); }
+void fmi3FreeInstance(fmi3Instance instance) { unit_free((Unit *)instance); }
 
 fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined,
                                        fmi3Float64 tolerance, fmi3Float64 startTime,
                                        fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
-    Instance3 *inst = (Instance3 *)instance;
+    const char *function = "fmi3EnterInitializationMode";
+    int status = unit_setup((Unit *)instance, function, startTime);
     (void)toleranceDefined;
     (void)tolerance;
     (void)stopTimeDefined;
     (void)stopTime;
-    if (inst == NULL) return fmi3Error;
-    REQUIRE(inst, "fmi3EnterInitializationMode", inst->state == S3_INSTANTIATED);
-    if (!isfinite(startTime))
-        return refuse(inst, "fmi3EnterInitializationMode: the start time must be finite");
-    inst->start_time = inst->time = startTime;
-    drop_unit(inst);
-    inst->state = S3_INITIALIZATION;
-    return fmi3OK;
+    if (status != UNIT_STATUS_OK) return STATUS(status);
+    return STATUS(unit_enter_initialization((Unit *)instance, function));
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    const char *bad;
-    if (inst == NULL) return fmi3Error;
-    REQUIRE(inst, "fmi3ExitInitializationMode", inst->state == S3_INITIALIZATION);
-    if (!build(inst)) return fail(inst, "fmi3ExitInitializationMode: %s", inst->reason);
-    if ((bad = non_finite_output(inst)) != NULL)
-        return fail(inst, "fmi3ExitInitializationMode: output %s is not finite", bad);
-    inst->state = S3_STEP;
-    return fmi3OK;
+    return STATUS(unit_exit_initialization((Unit *)instance, "fmi3ExitInitializationMode"));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance instance)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    if (inst == NULL) return fmi3Error;
-    REQUIRE(inst, "fmi3Terminate", inst->state == S3_STEP || inst->state == S3_ERROR);
-    inst->state = S3_TERMINATED;
-    return fmi3OK;
+    return STATUS(unit_terminate((Unit *)instance, "fmi3Terminate"));
 }
 
 fmi3Status fmi3Reset(fmi3Instance instance)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    if (inst == NULL) return fmi3Error;
-    drop_unit(inst);
-    start_values(inst);
-    inst->start_time = inst->time = 0.0;
-    inst->state = S3_INSTANTIATED;
-    return fmi3OK;
+    return STATUS(unit_reset((Unit *)instance, "fmi3Reset"));
 }
 
+/* ------------------------------------------------------------------ variables */
 fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, fmi3Float64 values[], size_t nValues)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    size_t i;
-    if (inst == NULL) return fmi3Error;
-    if (nValues != nValueReferences)
-        return refuse(inst, "fmi3GetFloat64: %lu values for %lu value references (scalars "
-                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
-    for (i = 0; i < nValueReferences; i++) {
-        long slot;
-        if (valueReferences[i] == TIME_VR) {
-            values[i] = inst->time;
-            continue;
-        }
-        slot = find_slot(valueReferences[i], UNIT_REAL);
-        if (slot < 0)
-            return refuse(inst, "fmi3GetFloat64: unknown value reference %u",
-                          valueReferences[i]);
-        if (UNIT_MODEL.variables[slot].causality == UNIT_OUTPUT) {
-            if (inst->state == S3_INSTANTIATED || inst->state == S3_ERROR)
-                return refuse(inst, "fmi3GetFloat64: output %s not available in state %s",
-                              UNIT_MODEL.variables[slot].name, STATE_NAMES[inst->state]);
-            if (inst->state == S3_INITIALIZATION && !build(inst))
-                return refuse(inst, "fmi3GetFloat64: %s", inst->reason);
-        }
-        values[i] = inst->slots[slot];
-    }
-    return fmi3OK;
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3GetFloat64", nValueReferences, nValues)) return fmi3Error;
+    return STATUS(unit_get_real((Unit *)instance, "fmi3GetFloat64", valueReferences,
+                                nValueReferences, values, 1));
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues)
 {
-    Instance3 *inst = (Instance3 *)instance;
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3SetFloat64", nValueReferences, nValues)) return fmi3Error;
+    return STATUS(unit_set_real((Unit *)instance, "fmi3SetFloat64", valueReferences,
+                                nValueReferences, values));
+}
+
+fmi3Status fmi3GetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                          size_t nValueReferences, fmi3Boolean values[], size_t nValues)
+{
     size_t i;
-    if (inst == NULL) return fmi3Error;
-    REQUIRE(inst, "fmi3SetFloat64", inst->state == S3_INSTANTIATED ||
-                                        inst->state == S3_INITIALIZATION ||
-                                        inst->state == S3_STEP);
-    if (nValues != nValueReferences)
-        return refuse(inst, "fmi3SetFloat64: %lu values for %lu value references (scalars "
-                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
-    for (i = 0; i < nValueReferences; i++) {
-        long slot = find_slot(valueReferences[i], UNIT_REAL);
-        const UnitVariable *v;
-        if (slot < 0)
-            return refuse(inst, "fmi3SetFloat64: value reference %u cannot be set",
-                          valueReferences[i]);
-        v = &UNIT_MODEL.variables[slot];
-        if (v->causality == UNIT_OUTPUT)
-            return refuse(inst, "fmi3SetFloat64: %s is an output", v->name);
-        if (v->causality == UNIT_PARAMETER && inst->state == S3_STEP)
-            return refuse(inst, "fmi3SetFloat64: parameter %s is fixed after initialization",
-                          v->name);
-        if (!isfinite(values[i]))
-            return refuse(inst, "fmi3SetFloat64: %s must be finite, got %g", v->name,
-                          values[i]);
-        if (v->causality == UNIT_PARAMETER && inst->slots[slot] != values[i]) drop_unit(inst);
-        inst->slots[slot] = values[i];
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3GetBoolean", nValueReferences, nValues)) return fmi3Error;
+    for (i = 0; i < nValueReferences; i++) { /* fmi3Boolean is a bool, the core's an int */
+        int value;
+        int status = unit_get_boolean((Unit *)instance, "fmi3GetBoolean", &valueReferences[i],
+                                      1, &value);
+        if (status != UNIT_STATUS_OK) return STATUS(status);
+        values[i] = value ? fmi3True : fmi3False;
     }
     return fmi3OK;
 }
 
+fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                          size_t nValueReferences, const fmi3Boolean values[], size_t nValues)
+{
+    size_t i;
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3SetBoolean", nValueReferences, nValues)) return fmi3Error;
+    for (i = 0; i < nValueReferences; i++) {
+        int value = values[i] ? 1 : 0;
+        int status = unit_set_boolean((Unit *)instance, "fmi3SetBoolean", &valueReferences[i],
+                                      1, &value);
+        if (status != UNIT_STATUS_OK) return STATUS(status);
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3GetString(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                         size_t nValueReferences, fmi3String values[], size_t nValues)
+{
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3GetString", nValueReferences, nValues)) return fmi3Error;
+    return STATUS(unit_get_string((Unit *)instance, "fmi3GetString", valueReferences,
+                                  nValueReferences, values));
+}
+
+fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                         size_t nValueReferences, const fmi3String values[], size_t nValues)
+{
+    if (instance == NULL) return fmi3Error;
+    if (!scalars(instance, "fmi3SetString", nValueReferences, nValues)) return fmi3Error;
+    return STATUS(unit_set_string((Unit *)instance, "fmi3SetString", valueReferences,
+                                  nValueReferences, values));
+}
+
+/* ------------------------------------------------------------------ stepping */
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                       fmi3Float64 communicationStepSize,
                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                       fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime)
 {
-    Instance3 *inst = (Instance3 *)instance;
-    double h = communicationStepSize;
-    const char *bad;
+    Unit *u = (Unit *)instance;
+    int status;
     (void)noSetFMUStatePriorToCurrentPoint;
-    if (inst == NULL) return fmi3Error;
+    if (u == NULL) return fmi3Error;
     if (eventHandlingNeeded != NULL) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation != NULL) *terminateSimulation = fmi3False;
     if (earlyReturn != NULL) *earlyReturn = fmi3False;
-    if (lastSuccessfulTime != NULL) *lastSuccessfulTime = inst->time;
-    REQUIRE(inst, "fmi3DoStep", inst->state == S3_STEP);
-    if (!isfinite(currentCommunicationPoint))
-        return fail(inst, "fmi3DoStep: the communication point must be finite");
-    if (!(isfinite(h) && h > 0.0))
-        return fail(inst, "fmi3DoStep: the communication step must be finite and positive, "
-                    "got %g s", h);
-    if (h > FMU_MAX_STEP)
-        return fail(inst, "fmi3DoStep: the communication step %g s is larger than %g s", h,
-                    FMU_MAX_STEP);
-    inst->reason[0] = '\0';
-    if (!UNIT_MODEL.step(inst->unit, inst->slots, h, inst->reason, sizeof inst->reason))
-        return fail(inst, "fmi3DoStep: %s", inst->reason);
-    UNIT_MODEL.outputs(inst->unit, inst->slots);
-    if ((bad = non_finite_output(inst)) != NULL)
-        return fail(inst, "fmi3DoStep(t = %g, h = %g): output %s is not finite after the step",
-                    currentCommunicationPoint, h, bad);
-    inst->time = currentCommunicationPoint + h;
-    if (lastSuccessfulTime != NULL) *lastSuccessfulTime = inst->time;
-    return fmi3OK;
+    status = unit_do_step(u, "fmi3DoStep", currentCommunicationPoint, communicationStepSize);
+    if (lastSuccessfulTime != NULL) *lastSuccessfulTime = u->time;
+    return STATUS(status);
 }
 
 /* ------------------------------------------------------------------ not supported */
+/* The types the units have no variables of: fmi3Get<T> and fmi3Set<T> refuse any. */
+#define NO_VARIABLES(T)                                                                          \
+    fmi3Status fmi3Get##T(fmi3Instance instance, const fmi3ValueReference valueReferences[],   \
+                          size_t nValueReferences, fmi3##T values[], size_t nValues)           \
+    {                                                                                            \
+        (void)valueReferences;                                                                   \
+        (void)values;                                                                            \
+        (void)nValues;                                                                           \
+        return STATUS(unit_no_variables((Unit *)instance, "fmi3Get" #T, #T,                     \
+                                        nValueReferences));                                      \
+    }                                                                                            \
+    fmi3Status fmi3Set##T(fmi3Instance instance, const fmi3ValueReference valueReferences[],   \
+                          size_t nValueReferences, const fmi3##T values[], size_t nValues)     \
+    {                                                                                            \
+        (void)valueReferences;                                                                   \
+        (void)values;                                                                            \
+        (void)nValues;                                                                           \
+        return STATUS(unit_no_variables((Unit *)instance, "fmi3Set" #T, #T,                     \
+                                        nValueReferences));                                      \
+    }
+
+NO_VARIABLES(Float32)
+NO_VARIABLES(Int8)
+NO_VARIABLES(UInt8)
+NO_VARIABLES(Int16)
+NO_VARIABLES(UInt16)
+NO_VARIABLES(Int32)
+NO_VARIABLES(UInt32)
+NO_VARIABLES(Int64)
+NO_VARIABLES(UInt64)
+
+fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                         size_t nValueReferences, size_t valueSizes[], fmi3Binary values[],
+                         size_t nValues)
+{
+    (void)valueReferences;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
+    return STATUS(unit_no_variables((Unit *)instance, "fmi3GetBinary", "Binary",
+                                    nValueReferences));
+}
+
+fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                         size_t nValueReferences, const size_t valueSizes[],
+                         const fmi3Binary values[], size_t nValues)
+{
+    (void)valueReferences;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
+    return STATUS(unit_no_variables((Unit *)instance, "fmi3SetBinary", "Binary",
+                                    nValueReferences));
+}
+
+fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                        size_t nValueReferences, fmi3Clock values[])
+{
+    (void)valueReferences;
+    (void)values;
+    return STATUS(unit_no_variables((Unit *)instance, "fmi3GetClock", "Clock",
+                                    nValueReferences));
+}
+
+fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                        size_t nValueReferences, const fmi3Clock values[])
+{
+    (void)valueReferences;
+    (void)values;
+    return STATUS(unit_no_variables((Unit *)instance, "fmi3SetClock", "Clock",
+                                    nValueReferences));
+}
+
 fmi3Status fmi3EnterEventMode(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EnterEventMode");
-}
-
-fmi3Status fmi3GetFloat32(fmi3Instance instance,
-                          const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences,
-                          fmi3Float32 values[],
-                          size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetFloat32");
-}
-
-fmi3Status fmi3GetInt8(fmi3Instance instance,
-                       const fmi3ValueReference valueReferences[],
-                       size_t nValueReferences,
-                       fmi3Int8 values[],
-                       size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetInt8");
-}
-
-fmi3Status fmi3GetUInt8(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        fmi3UInt8 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetUInt8");
-}
-
-fmi3Status fmi3GetInt16(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        fmi3Int16 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetInt16");
-}
-
-fmi3Status fmi3GetUInt16(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         fmi3UInt16 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetUInt16");
-}
-
-fmi3Status fmi3GetInt32(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        fmi3Int32 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetInt32");
-}
-
-fmi3Status fmi3GetUInt32(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         fmi3UInt32 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetUInt32");
-}
-
-fmi3Status fmi3GetInt64(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        fmi3Int64 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetInt64");
-}
-
-fmi3Status fmi3GetUInt64(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         fmi3UInt64 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetUInt64");
-}
-
-fmi3Status fmi3GetBoolean(fmi3Instance instance,
-                          const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences,
-                          fmi3Boolean values[],
-                          size_t nValues)
-{
-    Instance3 *inst = (Instance3 *)instance;
-    size_t i;
-    if (inst == NULL) return fmi3Error;
-    if (nValues != nValueReferences)
-        return refuse(inst, "fmi3GetBoolean: %lu values for %lu value references (scalars "
-                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
-    for (i = 0; i < nValueReferences; i++) {
-        long slot = find_slot(valueReferences[i], UNIT_BOOLEAN);
-        if (slot < 0)
-            return refuse(inst, "fmi3GetBoolean: unknown value reference %u",
-                          valueReferences[i]);
-        values[i] = inst->slots[slot] != 0.0;
-    }
-    return fmi3OK;
-}
-
-fmi3Status fmi3GetString(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         fmi3String values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetString");
-}
-
-fmi3Status fmi3GetBinary(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         size_t valueSizes[],
-                         fmi3Binary values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)valueSizes;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3GetBinary");
-}
-
-fmi3Status fmi3GetClock(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        fmi3Clock values[])
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    return unsupported(instance, "fmi3GetClock");
-}
-
-fmi3Status fmi3SetFloat32(fmi3Instance instance,
-                          const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences,
-                          const fmi3Float32 values[],
-                          size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetFloat32");
-}
-
-fmi3Status fmi3SetInt8(fmi3Instance instance,
-                       const fmi3ValueReference valueReferences[],
-                       size_t nValueReferences,
-                       const fmi3Int8 values[],
-                       size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetInt8");
-}
-
-fmi3Status fmi3SetUInt8(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        const fmi3UInt8 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetUInt8");
-}
-
-fmi3Status fmi3SetInt16(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        const fmi3Int16 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetInt16");
-}
-
-fmi3Status fmi3SetUInt16(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         const fmi3UInt16 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetUInt16");
-}
-
-fmi3Status fmi3SetInt32(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        const fmi3Int32 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetInt32");
-}
-
-fmi3Status fmi3SetUInt32(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         const fmi3UInt32 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetUInt32");
-}
-
-fmi3Status fmi3SetInt64(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        const fmi3Int64 values[],
-                        size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetInt64");
-}
-
-fmi3Status fmi3SetUInt64(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         const fmi3UInt64 values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetUInt64");
-}
-
-/* Boolean parameters (the only Booleans of the units): as fmi3SetFloat64's parameters. */
-fmi3Status fmi3SetBoolean(fmi3Instance instance,
-                          const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences,
-                          const fmi3Boolean values[],
-                          size_t nValues)
-{
-    Instance3 *inst = (Instance3 *)instance;
-    size_t i;
-    if (inst == NULL) return fmi3Error;
-    REQUIRE(inst, "fmi3SetBoolean", inst->state == S3_INSTANTIATED ||
-                                        inst->state == S3_INITIALIZATION ||
-                                        inst->state == S3_STEP);
-    if (nValues != nValueReferences)
-        return refuse(inst, "fmi3SetBoolean: %lu values for %lu value references (scalars "
-                      "only)", (unsigned long)nValues, (unsigned long)nValueReferences);
-    for (i = 0; i < nValueReferences; i++) {
-        long slot = find_slot(valueReferences[i], UNIT_BOOLEAN);
-        double number = values[i] ? 1.0 : 0.0;
-        if (slot < 0)
-            return refuse(inst, "fmi3SetBoolean: value reference %u cannot be set",
-                          valueReferences[i]);
-        if (inst->state == S3_STEP)
-            return refuse(inst, "fmi3SetBoolean: parameter %s is fixed after initialization",
-                          UNIT_MODEL.variables[slot].name);
-        if (inst->slots[slot] != number) drop_unit(inst);
-        inst->slots[slot] = number;
-    }
-    return fmi3OK;
-}
-
-fmi3Status fmi3SetString(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         const fmi3String values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetString");
-}
-
-fmi3Status fmi3SetBinary(fmi3Instance instance,
-                         const fmi3ValueReference valueReferences[],
-                         size_t nValueReferences,
-                         const size_t valueSizes[],
-                         const fmi3Binary values[],
-                         size_t nValues)
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)valueSizes;
-    (void)values;
-    (void)nValues;
-    return unsupported(instance, "fmi3SetBinary");
-}
-
-fmi3Status fmi3SetClock(fmi3Instance instance,
-                        const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences,
-                        const fmi3Clock values[])
-{
-    (void)valueReferences;
-    (void)nValueReferences;
-    (void)values;
-    return unsupported(instance, "fmi3SetClock");
 }
 
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance,
