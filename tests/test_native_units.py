@@ -495,6 +495,24 @@ def test_shipped_binaries_are_built_from_the_current_sources():
         assert (nu.BINARIES_DIR / "win64" / f"{kind}.dll").is_file()
 
 
+# The oldest glibc the Linux binaries load on: 2.14 (2011; CentOS 7 has 2.17). A symbol taken
+# from a newer version (exp@GLIBC_2.29 by default with gcc 12) raises the floor silently.
+GLIBC_FLOOR = (2, 14)
+
+
+def test_linux_binaries_load_on_glibc_2_14():
+    """Every glibc symbol version the shipped Linux binaries need (the version names in their
+    dynamic string table, which an ELF file lists only for the versions it requires) is at
+    most :data:`GLIBC_FLOOR`."""
+    import re
+    for kind in nu.BINARY_KINDS:
+        data = (nu.BINARIES_DIR / "linux64" / f"{kind}.so").read_bytes()
+        versions = {tuple(int(p) for p in m.group(1).split(b"."))
+                    for m in re.finditer(rb"GLIBC_(\d+(?:\.\d+)+)\x00", data)}
+        assert versions, f"{kind}.so names no glibc version: the check reads the wrong bytes"
+        assert max(versions) <= GLIBC_FLOOR, f"{kind}.so needs glibc {max(versions)}"
+
+
 @pytest.mark.parametrize("platform", list(nu.PLATFORMS))
 def test_sources_compile_warning_free_and_equal_the_shipped_binary(platform, tmp_path):
     """-Wall -Wextra -pedantic -Werror with gcc and mingw-w64; a fresh build is the shipped

@@ -15,6 +15,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__GLIBC__) && defined(__x86_64__)
+/* exp from glibc's first x86-64 symbol version, so that the binary loads on glibc 2.14 and
+ * and later like the Ram and PileSoil binaries (the default, exp@GLIBC_2.29, differs from it
+ * only in its errno handling: both wrap the same implementation and give the same result). */
+__asm__(".symver exp,exp@GLIBC_2.2.5");
+#endif
+
 /* The resource stores IEEE 754 binary64 numbers. */
 typedef char anvil_double_is_binary64[(sizeof(double) == 8 && DBL_MANT_DIG == 53) ? 1 : -1];
 
