@@ -319,7 +319,10 @@ class ContactSet:
     The overlap of pair i is d_i = u_upper_i - u_lower_i - gap_i (z down, u the axial
     displacement from the undeformed stack); the pair force follows
     :func:`anvilwave.anvil_rom.contact.contact_force` and pushes the upper node up, the lower
-    down.
+    down. With a friction coefficient mu > 0 each pair also carries Coulomb friction
+    (:func:`anvilwave.anvil_rom.contact.coulomb_friction`) along the face, here the radial
+    direction of the horizontal faces: relative slip u_r upper - u_r lower, capped by
+    mu times the pair's normal force.
 
     Parameters
     ----------
@@ -337,6 +340,15 @@ class ContactSet:
         Initial geometric gap, shape (n,) [m] (0: the faces touch in the undeformed stack).
     radii : numpy.ndarray
         Radius of each pair, shape (n,) [m].
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient mu of the pairs [-] (0: frictionless, no tangential force).
+    upper_tangential : numpy.ndarray, optional
+        Global tangential (radial) DOFs of the upper nodes, shape (n,), -1 on the axis;
+        needed when mu > 0.
+    lower_tangential : numpy.ndarray, optional
+        Same for the lower nodes.
+    tangential_stiffness : numpy.ndarray, optional
+        Stick spring of each pair, shape (n,) [N/m]; needed when mu > 0.
     """
 
     name: str
@@ -346,11 +358,52 @@ class ContactSet:
     damping: np.ndarray
     gap: np.ndarray
     radii: np.ndarray
+    friction_coefficient: float = 0.0
+    upper_tangential: np.ndarray | None = None
+    lower_tangential: np.ndarray | None = None
+    tangential_stiffness: np.ndarray | None = None
+
+    @property
+    def has_friction(self) -> bool:
+        """Whether the pairs carry friction (mu > 0) [-]."""
+        return self.friction_coefficient > 0.0
+
+    def tangential_matrix(self, n: int) -> sp.csr_matrix:
+        """Stiffness matrix of the stick springs (all pairs sticking), shape (n, n) [N/m].
+
+        Parameters
+        ----------
+        n : int
+            Number of global DOFs.
+
+        Returns
+        -------
+        scipy.sparse.csr_matrix
+            The matrix (zero without friction); axis nodes (DOF -1) have no tangential DOF.
+        """
+        if not self.has_friction:
+            return sp.csr_matrix((n, n))
+        rows, cols, vals = [], [], []
+        for i, j, k in zip(self.upper_tangential, self.lower_tangential,
+                           self.tangential_stiffness, strict=True):
+            dofs = [(d, sign) for d, sign in ((i, 1.0), (j, -1.0)) if d >= 0]
+            for a, sa in dofs:
+                for b, sb in dofs:
+                    rows.append(a)
+                    cols.append(b)
+                    vals.append(sa * sb * k)
+        return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
 
 
 def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: float,
-                    damping_per_area: float = 0.0) -> ContactSet:
+                    damping_per_area: float = 0.0, friction_coefficient: float = 0.0
+                    ) -> ContactSet:
     """Pair the nodes of two conforming faces; pair stiffness = stiffness_per_area * weight.
+
+    With friction the stick spring of a pair equals its normal penalty spring: the same
+    one-element-layer compliance in shear as in compression (the normal penalty's choice,
+    :data:`anvilwave.fea.impact.DEFAULT_CONTACT_STIFFNESS_FACTOR`), so the stable step and the
+    pair frequency limit stay set by springs of the same size.
 
     Parameters
     ----------
@@ -364,6 +417,8 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
         Penalty stiffness per unit contact area [N/m^3] (e.g. alpha E / h).
     damping_per_area : float, default 0.0
         Contact dashpot per unit area [N s/m^3] (0: elastic contact).
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient of the pairs [-] (radial slip along the horizontal faces).
 
     Returns
     -------
@@ -380,9 +435,15 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
         raise ValueError(f"{name}: the faces of {upper.body} and {lower.body} are not conforming "
                          "(node radii differ)")
     weights = 0.5 * (upper.weights + lower.weights)
+    if friction_coefficient <= 0.0:
+        return ContactSet(name, upper.axial_dofs.copy(), lower.axial_dofs.copy(),
+                          stiffness_per_area * weights, damping_per_area * weights,
+                          np.zeros(len(weights)), upper.radii.copy())
     return ContactSet(name, upper.axial_dofs.copy(), lower.axial_dofs.copy(),
                       stiffness_per_area * weights, damping_per_area * weights,
-                      np.zeros(len(weights)), upper.radii.copy())
+                      np.zeros(len(weights)), upper.radii.copy(), float(friction_coefficient),
+                      upper.radial_dofs.copy(), lower.radial_dofs.copy(),
+                      stiffness_per_area * weights)
 
 
 def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None) -> sp.csr_matrix:
