@@ -450,6 +450,9 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                               (pair_tlo, cset.lower_tangential)):
                 dofs = np.asarray(dofs, np.int64)
                 out[span] = np.where(dofs >= 0, new_index[np.maximum(dofs, 0)], -1)
+    # a pair of zero area (the axis node) carries no force, nor friction
+    pair_mu[pair_kt <= 0.0] = 0.0
+    pair_kt[pair_kt <= 0.0] = 1.0
     has_friction = bool(np.any(pair_mu > 0.0))
     u0 = u0[perm]
     u = u0.copy()
