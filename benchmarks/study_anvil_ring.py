@@ -17,7 +17,7 @@ system's 25 ms.
 Per run it prints and writes (study.json): the pile-head force (the force into the pile) low-
 passed at 5 kHz, its peak, its rise (10 % to 90 % of the peak, first crossings) and the
 largest deviation of its one-third-octave band levels from the reference run's, from the
-lowest valid band (1 / T) up to 4 kHz
+lowest band above 1 / T (50 Hz) up to the 4 kHz band
 (the ring-less stack for the ring at friction 0, the ring at friction 0 for the others), the
 ram force peak, the energy the friction dissipated and the energy balance residual (both as
 fractions of the blow's kinetic energy), and the wall time.
@@ -73,6 +73,7 @@ def summary(result):
         "wall_time [s]": result.wall_time + result.setup_time,
         "band_centre [Hz]": [float(x) for x in bands.centre_frequency],
         "band_level [dB]": [float(x) for x in bands.level],
+        "band_lower_edge [Hz]": [float(x) for x in bands.lower_frequency],
         "valid_from [Hz]": float(bands.valid_range[0]),
     }
 
@@ -105,7 +106,8 @@ def main(argv=None):
         levels = np.array(rows[name]["band_level [dB]"])
         ref = np.array(reference["band_level [dB]"])
         centre = np.array(rows[name]["band_centre [Hz]"])
-        inside = (centre >= rows[name]["valid_from [Hz]"]) & (centre <= TOP_BAND)
+        lower = np.array(rows[name]["band_lower_edge [Hz]"])
+        inside = (lower >= rows[name]["valid_from [Hz]"]) & (centre <= TOP_BAND)
         deviation = np.where(inside, levels - ref, 0.0)
         worst = int(np.argmax(np.abs(deviation)))
         rows[name]["max_band_deviation_to_4kHz [dB]"] = float(abs(deviation[worst]))
