@@ -5,7 +5,9 @@ outline)
 and the pile (steel tube, to full length or truncated with an absorbing boundary) are three
 axisymmetric elastic bodies (see :mod:`anvilwave.fea.bodies`) that touch through
 compression-only node-to-node penalty contacts on conforming faces (lift-off and re-impact
-allowed), integrated with central differences (:mod:`anvilwave.fea.solver`).
+allowed), integrated with central differences (:mod:`anvilwave.fea.solver`). Optionally an
+anvil ring (``FeaConfig.ring``) sits between anvil and pile, and any contact carries Coulomb
+friction along its faces (``*_friction``, :func:`anvilwave.anvil_rom.contact.coulomb_friction`).
 
 Elements: quadratic (6-node triangles in the anvil, 9-node quadrilaterals in the ram and the
 pile tube), HRZ-lumped. Against linear elements at the same number of DOFs they halve the phase
