@@ -14,6 +14,7 @@ Coordinates (r, z) [m], z DOWN; each body has its own z origin: z is the positio
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -293,6 +294,81 @@ def face(body: Body, z: float, r_min: float = 0.0, r_max: float = np.inf) -> Fac
     return Face(body.name, float(z), radii, dofs[:, 1] + body.offset, radial, line_weights(radii))
 
 
+def sleeve_contact(name: str, body: Body, radius: float, sleeve_radius: float,
+                   stiffness_per_area: float, friction_coefficient: float = 0.0
+                   ) -> ContactSet:
+    """Compression-only contact of a body's outer face with a rigid guiding cylinder (sleeve).
+
+    The face is the body's nodes on r = ``radius``, the sleeve's inner radius
+    ``sleeve_radius`` [m]. Each node on the face pairs with the fixed wall: overlap
+    u_r - (sleeve_radius - radius) (the radial clearance closes as the body bulges), the
+    force pushes the node inwards, and friction acts along the wall (on the axial DOF). Pair
+    stiffness = stiffness_per_area times the node's share of the face area, 2 pi radius times
+    the integral of N_i dz.
+
+    Parameters
+    ----------
+    name : str
+        Label of the contact.
+    body : Body
+        The body (its global offset set).
+    radius : float
+        Radius of its outer face [m].
+    sleeve_radius : float
+        Inner radius of the sleeve [m] (>= ``radius``).
+    stiffness_per_area : float
+        Penalty stiffness per unit area [N/m^3].
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient against the sleeve [-].
+
+    Returns
+    -------
+    ContactSet
+        The node-to-wall pairs (``lower_dofs`` -1).
+
+    Raises
+    ------
+    ValueError
+        If the body has no element edges on r = ``radius``.
+    """
+    xy = body.model.node_coordinates
+    tol = 1e-7 * max(np.abs(xy).max(), 1.0)
+    nodes = np.flatnonzero(np.abs(xy[:, 0] - radius) < tol)
+    if len(nodes) < 3:
+        raise ValueError(f"{body.name}: no element edges on r = {radius:g} m")
+    nodes = nodes[np.argsort(xy[nodes, 1])]
+    z = xy[nodes, 1]
+    # vertices and mid-nodes alternate along z (a face broken by a gap in z shows as a
+    # mid-node off its edge's midpoint and is refused)
+    weights = 2.0 * np.pi * radius * _line_integrals(z)
+    dofs = body.node_free_dofs()[nodes] + body.offset
+    n = len(nodes)
+    k = stiffness_per_area * weights
+    gap = np.full(n, float(sleeve_radius - radius))
+    if friction_coefficient <= 0.0:
+        return ContactSet(name, dofs[:, 0], np.full(n, -1), k, np.zeros(n), gap,
+                          np.full(n, float(radius)))
+    return ContactSet(name, dofs[:, 0], np.full(n, -1), k, np.zeros(n), gap,
+                      np.full(n, float(radius)), float(friction_coefficient), dofs[:, 1],
+                      np.full(n, -1), k.copy())
+
+
+def _line_integrals(x: np.ndarray) -> np.ndarray:
+    """Integral of N_i dx of the quadratic shape functions of a line of 2m + 1 nodes [m]."""
+    x = np.asarray(x, float)
+    if len(x) < 3 or len(x) % 2 == 0:
+        raise ValueError("a quadratic line needs 2m + 1 nodes")
+    length = x[2::2] - x[:-2:2]
+    if not np.allclose(x[1:-1:2], 0.5 * (x[:-2:2] + x[2::2]), rtol=0.0,
+                       atol=1e-9 * max(np.abs(x).max(), 1.0)):
+        raise ValueError("mid-nodes are not at the edge midpoints")
+    out = np.zeros(len(x))
+    out[:-2:2] += length / 6.0
+    out[1:-1:2] += 4.0 * length / 6.0
+    out[2::2] += length / 6.0
+    return out
+
+
 def vertex_radii(f: Face) -> np.ndarray:
     """Vertex radii of a face (every other node) [m]: the radial grid of a matching body.
 
@@ -331,7 +407,8 @@ class ContactSet:
     upper_dofs : numpy.ndarray
         Global axial DOFs of the upper face's nodes, shape (n,).
     lower_dofs : numpy.ndarray
-        Global axial DOFs of the lower face's nodes, shape (n,).
+        Global axial DOFs of the lower face's nodes, shape (n,); -1: a rigid fixed wall (the
+        sleeve; the "upper" DOFs are then the bodies' normal DOFs towards it).
     stiffness : numpy.ndarray
         Pair stiffness, shape (n,) [N/m].
     damping : numpy.ndarray
@@ -362,6 +439,24 @@ class ContactSet:
     upper_tangential: np.ndarray | None = None
     lower_tangential: np.ndarray | None = None
     tangential_stiffness: np.ndarray | None = None
+
+    def overlap(self, u: np.ndarray) -> np.ndarray:
+        """Overlap d = u_upper - u_lower - gap of each pair [m] (u_lower = 0 at a wall).
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Global displacement [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            The overlaps, shape (n,) [m].
+        """
+        lower = self.lower_dofs
+        if np.all(lower >= 0):
+            return u[self.upper_dofs] - u[lower] - self.gap
+        return u[self.upper_dofs] - np.where(lower >= 0, u[np.maximum(lower, 0)], 0.0) - self.gap
 
     @property
     def has_friction(self) -> bool:
@@ -465,6 +560,11 @@ def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None
     """
     k = contact.stiffness if active is None else contact.stiffness * active
     i, j = contact.upper_dofs, contact.lower_dofs
+    if np.any(j < 0):  # pairs on a rigid wall: a spring to ground
+        wall = j < 0
+        return (contact_matrix(dataclasses.replace(
+            contact, upper_dofs=i[~wall], lower_dofs=j[~wall], stiffness=k[~wall]), n)
+            + sp.csr_matrix((k[wall], (i[wall], i[wall])), shape=(n, n)))
     rows = np.concatenate([i, j, i, j])
     cols = np.concatenate([i, j, j, i])
     vals = np.concatenate([k, k, -k, -k])

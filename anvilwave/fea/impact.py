@@ -61,6 +61,7 @@ from anvilwave.fea.bodies import (
     graded_vertices,
     make_body,
     section_force_row,
+    sleeve_contact,
     static_preload,
     tensor_body,
     vertex_radii,
@@ -244,6 +245,13 @@ class FeaConfig:
         Coulomb coefficient on the anvil-ring seat [-] (needs ``ring``).
     pile_friction : float, default 0.0
         Coulomb coefficient between the pile head and the body on it (anvil or ring) [-].
+    sleeve_radius : float, optional
+        Inner radius of a rigid guiding sleeve around the anvil (and the ring) [m], at least
+        their outer radii: the radial clearance closes as they bulge; None: no sleeve. The
+        static preload is solved without it (a clearance below the bulge under the weight
+        starts the blow with the sleeve pressed).
+    sleeve_friction : float, default 0.0
+        Coulomb coefficient against the sleeve (axial sliding) [-].
 
     Attributes
     ----------
@@ -282,6 +290,8 @@ class FeaConfig:
     ram_anvil_friction: float = 0.0
     seat_friction: float = 0.0
     pile_friction: float = 0.0
+    sleeve_radius: float | None = None
+    sleeve_friction: float = 0.0
 
     def __post_init__(self):
         src = "FeaConfig"
@@ -324,7 +334,7 @@ class FeaConfig:
         if abs(n_out - round(n_out)) > 1e-6 * n_out:
             raise InputError(src, "duration", "must be a whole number of output_interval")
         absorbing_speeds(self.material, self.absorbing_boundary)
-        for key in ("ram_anvil_friction", "seat_friction", "pile_friction"):
+        for key in ("ram_anvil_friction", "seat_friction", "pile_friction", "sleeve_friction"):
             value = getattr(self, key)
             if not (isinstance(value, numbers.Real) and np.isfinite(value) and value >= 0):
                 raise InputError(src, key, f"must be a number >= 0, got {value!r}")
@@ -335,6 +345,14 @@ class FeaConfig:
                                       or self.ring.outline[:, 0].min() <= 0.0):
             raise InputError(src, "ring", "the reference FEA needs the ring as an outline (a "
                                           "[geometry] polygon off the axis)")
+        if self.sleeve_radius is not None:
+            outer = max(self.anvil.outline[:, 0].max(), 0.0 if self.ring is None
+                        else self.ring.outline[:, 0].max())
+            if not (np.isfinite(self.sleeve_radius) and self.sleeve_radius >= outer):
+                raise InputError(src, "sleeve_radius", f"must be at least the outer radius "
+                                                       f"{outer:g} m of the anvil (and ring)")
+        elif self.sleeve_friction > 0:
+            raise InputError(src, "sleeve_friction", "needs a sleeve (sleeve_radius)")
 
     @property
     def modelled_pile_length(self) -> float:
@@ -387,6 +405,9 @@ class FeaResult:
     anvil_ring_force : numpy.ndarray, optional
         Anvil-ring seat resultant [N] with a ring (``anvil_pile_force`` is then the ring-pile
         force, the force into the pile head); None without.
+    sleeve_force : numpy.ndarray, optional
+        Radial resultant of the sleeve on the anvil and the ring [N] (sum of the node forces,
+        inward positive); None without a sleeve.
     """
 
     time: np.ndarray
@@ -405,6 +426,7 @@ class FeaResult:
     setup_time: float
     info: dict = field(default_factory=dict)
     anvil_ring_force: np.ndarray | None = None
+    sleeve_force: np.ndarray | None = None
 
     def to_columns(self) -> dict[str, np.ndarray]:
         """CSV columns named ``name [unit]`` (DESIGN.md), energies included.
@@ -425,6 +447,8 @@ class FeaResult:
         }
         if self.anvil_ring_force is not None:
             cols["anvil_ring_force [N]"] = self.anvil_ring_force
+        if self.sleeve_force is not None:
+            cols["sleeve_force [N]"] = self.sleeve_force
         for name, values in self.energies.items():
             cols[f"{name}_energy [J]"] = values
         return cols
@@ -713,6 +737,17 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
         c_seat = contact_between("anvil_ring", a_ring, ring_top, alpha * E_ring / seat_size,
                                  friction_coefficient=config.seat_friction)
         contacts = [c_ram, c_pile, c_seat]
+    static_contacts = contacts[1:]
+    if config.sleeve_radius is not None:
+        k_sleeve = alpha * E / config.mesh_size
+        contacts.append(sleeve_contact("anvil_sleeve", anvil, float(outline[:, 0].max()),
+                                       config.sleeve_radius, k_sleeve,
+                                       config.sleeve_friction))
+        if config.ring is not None:
+            contacts.append(sleeve_contact("ring_sleeve", ring,
+                                           float(ring_outline[:, 0].max()),
+                                           config.sleeve_radius, k_sleeve,
+                                           config.sleeve_friction))
 
     K, M = _global(bodies)
     g = config.gravity
@@ -733,7 +768,7 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
             return idx - anvil.offset
 
         sub_contacts = [ContactSet(c.name, sub(c.upper_dofs), sub(c.lower_dofs), c.stiffness,
-                                   c.damping, c.gap, c.radii) for c in contacts[1:]]
+                                   c.damping, c.gap, c.radii) for c in static_contacts]
         u_ap, reaction = static_preload(K[ap][:, ap], f[ap], sub_contacts,
                                         sub(pile_bottom.axial_dofs))
         u0[ap] = u_ap
@@ -780,6 +815,8 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
             "contact_stiffness_anvil_ring [N/m]": float(c_seat.stiffness.sum()),
         })
         faces.update({"ring_top": ring_top, "ring_bottom": on_pile})
+    if config.sleeve_radius is not None:
+        info["sleeve_clearance [m]"] = config.sleeve_radius - float(outline[:, 0].max())
     return ImpactModel(system, {b.name: b for b in bodies}, faces, info)
 
 
@@ -804,12 +841,17 @@ def run_impact_fea(config: FeaConfig, progress: Callable[[float], None] | None =
     tr = integrate(model.system, config.duration, config.output_interval,
                    safety=config.time_step_safety, progress=progress)
     setup = time.perf_counter() - start - tr.wall_time
-    return _result(tr, model.system.n_dof, setup, model.info)
+    return _result(tr, model.system.n_dof, setup, model.info,
+                   [c.name for c in model.system.contacts])
 
 
-def _result(tr: Transient, n_dof: int, setup: float, info: dict) -> FeaResult:
+def _result(tr: Transient, n_dof: int, setup: float, info: dict,
+            names: list[str] | None = None) -> FeaResult:
     zeros = np.zeros_like(tr.time)
     force = tr.contact_force
+    names = names or []
+    sleeve = [i for i, name in enumerate(names) if name.endswith("_sleeve")]
+    seat = [i for i, name in enumerate(names) if name == "anvil_ring"]
     return FeaResult(
         time=tr.time,
         ram_anvil_force=force[:, 0],
@@ -820,7 +862,8 @@ def _result(tr: Transient, n_dof: int, setup: float, info: dict) -> FeaResult:
         ram_velocity=tr.probes.get("ram_velocity", zeros),
         energies=tr.energies, n_dof=n_dof, n_steps=tr.n_steps, time_step=tr.time_step,
         critical_time_step=2.0 / tr.omega_max, wall_time=tr.wall_time, setup_time=setup,
-        info=info, anvil_ring_force=force[:, 2] if force.shape[1] > 2 else None)
+        info=info, anvil_ring_force=force[:, seat[0]] if seat else None,
+        sleeve_force=force[:, sleeve].sum(axis=1) if sleeve else None)
 
 
 # --------------------------------------------------------------------------- two-bar impact

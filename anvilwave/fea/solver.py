@@ -218,11 +218,17 @@ def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, dam
         for p in range(n_pairs):
             a = pair_up[p]
             b = pair_lo[p]
-            d = u[a] - u[b] - pair_gap[p]
-            rate = v[a] - v[b]
+            ub = 0.0
+            vb = 0.0
+            if b >= 0:  # b < 0: a rigid, fixed wall (the sleeve)
+                ub = u[b]
+                vb = v[b]
+            d = u[a] - ub - pair_gap[p]
+            rate = v[a] - vb
             fc = contact_force(d, rate, pair_k[p], pair_c[p])
             f_contact[a] -= fc
-            f_contact[b] += fc
+            if b >= 0:
+                f_contact[b] += fc
             pair_force[p] = fc
             pair_vold[p] = rate
             if s == 0:
@@ -281,8 +287,11 @@ def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, dam
             a = pair_up[p]
             b = pair_lo[p]
             f_contact[a] = 0.0
-            f_contact[b] = 0.0
-            vm = 0.5 * (pair_vold[p] + v[a] - v[b])
+            vb = 0.0
+            if b >= 0:
+                f_contact[b] = 0.0
+                vb = v[b]
+            vm = 0.5 * (pair_vold[p] + v[a] - vb)
             contact_work -= h * pair_force[p] * vm
             if pair_mu[p] > 0.0:
                 ta = pair_tup[p]
@@ -335,7 +344,8 @@ def contact_pair_frequency(system: ExplicitSystem) -> float:
     m = system.mass
     for c in system.contacts:
         if len(c.stiffness):
-            w2 = c.stiffness * (1.0 / m[c.upper_dofs] + 1.0 / m[c.lower_dofs])
+            lower = np.where(c.lower_dofs >= 0, 1.0 / m[np.maximum(c.lower_dofs, 0)], 0.0)
+            w2 = c.stiffness * (1.0 / m[c.upper_dofs] + lower)
             out = max(out, float(np.sqrt(w2.max())))
         if c.has_friction and len(c.stiffness):
             inverse = np.zeros(len(c.stiffness))
@@ -402,11 +412,12 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
     # recorded v at t = 0 is v_0): v_{-1/2} = v_0 - h/2 a_0, with a_0 from the state at t = 0.
     f0 = system.force - K @ u0
     for cset in cs:
-        d = u0[cset.upper_dofs] - u0[cset.lower_dofs] - cset.gap
+        d = cset.overlap(u0)
         fc = np.array([contact_force(di, 0.0, ki, 0.0) for di, ki in zip(d, cset.stiffness,
                                                                          strict=True)])
         np.subtract.at(f0, cset.upper_dofs, fc)
-        np.add.at(f0, cset.lower_dofs, fc)
+        walled = cset.lower_dofs >= 0
+        np.add.at(f0, cset.lower_dofs[walled], fc[walled])
     v_start = system.velocity - 0.5 * h * (f0 - c * system.velocity) / m
 
     # bandwidth-reducing renumbering (reverse Cuthill-McKee) of everything: the mat-vec then
@@ -432,7 +443,8 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                 if cs else np.zeros(0, dtype))
 
     pair_up = new_index[cat("upper_dofs", np.int64)]
-    pair_lo = new_index[cat("lower_dofs", np.int64)]
+    pair_lo = cat("lower_dofs", np.int64)
+    pair_lo = np.where(pair_lo >= 0, new_index[np.maximum(pair_lo, 0)], -1)
     pair_k, pair_c, pair_gap = cat("stiffness", float), cat("damping", float), cat("gap", float)
     pair_set = (np.concatenate([np.full(len(x.gap), i) for i, x in enumerate(cs)])
                 if cs else np.zeros(0)).astype(np.int64)
