@@ -85,10 +85,10 @@ def coulomb_friction(tangential_force, slip_increment, normal_force, friction_co
 
     References
     ----------
-    Simo, J.C., Hughes, T.J.R. (1998). Computational Inelasticity, ch. 1 (return mapping of
-    the one-dimensional frictional/plastic model). https://doi.org/10.1007/b98904
-    Wriggers, P. (2006). Computational Contact Mechanics, 2nd ed., sec. 5.2 (penalty
-    regularised stick with a Coulomb slip cone). https://doi.org/10.1007/978-3-540-32609-0
+    Simo, J.C., Hughes, T.J.R. (1998). Computational Inelasticity. Springer, ch. 1 (return
+    mapping of the one-dimensional frictional/plastic model).
+    Wriggers, P. (2006). Computational Contact Mechanics, 2nd ed. Springer (penalty
+    regularised stick with a Coulomb slip cone).
     """
     trial = tangential_force + tangential_stiffness * slip_increment
     cap = friction_coefficient * normal_force if normal_force > 0.0 else 0.0
