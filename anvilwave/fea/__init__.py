@@ -1,6 +1,7 @@
 """The reference FEA of the whole driving system: ram, anvil and pile as axisymmetric
 explicit finite elements (quadratic triangles, lumped mass, central differences) with
-compression-only node-to-node contacts, against which the anvil ROM and the lumped mass are
+compression-only node-to-node contacts (with Coulomb friction, and an optional anvil ring
+between anvil and pile), against which the anvil ROM and the lumped mass are
 compared.
 
 Modules: :mod:`.bodies` (bodies, faces, contacts, section forces, static preload),

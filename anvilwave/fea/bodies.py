@@ -14,6 +14,7 @@ Coordinates (r, z) [m], z DOWN; each body has its own z origin: z is the positio
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -293,6 +294,81 @@ def face(body: Body, z: float, r_min: float = 0.0, r_max: float = np.inf) -> Fac
     return Face(body.name, float(z), radii, dofs[:, 1] + body.offset, radial, line_weights(radii))
 
 
+def sleeve_contact(name: str, body: Body, radius: float, sleeve_radius: float,
+                   stiffness_per_area: float, friction_coefficient: float = 0.0
+                   ) -> ContactSet:
+    """Compression-only contact of a body's outer face with a rigid guiding cylinder (sleeve).
+
+    The face is the body's nodes on r = ``radius``, the sleeve's inner radius
+    ``sleeve_radius`` [m]. Each node on the face pairs with the fixed wall: overlap
+    u_r - (sleeve_radius - radius) (the radial clearance closes as the body bulges), the
+    force pushes the node inwards, and friction acts along the wall (on the axial DOF). Pair
+    stiffness = stiffness_per_area times the node's share of the face area, 2 pi radius times
+    the integral of N_i dz.
+
+    Parameters
+    ----------
+    name : str
+        Label of the contact.
+    body : Body
+        The body (its global offset set).
+    radius : float
+        Radius of its outer face [m].
+    sleeve_radius : float
+        Inner radius of the sleeve [m] (>= ``radius``).
+    stiffness_per_area : float
+        Penalty stiffness per unit area [N/m^3].
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient against the sleeve [-].
+
+    Returns
+    -------
+    ContactSet
+        The node-to-wall pairs (``lower_dofs`` -1).
+
+    Raises
+    ------
+    ValueError
+        If the body has no element edges on r = ``radius``.
+    """
+    xy = body.model.node_coordinates
+    tol = 1e-7 * max(np.abs(xy).max(), 1.0)
+    nodes = np.flatnonzero(np.abs(xy[:, 0] - radius) < tol)
+    if len(nodes) < 3:
+        raise ValueError(f"{body.name}: no element edges on r = {radius:g} m")
+    nodes = nodes[np.argsort(xy[nodes, 1])]
+    z = xy[nodes, 1]
+    # vertices and mid-nodes alternate along z (a face broken by a gap in z shows as a
+    # mid-node off its edge's midpoint and is refused)
+    weights = 2.0 * np.pi * radius * _line_integrals(z)
+    dofs = body.node_free_dofs()[nodes] + body.offset
+    n = len(nodes)
+    k = stiffness_per_area * weights
+    gap = np.full(n, float(sleeve_radius - radius))
+    if friction_coefficient <= 0.0:
+        return ContactSet(name, dofs[:, 0], np.full(n, -1), k, np.zeros(n), gap,
+                          np.full(n, float(radius)))
+    return ContactSet(name, dofs[:, 0], np.full(n, -1), k, np.zeros(n), gap,
+                      np.full(n, float(radius)), float(friction_coefficient), dofs[:, 1],
+                      np.full(n, -1), k.copy())
+
+
+def _line_integrals(x: np.ndarray) -> np.ndarray:
+    """Integral of N_i dx of the quadratic shape functions of a line of 2m + 1 nodes [m]."""
+    x = np.asarray(x, float)
+    if len(x) < 3 or len(x) % 2 == 0:
+        raise ValueError("a quadratic line needs 2m + 1 nodes")
+    length = x[2::2] - x[:-2:2]
+    if not np.allclose(x[1:-1:2], 0.5 * (x[:-2:2] + x[2::2]), rtol=0.0,
+                       atol=1e-9 * max(np.abs(x).max(), 1.0)):
+        raise ValueError("mid-nodes are not at the edge midpoints")
+    out = np.zeros(len(x))
+    out[:-2:2] += length / 6.0
+    out[1:-1:2] += 4.0 * length / 6.0
+    out[2::2] += length / 6.0
+    return out
+
+
 def vertex_radii(f: Face) -> np.ndarray:
     """Vertex radii of a face (every other node) [m]: the radial grid of a matching body.
 
@@ -319,7 +395,10 @@ class ContactSet:
     The overlap of pair i is d_i = u_upper_i - u_lower_i - gap_i (z down, u the axial
     displacement from the undeformed stack); the pair force follows
     :func:`anvilwave.anvil_rom.contact.contact_force` and pushes the upper node up, the lower
-    down.
+    down. With a friction coefficient mu > 0 each pair also carries Coulomb friction
+    (:func:`anvilwave.anvil_rom.contact.coulomb_friction`) along the face, here the radial
+    direction of the horizontal faces: relative slip u_r upper - u_r lower, capped by
+    mu times the pair's normal force.
 
     Parameters
     ----------
@@ -328,7 +407,8 @@ class ContactSet:
     upper_dofs : numpy.ndarray
         Global axial DOFs of the upper face's nodes, shape (n,).
     lower_dofs : numpy.ndarray
-        Global axial DOFs of the lower face's nodes, shape (n,).
+        Global axial DOFs of the lower face's nodes, shape (n,); -1: a rigid fixed wall (the
+        sleeve; the "upper" DOFs are then the bodies' normal DOFs towards it).
     stiffness : numpy.ndarray
         Pair stiffness, shape (n,) [N/m].
     damping : numpy.ndarray
@@ -337,6 +417,15 @@ class ContactSet:
         Initial geometric gap, shape (n,) [m] (0: the faces touch in the undeformed stack).
     radii : numpy.ndarray
         Radius of each pair, shape (n,) [m].
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient mu of the pairs [-] (0: frictionless, no tangential force).
+    upper_tangential : numpy.ndarray, optional
+        Global tangential (radial) DOFs of the upper nodes, shape (n,), -1 on the axis;
+        needed when mu > 0.
+    lower_tangential : numpy.ndarray, optional
+        Same for the lower nodes.
+    tangential_stiffness : numpy.ndarray, optional
+        Stick spring of each pair, shape (n,) [N/m]; needed when mu > 0.
     """
 
     name: str
@@ -346,11 +435,70 @@ class ContactSet:
     damping: np.ndarray
     gap: np.ndarray
     radii: np.ndarray
+    friction_coefficient: float = 0.0
+    upper_tangential: np.ndarray | None = None
+    lower_tangential: np.ndarray | None = None
+    tangential_stiffness: np.ndarray | None = None
+
+    def overlap(self, u: np.ndarray) -> np.ndarray:
+        """Overlap d = u_upper - u_lower - gap of each pair [m] (u_lower = 0 at a wall).
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Global displacement [m].
+
+        Returns
+        -------
+        numpy.ndarray
+            The overlaps, shape (n,) [m].
+        """
+        lower = self.lower_dofs
+        if np.all(lower >= 0):
+            return u[self.upper_dofs] - u[lower] - self.gap
+        return u[self.upper_dofs] - np.where(lower >= 0, u[np.maximum(lower, 0)], 0.0) - self.gap
+
+    @property
+    def has_friction(self) -> bool:
+        """Whether the pairs carry friction (mu > 0) [-]."""
+        return self.friction_coefficient > 0.0
+
+    def tangential_matrix(self, n: int) -> sp.csr_matrix:
+        """Stiffness matrix of the stick springs (all pairs sticking), shape (n, n) [N/m].
+
+        Parameters
+        ----------
+        n : int
+            Number of global DOFs.
+
+        Returns
+        -------
+        scipy.sparse.csr_matrix
+            The matrix (zero without friction); axis nodes (DOF -1) have no tangential DOF.
+        """
+        if not self.has_friction:
+            return sp.csr_matrix((n, n))
+        rows, cols, vals = [], [], []
+        for i, j, k in zip(self.upper_tangential, self.lower_tangential,
+                           self.tangential_stiffness, strict=True):
+            dofs = [(d, sign) for d, sign in ((i, 1.0), (j, -1.0)) if d >= 0]
+            for a, sa in dofs:
+                for b, sb in dofs:
+                    rows.append(a)
+                    cols.append(b)
+                    vals.append(sa * sb * k)
+        return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
 
 
 def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: float,
-                    damping_per_area: float = 0.0) -> ContactSet:
+                    damping_per_area: float = 0.0, friction_coefficient: float = 0.0
+                    ) -> ContactSet:
     """Pair the nodes of two conforming faces; pair stiffness = stiffness_per_area * weight.
+
+    With friction the stick spring of a pair equals its normal penalty spring: the same
+    one-element-layer compliance in shear as in compression (the normal penalty's choice,
+    :data:`anvilwave.fea.impact.DEFAULT_CONTACT_STIFFNESS_FACTOR`), so the stable step and the
+    pair frequency limit stay set by springs of the same size.
 
     Parameters
     ----------
@@ -364,6 +512,8 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
         Penalty stiffness per unit contact area [N/m^3] (e.g. alpha E / h).
     damping_per_area : float, default 0.0
         Contact dashpot per unit area [N s/m^3] (0: elastic contact).
+    friction_coefficient : float, default 0.0
+        Coulomb coefficient of the pairs [-] (radial slip along the horizontal faces).
 
     Returns
     -------
@@ -380,9 +530,15 @@ def contact_between(name: str, upper: Face, lower: Face, stiffness_per_area: flo
         raise ValueError(f"{name}: the faces of {upper.body} and {lower.body} are not conforming "
                          "(node radii differ)")
     weights = 0.5 * (upper.weights + lower.weights)
+    if friction_coefficient <= 0.0:
+        return ContactSet(name, upper.axial_dofs.copy(), lower.axial_dofs.copy(),
+                          stiffness_per_area * weights, damping_per_area * weights,
+                          np.zeros(len(weights)), upper.radii.copy())
     return ContactSet(name, upper.axial_dofs.copy(), lower.axial_dofs.copy(),
                       stiffness_per_area * weights, damping_per_area * weights,
-                      np.zeros(len(weights)), upper.radii.copy())
+                      np.zeros(len(weights)), upper.radii.copy(), float(friction_coefficient),
+                      upper.radial_dofs.copy(), lower.radial_dofs.copy(),
+                      stiffness_per_area * weights)
 
 
 def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None) -> sp.csr_matrix:
@@ -404,6 +560,11 @@ def contact_matrix(contact: ContactSet, n: int, active: np.ndarray | None = None
     """
     k = contact.stiffness if active is None else contact.stiffness * active
     i, j = contact.upper_dofs, contact.lower_dofs
+    if np.any(j < 0):  # pairs on a rigid wall: a spring to ground
+        wall = j < 0
+        return (contact_matrix(dataclasses.replace(
+            contact, upper_dofs=i[~wall], lower_dofs=j[~wall], stiffness=k[~wall]), n)
+            + sp.csr_matrix((k[wall], (i[wall], i[wall])), shape=(n, n)))
     rows = np.concatenate([i, j, i, j])
     cols = np.concatenate([i, j, j, i])
     vals = np.concatenate([k, k, -k, -k])

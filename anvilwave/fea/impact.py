@@ -5,7 +5,9 @@ outline)
 and the pile (steel tube, to full length or truncated with an absorbing boundary) are three
 axisymmetric elastic bodies (see :mod:`anvilwave.fea.bodies`) that touch through
 compression-only node-to-node penalty contacts on conforming faces (lift-off and re-impact
-allowed), integrated with central differences (:mod:`anvilwave.fea.solver`).
+allowed), integrated with central differences (:mod:`anvilwave.fea.solver`). Optionally an
+anvil ring (``FeaConfig.ring``) sits between anvil and pile, and any contact carries Coulomb
+friction along its faces (``*_friction``, :func:`anvilwave.anvil_rom.contact.coulomb_friction`).
 
 Elements: quadratic (6-node triangles in the anvil, 9-node quadrilaterals in the ram and the
 pile tube), HRZ-lumped. Against linear elements at the same number of DOFs they halve the phase
@@ -43,7 +45,12 @@ import numpy as np
 import scipy.sparse as sp
 
 from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Interfaces, Material
-from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_interfaces, to_skfem
+from anvilwave.anvil_rom.fem.mesh import (
+    mesh_outline,
+    split_outline_at_interfaces,
+    split_outline_at_radii,
+    to_skfem,
+)
 from anvilwave.fea.bodies import (
     Body,
     ContactSet,
@@ -54,6 +61,7 @@ from anvilwave.fea.bodies import (
     graded_vertices,
     make_body,
     section_force_row,
+    sleeve_contact,
     static_preload,
     tensor_body,
     vertex_radii,
@@ -227,6 +235,23 @@ class FeaConfig:
         See :func:`absorbing_speeds` and :func:`absorbing_boundary`.
     time_step_safety : float, default 0.9
         Fraction of the critical step used [-].
+    ring : AnvilSpec, optional
+        An anvil ring between the anvil and the pile (its outline, a polygon off the axis
+        with a flat top face, the seat under the anvil's flat bottom face, and a flat bottom
+        face carrying the pile wall); None: the anvil bears on the pile directly.
+    ram_anvil_friction : float, default 0.0
+        Coulomb coefficient between the ram face and the anvil [-].
+    seat_friction : float, default 0.0
+        Coulomb coefficient on the anvil-ring seat [-] (needs ``ring``).
+    pile_friction : float, default 0.0
+        Coulomb coefficient between the pile head and the body on it (anvil or ring) [-].
+    sleeve_radius : float, optional
+        Inner radius of a rigid guiding sleeve around the anvil (and the ring) [m], at least
+        their outer radii: the radial clearance closes as they bulge; None: no sleeve. The
+        static preload is solved without it (a clearance below the bulge under the weight
+        starts the blow with the sleeve pressed).
+    sleeve_friction : float, default 0.0
+        Coulomb coefficient against the sleeve (axial sliding) [-].
 
     Attributes
     ----------
@@ -261,6 +286,12 @@ class FeaConfig:
     contact_stiffness_factor: float = DEFAULT_CONTACT_STIFFNESS_FACTOR
     absorbing_boundary: str = "shell"
     time_step_safety: float = 0.9
+    ring: AnvilSpec | None = None
+    ram_anvil_friction: float = 0.0
+    seat_friction: float = 0.0
+    pile_friction: float = 0.0
+    sleeve_radius: float | None = None
+    sleeve_friction: float = 0.0
 
     def __post_init__(self):
         src = "FeaConfig"
@@ -303,6 +334,25 @@ class FeaConfig:
         if abs(n_out - round(n_out)) > 1e-6 * n_out:
             raise InputError(src, "duration", "must be a whole number of output_interval")
         absorbing_speeds(self.material, self.absorbing_boundary)
+        for key in ("ram_anvil_friction", "seat_friction", "pile_friction", "sleeve_friction"):
+            value = getattr(self, key)
+            if not (isinstance(value, numbers.Real) and np.isfinite(value) and value >= 0):
+                raise InputError(src, key, f"must be a number >= 0, got {value!r}")
+        if self.ring is None and self.seat_friction > 0:
+            raise InputError(src, "seat_friction", "needs a ring (the seat is the anvil-ring "
+                                                   "contact)")
+        if self.ring is not None and (self.ring.outline is None
+                                      or self.ring.outline[:, 0].min() <= 0.0):
+            raise InputError(src, "ring", "the reference FEA needs the ring as an outline (a "
+                                          "[geometry] polygon off the axis)")
+        if self.sleeve_radius is not None:
+            outer = max(self.anvil.outline[:, 0].max(), 0.0 if self.ring is None
+                        else self.ring.outline[:, 0].max())
+            if not (np.isfinite(self.sleeve_radius) and self.sleeve_radius >= outer):
+                raise InputError(src, "sleeve_radius", f"must be at least the outer radius "
+                                                       f"{outer:g} m of the anvil (and ring)")
+        elif self.sleeve_friction > 0:
+            raise InputError(src, "sleeve_friction", "needs a sleeve (sleeve_radius)")
 
     @property
     def modelled_pile_length(self) -> float:
@@ -352,6 +402,12 @@ class FeaResult:
         Wall time of meshing, assembly, statics and stable step [s].
     info : dict
         Masses, preload, ...
+    anvil_ring_force : numpy.ndarray, optional
+        Anvil-ring seat resultant [N] with a ring (``anvil_pile_force`` is then the ring-pile
+        force, the force into the pile head); None without.
+    sleeve_force : numpy.ndarray, optional
+        Radial resultant of the sleeve on the anvil and the ring [N] (sum of the node forces,
+        inward positive); None without a sleeve.
     """
 
     time: np.ndarray
@@ -369,6 +425,8 @@ class FeaResult:
     wall_time: float
     setup_time: float
     info: dict = field(default_factory=dict)
+    anvil_ring_force: np.ndarray | None = None
+    sleeve_force: np.ndarray | None = None
 
     def to_columns(self) -> dict[str, np.ndarray]:
         """CSV columns named ``name [unit]`` (DESIGN.md), energies included.
@@ -387,6 +445,10 @@ class FeaResult:
             "gauge_velocity [m/s]": self.gauge_velocity,
             "ram_velocity [m/s]": self.ram_velocity,
         }
+        if self.anvil_ring_force is not None:
+            cols["anvil_ring_force [N]"] = self.anvil_ring_force
+        if self.sleeve_force is not None:
+            cols["sleeve_force [N]"] = self.sleeve_force
         for name, values in self.energies.items():
             cols[f"{name}_energy [J]"] = values
         return cols
@@ -472,8 +534,89 @@ def body_velocity_weights(body: Body, n: int) -> np.ndarray:
     return w
 
 
+def _flat_face_radii(outline: np.ndarray, z: float, tol: float) -> np.ndarray:
+    """Radii of the outline vertices on the line z [m]."""
+    return outline[np.abs(outline[:, 1] - z) < tol, 0]
+
+
+def _edge_divisions(outline: np.ndarray, tol: float, segments) -> dict[int, int]:
+    """{edge: count} for the horizontal outline edges that are one of ``segments``.
+
+    ``segments`` holds (z, r_lo, r_hi, count) [m, m, m, -]: an edge at height z from r_lo to
+    r_hi gets exactly ``count`` elements.
+    """
+    divisions = {}
+    for i, (a, b) in enumerate(zip(outline, np.roll(outline, -1, axis=0), strict=True)):
+        lo, hi = sorted((a[0], b[0]))
+        for z, r_lo, r_hi, count in segments:
+            if (abs(a[1] - z) < tol and abs(b[1] - z) < tol and abs(lo - r_lo) < tol
+                    and abs(hi - r_hi) < tol):
+                divisions[i] = count
+    return divisions
+
+
+def _point_sizes(outline: np.ndarray, tol: float, size: float, refined) -> np.ndarray:
+    """gmsh target size per outline vertex: ``size``, smaller at the (z, r, size) points."""
+    sizes = np.full(len(outline), size)
+    for z, r, local in refined:
+        at = (np.abs(outline[:, 1] - z) < tol) & (np.abs(outline[:, 0] - r) < tol)
+        sizes[at] = min(local, size)
+    return sizes
+
+
+def ring_seat(config: FeaConfig) -> tuple[np.ndarray, float, float]:
+    """The anvil ring of ``config`` placed in the stack, and its seat on the anvil.
+
+    The ring outline is shifted so that its flat top face lies on the anvil's flat bottom
+    face (z = the anvil height); the seat is the radial overlap of the two faces.
+
+    Parameters
+    ----------
+    config : FeaConfig
+        The configuration (with a ring).
+
+    Returns
+    -------
+    outline : numpy.ndarray
+        The ring outline in stack coordinates, rows (r, z) [m].
+    seat_inner : float
+        Inner radius of the seat [m].
+    seat_outer : float
+        Outer radius of the seat [m].
+
+    Raises
+    ------
+    InputError
+        If the faces do not overlap or the pile wall does not lie on the ring's bottom face.
+    """
+    src = "FeaConfig"
+    anvil = np.asarray(config.anvil.outline, float)
+    height = anvil[:, 1].max() - anvil[:, 1].min()
+    outline = np.asarray(config.ring.outline, float).copy()
+    outline[:, 1] += height - outline[:, 1].min()
+    tol = 1e-9 * max(np.ptp(outline, axis=0).max(), np.ptp(anvil, axis=0).max(), 1.0)
+    a_bot = _flat_face_radii(anvil - [0.0, anvil[:, 1].min()], height, tol)
+    r_top = _flat_face_radii(outline, height, tol)
+    r_bot = _flat_face_radii(outline, outline[:, 1].max(), tol)
+    lo, hi = max(a_bot.min(), r_top.min()), min(a_bot.max(), r_top.max())
+    if len(a_bot) < 2 or len(r_top) < 2 or hi - lo < 10 * tol:
+        raise InputError(src, "ring", "the ring's flat top face must overlap the anvil's flat "
+                                      "bottom face (the seat)")
+    r_in, r_out = config.pile_ring
+    if len(r_bot) < 2 or r_in < r_bot.min() - tol or r_out > r_bot.max() + tol:
+        raise InputError(src, "pile_outer_diameter", "the pile wall ring must lie on the "
+                                                     "ring's flat bottom face")
+    return outline, float(lo), float(hi)
+
+
 def build_impact_model(config: FeaConfig) -> ImpactModel:
-    """Mesh, assemble and preload the ram + anvil + pile stack of ``config``.
+    """Mesh, assemble and preload the ram + anvil (+ ring) + pile stack of ``config``.
+
+    With ``config.ring`` the anvil rests on the ring through the seat (the radial overlap of
+    the anvil's flat bottom face and the ring's flat top face) and the ring on the pile
+    wall. The seat gets node-to-node pairs at a spacing of at most ``mesh_size`` on both
+    bodies (the two outlines share those vertices), the ring's bottom face the pile wall's
+    ``pile_wall_elements`` vertices.
 
     Parameters
     ----------
@@ -488,7 +631,7 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
     Raises
     ------
     InputError
-        If the ram face or the pile ring does not lie on the anvil's flat faces.
+        If the ram face or the pile ring does not lie on the anvil's (ring's) flat faces.
     """
     src = "FeaConfig"
     spec = config.anvil
@@ -498,60 +641,113 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
     height = z_bot - z_top
     r_in, r_out = config.pile_ring
     tol = 1e-9 * max(np.ptp(outline, axis=0).max(), 1.0)
-    top_r = outline[np.abs(outline[:, 1]) < tol, 0]
-    bot_r = outline[np.abs(outline[:, 1] - height) < tol, 0]
+    top_r = _flat_face_radii(outline, 0.0, tol)
+    bot_r = _flat_face_radii(outline, height, tol)
     if len(top_r) < 2 or top_r.min() > tol or config.ram_radius > top_r.max() + tol:
         raise InputError(src, "ram_radius", "the ram face r <= ram_radius must lie on the anvil's "
                                             "flat top face starting at the axis")
-    if len(bot_r) < 2 or r_in < bot_r.min() - tol or r_out > bot_r.max() + tol:
+    if config.ring is None and (len(bot_r) < 2 or r_in < bot_r.min() - tol
+                                or r_out > bot_r.max() + tol):
         raise InputError(src, "pile_outer_diameter", "the pile wall ring must lie on the anvil's "
                                                      "flat bottom face")
-    itf = Interfaces(config.ram_radius, 0.5 * (r_in + r_out), config.pile_wall_thickness)
-    outline = split_outline_at_interfaces(outline, itf)
     wall_size = config.pile_wall_thickness / config.pile_wall_elements
-    sizes = np.full(len(outline), config.mesh_size)
-    on_ring = (np.abs(outline[:, 1] - height) < tol) & (
-        (np.abs(outline[:, 0] - r_in) < tol) | (np.abs(outline[:, 0] - r_out) < tol))
-    sizes[on_ring] = min(wall_size, config.mesh_size)
-    # exact element counts on the two contact edges (the ram face and the pile ring)
-    divisions = {}
-    for i, (a, b) in enumerate(zip(outline, np.roll(outline, -1, axis=0), strict=True)):
-        lo, hi = sorted((a[0], b[0]))
-        if abs(a[1]) < tol and abs(b[1]) < tol and abs(lo) < tol and abs(
-                hi - config.ram_radius) < tol:
-            divisions[i] = int(np.ceil(config.ram_radius / config.mesh_size - 1e-9))
-        if (abs(a[1] - height) < tol and abs(b[1] - height) < tol and abs(lo - r_in) < tol
-                and abs(hi - r_out) < tol):
-            divisions[i] = config.pile_wall_elements
+    ram_face = (0.0, 0.0, config.ram_radius,
+                int(np.ceil(config.ram_radius / config.mesh_size - 1e-9)))
+    wall_face = [(r_in, min(wall_size, config.mesh_size)), (r_out, min(wall_size,
+                                                                      config.mesh_size))]
+    # exact element counts on the contact edges (the ram face, the pile ring, the seat)
+    if config.ring is None:
+        itf = Interfaces(config.ram_radius, 0.5 * (r_in + r_out), config.pile_wall_thickness)
+        outline = split_outline_at_interfaces(outline, itf)
+        sizes = _point_sizes(outline, tol, config.mesh_size,
+                             [(height, r, s) for r, s in wall_face])
+        divisions = _edge_divisions(outline, tol, [
+            ram_face, (height, r_in, r_out, config.pile_wall_elements)])
+    else:
+        ring_outline, seat_in, seat_out = ring_seat(config)
+        seat_r = graded_vertices(seat_in, seat_out, config.mesh_size)
+        seat_size = float(np.diff(seat_r).max())
+        seat_edges = [(height, a, b, 1) for a, b in zip(seat_r[:-1], seat_r[1:], strict=True)]
+        outline = split_outline_at_radii(outline, 0.0, [config.ram_radius])
+        outline = split_outline_at_radii(outline, height, seat_r)
+        sizes = _point_sizes(outline, tol, config.mesh_size,
+                             [(height, r, seat_size) for r in seat_r])
+        divisions = _edge_divisions(outline, tol, [ram_face, *seat_edges])
+        ring_bottom_z = float(ring_outline[:, 1].max())
+        ring_outline = split_outline_at_radii(ring_outline, height, seat_r)
+        ring_outline = split_outline_at_radii(ring_outline, ring_bottom_z, (r_in, r_out))
+        ring_tol = 1e-9 * max(np.ptp(ring_outline, axis=0).max(), 1.0)
+        ring = make_body("ring", to_skfem(mesh_outline(
+            ring_outline, None,
+            point_sizes=_point_sizes(ring_outline, ring_tol, config.mesh_size,
+                                     [*((height, r, seat_size) for r in seat_r),
+                                      *((ring_bottom_z, r, s) for r, s in wall_face)]),
+            edge_divisions=_edge_divisions(ring_outline, ring_tol, [
+                *seat_edges, (ring_bottom_z, r_in, r_out, config.pile_wall_elements)]))),
+            config.ring.material)
     anvil = make_body("anvil", to_skfem(mesh_outline(outline, None, point_sizes=sizes,
                                                      edge_divisions=divisions)),
                       spec.material)
-    # the ram and the pile copy the radial vertex positions of the anvil faces they touch
+    # the ram and the pile copy the radial vertex positions of the faces they touch
     a_top = face(anvil, 0.0, 0.0, config.ram_radius)
-    a_ring = face(anvil, height, r_in, r_out)
+    if config.ring is None:
+        pile_z = height
+        on_pile = face(anvil, height, r_in, r_out)
+    else:
+        pile_z = ring_bottom_z
+        on_pile = face(ring, pile_z, r_in, r_out)
     ram_dz = config.ram_axial_size or config.mesh_size
     pile_dz = config.pile_axial_size or config.mesh_size
     ram = tensor_body("ram", vertex_radii(a_top), graded_vertices(-config.ram_length, 0.0, ram_dz),
                       config.material)
     pile_len = config.modelled_pile_length
-    gauge_z = height + config.gauge_depth
-    pile = tensor_body("pile", vertex_radii(a_ring),
-                       graded_vertices(height, height + pile_len, pile_dz, fixed=(gauge_z,)),
+    gauge_z = pile_z + config.gauge_depth
+    pile = tensor_body("pile", vertex_radii(on_pile),
+                       graded_vertices(pile_z, pile_z + pile_len, pile_dz, fixed=(gauge_z,)),
                        config.material)
-    bodies = [ram, anvil, pile]
+    bodies = [ram, anvil, pile] if config.ring is None else [ram, anvil, ring, pile]
     n = _place(bodies)
-    a_top, a_ring = face(anvil, 0.0, 0.0, config.ram_radius), face(anvil, height, r_in, r_out)
+    a_top = face(anvil, 0.0, 0.0, config.ram_radius)
+    if config.ring is None:
+        a_ring = on_pile = face(anvil, height, r_in, r_out)
+    else:
+        a_ring = face(anvil, height, seat_in, seat_out)
+        ring_top = face(ring, height, seat_in, seat_out)
+        on_pile = face(ring, pile_z, r_in, r_out)
     ram_bottom = face(ram, 0.0)
-    pile_top = face(pile, height)
-    pile_bottom = face(pile, height + pile_len)
+    pile_top = face(pile, pile_z)
+    pile_bottom = face(pile, pile_z + pile_len)
     gauge = face(pile, gauge_z)
 
     E = min(config.material.youngs_modulus, spec.material.youngs_modulus)
     alpha = config.contact_stiffness_factor
     c_ram = contact_between("ram_anvil", ram_bottom, a_top,
-                            alpha * E / min(ram_dz, config.mesh_size))
-    c_pile = contact_between("anvil_pile", a_ring, pile_top, alpha * E / min(pile_dz, wall_size))
-    contacts = [c_ram, c_pile]
+                            alpha * E / min(ram_dz, config.mesh_size),
+                            friction_coefficient=config.ram_anvil_friction)
+    if config.ring is None:
+        c_pile = contact_between("anvil_pile", a_ring, pile_top,
+                                 alpha * E / min(pile_dz, wall_size),
+                                 friction_coefficient=config.pile_friction)
+        contacts = [c_ram, c_pile]
+    else:
+        E_ring = min(E, config.ring.material.youngs_modulus)
+        c_pile = contact_between("ring_pile", on_pile, pile_top,
+                                 alpha * E_ring / min(pile_dz, wall_size),
+                                 friction_coefficient=config.pile_friction)
+        c_seat = contact_between("anvil_ring", a_ring, ring_top, alpha * E_ring / seat_size,
+                                 friction_coefficient=config.seat_friction)
+        contacts = [c_ram, c_pile, c_seat]
+    static_contacts = contacts[1:]
+    if config.sleeve_radius is not None:
+        k_sleeve = alpha * E / config.mesh_size
+        contacts.append(sleeve_contact("anvil_sleeve", anvil, float(outline[:, 0].max()),
+                                       config.sleeve_radius, k_sleeve,
+                                       config.sleeve_friction))
+        if config.ring is not None:
+            contacts.append(sleeve_contact("ring_sleeve", ring,
+                                           float(ring_outline[:, 0].max()),
+                                           config.sleeve_radius, k_sleeve,
+                                           config.sleeve_friction))
 
     K, M = _global(bodies)
     g = config.gravity
@@ -561,23 +757,27 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
         damping, high_pass = absorbing_boundary(pile_bottom, config.material, n,
                                                 config.absorbing_boundary)
 
-    # static preload of anvil + pile under gravity, pile bottom supported axially
+    # static preload of anvil (+ ring) + pile under gravity, pile bottom supported axially,
+    # without friction (at rest nothing has slipped; the stick springs start unloaded)
     u0 = np.zeros(n)
-    preload = 0.0
+    preload = seat_preload = 0.0
     if g > 0.0:
-        ap = np.arange(anvil.offset, n)  # anvil and pile DOFs (the ram comes first)
+        ap = np.arange(anvil.offset, n)  # anvil, ring and pile DOFs (the ram comes first)
 
         def sub(idx):
             return idx - anvil.offset
 
-        sub_contact = ContactSet(c_pile.name, sub(c_pile.upper_dofs), sub(c_pile.lower_dofs),
-                                 c_pile.stiffness, c_pile.damping, c_pile.gap, c_pile.radii)
-        u_ap, reaction = static_preload(K[ap][:, ap], f[ap], [sub_contact],
+        sub_contacts = [ContactSet(c.name, sub(c.upper_dofs), sub(c.lower_dofs), c.stiffness,
+                                   c.damping, c.gap, c.radii) for c in static_contacts]
+        u_ap, reaction = static_preload(K[ap][:, ap], f[ap], sub_contacts,
                                         sub(pile_bottom.axial_dofs))
         u0[ap] = u_ap
         f[ap] += reaction  # the support reaction becomes a constant force on the pile bottom
         overlap = u0[c_pile.upper_dofs] - u0[c_pile.lower_dofs]
         preload = float(np.sum(c_pile.stiffness * np.maximum(overlap, 0.0)))
+        if config.ring is not None:
+            overlap = u0[c_seat.upper_dofs] - u0[c_seat.lower_dofs]
+            seat_preload = float(np.sum(c_seat.stiffness * np.maximum(overlap, 0.0)))
     # the rigidly shifted, stress-free ram touches the (sagged) anvil face at its highest point
     shift = float(np.min(u0[a_top.axial_dofs]))
     ez_ram = ram.axial_indicator()
@@ -597,7 +797,7 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
         "ram_mass [kg]": ram.mass, "anvil_mass [kg]": anvil.mass, "pile_mass [kg]": pile.mass,
         "static_anvil_pile_force [N]": preload, "anvil_height [m]": height,
         "ram_radial_elements": len(vertex_radii(a_top)) - 1,
-        "pile_wall_elements": len(vertex_radii(a_ring)) - 1,
+        "pile_wall_elements": len(vertex_radii(on_pile)) - 1,
         "anvil_elements": anvil.model.mesh.t.shape[1],
         "contact_stiffness_ram_anvil [N/m]": float(c_ram.stiffness.sum()),
         "contact_stiffness_anvil_pile [N/m]": float(c_pile.stiffness.sum()),
@@ -606,6 +806,17 @@ def build_impact_model(config: FeaConfig) -> ImpactModel:
     }
     faces = {"ram_bottom": ram_bottom, "anvil_top": a_top, "anvil_ring": a_ring,
              "pile_top": pile_top, "pile_bottom": pile_bottom, "gauge": gauge}
+    if config.ring is not None:
+        info.update({
+            "ring_mass [kg]": ring.mass, "ring_height [m]": pile_z - height,
+            "ring_elements": ring.model.mesh.t.shape[1],
+            "seat_radii [m]": (seat_in, seat_out), "seat_pairs": len(c_seat.radii),
+            "static_anvil_ring_force [N]": seat_preload,
+            "contact_stiffness_anvil_ring [N/m]": float(c_seat.stiffness.sum()),
+        })
+        faces.update({"ring_top": ring_top, "ring_bottom": on_pile})
+    if config.sleeve_radius is not None:
+        info["sleeve_clearance [m]"] = config.sleeve_radius - float(outline[:, 0].max())
     return ImpactModel(system, {b.name: b for b in bodies}, faces, info)
 
 
@@ -630,12 +841,17 @@ def run_impact_fea(config: FeaConfig, progress: Callable[[float], None] | None =
     tr = integrate(model.system, config.duration, config.output_interval,
                    safety=config.time_step_safety, progress=progress)
     setup = time.perf_counter() - start - tr.wall_time
-    return _result(tr, model.system.n_dof, setup, model.info)
+    return _result(tr, model.system.n_dof, setup, model.info,
+                   [c.name for c in model.system.contacts])
 
 
-def _result(tr: Transient, n_dof: int, setup: float, info: dict) -> FeaResult:
+def _result(tr: Transient, n_dof: int, setup: float, info: dict,
+            names: list[str] | None = None) -> FeaResult:
     zeros = np.zeros_like(tr.time)
     force = tr.contact_force
+    names = names or []
+    sleeve = [i for i, name in enumerate(names) if name.endswith("_sleeve")]
+    seat = [i for i, name in enumerate(names) if name == "anvil_ring"]
     return FeaResult(
         time=tr.time,
         ram_anvil_force=force[:, 0],
@@ -646,7 +862,8 @@ def _result(tr: Transient, n_dof: int, setup: float, info: dict) -> FeaResult:
         ram_velocity=tr.probes.get("ram_velocity", zeros),
         energies=tr.energies, n_dof=n_dof, n_steps=tr.n_steps, time_step=tr.time_step,
         critical_time_step=2.0 / tr.omega_max, wall_time=tr.wall_time, setup_time=setup,
-        info=info)
+        info=info, anvil_ring_force=force[:, seat[0]] if seat else None,
+        sleeve_force=force[:, sleeve].sum(axis=1) if sleeve else None)
 
 
 # --------------------------------------------------------------------------- two-bar impact

@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from numba import njit
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from anvilwave.anvil_rom.contact import contact_force
+from anvilwave.anvil_rom.contact import contact_force, coulomb_friction
 from anvilwave.anvil_rom.fem.elasticity import max_eigenvalue
 from anvilwave.engine.compilation import announce_compilation
 from anvilwave.fea.bodies import ContactSet, contact_matrix
@@ -127,7 +127,10 @@ class Transient:
         preload), ``contact`` (penalty springs), ``absorbed`` (cumulative dashpot dissipation),
         ``external_work`` (f . (u - u0)), ``contact_work`` (cumulative work of the contact forces
         on the bodies), ``total`` (kinetic + strain + contact + absorbed - external_work: constant
-        for an exact scheme).
+        for an exact scheme). With friction on some contact, ``contact`` includes the stick
+        springs' energy and ``friction`` (the cumulative energy dissipated by slip, see
+        :func:`anvilwave.anvil_rom.contact.coulomb_friction`) is added to ``total``; the key
+        is absent without friction.
     time_step : float
         Time step h [s].
     n_steps : int
@@ -167,6 +170,8 @@ def stable_time_step(system: ExplicitSystem) -> tuple[float, float]:
     K = system.stiffness
     for c in system.contacts:
         K = K + contact_matrix(c, n)
+        if c.has_friction:
+            K = K + c.tangential_matrix(n)
     omega = np.sqrt(max_eigenvalue(K.tocsr(), system.mass))
     return 2.0 / omega, omega
 
@@ -174,6 +179,7 @@ def stable_time_step(system: ExplicitSystem) -> tuple[float, float]:
 @njit(cache=True)
 def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, damping,
              pair_up, pair_lo, pair_k, pair_c, pair_gap, pair_set,
+             pair_mu, pair_tup, pair_tlo, pair_kt, pair_t, pair_s, pair_tvold, friction,
              mw_dofs, mw_decay, mw_c, mw_vmass, mw_vold,
              u, v, f_lower, f_contact, pair_force, pair_vold, v_record, record):
     """Advance n_steps central-difference steps in place; record quantities of the FIRST step.
@@ -189,13 +195,20 @@ def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, dam
     half-step velocity (lagged half a step: c is small against M / h); the free mass velocity
     relaxes exactly towards the DOF velocity over a step: v_mass <- v + (v_mass - v) decay.
 
+    Pairs with pair_mu > 0 also carry Coulomb friction on their tangential DOFs (pair_tup,
+    pair_tlo; -1: none) by :func:`anvilwave.anvil_rom.contact.coulomb_friction` from the
+    normal force of the same state; pair_t (stick-spring force) and pair_s (relative
+    tangential displacement) are the pairs' state across calls, friction[0] the cumulative
+    slip dissipation.
+
     record[0:n_sets] : contact resultants at the first step [N]; then contact energy and
-    u . K u at the first step, dissipated energy and contact work summed over all steps [J].
+    u . K u at the first step, dissipated energy and contact work summed over all steps, and
+    the cumulative friction dissipation at the first step [J].
     v_record : velocity at the first step's time, (v_{n-1/2} + v_{n+1/2}) / 2 [m/s].
     """
     n = u.shape[0]
     n_pairs = pair_up.shape[0]
-    n_sets = record.shape[0] - 4
+    n_sets = record.shape[0] - 5
     for k in range(record.shape[0]):
         record[k] = 0.0
     dissipated = 0.0
@@ -205,17 +218,48 @@ def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, dam
         for p in range(n_pairs):
             a = pair_up[p]
             b = pair_lo[p]
-            d = u[a] - u[b] - pair_gap[p]
-            rate = v[a] - v[b]
+            ub = 0.0
+            vb = 0.0
+            if b >= 0:  # b < 0: a rigid, fixed wall (the sleeve)
+                ub = u[b]
+                vb = v[b]
+            d = u[a] - ub - pair_gap[p]
+            rate = v[a] - vb
             fc = contact_force(d, rate, pair_k[p], pair_c[p])
             f_contact[a] -= fc
-            f_contact[b] += fc
+            if b >= 0:
+                f_contact[b] += fc
             pair_force[p] = fc
             pair_vold[p] = rate
             if s == 0:
                 record[pair_set[p]] += fc
                 if d > 0.0:
                     contact_energy += 0.5 * pair_k[p] * d * d
+            if pair_mu[p] > 0.0:
+                ta = pair_tup[p]
+                tb = pair_tlo[p]
+                s_now = 0.0
+                rate_t = 0.0
+                if ta >= 0:
+                    s_now += u[ta]
+                    rate_t += v[ta]
+                if tb >= 0:
+                    s_now -= u[tb]
+                    rate_t -= v[tb]
+                ft, lost = coulomb_friction(pair_t[p], s_now - pair_s[p], fc, pair_mu[p],
+                                            pair_kt[p])
+                pair_t[p] = ft
+                pair_s[p] = s_now
+                pair_tvold[p] = rate_t
+                friction[0] += lost
+                if ta >= 0:
+                    f_contact[ta] -= ft
+                if tb >= 0:
+                    f_contact[tb] += ft
+                if s == 0:
+                    contact_energy += 0.5 * ft * ft / pair_kt[p]
+        if s == 0:
+            record[n_sets + 4] = friction[0]
         for q in range(mw_dofs.shape[0]):
             mw_vold[q] = v[mw_dofs[q]]
             f_contact[mw_dofs[q]] -= mw_c[q] * (mw_vold[q] - mw_vmass[q])
@@ -243,9 +287,23 @@ def _advance(n_steps, h, indptr, indices, data, diag, f_ext, coef_a, coef_b, dam
             a = pair_up[p]
             b = pair_lo[p]
             f_contact[a] = 0.0
-            f_contact[b] = 0.0
-            vm = 0.5 * (pair_vold[p] + v[a] - v[b])
+            vb = 0.0
+            if b >= 0:
+                f_contact[b] = 0.0
+                vb = v[b]
+            vm = 0.5 * (pair_vold[p] + v[a] - vb)
             contact_work -= h * pair_force[p] * vm
+            if pair_mu[p] > 0.0:
+                ta = pair_tup[p]
+                tb = pair_tlo[p]
+                rate_t = 0.0
+                if ta >= 0:
+                    f_contact[ta] = 0.0
+                    rate_t += v[ta]
+                if tb >= 0:
+                    f_contact[tb] = 0.0
+                    rate_t -= v[tb]
+                contact_work -= h * pair_t[p] * 0.5 * (pair_tvold[p] + rate_t)
         for q in range(mw_dofs.shape[0]):
             i = mw_dofs[q]
             f_contact[i] = 0.0
@@ -286,8 +344,14 @@ def contact_pair_frequency(system: ExplicitSystem) -> float:
     m = system.mass
     for c in system.contacts:
         if len(c.stiffness):
-            w2 = c.stiffness * (1.0 / m[c.upper_dofs] + 1.0 / m[c.lower_dofs])
+            lower = np.where(c.lower_dofs >= 0, 1.0 / m[np.maximum(c.lower_dofs, 0)], 0.0)
+            w2 = c.stiffness * (1.0 / m[c.upper_dofs] + lower)
             out = max(out, float(np.sqrt(w2.max())))
+        if c.has_friction and len(c.stiffness):
+            inverse = np.zeros(len(c.stiffness))
+            for dofs in (c.upper_tangential, c.lower_tangential):
+                inverse += np.where(dofs >= 0, 1.0 / m[np.maximum(dofs, 0)], 0.0)
+            out = max(out, float(np.sqrt((c.tangential_stiffness * inverse).max())))
     return out
 
 
@@ -348,11 +412,12 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
     # recorded v at t = 0 is v_0): v_{-1/2} = v_0 - h/2 a_0, with a_0 from the state at t = 0.
     f0 = system.force - K @ u0
     for cset in cs:
-        d = u0[cset.upper_dofs] - u0[cset.lower_dofs] - cset.gap
+        d = cset.overlap(u0)
         fc = np.array([contact_force(di, 0.0, ki, 0.0) for di, ki in zip(d, cset.stiffness,
                                                                          strict=True)])
         np.subtract.at(f0, cset.upper_dofs, fc)
-        np.add.at(f0, cset.lower_dofs, fc)
+        walled = cset.lower_dofs >= 0
+        np.add.at(f0, cset.lower_dofs[walled], fc[walled])
     v_start = system.velocity - 0.5 * h * (f0 - c * system.velocity) / m
 
     # bandwidth-reducing renumbering (reverse Cuthill-McKee) of everything: the mat-vec then
@@ -360,6 +425,8 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
     pattern = K.copy()
     for cset in cs:
         pattern = pattern + contact_matrix(cset, n)
+        if cset.has_friction:
+            pattern = pattern + cset.tangential_matrix(n)
     perm = reverse_cuthill_mckee(pattern.tocsr(), symmetric_mode=True).astype(np.int64)
     new_index = np.empty(n, dtype=np.int64)
     new_index[perm] = np.arange(n)
@@ -376,10 +443,29 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
                 if cs else np.zeros(0, dtype))
 
     pair_up = new_index[cat("upper_dofs", np.int64)]
-    pair_lo = new_index[cat("lower_dofs", np.int64)]
+    pair_lo = cat("lower_dofs", np.int64)
+    pair_lo = np.where(pair_lo >= 0, new_index[np.maximum(pair_lo, 0)], -1)
     pair_k, pair_c, pair_gap = cat("stiffness", float), cat("damping", float), cat("gap", float)
     pair_set = (np.concatenate([np.full(len(x.gap), i) for i, x in enumerate(cs)])
                 if cs else np.zeros(0)).astype(np.int64)
+    n_pairs = len(pair_up)
+    pair_mu, pair_kt = np.zeros(n_pairs), np.ones(n_pairs)
+    pair_tup, pair_tlo = np.full(n_pairs, -1, np.int64), np.full(n_pairs, -1, np.int64)
+    start_pair = 0
+    for cset in cs:
+        span = slice(start_pair, start_pair + len(cset.gap))
+        start_pair += len(cset.gap)
+        if cset.has_friction:
+            pair_mu[span] = cset.friction_coefficient
+            pair_kt[span] = cset.tangential_stiffness
+            for out, dofs in ((pair_tup, cset.upper_tangential),
+                              (pair_tlo, cset.lower_tangential)):
+                dofs = np.asarray(dofs, np.int64)
+                out[span] = np.where(dofs >= 0, new_index[np.maximum(dofs, 0)], -1)
+    # a pair of zero area (the axis node) carries no force, nor friction
+    pair_mu[pair_kt <= 0.0] = 0.0
+    pair_kt[pair_kt <= 0.0] = 1.0
+    has_friction = bool(np.any(pair_mu > 0.0))
     u0 = u0[perm]
     u = u0.copy()
     v = v_start[perm].copy()
@@ -394,17 +480,29 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
         mw_decay = mw_c = np.zeros(0)
     mw_vmass = system.velocity[perm][mw_dofs].astype(float)  # moving with their DOFs at t = 0
     mw_vold = np.zeros(len(mw_dofs))
+    # the stick springs start unloaded from the initial state (the static preload is solved
+    # without friction: at rest nothing has slipped yet)
+    pair_t = np.zeros(n_pairs)
+    pair_s = np.zeros(n_pairs)
+    for p in range(n_pairs):
+        for dof, sign in ((pair_tup[p], 1.0), (pair_tlo[p], -1.0)):
+            if dof >= 0:
+                pair_s[p] += sign * u0[dof]
+    pair_tvold = np.zeros(n_pairs)
+    friction = np.zeros(1)
     f_lower = np.zeros(n)
     f_contact = np.zeros(n)
     pair_force = np.zeros(len(pair_up))
     pair_vold = np.zeros(len(pair_up))
     v_record = np.empty(n)
-    record = np.zeros(len(cs) + 4)
+    record = np.zeros(len(cs) + 5)
 
     times = np.arange(n_out + 1) * output_interval
     contact_out = np.zeros((n_out + 1, len(cs)))
     names = ("kinetic", "strain", "contact", "absorbed", "external_work", "contact_work")
     energies = {k: np.zeros(n_out + 1) for k in names}
+    if has_friction:
+        energies["friction"] = np.zeros(n_out + 1)
     sparse_rows = {k: (np.flatnonzero(g[perm]), g[perm][np.flatnonzero(g[perm])])
                    for k, g in (*system.force_probes.items(), *system.velocity_probes.items())}
     probes = {k: np.zeros(n_out + 1) for k in sparse_rows}
@@ -413,9 +511,10 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
 
     def advance(steps):
         _advance(steps, h, upper.indptr, upper.indices, upper.data, diag, f_ext, coef_a, coef_b,
-                 c, pair_up, pair_lo, pair_k, pair_c, pair_gap, pair_set, mw_dofs, mw_decay, mw_c,
-                 mw_vmass, mw_vold, u, v, f_lower, f_contact, pair_force, pair_vold, v_record,
-                 record)
+                 c, pair_up, pair_lo, pair_k, pair_c, pair_gap, pair_set, pair_mu, pair_tup,
+                 pair_tlo, pair_kt, pair_t, pair_s, pair_tvold, friction, mw_dofs, mw_decay,
+                 mw_c, mw_vmass, mw_vold, u, v, f_lower, f_contact, pair_force, pair_vold,
+                 v_record, record)
 
 
     announce_compilation()
@@ -434,6 +533,8 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
         energies["contact"][j] = record[len(cs)]
         energies["strain"][j] = 0.5 * record[len(cs) + 1]
         energies["kinetic"][j] = 0.5 * np.dot(m, v_record * v_record)
+        if has_friction:
+            energies["friction"][j] = record[len(cs) + 4]
         dissipated += record[len(cs) + 2]
         work += record[len(cs) + 3]
         for name in system.velocity_probes:
@@ -444,4 +545,6 @@ def integrate(system: ExplicitSystem, duration: float, output_interval: float,
     wall = time.perf_counter() - start
     e = energies
     e["total"] = e["kinetic"] + e["strain"] + e["contact"] + e["absorbed"] - e["external_work"]
+    if has_friction:
+        e["total"] = e["total"] + e["friction"]
     return Transient(times, contact_out, probes, energies, h, n_out * sub, wall, omega)

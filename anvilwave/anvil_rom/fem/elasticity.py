@@ -68,6 +68,11 @@ def _axial_pressure_form(v, w):
     return 2.0 * np.pi * w.x[0] * v[1]
 
 
+@LinearForm
+def _radial_traction_form(v, w):
+    return 2.0 * np.pi * w.x[0] * v[0]
+
+
 @dataclass
 class AxisymmetricModel:
     """Assembled FE model of an axisymmetric solid.
@@ -305,14 +310,50 @@ def face_load_vector(model: AxisymmetricModel, select) -> tuple[np.ndarray, floa
     area : float
         Loaded area A = integral of 2 pi r ds [m^2].
     """
-    mesh = model.mesh
-    facets = mesh.facets_satisfying(lambda x: select(x[0], x[1]), boundaries_only=True)
-    if len(facets) == 0:
+    fbasis = _facet_basis(model, select)
+    if fbasis is None:
         return np.zeros(model.n_dof), 0.0
-    fbasis = skfem.FacetBasis(mesh, model.basis.elem, facets=facets, intorder=4)
     raw = _axial_pressure_form.assemble(fbasis)
     area = float(raw.sum())  # integral of 2 pi r N_i, summed over the partition of unity
     return raw[model.free_dofs] / area, area
+
+
+def _facet_basis(model: AxisymmetricModel, select):
+    """scikit-fem facet basis of the boundary facets whose midpoints ``select`` (None: none)."""
+    mesh = model.mesh
+    facets = mesh.facets_satisfying(lambda x: select(x[0], x[1]), boundaries_only=True)
+    if len(facets) == 0:
+        return None
+    return skfem.FacetBasis(mesh, model.basis.elem, facets=facets, intorder=4)
+
+
+def face_radial_vector(model: AxisymmetricModel, select) -> tuple[np.ndarray, float]:
+    """Load/output vector of a uniform radial traction on selected boundary facets.
+
+    A traction 1 / A [Pa] outward (along +r) on the area A: c. The same vector gives the
+    area-weighted mean radial displacement of the facets, c^T x = (1 / A) integral of u_r dA
+    (collocated, like :func:`face_load_vector` axially): what a friction traction along a
+    horizontal face works on. Axisymmetric, its resultant vanishes (a self-balanced load).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    select : callable
+        (r, z) -> bool on facet midpoints, choosing the loaded facets.
+
+    Returns
+    -------
+    c : numpy.ndarray
+        (n_free,) vector, non-zero on radial DOFs only.
+    area : float
+        Loaded area A = integral of 2 pi r ds [m^2].
+    """
+    fbasis = _facet_basis(model, select)
+    if fbasis is None:
+        return np.zeros(model.n_dof), 0.0
+    area = float(_axial_pressure_form.assemble(fbasis).sum())
+    return _radial_traction_form.assemble(fbasis)[model.free_dofs] / area, area
 
 
 def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
@@ -340,16 +381,49 @@ def interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
     a_pile : float
         Pile ring area [m^2].
     """
+    on_ram, on_pile = _interface_selectors(model, interfaces)
+    b_ram, a_ram = face_load_vector(model, on_ram)
+    b_pile, a_pile = face_load_vector(model, on_pile)
+    return b_ram, b_pile, a_ram, a_pile
+
+
+def radial_interface_vectors(model: AxisymmetricModel, interfaces: Interfaces
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """Radial load/output vectors of the ram face and the pile ring (:func:`face_radial_vector`).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    interfaces : Interfaces
+        Where the ram and the pile touch.
+
+    Returns
+    -------
+    c_ram : numpy.ndarray
+        Uniform radial traction 1 / A on the ram face, shape (n_free,).
+    c_pile : numpy.ndarray
+        Uniform radial traction 1 / A on the pile ring, shape (n_free,).
+    """
+    on_ram, on_pile = _interface_selectors(model, interfaces)
+    return face_radial_vector(model, on_ram)[0], face_radial_vector(model, on_pile)[0]
+
+
+def _interface_selectors(model: AxisymmetricModel, interfaces: Interfaces):
+    """(r, z) -> bool facet selectors of the ram face (top) and the pile ring (bottom)."""
     z = model.mesh.p[1]
     scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
     tol = 1e-7 * scale
     ztop, zbot = z.min(), z.max()
     r_in, r_out = interfaces.pile_ring
-    b_ram, a_ram = face_load_vector(
-        model, lambda r, zz: (np.abs(zz - ztop) < tol) & (r <= interfaces.ram_contact_radius + tol))
-    b_pile, a_pile = face_load_vector(
-        model, lambda r, zz: (np.abs(zz - zbot) < tol) & (r >= r_in - tol) & (r <= r_out + tol))
-    return b_ram, b_pile, a_ram, a_pile
+
+    def on_ram(r, zz):
+        return (np.abs(zz - ztop) < tol) & (r <= interfaces.ram_contact_radius + tol)
+
+    def on_pile(r, zz):
+        return (np.abs(zz - zbot) < tol) & (r >= r_in - tol) & (r <= r_out + tol)
+
+    return on_ram, on_pile
 
 
 def ring_vectors(model: AxisymmetricModel, interfaces: Interfaces

@@ -44,6 +44,19 @@ participation_ram_annuli   (J, n)    b_annulus,j^T phi_j, uniform pressure on ea
                                      [kg^-1/2]
 ram_annulus_areas          (J,)      ram annulus areas, the innermost (a disc) first [m^2]
 =========================  ========  ==============================================================
+
+Optional keys, present together, for ports that carry friction (the radial participation of
+the modes, :func:`anvilwave.anvil_rom.fem.elasticity.radial_interface_vectors`):
+
+=========================  ========  ==============================================================
+participation_ram_radial   (n,)      c_ram^T phi_j, uniform radial traction on the ram face
+                                     [kg^-1/2] (0 for the axial rigid-body mode)
+participation_pile_radial  (n,)      c_pile^T phi_j on the pile ring [kg^-1/2]
+radial_flexibility         (4, 4)    inertia-relief flexibility between the ram face and the pile
+                                     ring, axial then radial: [b_ram, b_pile, c_ram, c_pile],
+                                     all flexible modes [m/N]; its axial block is
+                                     elastic_flexibility
+=========================  ========  ==============================================================
 """
 
 from __future__ import annotations
@@ -109,6 +122,13 @@ class ModalData:
         b_annulus,j^T phi_j, uniform pressure on each of J ram annuli, shape (J, n) [kg^-1/2].
     ram_annulus_areas : numpy.ndarray, optional
         Ram annulus areas, the innermost (a disc) first, shape (J,) [m^2].
+    participation_ram_radial : numpy.ndarray, optional
+        c_ram^T phi_j, uniform radial traction on the ram face, shape (n,) [kg^-1/2].
+    participation_pile_radial : numpy.ndarray, optional
+        c_pile^T phi_j on the pile ring, shape (n,) [kg^-1/2].
+    radial_flexibility : numpy.ndarray, optional
+        Inertia-relief flexibility between [b_ram, b_pile, c_ram, c_pile], all flexible modes,
+        shape (4, 4) [m/N].
 
     Attributes
     ----------
@@ -140,6 +160,9 @@ class ModalData:
     ring_areas: np.ndarray | None = None
     participation_ram_annuli: np.ndarray | None = None
     ram_annulus_areas: np.ndarray | None = None
+    participation_ram_radial: np.ndarray | None = None
+    participation_pile_radial: np.ndarray | None = None
+    radial_flexibility: np.ndarray | None = None
 
     @property
     def n_modes(self) -> int:
@@ -157,11 +180,15 @@ _SHAPES = {
     "interface_areas": (2,), "n_dof": (), "geometry_hash": (), "source": (),
     "participation_rings": "Kn", "ring_flexibility": "KK", "ring_areas": "K",
     "participation_ram_annuli": "Jn", "ram_annulus_areas": "J",
+    "participation_ram_radial": "n", "participation_pile_radial": "n",
+    "radial_flexibility": (4, 4),
 }
 RING_KEYS = ("participation_rings", "ring_flexibility", "ring_areas")
 """The optional keys of a pile port split into rings (all or none)."""
 ANNULUS_KEYS = ("participation_ram_annuli", "ram_annulus_areas")
 """The optional keys of a ram port split into annuli (both or none, with the ring keys)."""
+RADIAL_KEYS = ("participation_ram_radial", "participation_pile_radial", "radial_flexibility")
+"""The optional keys of the ports' radial participation (all or none)."""
 
 
 def check_modal_data(data: ModalData, source: str) -> None:
@@ -220,6 +247,31 @@ def check_modal_data(data: ModalData, source: str) -> None:
                            f"({', '.join(ANNULUS_KEYS + RING_KEYS)})")
     if all(present):
         _check_rings(data, n, bad)
+    radial = [getattr(data, key, None) is not None for key in RADIAL_KEYS]
+    if any(radial) and not all(radial):
+        raise bad(RADIAL_KEYS[radial.index(False)], "must be given with the other radial keys "
+                                                    f"({', '.join(RADIAL_KEYS)})")
+    if all(radial):
+        _check_radial(data, n, bad)
+
+
+def _check_radial(data: ModalData, n: int, bad) -> None:
+    """The radial keys: one finite value per mode, none in the axial rigid-body mode, and a
+    finite symmetric flexibility whose axial block is ``elastic_flexibility``."""
+    for key in RADIAL_KEYS[:2]:
+        arr = np.asarray(getattr(data, key))
+        if arr.shape != (n,) or not np.all(np.isfinite(arr)):
+            raise bad(key, f"must hold one finite value per mode ({n})")
+        if abs(arr[0]) > 1e-9 * max(np.abs(arr).max(), 1e-300):
+            raise bad(key, "must be 0 in the axial rigid-body mode (it has no radial motion)")
+    G = np.asarray(data.radial_flexibility)
+    if (G.shape != (4, 4) or not np.all(np.isfinite(G))
+            or np.abs(G - G.T).max() > 1e-9 * np.abs(G).max()):
+        raise bad("radial_flexibility", "must be a finite symmetric 4x4 matrix [m/N]")
+    axial = np.asarray(data.elastic_flexibility)
+    if np.abs(G[:2, :2] - axial).max() > 1e-9 * np.abs(axial).max():
+        raise bad("radial_flexibility", "its axial block [:2, :2] must equal "
+                                        "elastic_flexibility")
 
 
 def _check_rings(data: ModalData, n: int, bad) -> None:
@@ -348,7 +400,7 @@ def load_modal_data(path: str | Path) -> ModalData:
     kwargs = {}
     for fld in fields(ModalData):
         if fld.name not in content:
-            if fld.name in RING_KEYS + ANNULUS_KEYS:
+            if fld.name in RING_KEYS + ANNULUS_KEYS + RADIAL_KEYS:
                 continue
             raise InputError(src, fld.name, "is missing")
         value = content[fld.name]

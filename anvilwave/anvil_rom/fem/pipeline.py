@@ -14,6 +14,7 @@ from anvilwave.anvil_rom.fem.elasticity import (
     AxisymmetricModel,
     assemble,
     interface_vectors,
+    radial_interface_vectors,
     ram_annulus_vectors,
     ring_vectors,
 )
@@ -91,7 +92,7 @@ def check_fmax(model: AxisymmetricModel, fmax: float, source: str, key: str = "f
 
 def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: ModeSet,
                           b_ram: np.ndarray, b_pile: np.ndarray, areas: tuple[float, float],
-                          source: str = "anvilwave") -> ModalData:
+                          source: str = "anvilwave", radial: bool = False) -> ModalData:
     """Project modes on the interfaces and pack them with the static flexibility.
 
     With ``spec.interfaces.pile_rings`` > 1 also on the pile's rings
@@ -116,6 +117,10 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
         Ram face and pile ring areas [m^2].
     source : str, default "anvilwave"
         Who computed the modes.
+    radial : bool, default False
+        Also the radial participation of the modes at the ram face and the pile ring and the
+        4 x 4 flexibility with it (the optional radial keys of the modal file, for ports with
+        friction; :func:`anvilwave.anvil_rom.fem.elasticity.radial_interface_vectors`).
 
     Returns
     -------
@@ -149,6 +154,18 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
     gravity = modes.shapes.T @ (model.mass @ e)
     flex = elastic_flexibility(model, B)
     flex = 0.5 * (flex + flex.T)
+    if radial:
+        C = np.column_stack(radial_interface_vectors(model, itf))
+        ports = np.column_stack([b_ram, b_pile, C])
+        radial_flex = elastic_flexibility(model, ports)
+        radial_flex = 0.5 * (radial_flex + radial_flex.T)
+        radial_flex[:2, :2] = flex[:2, :2]
+        radial_part = C.T @ modes.shapes
+        radial_keys = {"participation_ram_radial": radial_part[0],
+                       "participation_pile_radial": radial_part[1],
+                       "radial_flexibility": radial_flex}
+    else:
+        radial_keys = {}
     if itf.pile_rings > 1:
         K = itf.pile_rings
         ram_ports = [0] if itf.ram_annuli == 1 else list(range(2 + K, B.shape[1]))
@@ -169,7 +186,7 @@ def modal_data_from_modes(spec: AnvilSpec, model: AxisymmetricModel, modes: Mode
         interfaces=np.array([itf.ram_contact_radius, itf.pile_contact_radius,
                              itf.pile_contact_width]),
         interface_areas=np.array(areas), n_dof=model.n_dof, geometry_hash=spec.geometry_hash(),
-        source=source, **rings,
+        source=source, **rings, **radial_keys,
     )
 
 
