@@ -30,10 +30,11 @@ from anvilwave.analyses.compare import ModelRun, band_levels, metrics, without_s
 from anvilwave.cli import main as anvilwave_main
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
+from anvilwave.output.examples import EXAMPLES_DIR
 from anvilwave.output.tables import read_csv
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "anvilwave" / "examples"
+EXAMPLES = EXAMPLES_DIR  # the installed package's (the checkout's in an editable install)
 TABLE1 = EXAMPLES / "table1.toml"
 INTERFACES = EXAMPLES / "table1_interfaces.toml"
 SPECTRA_BANDS = (100.0, 251.0, 501.0, 1000.0, 1259.0, 1585.0, 1995.0, 2512.0, 3162.0, 3981.0)

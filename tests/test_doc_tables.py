@@ -14,11 +14,16 @@ docs/data/*.json (rendered by docs/_ext/data_tables.py), and these tests check t
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+import anvilwave
+from anvilwave.config.system import load_system
 
 from .conftest import SHARED
 from .doc_tables import DOC_DATA, ROOT, assert_same_numbers, benchmark, doc_data
@@ -222,3 +227,37 @@ def test_anvil_size_study_row():
     row = study.run_case(case)
     assert_same_numbers(row, doc_data("study_anvil_size")["values"]["scaled"]["s2"], "s2",
                         skip=("fea_wall_time [s]", "wall_time [s]"))
+
+
+def test_xl_drive_data_file():
+    """docs/data/xl_drive.json (benchmarks/doc_xl_drive.py). Recomputed here per anvil model:
+    the two depths that the table reads from one row each (the deepest: ENTHRU; the depth of
+    the largest blow count), each run alone (one blow from rest per depth, so a depth does not
+    depend on the others); the whole 39-depth drives (about 25 s for the three) are rerun by
+    tests/test_readme_outputs.py for drive.md's checked `--compare-anvils` block, whose printed
+    totals and largest stresses must be the file's to the printed digits."""
+    script = benchmark("doc_xl_drive")
+    stored = doc_data("xl_drive")["values"]
+    cfg = load_system(script.SYSTEM)
+    for model in script.MODELS:
+        v = stored[model]
+        for depth, key, column in ((v["last_depth [m]"], "enthru_last_depth [J]", "enthru [J]"),
+                                   (v["max_blow_count_depth [m]"], "max_blow_count [1/m]",
+                                    "blow_count [1/m]")):
+            settings = dataclasses.replace(cfg.drive, depths=np.array([depth]),
+                                           time_series_depths=())
+            (row,) = anvilwave.drive(dataclasses.replace(cfg, drive=settings), anvil=model,
+                                     workers=1).rows
+            assert_same_numbers(row[column], v[key], f"{model} {key}")
+    printed = {}
+    for line in (ROOT / "docs" / "drive.md").read_text(encoding="utf-8").splitlines():
+        m = re.match(r"^(rom|lumped|classic)\s+total blows\s+(\d+),.*max compression\s+([\d.]+)"
+                     r" MPa, max tension\s+(-?[\d.]+) MPa", line)
+        if m:
+            printed[m[1]] = (int(m[2]), float(m[3]), float(m[4]))
+    assert set(printed) == set(script.MODELS), "drive.md's checked block changed its form"
+    for model, (blows, compression, tension) in printed.items():
+        v = stored[model]
+        assert v["total_blows [-]"] == blows, model
+        assert v["max_compression_stress [Pa]"] / 1e6 == pytest.approx(compression, abs=0.05)
+        assert v["max_tension_stress [Pa]"] / 1e6 == pytest.approx(tension, abs=0.05)
