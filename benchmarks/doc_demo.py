@@ -206,7 +206,7 @@ def write(demo: Path) -> None:
         "lumped_ram_peak": [cmp["lumped"]["peak_ram_anvil_force_error [-]"], "pct+"],
         "interfaces_max_band_db": [interfaces["max_abs_band_deviation_to_4_kHz [dB]"], "dB2"],
         "interfaces_ram_peak": [interfaces["peak_ram_anvil_force_error [-]"], "pct+"],
-        "interfaces_pile_peak": [interfaces["peak_anvil_pile_force_error [-]"], "pct+"],
+        "interfaces_pile_peak": [interfaces["peak_anvil_pile_force_error [-]"], "pct+sig2"],
         "interfaces_rms_ram": [interfaces["ram_anvil_force_normalised_rms_error [-]"], "pct"],
         "interfaces_rms_pile": [interfaces["anvil_pile_force_normalised_rms_error [-]"], "pct"],
         "interfaces_raw_ram": [
@@ -231,8 +231,9 @@ def write(demo: Path) -> None:
         m = variants[name]
         subs[f"{name}_pile_peak"] = [m["peak_anvil_pile_force_error [-]"], "pct+"]
         subs[f"{name}_ram_peak"] = [m["peak_ram_anvil_force_error [-]"], "pct+"]
-        subs[f"{name}_raw_ram"] = [
-            m["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"], "pct+"]
+        if name == "modal_ram_no_dashpot":
+            subs[f"{name}_raw_ram"] = [
+                m["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"], "pct+"]
     write_doc_data(
         "demo", about="The demo's Table 1 comparison (anvilwave demo) and the Table 1 variants "
         "run against its FEA: errors against the FEA, every series low-passed at 5 kHz.",

@@ -148,17 +148,26 @@ def geometry_numbers(cfg: SystemConfig, modal) -> dict:
     }
 
 
-def run_case(case: Case) -> dict:
+def _computed_modes(spec, fmax):
+    return compute_anvil_modes(spec, fmax=fmax).modal_data
+
+
+def run_case(case: Case, reference: ModelRun | None = None, modes=_computed_modes) -> dict:
+    """A case's row: its FEA (or ``reference``, an FEA run of the same case given, e.g. the
+    demo's for xl8), its geometry numbers and the errors of both anvil models against the FEA.
+    ``modes(spec, fmax)`` gives the anvil's modal data (default: computed)."""
     cfg = case_config(case)
-    modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
-    fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * case.scale,
-                                    output_interval=1e-5 * case.scale))
-    ref = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
+    modal = modes(cfg.anvil.spec, cfg.anvil.fmax)
+    row = {"window [s]": cfg.duration, "fea_mesh_size [m]": 0.1 * case.scale}
+    if reference is None:
+        fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * case.scale,
+                                        output_interval=1e-5 * case.scale))
+        reference = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
+        row.update({"fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time})
+    ref = reference
     preload = float(ref.columns["anvil_pile_force [N]"][0])
     band = comparison_bandwidth(cfg)
-    row = {"window [s]": cfg.duration, "fea_mesh_size [m]": 0.1 * case.scale,
-           "bandwidth [Hz]": band, "fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time,
-           **geometry_numbers(cfg, modal)}
+    row.update({"bandwidth [Hz]": band, **geometry_numbers(cfg, modal)})
     for model in ("rom", "lumped"):
         blow = build_engine(cfg.with_anvil_model(model), modal=modal).run()[0]
         row[model] = metrics(ModelRun(model, blow.columns, blow.wall_time, {}), ref, preload,

@@ -19,6 +19,7 @@ from anvilwave.analyses.compare import (
 )
 from anvilwave.cli import main
 from anvilwave.config.cache import cached_modal_data
+from anvilwave.output.tables import read_csv
 
 from .conftest import DEMO_IN_WHEEL, EXAMPLES, FROM_CHECKOUT, assert_within_issue_bounds
 from .doc_tables import assert_same_numbers, benchmark, doc_data
@@ -234,7 +235,7 @@ def test_docs_demo_variant_against_the_demo_fea(demo, name):
     demo's step 4). pile_rings_3: test_table1_pile_port_in_rings_against_fea."""
     out, cmp = demo
     script = benchmark("doc_demo")
-    fea = ModelRun("fea", script.read_csv(out / "fea.csv"), 0.0, {})
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
     m, run = script.run_variant(name, fea, cmp["comparison_bandwidth [Hz]"])
     stored = doc_data("demo")["values"]
     assert_same_numbers(m, stored["variants"][name], name, skip=WALL)
@@ -255,10 +256,26 @@ def test_docs_fmax_study_row_at_the_default_fmax(demo, correction):
     out, _ = demo
     study = benchmark("study_fmax")
     cfg = study.study_config()
-    fea = ModelRun("fea", study.read_csv(out / "fea.csv"), 0.0, {})
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
     row = study.study_row(cfg, fea, cached_modal_data(cfg.anvil.spec, 5000.0), 5000.0,
                           correction)
     stored = next(r for r in doc_data("study_fmax")["values"]["rom"]
                   if r["fmax [Hz]"] == 5000.0 and r["static_correction"] == correction)
     assert_same_numbers(row, stored, f"fmax 5000, correction {correction}",
+                        skip=WALL)
+
+
+def test_docs_anvil_size_study_xl8_on_the_demo_fea(demo):
+    """docs/data/study_anvil_size.json (benchmarks/study_anvil_size.py), its xl8 case (Table 1
+    with a Smith rod ram, contacts without dashpot, 0.5 m pile segments) recomputed against the
+    demo's FEA: the study's own xl8 FEA has the same settings (the FE model does not depend on
+    the 1D ram, the pile segments or the contact dashpot), so every figure of the row must be
+    the stored one within the same-run tolerance. The other cases: tests/test_doc_tables.py."""
+    out, _ = demo
+    study = benchmark("study_anvil_size")
+    case = study.SERIES["scaled"][2]
+    assert case.name == "xl8"
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
+    row = study.run_case(case, reference=fea, modes=cached_modal_data)
+    assert_same_numbers(row, doc_data("study_anvil_size")["values"]["scaled"]["xl8"], "xl8",
                         skip=WALL)

@@ -66,6 +66,7 @@ FORMATS = {
     "f2": lambda v: _signed(f"{v:.2f}", v, False),
     "pct": lambda v: percent(v),
     "pct+": lambda v: percent(v, sign=True),
+    "pct+sig2": lambda v: _signed(_sig2(100.0 * v), v, True) + " %",
     "ms+": lambda v: milliseconds(v),
     "ms": lambda v: milliseconds(v, sign=False),
     "dB": lambda v: _signed(f"{v:.1f}", v, False) + " dB",
