@@ -100,26 +100,28 @@ def band_deviations(spectra: dict, model: str) -> list[float | None]:
     return out
 
 
-def band_extreme(spectra: dict, model: str, low: float, high: float) -> tuple[float, float]:
-    """The largest |deviation| [dB] of a model's valid bands with nominal centres from ``low``
-    to ``high`` [Hz], and that band's centre [Hz]."""
+def _bands_between(spectra: dict, model: str, low: float, high: float):
+    """|deviation| [dB] and centres [Hz] of a model's valid bands with nominal centres from
+    ``low`` to ``high`` [Hz]."""
     centre = np.array(spectra["band_centre_frequency [Hz]"])
     valid = np.array(spectra["valid [-]"], bool)
     deviation = np.array([np.nan if d is None else d
                           for d in spectra["deviation_from_fea [dB]"][model]])
     inside = valid & (centre >= 0.99 * low) & (centre <= 1.01 * high)
-    i = int(np.nanargmax(np.where(inside, np.abs(deviation), np.nan)))
-    return float(abs(deviation[i])), float(centre[i])
+    return np.abs(deviation[inside]), centre[inside]
+
+
+def band_extreme(spectra: dict, model: str, low: float, high: float) -> tuple[float, float]:
+    """The largest |deviation| [dB] of a model's valid bands from ``low`` to ``high`` [Hz],
+    and that band's centre [Hz]."""
+    deviation, centre = _bands_between(spectra, model, low, high)
+    i = int(np.nanargmax(deviation))
+    return float(deviation[i]), float(centre[i])
 
 
 def band_smallest(spectra: dict, model: str, low: float, high: float) -> float:
     """The smallest |deviation| [dB] of a model's valid bands from ``low`` to ``high`` [Hz]."""
-    centre = np.array(spectra["band_centre_frequency [Hz]"])
-    valid = np.array(spectra["valid [-]"], bool)
-    deviation = np.array([np.nan if d is None else d
-                          for d in spectra["deviation_from_fea [dB]"][model]])
-    inside = valid & (centre >= 0.99 * low) & (centre <= 1.01 * high)
-    return float(np.nanmin(np.abs(deviation[inside])))
+    return float(np.nanmin(_bands_between(spectra, model, low, high)[0]))
 
 
 COMPARISON_COLUMNS = {

@@ -224,7 +224,7 @@ def test_docs_demo_data_is_this_demo(demo):
     computed = {"rom": script.band_deviations(cmp["pile_head_force_spectra"], "rom"),
                 "lumped": script.band_deviations(cmp["pile_head_force_spectra"], "lumped"),
                 "interfaces": script.band_deviations(resolved["pile_head_force_spectra"], "rom")}
-    assert_same_numbers(computed, stored["spectra"], "spectra")
+    assert_same_numbers(computed, {k: stored["spectra"][k] for k in computed}, "spectra")
 
 
 @pytest.mark.parametrize("name", ["rod_ram", "modal_ram_no_dashpot", "rod_ram_no_dashpot",
