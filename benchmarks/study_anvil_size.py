@@ -206,6 +206,11 @@ DOC_METRICS = {
 """The error columns of docs/validation.md's table: (format, metric)."""
 
 
+def _hammer_text(name: str) -> str:
+    """A database hammer's name, short: "illustrative" for the scaled series' rams."""
+    return "illustrative" if "illustrative" in name else name.replace("Hydrohammer ", "")
+
+
 def _mass_text(mass: float) -> str:
     tonnes = mass / 1e3
     return f"{tonnes:.0f} t" if tonnes >= 9.95 else f"{tonnes:.1f} t"
@@ -224,7 +229,7 @@ def doc_rows(results: dict) -> list:
         else:
             cases.append(("class", name, row))
     for series, name, row in cases:
-        label = f"{name} ({row['hammer']}, {_mass_text(row['ram_mass [kg]'])})"
+        label = f"{name} ({_hammer_text(row['hammer'])}, {_mass_text(row['ram_mass [kg]'])})"
         head = [series, label, row["anvil_overhang_ratio [-]"],
                 row["f1_times_ram_return_time [-]"]]
         for model, lead in (("rom", head), ("lumped", [None] * 4)):
@@ -281,14 +286,21 @@ def write_docs_table(results: dict) -> None:
     write_doc_data(
         "study_anvil_size", about="The anvil-size study (docs/validation.md, \"The anvil-size "
         "study\"): the ROM and the lumped anvil against each case's FEA in its comparison band.",
-        inputs=inputs, tables={"size": table}, substitutions=subs, values=results)
+        inputs=inputs, tables={"size": table}, substitutions=subs, values=results,
+        command="python benchmarks/study_anvil_size.py")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_size")
     parser.add_argument("--series", choices=("scaled", "class", "both"), default="both")
+    parser.add_argument("--docs-from", type=Path, default=None, metavar="STUDY_JSON",
+                        help="only rewrite docs/data/study_anvil_size.json from the study.json "
+                             "of an earlier run of both series")
     args = parser.parse_args()
+    if args.docs_from is not None:
+        write_docs_table(json.loads(args.docs_from.read_text()))
+        return
     args.out.mkdir(parents=True, exist_ok=True)
     names = ("scaled", "class") if args.series == "both" else (args.series,)
     results = {}
