@@ -29,6 +29,8 @@ the case's comparison band, and what should govern the lumped error: the anvil's
 the ram face to the pile wall, (r_pile - r_ram) / r_pile (r_pile: the pile wall mid radius),
 and the anvil's first flexible frequency f1 times the ram's wave return time 2 L_ram / c
 (f1 T_ram large: the anvil is stiff over the time of the impact and acts as a rigid mass).
+With both series (the default) it also writes the table of docs/validation.md,
+docs/data/study_anvil_size.json (benchmarks/doc_data.py; checked by tests/test_doc_tables.py).
 """
 
 from __future__ import annotations
@@ -39,6 +41,8 @@ import json
 import math
 import time
 from pathlib import Path
+
+from doc_data import system_inputs, write_doc_data
 
 from anvilwave.analyses.compare import (
     ModelRun,
@@ -144,17 +148,26 @@ def geometry_numbers(cfg: SystemConfig, modal) -> dict:
     }
 
 
-def run_case(case: Case) -> dict:
+def _computed_modes(spec, fmax):
+    return compute_anvil_modes(spec, fmax=fmax).modal_data
+
+
+def run_case(case: Case, reference: ModelRun | None = None, modes=_computed_modes) -> dict:
+    """A case's row: its FEA (or ``reference``, an FEA run of the same case given, e.g. the
+    demo's for xl8), its geometry numbers and the errors of both anvil models against the FEA.
+    ``modes(spec, fmax)`` gives the anvil's modal data (default: computed)."""
     cfg = case_config(case)
-    modal = compute_anvil_modes(cfg.anvil.spec, fmax=cfg.anvil.fmax).modal_data
-    fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * case.scale,
-                                    output_interval=1e-5 * case.scale))
-    ref = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
+    modal = modes(cfg.anvil.spec, cfg.anvil.fmax)
+    row = {"window [s]": cfg.duration, "fea_mesh_size [m]": 0.1 * case.scale}
+    if reference is None:
+        fea = run_impact_fea(fea_config(cfg, mesh_size=0.1 * case.scale,
+                                        output_interval=1e-5 * case.scale))
+        reference = ModelRun("fea", fea.to_columns(), fea.wall_time, {})
+        row.update({"fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time})
+    ref = reference
     preload = float(ref.columns["anvil_pile_force [N]"][0])
     band = comparison_bandwidth(cfg)
-    row = {"window [s]": cfg.duration, "fea_mesh_size [m]": 0.1 * case.scale,
-           "bandwidth [Hz]": band, "fea_dof": fea.n_dof, "fea_wall_time [s]": fea.wall_time,
-           **geometry_numbers(cfg, modal)}
+    row.update({"bandwidth [Hz]": band, **geometry_numbers(cfg, modal)})
     for model in ("rom", "lumped"):
         blow = build_engine(cfg.with_anvil_model(model), modal=modal).run()[0]
         row[model] = metrics(ModelRun(model, blow.columns, blow.wall_time, {}), ref, preload,
@@ -183,11 +196,111 @@ def print_table(series: str, table: dict) -> None:
                   f"{m['pile_force_arrival_error [s]'] * 1e3:+8.3f}ms")
 
 
+DOC_METRICS = {
+    "ram peak": ("pct+", "peak_ram_anvil_force_error [-]"),
+    "pile peak": ("pct+", "peak_anvil_pile_force_error [-]"),
+    "RMS ram": ("pct", "ram_anvil_force_normalised_rms_error [-]"),
+    "RMS pile": ("pct", "anvil_pile_force_normalised_rms_error [-]"),
+    "arrival": ("ms+", "pile_force_arrival_error [s]"),
+}
+"""The error columns of docs/validation.md's table: (format, metric)."""
+
+
+def _hammer_text(name: str) -> str:
+    """A database hammer's name, short: "illustrative" for the scaled series' rams."""
+    return "illustrative" if "illustrative" in name else name.replace("Hydrohammer ", "")
+
+
+def _mass_text(mass: float) -> str:
+    tonnes = mass / 1e3
+    return f"{tonnes:.0f} t" if tonnes >= 9.95 else f"{tonnes:.1f} t"
+
+
+def doc_rows(results: dict) -> list:
+    """The table's rows: per case its ROM and lumped rows; a case of both series with the same
+    results (xl8: its toe window is longer than 25 ms) once, as "both"."""
+    rows = []
+    scaled, classes = results["scaled"], results["class"]
+    cases = [("scaled", n, r) for n, r in scaled.items()]
+    for name, row in classes.items():
+        if name in scaled and all(row[m][k] == scaled[name][m][k] for m in ("rom", "lumped")
+                                  for _, k in DOC_METRICS.values()):
+            cases = [("both" if c[1] == name else c[0], *c[1:]) for c in cases]
+        else:
+            cases.append(("class", name, row))
+    for series, name, row in cases:
+        label = f"{name} ({_hammer_text(row['hammer'])}, {_mass_text(row['ram_mass [kg]'])})"
+        head = [series, label, row["anvil_overhang_ratio [-]"],
+                row["f1_times_ram_return_time [-]"]]
+        for model, lead in (("rom", head), ("lumped", [None] * 4)):
+            label = "ROM" if model == "rom" else "lumped"
+            rows.append([*lead, label, *(row[model][k] for _, k in DOC_METRICS.values())])
+    return rows
+
+
+def write_docs_table(results: dict) -> None:
+    """docs/data/study_anvil_size.json: the table of docs/validation.md and the figures its
+    prose quotes."""
+    table = {"columns": ["series", "anvil (hammer)", "overhang", "f1·T_ram", "model",
+                         *DOC_METRICS],
+             "formats": [None, None, "f2", "f2", None, *(f for f, _ in DOC_METRICS.values())],
+             "rows": doc_rows(results)}
+    scaled, classes = results["scaled"], results["class"]
+    small, wide = classes["s2_class"], [classes["m55_class"], classes["xl8"]]
+
+    def span(rows, model, key, pick):
+        return pick(r[model][key] for r in rows)
+
+    pile, ram = "peak_anvil_pile_force_error [-]", "peak_ram_anvil_force_error [-]"
+    rms_ram, rms_pile = ("ram_anvil_force_normalised_rms_error [-]",
+                         "anvil_pile_force_normalised_rms_error [-]")
+    arrival = "pile_force_arrival_error [s]"
+    every = [*scaled.values(), *classes.values()]
+    subs = {
+        "scaled_lumped_rms_min": [min(span(scaled.values(), "lumped", k, min)
+                                      for k in (rms_ram, rms_pile)), "pct"],
+        "scaled_lumped_rms_max": [max(span(scaled.values(), "lumped", k, max)
+                                      for k in (rms_ram, rms_pile)), "pct"],
+        "scaled_lumped_pile_min": [-span(scaled.values(), "lumped", pile, max), "pct"],
+        "scaled_lumped_pile_max": [-span(scaled.values(), "lumped", pile, min), "pct"],
+        "small_f1t": [small["f1_times_ram_return_time [-]"], "sig2"],
+        "small_overhang": [small["anvil_overhang_ratio [-]"], "f2"],
+        "small_lumped_pile": [abs(small["lumped"][pile]), "pct"],
+        "small_lumped_arrival": [abs(small["lumped"][arrival]), "ms"],
+        "wide_overhang_min": [min(r["anvil_overhang_ratio [-]"] for r in wide), "f2"],
+        "wide_f1t_max": [max(r["f1_times_ram_return_time [-]"] for r in wide), "sig2"],
+        "wide_lumped_pile_min": [-span(wide, "lumped", pile, max), "pct"],
+        "wide_lumped_pile_max": [-span(wide, "lumped", pile, min), "pct"],
+        "wide_lumped_arrival_min": [-span(wide, "lumped", arrival, max), "ms"],
+        "wide_lumped_arrival_max": [-span(wide, "lumped", arrival, min), "ms"],
+        "wide_lumped_ram_min": [span(wide, "lumped", ram, min), "pct"],
+        "rom_rms_max_but_small_ram": [max(
+            max(r["rom"][rms_pile] for r in every),
+            max(r["rom"][rms_ram] for r in every if r is not small)), "pct"],
+        "small_rom_rms_ram": [small["rom"][rms_ram], "pct"],
+    }
+    inputs = [p for case in (*SERIES["scaled"], *SERIES["class"])
+              for p in system_inputs(ROOT / "anvilwave" / "examples" / case.file)]
+    inputs += [ROOT / "anvilwave" / "hammer" / "data" / f"{c.hammer}.toml"
+               for c in SERIES["class"] if c.hammer]
+    write_doc_data(
+        "study_anvil_size", about="The anvil-size study (docs/validation.md, \"The anvil-size "
+        "study\"): the ROM and the lumped anvil against each case's FEA in its comparison band.",
+        inputs=inputs, tables={"size": table}, substitutions=subs, values=results,
+        command="python benchmarks/study_anvil_size.py")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_size")
     parser.add_argument("--series", choices=("scaled", "class", "both"), default="both")
+    parser.add_argument("--docs-from", type=Path, default=None, metavar="STUDY_JSON",
+                        help="only rewrite docs/data/study_anvil_size.json from the study.json "
+                             "of an earlier run of both series")
     args = parser.parse_args()
+    if args.docs_from is not None:
+        write_docs_table(json.loads(args.docs_from.read_text()))
+        return
     args.out.mkdir(parents=True, exist_ok=True)
     names = ("scaled", "class") if args.series == "both" else (args.series,)
     results = {}
@@ -201,6 +314,8 @@ def main() -> None:
                   f"{row['fea_wall_time [s]']:.1f} s, case {time.perf_counter() - start:.1f} s",
                   flush=True)
     (args.out / "study.json").write_text(json.dumps(results, indent=2) + "\n")
+    if len(names) == 2:
+        write_docs_table(results)
     for series, table in results.items():
         print_table(series, table)
 

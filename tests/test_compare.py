@@ -18,8 +18,14 @@ from anvilwave.analyses.compare import (
     plot_spectra,
 )
 from anvilwave.cli import main
+from anvilwave.config.cache import cached_modal_data
+from anvilwave.output.tables import read_csv
 
 from .conftest import DEMO_IN_WHEEL, EXAMPLES, FROM_CHECKOUT, assert_within_issue_bounds
+from .doc_tables import assert_same_numbers, benchmark, doc_data
+
+WALL = ("wall_time [s]", "realtime_factor [-]")
+"""Speed, in the data files but never compared (measured in benchmarks/ only)."""
 
 
 @pytest.fixture(scope="module")
@@ -194,3 +200,83 @@ def test_table1_pile_port_in_rings_against_fea(demo):
     assert np.all(np.abs(deviation[valid & (centre > 1260.0) & (centre < 4100.0)]) <= 3.5)
     m = metrics(run, fea, float(fea.columns["anvil_pile_force [N]"][0]), 5000.0)
     assert_within_issue_bounds(m)
+    # the same run is docs/validation.md's `pile_port_rings = 3` row (benchmarks/doc_demo.py)
+    stored = doc_data("demo")["values"]
+    assert_same_numbers(m, stored["variants"]["pile_rings_3"], "pile_rings_3", skip=WALL)
+    assert_same_numbers(benchmark("doc_demo").band_deviations(spectra, "rom"),
+                        stored["spectra"]["pile_rings_3"], "pile_rings_3 bands")
+
+
+def test_docs_demo_data_is_this_demo(demo):
+    """docs/data/demo.json (benchmarks/doc_demo.py: docs/demo.md's table and figures, the band
+    levels of docs/validation.md) holds this demo's figures: the ROM's and the lumped anvil's
+    errors, the interfaces-resolved ROM's, the band levels of all three (tolerance:
+    tests/doc_tables.py, SAME_RUN)."""
+    out, cmp = demo
+    stored = doc_data("demo")["values"]
+    summary = json.loads((out / "summary.json").read_text())
+    for model in ("rom", "lumped"):
+        assert_same_numbers(cmp[model], stored[model], model, skip=WALL)
+    assert_same_numbers(summary["interfaces_rom_vs_fea"], stored["interfaces"], "interfaces")
+    assert_same_numbers(summary, stored["summary"], "summary")
+    script = benchmark("doc_demo")
+    resolved = json.loads((out / "interfaces" / "comparison.json").read_text())
+    computed = {"rom": script.band_deviations(cmp["pile_head_force_spectra"], "rom"),
+                "lumped": script.band_deviations(cmp["pile_head_force_spectra"], "lumped"),
+                "interfaces": script.band_deviations(resolved["pile_head_force_spectra"], "rom")}
+    assert_same_numbers(computed, {k: stored["spectra"][k] for k in computed}, "spectra")
+
+
+@pytest.mark.parametrize("name", ["rod_ram", "modal_ram_no_dashpot", "rod_ram_no_dashpot",
+                                  "pile_rings_3_tube"])
+def test_docs_demo_variant_against_the_demo_fea(demo, name):
+    """The Table 1 variants of docs/data/demo.json, rerun against the demo's FEA (one blow of
+    the in-process engine each; the tube head's kernel is in the session's cache from the
+    demo's step 4). pile_rings_3: test_table1_pile_port_in_rings_against_fea."""
+    out, cmp = demo
+    script = benchmark("doc_demo")
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
+    m, run = script.run_variant(name, fea, cmp["comparison_bandwidth [Hz]"])
+    stored = doc_data("demo")["values"]
+    assert_same_numbers(m, stored["variants"][name], name, skip=WALL)
+    if name in stored["spectra"]:
+        spectra = band_levels({"rom": run, "fea": fea}, cmp["comparison_bandwidth [Hz]"])
+        assert_same_numbers(script.band_deviations(spectra, "rom"), stored["spectra"][name],
+                            f"{name} bands")
+
+
+@pytest.mark.parametrize("correction", [True, False])
+def test_docs_fmax_study_row_at_the_default_fmax(demo, correction):
+    """docs/data/study_fmax.json (benchmarks/study_fmax.py), its rows at the default 5 kHz
+    recomputed on the demo's FEA (the study's own: the same free pile and FEA settings) and the
+    demo's modes (the study truncates its 10 kHz set: the same modes below 5 kHz, the mesh does
+    not depend on fmax). The other fmax are not rerun: their ram modes (1 to 10 kHz, 502 modes
+    at 10 kHz, minutes at a cache miss) are beyond the suite's budget, and they run the same
+    code at another fmax."""
+    out, _ = demo
+    study = benchmark("study_fmax")
+    cfg = study.study_config()
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
+    row = study.study_row(cfg, fea, cached_modal_data(cfg.anvil.spec, 5000.0), 5000.0,
+                          correction)
+    stored = next(r for r in doc_data("study_fmax")["values"]["rom"]
+                  if r["fmax [Hz]"] == 5000.0 and r["static_correction"] == correction)
+    assert_same_numbers(row, stored, f"fmax 5000, correction {correction}",
+                        skip=WALL)
+
+
+def test_docs_anvil_size_study_xl8_on_the_demo_fea(demo):
+    """docs/data/study_anvil_size.json (benchmarks/study_anvil_size.py), its xl8 case (Table 1
+    with a Smith rod ram, contacts without dashpot, 0.5 m pile segments) recomputed against the
+    demo's FEA: the study's own xl8 FEA has the same settings (the FE model does not depend on
+    the 1D ram, the pile segments or the contact dashpot), so every figure of the row must be
+    the stored one within the same-run tolerance. The other cases: tests/test_doc_tables.py."""
+    out, _ = demo
+    study = benchmark("study_anvil_size")
+    case = study.SERIES["scaled"][2]
+    assert case.name == "xl8"
+    fea = ModelRun("fea", read_csv(out / "fea.csv"), 0.0, {})
+    row = study.run_case(case, reference=fea, modes=cached_modal_data)
+    # the FEA's size and wall time are its own run's, not the demo's
+    assert_same_numbers(row, doc_data("study_anvil_size")["values"]["scaled"]["xl8"], "xl8",
+                        skip=(*WALL, "fea_dof", "fea_wall_time [s]"))
