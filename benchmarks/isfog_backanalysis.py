@@ -154,6 +154,9 @@ class Model:
     sand_toe_factor: float = 0.10       # [-] the 2018 revision (0.15: Alm & Hamre 2001)
     faces: str | None = None            # friction faces; None: the coring default
     blows_per_depth: int = 1            # > 1: each blow starts from the state the last left
+    srd_sand: float = 1.0               # [-] multiplier of the shaft SRD in sand
+    srd_clay: float = 1.0               # [-] multiplier of the shaft SRD in clay
+    srd_toe: float = 1.0                # [-] multiplier of the toe SRD
 
 
 @dataclass(frozen=True)
@@ -175,6 +178,7 @@ class PileRecord:
     cpt_file: str
     cpt_options: dict
     fullres: bool = False
+    enthru: np.ndarray | None = None
 
 
 def driving_system(model: Model) -> dict:
@@ -270,6 +274,13 @@ def soil_profile(pile: PileRecord, model: Model):
     return SoilProfile(layers, cpt=cpt, net_area_ratio=model.net_area_ratio)
 
 
+def segment_is_sand(profile, seg, pile_length: float, tip: float) -> np.ndarray:
+    """Per pile segment: is the soil at the middle of its embedded part sand (Robertson)."""
+    top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
+    bottom = np.clip(seg.top + seg.length - (pile_length - tip), 0.0, tip)
+    return np.asarray(profile.is_sand[profile.layer_index(0.5 * (top + bottom))], bool)
+
+
 def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarray,
                   model: Model) -> float:
     """Smith shaft damping of a tip depth [s/m]: the sand and clay factors weighted by the
@@ -277,9 +288,7 @@ def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarra
     total = float(np.sum(shaft))
     if total <= 0.0:
         return model.damping_sand
-    top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
-    bottom = np.clip(seg.top + seg.length - (pile_length - tip), 0.0, tip)
-    sand = profile.is_sand[profile.layer_index(0.5 * (top + bottom))]
+    sand = segment_is_sand(profile, seg, pile_length, tip)
     j = np.where(sand, model.damping_sand, model.damping_clay)
     return float(np.sum(j * shaft) / total)
 
@@ -316,12 +325,18 @@ def simulate_pile(job: tuple) -> dict:
     shape = (len(multipliers), len(energies), len(pile.depths))
     out = {k: np.full(shape, np.nan) for k in ("count", "enthru", "compression", "tension")}
     per_depth = {k: np.zeros(len(pile.depths)) for k in ("srd_shaft", "srd_toe",
-                                                          "damping_shaft", "run_multiplier")}
+                                                          "srd_shaft_sand", "damping_shaft",
+                                                          "run_multiplier")}
     for iz, tip in enumerate(pile.depths):
         ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, float(tip), 1.0)
         cap_shaft, cap_toe = ps.soil.capacities
+        sand = segment_is_sand(profile, seg, length, float(tip))
+        cap_shaft = cap_shaft * np.where(sand, model.srd_sand, model.srd_clay)
+        cap_toe = cap_toe * model.srd_toe
+        shaft, toe = float(np.sum(cap_shaft)), float(cap_toe)
         j = shaft_damping(profile, seg, length, float(tip), cap_shaft, model)
         per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
+        per_depth["srd_shaft_sand"][iz] = float(np.sum(cap_shaft[sand]))
         per_depth["damping_shaft"][iz] = j
         per_depth["run_multiplier"][iz] = weight / (shaft + toe) if shaft + toe > 0 else np.inf
         for im, m in enumerate(multipliers):
@@ -391,7 +406,7 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
         pid = summary["location_id"]
         first = float(summary["first blowcount depth [m]"])
         last = float(summary["last blowcount depth [m]"])
-        z, energy, measured = [], [], []
+        z, energy, measured, enthru = [], [], [], []
         for row in rows:
             depth = float(row["z [m]"])
             count = _number(row["blowcount [blows/m]"])
@@ -401,11 +416,13 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
                 z.append(depth)
                 energy.append(e)
                 measured.append(count)
+                enthru.append(_number(row["normalised ENTHRU [-]"]))
         piles.append(PileRecord(
             pid, summary["cpt_group"], float(summary["bottom wall thickness [mm]"]) / 1e3,
             float(summary["final penetration [m]"]), np.array(z), np.array(energy),
             np.array(measured), str(series), {"rows_where": {"location_id": pid},
-                                              **HALF_METRE_OPTIONS}))
+                                              **HALF_METRE_OPTIONS},
+            enthru=np.array(enthru)))
     return piles
 
 
@@ -682,6 +699,257 @@ def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
                  "measured_mean [blows/m]": float(np.mean(every_m)),
                  "predicted_mean [blows/m]": float(np.mean(every_p))})
     return rows
+
+
+# ----------------------------------------------------------------------------- prediction
+LOG_OFFSET = 5.0
+"""Offset of the log misfit [blows/m]: log(N + 5) - log(N_measured + 5) keeps the shallow
+records (a few blows/m, or 0 where the pile runs) from dominating the log fit."""
+RESIDUAL_SCALE = {"log": 0.35, "blows": 20.0}
+"""Typical misfit of one record (log: [-], blows: [blows/m]; about the records' own scatter
+between piles under one CPT) that weighs the prior against the data in the fit."""
+PRIOR_SD = math.log(2.0)
+"""Prior standard deviation [-] of the log of each soil class's SRD multiplier about the
+common one: a class's SRD within a factor 2 of the others' (the faces' rule alone changes
+the shaft by 2 between codes, srd-methods.md)."""
+CLASSES = ("sand", "clay", "toe")
+
+
+class ResponseSurface:
+    """Blow counts of many records as a function of one reference energy and the SRD
+    multipliers of sand shaft, clay shaft and toe, from a grid of direct runs.
+
+    Each record (pile, tip depth) was simulated on a grid of common SRD multipliers x
+    reference energies (:func:`simulate_pile`); the per-class multipliers enter through the
+    record's effective multiplier m = (m_sand R_sand + m_clay R_clay + m_toe R_toe) / R (the
+    distribution of the SRD between shaft and toe is that of multiplier 1, an approximation
+    checked against direct runs, :func:`main`). log(blow count) is interpolated bilinearly in
+    log(m) and log(energy); grid nodes where the pile runs under its weight are replaced by
+    the extrapolation of the two nodes above (the count jumps from 0 there), and the count is
+    0 exactly where m R is below the weight.
+
+    energies, multipliers : grid [J], [-]; counts : (n, multipliers, energies) [blows/m];
+    run : (n,) multiplier at and below which each record runs [-]; sand, clay, toe : (n,) SRD
+    at multiplier 1 [N]; energy_factor : (n,) factor on the reference energy of each record
+    [-] (1: the normalised hammer energy; ENTHRU / (0.75 x hammer energy) to drive with the
+    recorded ENTHRU).
+    """
+
+    def __init__(self, energies, multipliers, counts, run, sand, clay, toe,
+                 energy_factor=None):
+        self.le = np.log(np.asarray(energies, float))
+        self.lm = np.log(np.asarray(multipliers, float))
+        lc = np.log(np.clip(np.asarray(counts, float), COUNT_FLOOR, REFUSAL_COUNT))
+        self.run = np.asarray(run, float)
+        for k in range(lc.shape[0]):
+            ok = np.exp(self.lm) > self.run[k]
+            if ok.all():
+                continue
+            if not ok.any():
+                lc[k] = math.log(COUNT_FLOOR)
+                continue
+            i0 = int(np.argmax(ok))
+            slope = ((lc[k, i0 + 1] - lc[k, i0]) / (self.lm[i0 + 1] - self.lm[i0])
+                     if i0 + 1 < self.lm.size else 0.0)
+            lc[k, :i0] = lc[k, i0] + np.multiply.outer(self.lm[:i0] - self.lm[i0], slope)
+        self.lc = lc
+        self.sand, self.clay, self.toe = (np.asarray(v, float) for v in (sand, clay, toe))
+        self.energy_factor = (np.ones(lc.shape[0]) if energy_factor is None
+                              else np.asarray(energy_factor, float))
+
+    def subset(self, rows) -> ResponseSurface:
+        """The surface of the records ``rows`` (a boolean mask or indices)."""
+        s = object.__new__(ResponseSurface)
+        s.le, s.lm = self.le, self.lm
+        for k in ("lc", "run", "sand", "clay", "toe", "energy_factor"):
+            setattr(s, k, getattr(self, k)[rows])
+        return s
+
+    def with_energy_factor(self, factor) -> ResponseSurface:
+        s = self.subset(slice(None))
+        s.energy_factor = np.asarray(factor, float)
+        return s
+
+    def effective_multiplier(self, m_sand: float, m_clay: float, m_toe: float) -> np.ndarray:
+        total = self.sand + self.clay + self.toe
+        return ((m_sand * self.sand + m_clay * self.clay + m_toe * self.toe)
+                / np.where(total > 0, total, 1.0))
+
+    @staticmethod
+    def _cell(nodes, x):
+        x = np.clip(x, nodes[0], nodes[-1])
+        i = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, nodes.size - 2)
+        return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+
+    def __call__(self, e_ref: float, m_sand: float = 1.0, m_clay: float | None = None,
+                 m_toe: float | None = None) -> np.ndarray:
+        """Blow counts [blows/m] of every record at E_ref [J] and the class multipliers [-]
+        (clay and toe default to the sand one)."""
+        m = self.effective_multiplier(m_sand, m_sand if m_clay is None else m_clay,
+                                      m_sand if m_toe is None else m_toe)
+        im, wm = self._cell(self.lm, np.log(m))
+        ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor))
+        k = np.arange(self.lc.shape[0])
+        lc = ((1 - wm) * ((1 - we) * self.lc[k, im, ie] + we * self.lc[k, im, ie + 1])
+              + wm * ((1 - we) * self.lc[k, im + 1, ie] + we * self.lc[k, im + 1, ie + 1]))
+        return np.where(m <= self.run, 0.0, np.exp(lc))
+
+
+def misfit(predicted, measured, space: str) -> np.ndarray:
+    """Residuals of the fit: in blows/m (``"blows"``) or of log(N + LOG_OFFSET) (``"log"``)."""
+    if space == "log":
+        return np.log(predicted + LOG_OFFSET) - np.log(measured + LOG_OFFSET)
+    return np.asarray(predicted, float) - np.asarray(measured, float)
+
+
+def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
+                    space: str = "log", prior_sd: float = PRIOR_SD,
+                    n_eff: float = 1.0) -> dict:
+    """E_ref, a common SRD multiplier and (``classes``, a subset of :data:`CLASSES`) the
+    deviations of the classes' multipliers from it, minimising
+
+        mean(r^2) / s^2 + sum(d_c^2) / (prior_sd^2 n_eff)
+
+    (a Gaussian MAP estimate: r the :func:`misfit` in ``space``, s its
+    :data:`RESIDUAL_SCALE`, d_c = log(m_c) - log(m) the class deviations with a prior of
+    standard deviation ``prior_sd`` about the common multiplier, n_eff the number of
+    independent observations: the foundations, whose piles share one CPT). E_ref and the
+    common multiplier are not penalised (the data fix their valley). Nelder-Mead from the best
+    of a coarse start grid, restarted twice. Returns the values and the objective."""
+    from scipy.optimize import minimize
+
+    measured = np.asarray(measured, float)
+    s2 = RESIDUAL_SCALE[space] ** 2
+
+    def unpack(p):
+        d = dict(zip(classes, p[2:], strict=True))
+        return (math.exp(p[0]), *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES))
+
+    def objective(p):
+        r = misfit(surface(*unpack(p)), measured, space)
+        penalty = float(np.sum(np.asarray(p[2:]) ** 2)) / prior_sd ** 2 if classes else 0.0
+        return float(np.mean(r * r)) / s2 + penalty / n_eff
+
+    starts = [np.r_[math.log(e), math.log(m), np.zeros(len(classes))]
+              for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)]
+    res = None
+    p0 = min(starts, key=objective)
+    for _ in range(3):  # restarted: a fresh simplex where the last one shrank in a valley
+        res = minimize(objective, p0 if res is None else res.x, method="Nelder-Mead",
+                       options={"xatol": 1e-5, "fatol": 1e-12, "maxfev": 6000,
+                                "adaptive": True})
+    e_ref, m_sand, m_clay, m_toe = unpack(res.x)
+    at_edge = bool(not (surface.le[0] < math.log(e_ref) < surface.le[-1]))
+    return {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
+            "srd_toe [-]": m_toe, "objective [-]": float(res.fun), "energy_at_grid_edge": at_edge}
+
+
+def predict_with(surface: ResponseSurface, fitted: dict) -> np.ndarray:
+    """Blow counts [blows/m] of the surface's records at the fitted values."""
+    return surface(fitted["E_ref [J]"], fitted["srd_sand [-]"], fitted["srd_clay [-]"],
+                   fitted["srd_toe [-]"])
+
+
+def stacking_weight(physics, baseline, measured) -> float:
+    """Weight w in [0, 1] of the least-squares blend baseline + w (physics - baseline) [-]."""
+    d = np.asarray(physics, float) - np.asarray(baseline, float)
+    den = float(np.sum(d * d))
+    if den <= 0.0:
+        return 1.0
+    return float(np.clip(np.sum(d * (np.asarray(measured, float) - baseline)) / den, 0.0, 1.0))
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of the stepwise back-analysis: what the model drives with and fits."""
+
+    name: str
+    space: str = "log"              # the fit's misfit: "blows" or "log"
+    classes: tuple = ()             # soil classes with their own SRD multiplier
+    energy: str = "hammer"          # "hammer" (normalised hammer energy) or "enthru"
+    residual_stress: bool = False   # apply the multi-blow (residual stress) ratio
+    stacked: bool = False           # blend with the depth mean of the other foundations
+
+
+STEPS = (
+    Step("A: one E_ref, one SRD multiplier, fit in blows/m (last round's model)", space="blows"),
+    Step("B: as A, fit in log blow count", space="log"),
+    Step("C: + sand / clay shaft and toe multipliers (ridge)", classes=CLASSES),
+    Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru"),
+)
+
+
+def _scores(predicted, measured) -> dict:
+    r = np.asarray(predicted, float) - np.asarray(measured, float)
+    return {"rmse [blows/m]": float(np.sqrt(np.mean(r * r))), "bias [blows/m]": float(np.mean(r))}
+
+
+def record_baselines(piles, groups) -> np.ndarray:
+    """Per record of ``piles``: the naive baseline with the record's foundation held out
+    (:func:`naive_baseline`; NaN where no other foundation was driven to that depth)."""
+    out = []
+    by_group = {g: [p for p in piles if p.cpt_group == g] for g in groups}
+    for p in piles:
+        others = [q for g, qs in by_group.items() if g != p.cpt_group for q in qs]
+        out.append(naive_baseline(others, [p])[0])
+    return np.concatenate(out) if out else np.zeros(0)
+
+
+def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, steps=STEPS,
+                              stress_ratio=None) -> tuple[list[dict], dict]:
+    """Leave-one-foundation-out cross-validation of every step of ``steps`` on the records of
+    ``piles`` (their :class:`ResponseSurface`), against the naive baseline computed the same
+    way (every held-out record scored where the baseline exists, the same records for every
+    step). enthru_factor : per record, the energy factor of the ``"enthru"`` steps;
+    stress_ratio : per record, multi-blow / single-blow blow count (steps with
+    ``residual_stress``). Returns (a row per step, the predictions per step)."""
+    measured = np.concatenate([p.measured for p in piles])
+    group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
+    groups = sorted(set(group.tolist()))
+    baseline = record_baselines(piles, groups)
+    ok = np.isfinite(baseline)
+    rows, predictions = [], {}
+    for step in steps:
+        surf = surface.with_energy_factor(enthru_factor) if step.energy == "enthru" \
+            else surface
+        predicted = np.full(measured.size, np.nan)
+        fits = []
+        for g in groups:
+            train, test = group != g, group == g
+            sub = surf.subset(train)
+            fitted = fit_regularised(sub, measured[train], step.classes, step.space,
+                                     n_eff=len(groups) - 1)
+            pred = predict_with(surf.subset(test), fitted)
+            if step.residual_stress:
+                pred = pred * stress_ratio[test]
+            if step.stacked:
+                train_piles = [p for p in piles if p.cpt_group != g]
+                inner = record_baselines(train_piles, [x for x in groups if x != g])
+                phys = predict_with(sub, fitted)
+                if step.residual_stress:
+                    phys = phys * stress_ratio[train]
+                good = np.isfinite(inner)
+                w = stacking_weight(phys[good], inner[good], measured[train][good])
+                fitted["stacking_weight [-]"] = w
+                base = baseline[test]
+                pred = np.where(np.isfinite(base), base + w * (pred - base), pred)
+            predicted[test] = pred
+            fits.append(fitted)
+        predictions[step.name] = predicted
+        row = {"step": step.name, **_scores(predicted[ok], measured[ok]),
+               "rmse_baseline [blows/m]": _scores(baseline[ok], measured[ok])["rmse [blows/m]"],
+               "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
+               "points [-]": int(ok.sum()), "folds [-]": len(groups)}
+        for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
+                    "stacking_weight [-]"):
+            if key in fits[0]:
+                values = [f[key] for f in fits]
+                row[f"{key} folds median"] = float(np.median(values))
+                row[f"{key} folds min"] = float(np.min(values))
+                row[f"{key} folds max"] = float(np.max(values))
+        rows.append(row)
+    return rows, {"predictions": predictions, "baseline": baseline, "measured": measured,
+                  "group": group, "scored": ok}
 
 
 # ----------------------------------------------------------------------------- output

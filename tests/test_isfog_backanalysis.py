@@ -206,3 +206,78 @@ def test_leave_one_foundation_out_scores_a_perfect_model_against_the_baseline():
     assert rows[2]["rmse_baseline [blows/m]"] == pytest.approx(math.sqrt(np.mean(c_errors**2)))
     assert summary["points_without_baseline [-]"] == 0
     assert summary["folds_model_better [-]"] == 3
+
+
+# ---------------------------------------------------------------- the regularised fit
+def _synthetic_surface(bench, n=60, seed=1):
+    """A known blow-count law on a grid: log N = 3 + 2 log m - log(E/E0) - 0.5 log(E/E0)^2
+    (E0 = 500 kJ; the curvature in log E separates E_ref from the common multiplier), m the
+    record's effective multiplier; records with random sand / clay / toe SRD and energy
+    factors 0.3-1 (the normalised energies of a record set)."""
+    rng = np.random.default_rng(seed)
+    energies = np.geomspace(100e3, 3200e3, 81)
+    multipliers = np.geomspace(0.1, 2.0, 9)
+    share = rng.dirichlet([1.0, 1.0, 1.0], size=n) * 5e6
+    factor = rng.uniform(0.3, 1.0, n)
+    le = np.log(energies / 500e3)
+    lc = (3.0 + 2.0 * np.log(multipliers)[:, None] - le[None, :] - 0.5 * le[None, :] ** 2)
+    counts = np.broadcast_to(np.exp(lc), (n, *lc.shape)).copy()
+    surface = bench.ResponseSurface(energies, multipliers, counts, np.zeros(n),
+                                    share[:, 0], share[:, 1], share[:, 2], factor)
+    return surface
+
+
+def test_regularised_fit_recovers_known_parameters():
+    bench = _benchmark()
+    surface = _synthetic_surface(bench)
+    truth = (600e3, 0.6, 0.3, 0.9)
+    measured = surface(*truth)
+    # a vanishing prior: the exact values come back (the linear interpolation of the
+    # quadratic in log E on 81 nodes errs by < 1e-3 in log N: tolerance 1 %)
+    fitted = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=100.0)
+    got = [fitted[k] for k in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]")]
+    np.testing.assert_allclose(got, truth, rtol=1e-2)
+    np.testing.assert_allclose(bench.predict_with(surface, fitted), measured, rtol=1e-2)
+    # the blows/m misfit finds them too
+    fitted = bench.fit_regularised(surface, measured, bench.CLASSES, "blows", prior_sd=100.0)
+    got = [fitted[k] for k in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]")]
+    np.testing.assert_allclose(got, truth, rtol=1e-2)
+
+
+def test_strong_prior_pulls_the_class_multipliers_together():
+    bench = _benchmark()
+    surface = _synthetic_surface(bench)
+    measured = surface(600e3, 0.6, 0.3, 0.9)
+    free = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=100.0)
+    tight = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=1e-3)
+
+    def spread(f):
+        return np.ptp(np.log([f["srd_sand [-]"], f["srd_clay [-]"], f["srd_toe [-]"]]))
+
+    assert spread(free) == pytest.approx(math.log(0.9 / 0.3), rel=2e-2)
+    assert spread(tight) < 0.01  # one multiplier for all: the prior dominates
+    assert tight["objective [-]"] > free["objective [-]"]
+
+
+def test_response_surface_runs_below_the_weight_and_extrapolates_above():
+    bench = _benchmark()
+    # one record, log N = log(10) + log(m) at both energies; the pile runs at m <= 0.4
+    mult = np.array([0.25, 0.5, 1.0])
+    counts = np.array([[[0.0, 0.0], [5.0, 5.0], [10.0, 10.0]]])
+    s = bench.ResponseSurface([1e5, 1e6], mult, counts, [0.4], [1.0], [0.0], [0.0])
+    assert s(3e5, 0.39)[0] == 0.0
+    # between the run node (0.25) and 0.5: extrapolated from 0.5 and 1.0, 10 m
+    assert s(3e5, 0.45)[0] == pytest.approx(4.5, rel=1e-9)
+    assert s(3e5, 0.7)[0] == pytest.approx(7.0, rel=1e-9)
+    # the effective multiplier of a record: SRD-weighted class multipliers
+    s2 = bench.ResponseSurface([1e5, 1e6], mult, counts, [0.0], [1.0], [1.0], [2.0])
+    assert s2.effective_multiplier(1.0, 0.5, 0.25)[0] == pytest.approx((1 + 0.5 + 0.5) / 4)
+
+
+def test_stacking_weight_by_hand():
+    bench = _benchmark()
+    base = np.array([10.0, 20.0, 30.0])
+    # measured halfway between baseline and physics: w = 0.5
+    assert bench.stacking_weight(base + 4.0, base, base + 2.0) == pytest.approx(0.5)
+    assert bench.stacking_weight(base + 4.0, base, base - 2.0) == 0.0  # clipped to [0, 1]
+    assert bench.stacking_weight(base, base, base + 1.0) == 1.0
