@@ -427,21 +427,23 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
 
 
 def prediction_piles(data: Path, only: list[str] | None = None,
-                     cpt: str = "fullres") -> list[PileRecord]:
+                     cpt: str = "0p5m") -> list[PileRecord]:
     """The prediction piles at every whole metre where their record gives a hammer energy
-    (from the first to the last such depth: where they were driven)."""
+    (from the first to the last such depth: where they were driven). ``cpt``: "0p5m" (the
+    0.5 m series, the processing of the calibration piles) or "fullres"."""
     series, records = _pile_records(data, "prediction", only)
     piles = []
     for summary, pile_rows in records:
         pid = summary["location_id"]
-        rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]))
-                for r in pile_rows]
-        driven = [z for z, e in rows if math.isfinite(e) and e > 0.0]
+        rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]),
+                 _number(r["normalised ENTHRU [-]"])) for r in pile_rows]
+        driven = [z for z, e, _ in rows if math.isfinite(e) and e > 0.0]
         first, last = math.ceil(min(driven) - 1e-6), math.floor(max(driven) + 1e-6)
-        z_all = np.array([z for z, e in rows if math.isfinite(e)])
-        e_all = np.array([e for z, e in rows if math.isfinite(e)])
+        known = [(z, e, t) for z, e, t in rows if math.isfinite(e) and math.isfinite(t)]
+        z_all, e_all, t_all = (np.array(c) for c in zip(*known, strict=True))
         depths = np.arange(first, last + 1, dtype=float)
         energy = np.interp(depths, z_all, e_all)  # whole metres carry their own value
+        enthru = np.interp(depths, z_all, t_all)
         group = summary["cpt_group"]
         fullres = data / f"cpt_fullres_{group.replace('/', '-')}.csv"
         if cpt == "fullres" and fullres.exists():
@@ -451,7 +453,7 @@ def prediction_piles(data: Path, only: list[str] | None = None,
                                                       **HALF_METRE_OPTIONS}, False)
         piles.append(PileRecord(pid, group, float(summary["bottom wall thickness [mm]"]) / 1e3,
                                 float(summary["final penetration [m]"]), depths, energy, None,
-                                source, options, is_full))
+                                source, options, is_full, enthru))
     return piles
 
 
@@ -606,82 +608,6 @@ def naive_baseline(train, held_out) -> list[np.ndarray]:
             for p in held_out]
 
 
-def leave_one_foundation_out(piles, grid, energies, multipliers,
-                             with_multiplier: bool) -> tuple[list[dict], dict]:
-    """Leave-one-foundation-out cross-validation (module docstring).
-
-    piles : the calibration piles; grid : their :func:`simulate_pile` results on the grid of
-    ``energies`` [J] x ``multipliers`` [-]; with_multiplier : fit the SRD multiplier too.
-    Returns (rows per foundation and "overall", summary).
-    """
-    groups = sorted({p.cpt_group for p in piles})
-    rows, model_all, base_all, measured_all = [], [], [], []
-    left_out = 0
-    for group in groups:
-        train = [k for k, p in enumerate(piles) if p.cpt_group != group]
-        test = [k for k, p in enumerate(piles) if p.cpt_group == group]
-        if not train:
-            continue
-        interp = GridInterpolator(energies, multipliers,
-                                  np.concatenate([grid[k]["count"] for k in train], axis=2),
-                                  np.concatenate([grid[k]["run_multiplier"] for k in train]))
-        measured = np.concatenate([piles[k].measured for k in train])
-        f = fit(interp, measured, with_multiplier)
-        e_ref, mult = f["E_ref [J]"], f["srd_multiplier [-]"]
-        held = [piles[k] for k in test]
-        predicted = [GridInterpolator(energies, multipliers, grid[k]["count"],
-                                      grid[k]["run_multiplier"])(e_ref, mult) for k in test]
-        base = naive_baseline([piles[k] for k in train], held)
-        pred = np.concatenate(predicted)
-        b = np.concatenate(base)
-        m = np.concatenate([p.measured for p in held])
-        ok = np.isfinite(b)
-        left_out += int(np.sum(~ok))
-        model_all.append(pred[ok])
-        base_all.append(b[ok])
-        measured_all.append(m[ok])
-        rows.append({"foundation": group, "piles [-]": len(held), "points [-]": int(ok.sum()),
-                     "points_without_baseline [-]": int(np.sum(~ok)),
-                     "E_ref [J]": e_ref, "srd_multiplier [-]": mult,
-                     "rmse_model [blows/m]": rmse(pred[ok], m[ok]) if ok.any() else math.nan,
-                     "rmse_baseline [blows/m]": rmse(b[ok], m[ok]) if ok.any() else math.nan,
-                     "bias_model [blows/m]": float(np.mean(pred[ok] - m[ok])) if ok.any()
-                     else math.nan,
-                     "bias_baseline [blows/m]": float(np.mean(b[ok] - m[ok])) if ok.any()
-                     else math.nan})
-    pred, base, meas = (np.concatenate(x) if x else np.zeros(0)
-                        for x in (model_all, base_all, measured_all))
-    overall = {"foundation": "overall", "piles [-]": len(piles), "points [-]": int(meas.size),
-               "points_without_baseline [-]": left_out, "E_ref [J]": math.nan,
-               "srd_multiplier [-]": math.nan,
-               "rmse_model [blows/m]": rmse(pred, meas) if meas.size else math.nan,
-               "rmse_baseline [blows/m]": rmse(base, meas) if meas.size else math.nan,
-               "bias_model [blows/m]": float(np.mean(pred - meas)) if meas.size else math.nan,
-               "bias_baseline [blows/m]": float(np.mean(base - meas)) if meas.size
-               else math.nan}
-    rows.append(overall)
-    mse_m, mse_b = overall["rmse_model [blows/m]"] ** 2, overall["rmse_baseline [blows/m]"] ** 2
-    folds = rows[:-1]
-    summary = {
-        "folds [-]": len(folds),
-        "rmse_model [blows/m]": overall["rmse_model [blows/m]"],
-        "rmse_baseline [blows/m]": overall["rmse_baseline [blows/m]"],
-        "skill [-]": 1.0 - mse_m / mse_b if mse_b > 0 else math.nan,
-        "folds_model_better [-]": sum(r["rmse_model [blows/m]"] < r["rmse_baseline [blows/m]"]
-                                      for r in folds),
-        "points [-]": overall["points [-]"],
-        "points_without_baseline [-]": left_out,
-        "E_ref_range [J]": [min(r["E_ref [J]"] for r in folds),
-                            max(r["E_ref [J]"] for r in folds)] if folds else None,
-        "srd_multiplier_range [-]": [min(r["srd_multiplier [-]"] for r in folds),
-                                     max(r["srd_multiplier [-]"] for r in folds)]
-        if folds else None,
-        "cpt": "the 0.5 m series of each pile's foundation, for every pile",
-        "fit": "energy+multiplier" if with_multiplier else "energy",
-    }
-    return rows, summary
-
-
 def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
     rows = []
     for p, pred in zip(piles, predicted, strict=True):
@@ -713,6 +639,9 @@ PRIOR_SD = math.log(2.0)
 common one: a class's SRD within a factor 2 of the others' (the faces' rule alone changes
 the shaft by 2 between codes, srd-methods.md)."""
 CLASSES = ("sand", "clay", "toe")
+EXPONENT_SD = 0.25
+"""Prior standard deviation [-] of the exponent b of the energy law E = E_ref setting^b
+about 1 (a blow energy proportional to the hammer's setting)."""
 
 
 class ResponseSurface:
@@ -732,11 +661,12 @@ class ResponseSurface:
     run : (n,) multiplier at and below which each record runs [-]; sand, clay, toe : (n,) SRD
     at multiplier 1 [N]; energy_factor : (n,) factor on the reference energy of each record
     [-] (1: the normalised hammer energy; ENTHRU / (0.75 x hammer energy) to drive with the
-    recorded ENTHRU).
+    recorded ENTHRU); setting : (n,) normalised hammer energy of each record [-] (for an
+    energy law E = E_ref setting^b, b != 1).
     """
 
     def __init__(self, energies, multipliers, counts, run, sand, clay, toe,
-                 energy_factor=None):
+                 energy_factor=None, setting=None):
         self.le = np.log(np.asarray(energies, float))
         self.lm = np.log(np.asarray(multipliers, float))
         lc = np.log(np.clip(np.asarray(counts, float), COUNT_FLOOR, REFUSAL_COUNT))
@@ -750,18 +680,21 @@ class ResponseSurface:
                 continue
             i0 = int(np.argmax(ok))
             slope = ((lc[k, i0 + 1] - lc[k, i0]) / (self.lm[i0 + 1] - self.lm[i0])
-                     if i0 + 1 < self.lm.size else 0.0)
-            lc[k, :i0] = lc[k, i0] + np.multiply.outer(self.lm[:i0] - self.lm[i0], slope)
+                     if i0 + 1 < self.lm.size else np.zeros_like(lc[k, i0]))
+            lc[k, :i0] = lc[k, i0][None, :] + np.multiply.outer(self.lm[:i0] - self.lm[i0],
+                                                                slope)
         self.lc = lc
         self.sand, self.clay, self.toe = (np.asarray(v, float) for v in (sand, clay, toe))
         self.energy_factor = (np.ones(lc.shape[0]) if energy_factor is None
                               else np.asarray(energy_factor, float))
+        self.setting = (np.ones(lc.shape[0]) if setting is None
+                        else np.asarray(setting, float))
 
     def subset(self, rows) -> ResponseSurface:
         """The surface of the records ``rows`` (a boolean mask or indices)."""
         s = object.__new__(ResponseSurface)
         s.le, s.lm = self.le, self.lm
-        for k in ("lc", "run", "sand", "clay", "toe", "energy_factor"):
+        for k in ("lc", "run", "sand", "clay", "toe", "energy_factor", "setting"):
             setattr(s, k, getattr(self, k)[rows])
         return s
 
@@ -782,13 +715,14 @@ class ResponseSurface:
         return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
 
     def __call__(self, e_ref: float, m_sand: float = 1.0, m_clay: float | None = None,
-                 m_toe: float | None = None) -> np.ndarray:
+                 m_toe: float | None = None, exponent: float = 1.0) -> np.ndarray:
         """Blow counts [blows/m] of every record at E_ref [J] and the class multipliers [-]
-        (clay and toe default to the sand one)."""
+        (clay and toe default to the sand one); blow energy E_ref setting^exponent."""
         m = self.effective_multiplier(m_sand, m_sand if m_clay is None else m_clay,
                                       m_sand if m_toe is None else m_toe)
         im, wm = self._cell(self.lm, np.log(m))
-        ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor))
+        ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor)
+                            + (exponent - 1.0) * np.log(self.setting))
         k = np.arange(self.lc.shape[0])
         lc = ((1 - wm) * ((1 - we) * self.lc[k, im, ie] + we * self.lc[k, im, ie + 1])
               + wm * ((1 - we) * self.lc[k, im + 1, ie] + we * self.lc[k, im + 1, ie + 1]))
@@ -804,33 +738,40 @@ def misfit(predicted, measured, space: str) -> np.ndarray:
 
 def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
                     space: str = "log", prior_sd: float = PRIOR_SD,
-                    n_eff: float = 1.0) -> dict:
-    """E_ref, a common SRD multiplier and (``classes``, a subset of :data:`CLASSES`) the
-    deviations of the classes' multipliers from it, minimising
+                    n_eff: float = 1.0, exponent: bool = False) -> dict:
+    """E_ref, a common SRD multiplier, (``classes``, a subset of :data:`CLASSES`) the
+    deviations of the classes' multipliers from it and (``exponent``) the exponent b of the
+    energy law E = E_ref setting^b, minimising
 
-        mean(r^2) / s^2 + sum(d_c^2) / (prior_sd^2 n_eff)
+        mean(r^2) / s^2 + [sum(d_c^2) / prior_sd^2 + (b - 1)^2 / EXPONENT_SD^2] / n_eff
 
     (a Gaussian MAP estimate: r the :func:`misfit` in ``space``, s its
     :data:`RESIDUAL_SCALE`, d_c = log(m_c) - log(m) the class deviations with a prior of
-    standard deviation ``prior_sd`` about the common multiplier, n_eff the number of
-    independent observations: the foundations, whose piles share one CPT). E_ref and the
-    common multiplier are not penalised (the data fix their valley). Nelder-Mead from the best
-    of a coarse start grid, restarted twice. Returns the values and the objective."""
+    standard deviation ``prior_sd`` about the common multiplier, b about 1 (the energy
+    proportional to the setting), n_eff the number of independent observations: the
+    foundations, whose piles share one CPT). E_ref and the common multiplier are not penalised
+    (the data fix their valley). Nelder-Mead from the best of a coarse start grid, restarted
+    twice. Returns the values and the objective."""
     from scipy.optimize import minimize
 
     measured = np.asarray(measured, float)
     s2 = RESIDUAL_SCALE[space] ** 2
+    nc = len(classes)
 
     def unpack(p):
-        d = dict(zip(classes, p[2:], strict=True))
-        return (math.exp(p[0]), *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES))
+        d = dict(zip(classes, p[2:2 + nc], strict=True))
+        b = float(p[2 + nc]) if exponent else 1.0
+        return (math.exp(p[0]), *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b)
 
     def objective(p):
         r = misfit(surface(*unpack(p)), measured, space)
-        penalty = float(np.sum(np.asarray(p[2:]) ** 2)) / prior_sd ** 2 if classes else 0.0
+        penalty = float(np.sum(np.asarray(p[2:2 + nc]) ** 2)) / prior_sd ** 2
+        if exponent:
+            penalty += (float(p[2 + nc]) - 1.0) ** 2 / EXPONENT_SD ** 2
         return float(np.mean(r * r)) / s2 + penalty / n_eff
 
-    starts = [np.r_[math.log(e), math.log(m), np.zeros(len(classes))]
+    tail = np.r_[np.zeros(nc), [1.0] if exponent else []]
+    starts = [np.r_[math.log(e), math.log(m), tail]
               for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)]
     res = None
     p0 = min(starts, key=objective)
@@ -838,16 +779,17 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
         res = minimize(objective, p0 if res is None else res.x, method="Nelder-Mead",
                        options={"xatol": 1e-5, "fatol": 1e-12, "maxfev": 6000,
                                 "adaptive": True})
-    e_ref, m_sand, m_clay, m_toe = unpack(res.x)
+    e_ref, m_sand, m_clay, m_toe, b = unpack(res.x)
     at_edge = bool(not (surface.le[0] < math.log(e_ref) < surface.le[-1]))
     return {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
-            "srd_toe [-]": m_toe, "objective [-]": float(res.fun), "energy_at_grid_edge": at_edge}
+            "srd_toe [-]": m_toe, "energy_exponent [-]": b, "objective [-]": float(res.fun),
+            "energy_at_grid_edge": at_edge}
 
 
 def predict_with(surface: ResponseSurface, fitted: dict) -> np.ndarray:
     """Blow counts [blows/m] of the surface's records at the fitted values."""
     return surface(fitted["E_ref [J]"], fitted["srd_sand [-]"], fitted["srd_clay [-]"],
-                   fitted["srd_toe [-]"])
+                   fitted["srd_toe [-]"], fitted.get("energy_exponent [-]", 1.0))
 
 
 def stacking_weight(physics, baseline, measured) -> float:
@@ -867,6 +809,7 @@ class Step:
     space: str = "log"              # the fit's misfit: "blows" or "log"
     classes: tuple = ()             # soil classes with their own SRD multiplier
     energy: str = "hammer"          # "hammer" (normalised hammer energy) or "enthru"
+    exponent: bool = False          # fit the exponent of the energy law
     residual_stress: bool = False   # apply the multi-blow (residual stress) ratio
     stacked: bool = False           # blend with the depth mean of the other foundations
 
@@ -918,7 +861,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
             train, test = group != g, group == g
             sub = surf.subset(train)
             fitted = fit_regularised(sub, measured[train], step.classes, step.space,
-                                     n_eff=len(groups) - 1)
+                                     n_eff=len(groups) - 1, exponent=step.exponent)
             pred = predict_with(surf.subset(test), fitted)
             if step.residual_stress:
                 pred = pred * stress_ratio[test]
@@ -941,7 +884,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
                "points [-]": int(ok.sum()), "folds [-]": len(groups)}
         for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
-                    "stacking_weight [-]"):
+                    "energy_exponent [-]", "stacking_weight [-]"):
             if key in fits[0]:
                 values = [f[key] for f in fits]
                 row[f"{key} folds median"] = float(np.median(values))
@@ -952,10 +895,216 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                   "group": group, "scored": ok}
 
 
+# ----------------------------------------------------------------------------- stepwise run
+PREDICTIVE_STEPS = (
+    ("grid1", Step("A: one E_ref, one SRD multiplier, fit in blows/m (last round's model)",
+                   space="blows")),
+    ("grid1", Step("B: as A, fit in log blow count")),
+    ("grid2", Step("C: + sand shaft, clay shaft and toe multipliers (ridge)", classes=CLASSES)),
+    ("grid2", Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru")),
+    ("grid2", Step("E: + energy law E_ref setting^b (tried, not kept)", classes=CLASSES,
+                   energy="enthru", exponent=True)),
+    ("grid2", Step("F: D + residual stress (3 blows per depth)", classes=CLASSES,
+                   energy="enthru", residual_stress=True)),
+    ("grid2", Step("G: F stacked with the depth mean of the other foundations",
+                   classes=CLASSES, energy="enthru", residual_stress=True, stacked=True)),
+)
+"""The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
+grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`).
+The final model is the last step."""
+GRID2_MULTIPLIERS = (0.3, 0.45, 0.65, 0.9, 1.25, 1.7)
+"""Common SRD multipliers of the second grid, about the class multipliers of the first fit."""
+RESIDUAL_STRESS_BLOWS = 3
+"""Blows per depth of the residual-stress runs (each from the state the last left) [-]."""
+
+
+def record_surface(piles, results, energies, multipliers) -> ResponseSurface:
+    """The :class:`ResponseSurface` of the records of ``piles`` from their
+    :func:`simulate_pile` ``results`` on the grid."""
+    def cat(key):
+        return np.concatenate([r[key] for r in results])
+
+    counts = np.concatenate([np.transpose(r["count"], (2, 0, 1)) for r in results])
+    sand = cat("srd_shaft_sand")
+    return ResponseSurface(energies, multipliers, counts, cat("run_multiplier"), sand,
+                           cat("srd_shaft") - sand, cat("srd_toe"),
+                           setting=np.concatenate([p.energy for p in piles]))
+
+
+def enthru_factor(piles) -> np.ndarray:
+    """Per record: ENTHRU / (0.75 x hammer energy) [-] (1 where the record gives no ENTHRU):
+    the factor on the blow energy that drives with the recorded ENTHRU (0.75: the records'
+    usual ratio, absorbed in E_ref)."""
+    out = []
+    for p in piles:
+        f = (p.enthru / p.energy / 0.75 if p.enthru is not None else np.ones(p.depths.size))
+        out.append(np.where(np.isfinite(f) & (f > 0), f, 1.0))
+    return np.concatenate(out)
+
+
+def final_model(model: Model, fitted: dict) -> Model:
+    """``model`` with the fitted class multipliers (on its own)."""
+    return replace(model, srd_sand=model.srd_sand * fitted["srd_sand [-]"],
+                   srd_clay=model.srd_clay * fitted["srd_clay [-]"],
+                   srd_toe=model.srd_toe * fitted["srd_toe [-]"])
+
+
+def _enthru_piles(piles):
+    """The piles with their blow energy trace the recorded ENTHRU / 0.75."""
+    return [replace(p, energy=p.energy * f)
+            for p, f in zip(piles, np.split(enthru_factor(piles),
+                                            np.cumsum([p.depths.size for p in piles])[:-1]),
+                            strict=True)]
+
+
+def predictive_backanalysis(args, model: Model, calibration, prediction, out: Path,
+                            energies, multipliers) -> int:
+    """The stepwise back-analysis (``--cross-validate``): every step of
+    :data:`PREDICTIVE_STEPS` cross-validated leave one foundation out against the naive
+    baseline, the final step fitted on all calibration piles and the prediction piles
+    predicted with it (direct runs). Writes ``isfog_backanalysis.json`` and
+    ``cross_validation_steps.csv`` in ``out`` (and the JSON to ``--json``)."""
+    start = time.perf_counter()
+    times = {}
+    measured = np.concatenate([p.measured for p in calibration])
+    groups = sorted({p.cpt_group for p in calibration})
+    n_cal = len(calibration)
+    warm_up(model, calibration[0])
+    # grid 1: the method's SRD distribution
+    t = time.perf_counter()
+    g1 = run_piles(calibration + prediction, model, energies, multipliers, args.workers)
+    times["grid1 [s]"] = time.perf_counter() - t
+    surf1 = record_surface(calibration, g1[:n_cal], energies, multipliers)
+    factor = enthru_factor(calibration)
+    first = fit_regularised(surf1.with_energy_factor(factor), measured, CLASSES, "log",
+                            n_eff=len(groups))
+    # grid 2: the SRD distribution of the first fit (the effective multiplier of the surface
+    # then only has to carry the folds' small deviations from it)
+    model2 = final_model(model, first)
+    t = time.perf_counter()
+    m2 = np.asarray(GRID2_MULTIPLIERS)
+    e2 = np.geomspace(energies[0], energies[-1] * 1.25, energies.size)
+    g2 = run_piles(calibration + prediction, model2, e2, m2, args.workers)
+    times["grid2 [s]"] = time.perf_counter() - t
+    surf2 = record_surface(calibration, g2[:n_cal], e2, m2)
+    # the final fit (step D's) on every calibration pile, and its direct runs
+    final = fit_regularised(surf2.with_energy_factor(factor), measured, CLASSES, "log",
+                            n_eff=len(groups))
+    model_f = final_model(model2, final)
+    piles_f = _enthru_piles(calibration + prediction)
+    t = time.perf_counter()
+    one = run_piles(piles_f, model_f, [final["E_ref [J]"]], [1.0], args.workers)
+    several = run_piles(piles_f, replace(model_f, blows_per_depth=RESIDUAL_STRESS_BLOWS),
+                        [final["E_ref [J]"]], [1.0], args.workers)
+    times["direct [s]"] = time.perf_counter() - t
+    direct1 = np.concatenate([r["count"][0, 0] for r in one[:n_cal]])
+    directn = np.concatenate([r["count"][0, 0] for r in several[:n_cal]])
+    stress_ratio = np.where(direct1 > 0, directn / np.where(direct1 > 0, direct1, 1.0), 1.0)
+    surface_at_final = predict_with(surf2.with_energy_factor(factor), final)
+    # the steps
+    t = time.perf_counter()
+    rows, records = [], None
+    for which, step in PREDICTIVE_STEPS:
+        surf = surf1 if which == "grid1" else surf2
+        r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio)
+        rows += r
+        if records is None:
+            records = [{"location_id": p.location_id, "cpt_group": p.cpt_group,
+                        "z [m]": float(z), "measured [blows/m]": float(n)}
+                       for p in calibration for z, n in zip(p.depths, p.measured, strict=True)]
+            for rec, b in zip(records, res["baseline"], strict=True):
+                rec["naive [blows/m]"] = float(b)
+        for rec, v in zip(records, res["predictions"][step.name], strict=True):
+            rec[step.name.split(":")[0]] = float(v)
+        print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
+              f"{r[0]['bias [blows/m]']:+.1f} blows/m (naive "
+              f"{r[0]['rmse_baseline [blows/m]']:.1f}, "
+              f"{r[0]['bias_baseline [blows/m]']:+.1f})", flush=True)
+    times["cross_validation [s]"] = time.perf_counter() - t
+    write_csv(out / "cross_validation_steps.csv", rows)
+    write_csv(out / "cross_validation_records.csv", records)
+    # the final model's predictions: the multi-blow direct runs, stacked with the depth mean
+    # of every calibration foundation with the weight fitted on them (inner baseline)
+    inner = record_baselines(calibration, groups)
+    good = np.isfinite(inner)
+    weight = stacking_weight(directn[good], inner[good], measured[good])
+    pred_rows = []
+    for p, r in zip(prediction, several[n_cal:], strict=True):
+        base = naive_baseline(calibration, [p])[0]
+        physics = r["count"][0, 0]
+        blend = np.where(np.isfinite(base), base + weight * (physics - base), physics)
+        for k, z in enumerate(p.depths):
+            pred_rows.append({"location_id": p.location_id, "z [m]": float(z),
+                              "blowcount [blows/m]": float(blend[k]),
+                              "physics [blows/m]": float(physics[k]),
+                              "naive [blows/m]": float(base[k])})
+    write_csv(out / "prediction_piles_blowcount.csv", pred_rows)
+    ds = driving_system(model)
+    max_energy = float(max(np.max(p.energy) for p in piles_f) * final["E_ref [J]"])
+    per_pile = {}
+    for row in pred_rows:
+        per_pile.setdefault(row["location_id"], []).append(row["blowcount [blows/m]"])
+    summary = {
+        "steps": [{k: v for k, v in r.items()} for r in rows],
+        "final_step": rows[-1]["step"],
+        "cv_rmse [blows/m]": rows[-1]["rmse [blows/m]"],
+        "cv_bias [blows/m]": rows[-1]["bias [blows/m]"],
+        "naive_rmse [blows/m]": rows[-1]["rmse_baseline [blows/m]"],
+        "naive_bias [blows/m]": rows[-1]["bias_baseline [blows/m]"],
+        "cv_points [-]": rows[-1]["points [-]"], "cv_folds [-]": rows[-1]["folds [-]"],
+        "first_fit": first, "final_fit": final,
+        "final_srd_multipliers [-]": {"sand": model_f.srd_sand, "clay": model_f.srd_clay,
+                                      "toe": model_f.srd_toe},
+        "stacking_weight_final [-]": weight,
+        "surface_vs_direct_at_final": {
+            "rms [blows/m]": rmse(surface_at_final, direct1),
+            "bias [blows/m]": float(np.mean(surface_at_final - direct1))},
+        "calibration_direct": {
+            "rmse_single_blow [blows/m]": rmse(direct1, measured),
+            "bias_single_blow [blows/m]": float(np.mean(direct1 - measured)),
+            "rmse_residual_stress [blows/m]": rmse(directn, measured),
+            "bias_residual_stress [blows/m]": float(np.mean(directn - measured)),
+            "residual_stress_ratio_5_50_95 [-]": np.percentile(
+                stress_ratio[direct1 > 0], [5, 50, 95]).tolist()},
+        "largest_blow_energy [J]": max_energy,
+        "hammer_rated_energy [J]": ds["rated_energy [J]"],
+        "prediction_piles_mean_blowcount [blows/m]": {
+            k: float(np.mean(v)) for k, v in per_pile.items()},
+        "prediction_points [-]": len(pred_rows),
+        "cpt": "the 0.5 m series of each pile's foundation, for every pile (calibration and "
+               "prediction)",
+        "model": {k: getattr(model_f, k) for k in Model.__dataclass_fields__},
+        "times": times, "wall_time [s]": time.perf_counter() - start,
+        "workers [-]": args.workers,
+    }
+    text = json.dumps(_jsonable(summary), indent=2) + "\n"
+    (out / "isfog_backanalysis.json").write_text(text)
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(text)
+    print(f"\n{'step':<70} {'CV RMSE':>8} {'bias':>6} {'naive':>6} {'bias':>6}")
+    for r in rows:
+        print(f"{r['step']:<70} {r['rmse [blows/m]']:8.1f} {r['bias [blows/m]']:+6.1f} "
+              f"{r['rmse_baseline [blows/m]']:6.1f} {r['bias_baseline [blows/m]']:+6.1f}")
+    print(f"\nfinal fit (all {n_cal} calibration piles): E_ref {final['E_ref [J]'] / 1e3:.0f} kJ,"
+          f" SRD x sand {model_f.srd_sand:.2f}, clay {model_f.srd_clay:.2f}, toe "
+          f"{model_f.srd_toe:.2f}; stacking weight {weight:.2f}; largest blow energy "
+          f"{max_energy / 1e3:.0f} kJ (rating {ds['rated_energy [J]'] / 1e3:.0f} kJ)")
+    print("prediction piles, predicted blow count [blows/m] at every whole metre driven:")
+    for p in prediction:
+        counts = [f"{r['blowcount [blows/m]']:.0f}" for r in pred_rows
+                  if r["location_id"] == p.location_id]
+        print(f"  {p.location_id} ({p.depths[0]:g}-{p.depths[-1]:g} m, mean "
+              f"{np.mean(per_pile[p.location_id]):.1f}): {' '.join(counts)}")
+    print(f"wall time {summary['wall_time [s]']:.0f} s; results in {out}")
+    return 0
+
+
 # ----------------------------------------------------------------------------- output
 def write_csv(path: Path, rows: list[dict]) -> None:
     with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer = csv.DictWriter(handle, fieldnames=list(dict.fromkeys(k for r in rows
+                                                                      for k in r)))
         writer.writeheader()
         for row in rows:
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
@@ -1102,8 +1251,9 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--hammer", default=Model.hammer, help="hammer of anvilwave/hammer/data")
     parser.add_argument("--piles", help="calibration piles to use, e.g. AD,AE (default: all)")
     parser.add_argument("--prediction-piles", help="prediction piles (default: all)")
-    parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="fullres",
-                        help="CPT of the prediction piles (default: full resolution)")
+    parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="0p5m",
+                        help="CPT of the prediction piles (default: the 0.5 m series, the "
+                             "processing of the calibration piles)")
     parser.add_argument("--energies", type=int, default=7,
                         help="reference energies of the grid (log-spaced)")
     parser.add_argument("--energy-range", default="150e3,3200e3",
@@ -1115,6 +1265,9 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--cross-validate", action="store_true",
                         help="leave-one-foundation-out cross-validation against the naive "
                              "baseline (mean of the other foundations at each depth)")
+    parser.add_argument("--json", type=Path,
+                        help="with --cross-validate: also write the summary JSON here (e.g. "
+                             "docs/data/isfog_backanalysis.json)")
     parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
                         help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
     parser.add_argument("--segment-length", type=float, default=Model.segment_length,
@@ -1160,6 +1313,9 @@ def main(argv=None) -> int:
     print(f"{len(calibration)} calibration piles ({sum(len(p.depths) for p in calibration)} "
           f"records), {len(prediction)} prediction piles; grid {energies.size} energies x "
           f"{multipliers.size} multipliers; {args.workers} workers")
+    if args.cross_validate:
+        return predictive_backanalysis(args, model, calibration, prediction, out, energies,
+                                       multipliers)
 
     t = time.perf_counter()
     warm_up(model, calibration[0])
@@ -1182,18 +1338,6 @@ def main(argv=None) -> int:
         fits["fit_energy_only"] = fit(interp, measured, False)
     chosen = fits["fit"] if with_multiplier else fits["fit_energy_only"]
     times["fit [s]"] = time.perf_counter() - t
-    cross = None
-    if args.cross_validate:
-        t = time.perf_counter()
-        cv_rows, cross = leave_one_foundation_out(calibration, grid, energies, multipliers,
-                                                  with_multiplier)
-        write_csv(out / "cross_validation.csv", cv_rows)
-        times["cross_validation [s]"] = time.perf_counter() - t
-        print(f"leave one foundation out ({cross['folds [-]']} folds, {cross['points [-]']} "
-              f"records): RMSE {cross['rmse_model [blows/m]']:.1f} blows/m against "
-              f"{cross['rmse_baseline [blows/m]']:.1f} for the baseline (mean of the other "
-              f"foundations), skill {cross['skill [-]']:+.2f}; the model better in "
-              f"{cross['folds_model_better [-]']} of {cross['folds [-]']} folds")
     e_ref, mult = chosen["E_ref [J]"], chosen["srd_multiplier [-]"]
     print(f"fit: E_ref {e_ref / 1e3:.1f} kJ, SRD multiplier {mult:.3f} (interpolated RMSE "
           f"{chosen['rmse_interpolated [blows/m]']:.1f} blows/m)")
@@ -1293,7 +1437,6 @@ def main(argv=None) -> int:
                                  "hammer energy",
             "prediction_cpt": args.prediction_cpt,
         },
-        "cross_validation": cross,
         "data": str(data),
         "times": times,
         "workers [-]": args.workers,
