@@ -9,8 +9,9 @@ prints a message and exits with status 0 (a benchmark, not a test).
 
 Model (the same for every pile; nothing is tuned per pile)
 ----------------------------------------------------------
-* Soil: the pile's CPT (the 0.5 m series of its foundation; for the prediction piles the
-  full-resolution CPT of their foundation, first 0.3 m of every push dropped). Sand and clay
+* Soil: the pile's CPT (the 0.5 m series of its foundation, for every pile;
+  ``--prediction-cpt fullres``: the full-resolution CPT for the prediction piles, first 0.3 m
+  of every push dropped). Sand and clay
   layers from Robertson's (2009) soil behaviour type index, Ic < 2.6 sand
   (:func:`anvilwave.pile.soil.cpt_classification.soil_layers_from_cpt`). ASSUMED submerged unit
   weights
@@ -70,19 +71,42 @@ multiplier), so the energy-only fit is reported beside the two-parameter one, an
 class decides which end of the valley is plausible: the largest blow energy must stay within
 the hammer's rating (``largest_blow_energy_within_rating`` in the summary).
 
-Cross-validation (``--cross-validate``): leave one foundation out. The piles of one
-foundation share its CPT, so a pile's neighbours under the same CPT would leak its soil into
-the fit: each fold holds out every pile of one foundation (``cpt_group``), fits E_ref (and the
-multiplier, as ``--fit``) on the piles of all the other foundations with the same grid and
-the same fit, and predicts the held-out piles' records at the fold's values (interpolated on
-the grid, as the fit itself; the interpolation error of the direct runs is reported). Every
-pile has the same CPT processing in it: the 0.5 m series of its foundation. The score is set
-against the naive baseline, which knows no soil: at each depth, the mean measured blow count of
-the piles of the other foundations driven at that depth (records at depths no other
-foundation reached are left out of both scores and counted). Outputs: ``cross_validation.csv``
-(per foundation and overall: RMSE of the model and of the baseline, bias, the fold's E_ref and
-multiplier) and ``"cross_validation"`` in the summary with the skill 1 - MSE_model /
-MSE_baseline (> 0: the model beats the baseline).
+Predictive back-analysis (``--cross-validate``)
+-----------------------------------------------
+Leave one foundation out: the piles of one foundation share its CPT, so each fold holds out
+every pile of one foundation (``cpt_group``), fits on the piles of all the others and
+predicts the held-out records. Every pile, calibration and prediction, has the same CPT
+processing: the 0.5 m series of its foundation. The score (RMSE and bias = mean of predicted
+- measured, in blows/m, over the same records for every step) is set against the naive
+baseline computed the same way, which knows no soil: at each depth, the mean measured blow
+count of the piles of the other foundations driven at that depth (records at depths no
+other foundation reached are left out of both scores). The steps
+(:data:`PREDICTIVE_STEPS`), each scored by the same cross-validation:
+
+A. one E_ref and one SRD multiplier fitted in blows/m (the model above);
+B. the fit in log(N + 5) (the blow count is a steep, nonlinear function of the SRD);
+C. separate multipliers on the sand shaft, clay shaft and toe SRD, each a deviation from the
+   common multiplier with a Gaussian (ridge) prior in log space, sd ln 2
+   (:func:`fit_regularised`: the faces' rule alone changes the shaft by 2 between codes);
+D. the blow energy from the recorded ENTHRU (0.65 or 1.0 x the hammer energy for six piles
+   instead of the usual 0.75);
+E. an energy law E_ref x setting^b (b about 1, prior sd 0.25): tried, not kept;
+F. residual stress: three blows per depth, each from the state the last left, as the
+   ratio of the third blow's count to the single blow's at the final parameters;
+G. F stacked with the naive baseline: baseline + w (physics - baseline), w fitted by least
+   squares on the training foundations (their baselines leave each of them out in turn).
+
+Cost: the blow counts of every record are simulated on a grid of common SRD multipliers x
+reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD distribution of the
+all-pile fit of step D, so that the folds' class multipliers are small deviations about it);
+the folds fit on a :class:`ResponseSurface` (bilinear in log count, log multiplier, log
+energy), whose error against direct runs at the final values is reported. The final model
+(step G's fit on all calibration piles) predicts the prediction piles from direct
+(multi-blow) runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
+baseline's, the folds' parameter ranges), ``cross_validation_records.csv`` (every record:
+measured, baseline, each step's prediction), ``prediction_piles_blowcount.csv`` and
+``isfog_backanalysis.json`` (also written to ``--json``, e.g.
+``docs/data/isfog_backanalysis.json``).
 
 Outputs in DIR: ``calibration_fit.csv`` (RMSE and bias = mean of predicted - measured, per
 pile and overall),
