@@ -9,8 +9,9 @@ prints a message and exits with status 0 (a benchmark, not a test).
 
 Model (the same for every pile; nothing is tuned per pile)
 ----------------------------------------------------------
-* Soil: the pile's CPT (the 0.5 m series of its foundation; for the prediction piles the
-  full-resolution CPT of their foundation, first 0.3 m of every push dropped). Sand and clay
+* Soil: the pile's CPT (the 0.5 m series of its foundation, for every pile;
+  ``--prediction-cpt fullres``: the full-resolution CPT for the prediction piles, first 0.3 m
+  of every push dropped). Sand and clay
   layers from Robertson's (2009) soil behaviour type index, Ic < 2.6 sand
   (:func:`anvilwave.pile.soil.cpt_classification.soil_layers_from_cpt`). ASSUMED submerged unit
   weights
@@ -70,19 +71,42 @@ multiplier), so the energy-only fit is reported beside the two-parameter one, an
 class decides which end of the valley is plausible: the largest blow energy must stay within
 the hammer's rating (``largest_blow_energy_within_rating`` in the summary).
 
-Cross-validation (``--cross-validate``): leave one foundation out. The piles of one
-foundation share its CPT, so a pile's neighbours under the same CPT would leak its soil into
-the fit: each fold holds out every pile of one foundation (``cpt_group``), fits E_ref (and the
-multiplier, as ``--fit``) on the piles of all the other foundations with the same grid and
-the same fit, and predicts the held-out piles' records at the fold's values (interpolated on
-the grid, as the fit itself; the interpolation error of the direct runs is reported). Every
-pile has the same CPT processing in it: the 0.5 m series of its foundation. The score is set
-against the naive baseline, which knows no soil: at each depth, the mean measured blow count of
-the piles of the other foundations driven at that depth (records at depths no other
-foundation reached are left out of both scores and counted). Outputs: ``cross_validation.csv``
-(per foundation and overall: RMSE of the model and of the baseline, bias, the fold's E_ref and
-multiplier) and ``"cross_validation"`` in the summary with the skill 1 - MSE_model /
-MSE_baseline (> 0: the model beats the baseline).
+Predictive back-analysis (``--cross-validate``)
+-----------------------------------------------
+Leave one foundation out: the piles of one foundation share its CPT, so each fold holds out
+every pile of one foundation (``cpt_group``), fits on the piles of all the others and
+predicts the held-out records. Every pile, calibration and prediction, has the same CPT
+processing: the 0.5 m series of its foundation. The score (RMSE and bias = mean of predicted
+- measured, in blows/m, over the same records for every step) is set against the naive
+baseline computed the same way, which knows no soil: at each depth, the mean measured blow
+count of the piles of the other foundations driven at that depth (records at depths no
+other foundation reached are left out of both scores). The steps
+(:data:`PREDICTIVE_STEPS`), each scored by the same cross-validation:
+
+A. one E_ref and one SRD multiplier fitted in blows/m (the model above);
+B. the fit in log(N + 5) (the blow count is a steep, nonlinear function of the SRD);
+C. separate multipliers on the sand shaft, clay shaft and toe SRD, each a deviation from the
+   common multiplier with a Gaussian (ridge) prior in log space, sd ln 2
+   (:func:`fit_regularised`: the faces' rule alone changes the shaft by 2 between codes);
+D. the blow energy from the recorded ENTHRU (0.65 or 1.0 x the hammer energy for six piles
+   instead of the usual 0.75);
+E. an energy law E_ref x setting^b (b about 1, prior sd 0.25): tried, not kept;
+F. residual stress: three blows per depth, each from the state the last left, as the
+   ratio of the third blow's count to the single blow's at the final parameters;
+G. F stacked with the naive baseline: baseline + w (physics - baseline), w fitted by least
+   squares on the training foundations (their baselines leave each of them out in turn).
+
+Cost: the blow counts of every record are simulated on a grid of common SRD multipliers x
+reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD distribution of the
+all-pile fit of step D, so that the folds' class multipliers are small deviations about it);
+the folds fit on a :class:`ResponseSurface` (bilinear in log count, log multiplier, log
+energy), whose error against direct runs at the final values is reported. The final model
+(step G's fit on all calibration piles) predicts the prediction piles from direct
+(multi-blow) runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
+baseline's, the folds' parameter ranges), ``cross_validation_records.csv`` (every record:
+measured, baseline, each step's prediction), ``prediction_piles_blowcount.csv`` and
+``isfog_backanalysis.json`` (also written to ``--json``, e.g.
+``docs/data/isfog_backanalysis.json``).
 
 Outputs in DIR: ``calibration_fit.csv`` (RMSE and bias = mean of predicted - measured, per
 pile and overall),
@@ -154,6 +178,9 @@ class Model:
     sand_toe_factor: float = 0.10       # [-] the 2018 revision (0.15: Alm & Hamre 2001)
     faces: str | None = None            # friction faces; None: the coring default
     blows_per_depth: int = 1            # > 1: each blow starts from the state the last left
+    srd_sand: float = 1.0               # [-] multiplier of the shaft SRD in sand
+    srd_clay: float = 1.0               # [-] multiplier of the shaft SRD in clay
+    srd_toe: float = 1.0                # [-] multiplier of the toe SRD
 
 
 @dataclass(frozen=True)
@@ -175,6 +202,7 @@ class PileRecord:
     cpt_file: str
     cpt_options: dict
     fullres: bool = False
+    enthru: np.ndarray | None = None
 
 
 def driving_system(model: Model) -> dict:
@@ -270,6 +298,13 @@ def soil_profile(pile: PileRecord, model: Model):
     return SoilProfile(layers, cpt=cpt, net_area_ratio=model.net_area_ratio)
 
 
+def segment_is_sand(profile, seg, pile_length: float, tip: float) -> np.ndarray:
+    """Per pile segment: is the soil at the middle of its embedded part sand (Robertson)."""
+    top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
+    bottom = np.clip(seg.top + seg.length - (pile_length - tip), 0.0, tip)
+    return np.asarray(profile.is_sand[profile.layer_index(0.5 * (top + bottom))], bool)
+
+
 def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarray,
                   model: Model) -> float:
     """Smith shaft damping of a tip depth [s/m]: the sand and clay factors weighted by the
@@ -277,9 +312,7 @@ def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarra
     total = float(np.sum(shaft))
     if total <= 0.0:
         return model.damping_sand
-    top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
-    bottom = np.clip(seg.top + seg.length - (pile_length - tip), 0.0, tip)
-    sand = profile.is_sand[profile.layer_index(0.5 * (top + bottom))]
+    sand = segment_is_sand(profile, seg, pile_length, tip)
     j = np.where(sand, model.damping_sand, model.damping_clay)
     return float(np.sum(j * shaft) / total)
 
@@ -316,12 +349,18 @@ def simulate_pile(job: tuple) -> dict:
     shape = (len(multipliers), len(energies), len(pile.depths))
     out = {k: np.full(shape, np.nan) for k in ("count", "enthru", "compression", "tension")}
     per_depth = {k: np.zeros(len(pile.depths)) for k in ("srd_shaft", "srd_toe",
-                                                          "damping_shaft", "run_multiplier")}
+                                                          "srd_shaft_sand", "damping_shaft",
+                                                          "run_multiplier")}
     for iz, tip in enumerate(pile.depths):
         ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, float(tip), 1.0)
         cap_shaft, cap_toe = ps.soil.capacities
+        sand = segment_is_sand(profile, seg, length, float(tip))
+        cap_shaft = cap_shaft * np.where(sand, model.srd_sand, model.srd_clay)
+        cap_toe = cap_toe * model.srd_toe
+        shaft, toe = float(np.sum(cap_shaft)), float(cap_toe)
         j = shaft_damping(profile, seg, length, float(tip), cap_shaft, model)
         per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
+        per_depth["srd_shaft_sand"][iz] = float(np.sum(cap_shaft[sand]))
         per_depth["damping_shaft"][iz] = j
         per_depth["run_multiplier"][iz] = weight / (shaft + toe) if shaft + toe > 0 else np.inf
         for im, m in enumerate(multipliers):
@@ -391,7 +430,7 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
         pid = summary["location_id"]
         first = float(summary["first blowcount depth [m]"])
         last = float(summary["last blowcount depth [m]"])
-        z, energy, measured = [], [], []
+        z, energy, measured, enthru = [], [], [], []
         for row in rows:
             depth = float(row["z [m]"])
             count = _number(row["blowcount [blows/m]"])
@@ -401,30 +440,34 @@ def calibration_piles(data: Path, only: list[str] | None = None) -> list[PileRec
                 z.append(depth)
                 energy.append(e)
                 measured.append(count)
+                enthru.append(_number(row["normalised ENTHRU [-]"]))
         piles.append(PileRecord(
             pid, summary["cpt_group"], float(summary["bottom wall thickness [mm]"]) / 1e3,
             float(summary["final penetration [m]"]), np.array(z), np.array(energy),
             np.array(measured), str(series), {"rows_where": {"location_id": pid},
-                                              **HALF_METRE_OPTIONS}))
+                                              **HALF_METRE_OPTIONS},
+            enthru=np.array(enthru)))
     return piles
 
 
 def prediction_piles(data: Path, only: list[str] | None = None,
-                     cpt: str = "fullres") -> list[PileRecord]:
+                     cpt: str = "0p5m") -> list[PileRecord]:
     """The prediction piles at every whole metre where their record gives a hammer energy
-    (from the first to the last such depth: where they were driven)."""
+    (from the first to the last such depth: where they were driven). ``cpt``: "0p5m" (the
+    0.5 m series, the processing of the calibration piles) or "fullres"."""
     series, records = _pile_records(data, "prediction", only)
     piles = []
     for summary, pile_rows in records:
         pid = summary["location_id"]
-        rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]))
-                for r in pile_rows]
-        driven = [z for z, e in rows if math.isfinite(e) and e > 0.0]
+        rows = [(float(r["z [m]"]), _number(r["normalised hammer energy [-]"]),
+                 _number(r["normalised ENTHRU [-]"])) for r in pile_rows]
+        driven = [z for z, e, _ in rows if math.isfinite(e) and e > 0.0]
         first, last = math.ceil(min(driven) - 1e-6), math.floor(max(driven) + 1e-6)
-        z_all = np.array([z for z, e in rows if math.isfinite(e)])
-        e_all = np.array([e for z, e in rows if math.isfinite(e)])
+        known = [(z, e, t) for z, e, t in rows if math.isfinite(e) and math.isfinite(t)]
+        z_all, e_all, t_all = (np.array(c) for c in zip(*known, strict=True))
         depths = np.arange(first, last + 1, dtype=float)
         energy = np.interp(depths, z_all, e_all)  # whole metres carry their own value
+        enthru = np.interp(depths, z_all, t_all)
         group = summary["cpt_group"]
         fullres = data / f"cpt_fullres_{group.replace('/', '-')}.csv"
         if cpt == "fullres" and fullres.exists():
@@ -434,7 +477,7 @@ def prediction_piles(data: Path, only: list[str] | None = None,
                                                       **HALF_METRE_OPTIONS}, False)
         piles.append(PileRecord(pid, group, float(summary["bottom wall thickness [mm]"]) / 1e3,
                                 float(summary["final penetration [m]"]), depths, energy, None,
-                                source, options, is_full))
+                                source, options, is_full, enthru))
     return piles
 
 
@@ -589,82 +632,6 @@ def naive_baseline(train, held_out) -> list[np.ndarray]:
             for p in held_out]
 
 
-def leave_one_foundation_out(piles, grid, energies, multipliers,
-                             with_multiplier: bool) -> tuple[list[dict], dict]:
-    """Leave-one-foundation-out cross-validation (module docstring).
-
-    piles : the calibration piles; grid : their :func:`simulate_pile` results on the grid of
-    ``energies`` [J] x ``multipliers`` [-]; with_multiplier : fit the SRD multiplier too.
-    Returns (rows per foundation and "overall", summary).
-    """
-    groups = sorted({p.cpt_group for p in piles})
-    rows, model_all, base_all, measured_all = [], [], [], []
-    left_out = 0
-    for group in groups:
-        train = [k for k, p in enumerate(piles) if p.cpt_group != group]
-        test = [k for k, p in enumerate(piles) if p.cpt_group == group]
-        if not train:
-            continue
-        interp = GridInterpolator(energies, multipliers,
-                                  np.concatenate([grid[k]["count"] for k in train], axis=2),
-                                  np.concatenate([grid[k]["run_multiplier"] for k in train]))
-        measured = np.concatenate([piles[k].measured for k in train])
-        f = fit(interp, measured, with_multiplier)
-        e_ref, mult = f["E_ref [J]"], f["srd_multiplier [-]"]
-        held = [piles[k] for k in test]
-        predicted = [GridInterpolator(energies, multipliers, grid[k]["count"],
-                                      grid[k]["run_multiplier"])(e_ref, mult) for k in test]
-        base = naive_baseline([piles[k] for k in train], held)
-        pred = np.concatenate(predicted)
-        b = np.concatenate(base)
-        m = np.concatenate([p.measured for p in held])
-        ok = np.isfinite(b)
-        left_out += int(np.sum(~ok))
-        model_all.append(pred[ok])
-        base_all.append(b[ok])
-        measured_all.append(m[ok])
-        rows.append({"foundation": group, "piles [-]": len(held), "points [-]": int(ok.sum()),
-                     "points_without_baseline [-]": int(np.sum(~ok)),
-                     "E_ref [J]": e_ref, "srd_multiplier [-]": mult,
-                     "rmse_model [blows/m]": rmse(pred[ok], m[ok]) if ok.any() else math.nan,
-                     "rmse_baseline [blows/m]": rmse(b[ok], m[ok]) if ok.any() else math.nan,
-                     "bias_model [blows/m]": float(np.mean(pred[ok] - m[ok])) if ok.any()
-                     else math.nan,
-                     "bias_baseline [blows/m]": float(np.mean(b[ok] - m[ok])) if ok.any()
-                     else math.nan})
-    pred, base, meas = (np.concatenate(x) if x else np.zeros(0)
-                        for x in (model_all, base_all, measured_all))
-    overall = {"foundation": "overall", "piles [-]": len(piles), "points [-]": int(meas.size),
-               "points_without_baseline [-]": left_out, "E_ref [J]": math.nan,
-               "srd_multiplier [-]": math.nan,
-               "rmse_model [blows/m]": rmse(pred, meas) if meas.size else math.nan,
-               "rmse_baseline [blows/m]": rmse(base, meas) if meas.size else math.nan,
-               "bias_model [blows/m]": float(np.mean(pred - meas)) if meas.size else math.nan,
-               "bias_baseline [blows/m]": float(np.mean(base - meas)) if meas.size
-               else math.nan}
-    rows.append(overall)
-    mse_m, mse_b = overall["rmse_model [blows/m]"] ** 2, overall["rmse_baseline [blows/m]"] ** 2
-    folds = rows[:-1]
-    summary = {
-        "folds [-]": len(folds),
-        "rmse_model [blows/m]": overall["rmse_model [blows/m]"],
-        "rmse_baseline [blows/m]": overall["rmse_baseline [blows/m]"],
-        "skill [-]": 1.0 - mse_m / mse_b if mse_b > 0 else math.nan,
-        "folds_model_better [-]": sum(r["rmse_model [blows/m]"] < r["rmse_baseline [blows/m]"]
-                                      for r in folds),
-        "points [-]": overall["points [-]"],
-        "points_without_baseline [-]": left_out,
-        "E_ref_range [J]": [min(r["E_ref [J]"] for r in folds),
-                            max(r["E_ref [J]"] for r in folds)] if folds else None,
-        "srd_multiplier_range [-]": [min(r["srd_multiplier [-]"] for r in folds),
-                                     max(r["srd_multiplier [-]"] for r in folds)]
-        if folds else None,
-        "cpt": "the 0.5 m series of each pile's foundation, for every pile",
-        "fit": "energy+multiplier" if with_multiplier else "energy",
-    }
-    return rows, summary
-
-
 def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
     rows = []
     for p, pred in zip(piles, predicted, strict=True):
@@ -684,10 +651,484 @@ def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
     return rows
 
 
+# ----------------------------------------------------------------------------- prediction
+LOG_OFFSET = 5.0
+"""Offset of the log misfit [blows/m]: log(N + 5) - log(N_measured + 5) keeps the shallow
+records (a few blows/m, or 0 where the pile runs) from dominating the log fit."""
+RESIDUAL_SCALE = {"log": 0.35, "blows": 20.0}
+"""Typical misfit of one record (log: [-], blows: [blows/m]; about the records' own scatter
+between piles under one CPT) that weighs the prior against the data in the fit."""
+PRIOR_SD = math.log(2.0)
+"""Prior standard deviation [-] of the log of each soil class's SRD multiplier about the
+common one: a class's SRD within a factor 2 of the others' (the faces' rule alone changes
+the shaft by 2 between codes, srd-methods.md)."""
+CLASSES = ("sand", "clay", "toe")
+EXPONENT_SD = 0.25
+"""Prior standard deviation [-] of the exponent b of the energy law E = E_ref setting^b
+about 1 (a blow energy proportional to the hammer's setting)."""
+
+
+class ResponseSurface:
+    """Blow counts of many records as a function of one reference energy and the SRD
+    multipliers of sand shaft, clay shaft and toe, from a grid of direct runs.
+
+    Each record (pile, tip depth) was simulated on a grid of common SRD multipliers x
+    reference energies (:func:`simulate_pile`); the per-class multipliers enter through the
+    record's effective multiplier m = (m_sand R_sand + m_clay R_clay + m_toe R_toe) / R (the
+    distribution of the SRD between shaft and toe is that of multiplier 1, an approximation
+    checked against direct runs, :func:`main`). log(blow count) is interpolated bilinearly in
+    log(m) and log(energy); grid nodes where the pile runs under its weight are replaced by
+    the extrapolation of the two nodes above (the count jumps from 0 there), and the count is
+    0 exactly where m R is below the weight.
+
+    energies, multipliers : grid [J], [-]; counts : (n, multipliers, energies) [blows/m];
+    run : (n,) multiplier at and below which each record runs [-]; sand, clay, toe : (n,) SRD
+    at multiplier 1 [N]; energy_factor : (n,) factor on the reference energy of each record
+    [-] (1: the normalised hammer energy; ENTHRU / (0.75 x hammer energy) to drive with the
+    recorded ENTHRU); setting : (n,) normalised hammer energy of each record [-] (for an
+    energy law E = E_ref setting^b, b != 1).
+    """
+
+    def __init__(self, energies, multipliers, counts, run, sand, clay, toe,
+                 energy_factor=None, setting=None):
+        self.le = np.log(np.asarray(energies, float))
+        self.lm = np.log(np.asarray(multipliers, float))
+        lc = np.log(np.clip(np.asarray(counts, float), COUNT_FLOOR, REFUSAL_COUNT))
+        self.run = np.asarray(run, float)
+        for k in range(lc.shape[0]):
+            ok = np.exp(self.lm) > self.run[k]
+            if ok.all():
+                continue
+            if not ok.any():
+                lc[k] = math.log(COUNT_FLOOR)
+                continue
+            i0 = int(np.argmax(ok))
+            slope = ((lc[k, i0 + 1] - lc[k, i0]) / (self.lm[i0 + 1] - self.lm[i0])
+                     if i0 + 1 < self.lm.size else np.zeros_like(lc[k, i0]))
+            lc[k, :i0] = lc[k, i0][None, :] + np.multiply.outer(self.lm[:i0] - self.lm[i0],
+                                                                slope)
+        self.lc = lc
+        self.sand, self.clay, self.toe = (np.asarray(v, float) for v in (sand, clay, toe))
+        self.energy_factor = (np.ones(lc.shape[0]) if energy_factor is None
+                              else np.asarray(energy_factor, float))
+        self.setting = (np.ones(lc.shape[0]) if setting is None
+                        else np.asarray(setting, float))
+
+    def subset(self, rows) -> ResponseSurface:
+        """The surface of the records ``rows`` (a boolean mask or indices)."""
+        s = object.__new__(ResponseSurface)
+        s.le, s.lm = self.le, self.lm
+        for k in ("lc", "run", "sand", "clay", "toe", "energy_factor", "setting"):
+            setattr(s, k, getattr(self, k)[rows])
+        return s
+
+    def with_energy_factor(self, factor) -> ResponseSurface:
+        s = self.subset(slice(None))
+        s.energy_factor = np.asarray(factor, float)
+        return s
+
+    def effective_multiplier(self, m_sand: float, m_clay: float, m_toe: float) -> np.ndarray:
+        total = self.sand + self.clay + self.toe
+        return ((m_sand * self.sand + m_clay * self.clay + m_toe * self.toe)
+                / np.where(total > 0, total, 1.0))
+
+    @staticmethod
+    def _cell(nodes, x):
+        x = np.clip(x, nodes[0], nodes[-1])
+        i = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, nodes.size - 2)
+        return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
+
+    def __call__(self, e_ref: float, m_sand: float = 1.0, m_clay: float | None = None,
+                 m_toe: float | None = None, exponent: float = 1.0) -> np.ndarray:
+        """Blow counts [blows/m] of every record at E_ref [J] and the class multipliers [-]
+        (clay and toe default to the sand one); blow energy E_ref setting^exponent."""
+        m = self.effective_multiplier(m_sand, m_sand if m_clay is None else m_clay,
+                                      m_sand if m_toe is None else m_toe)
+        im, wm = self._cell(self.lm, np.log(m))
+        ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor)
+                            + (exponent - 1.0) * np.log(self.setting))
+        k = np.arange(self.lc.shape[0])
+        lc = ((1 - wm) * ((1 - we) * self.lc[k, im, ie] + we * self.lc[k, im, ie + 1])
+              + wm * ((1 - we) * self.lc[k, im + 1, ie] + we * self.lc[k, im + 1, ie + 1]))
+        return np.where(m <= self.run, 0.0, np.exp(lc))
+
+
+def misfit(predicted, measured, space: str) -> np.ndarray:
+    """Residuals of the fit: in blows/m (``"blows"``) or of log(N + LOG_OFFSET) (``"log"``)."""
+    if space == "log":
+        return np.log(predicted + LOG_OFFSET) - np.log(measured + LOG_OFFSET)
+    return np.asarray(predicted, float) - np.asarray(measured, float)
+
+
+def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
+                    space: str = "log", prior_sd: float = PRIOR_SD,
+                    n_eff: float = 1.0, exponent: bool = False) -> dict:
+    """E_ref, a common SRD multiplier, (``classes``, a subset of :data:`CLASSES`) the
+    deviations of the classes' multipliers from it and (``exponent``) the exponent b of the
+    energy law E = E_ref setting^b, minimising
+
+        mean(r^2) / s^2 + [sum(d_c^2) / prior_sd^2 + (b - 1)^2 / EXPONENT_SD^2] / n_eff
+
+    (a Gaussian MAP estimate: r the :func:`misfit` in ``space``, s its
+    :data:`RESIDUAL_SCALE`, d_c = log(m_c) - log(m) the class deviations with a prior of
+    standard deviation ``prior_sd`` about the common multiplier, b about 1 (the energy
+    proportional to the setting), n_eff the number of independent observations: the
+    foundations, whose piles share one CPT). E_ref and the common multiplier are not penalised
+    (the data fix their valley). Nelder-Mead from the best of a coarse start grid, restarted
+    twice. Returns the values and the objective."""
+    from scipy.optimize import minimize
+
+    measured = np.asarray(measured, float)
+    s2 = RESIDUAL_SCALE[space] ** 2
+    nc = len(classes)
+
+    def unpack(p):
+        d = dict(zip(classes, p[2:2 + nc], strict=True))
+        b = float(p[2 + nc]) if exponent else 1.0
+        return (math.exp(p[0]), *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b)
+
+    def objective(p):
+        r = misfit(surface(*unpack(p)), measured, space)
+        penalty = float(np.sum(np.asarray(p[2:2 + nc]) ** 2)) / prior_sd ** 2
+        if exponent:
+            penalty += (float(p[2 + nc]) - 1.0) ** 2 / EXPONENT_SD ** 2
+        return float(np.mean(r * r)) / s2 + penalty / n_eff
+
+    tail = np.r_[np.zeros(nc), [1.0] if exponent else []]
+    starts = [np.r_[math.log(e), math.log(m), tail]
+              for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)]
+    res = None
+    p0 = min(starts, key=objective)
+    for _ in range(3):  # restarted: a fresh simplex where the last one shrank in a valley
+        res = minimize(objective, p0 if res is None else res.x, method="Nelder-Mead",
+                       options={"xatol": 1e-5, "fatol": 1e-12, "maxfev": 6000,
+                                "adaptive": True})
+    e_ref, m_sand, m_clay, m_toe, b = unpack(res.x)
+    at_edge = bool(not (surface.le[0] < math.log(e_ref) < surface.le[-1]))
+    return {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
+            "srd_toe [-]": m_toe, "energy_exponent [-]": b, "objective [-]": float(res.fun),
+            "energy_at_grid_edge": at_edge}
+
+
+def predict_with(surface: ResponseSurface, fitted: dict) -> np.ndarray:
+    """Blow counts [blows/m] of the surface's records at the fitted values."""
+    return surface(fitted["E_ref [J]"], fitted["srd_sand [-]"], fitted["srd_clay [-]"],
+                   fitted["srd_toe [-]"], fitted.get("energy_exponent [-]", 1.0))
+
+
+def stacking_weight(physics, baseline, measured) -> float:
+    """Weight w in [0, 1] of the least-squares blend baseline + w (physics - baseline) [-]."""
+    d = np.asarray(physics, float) - np.asarray(baseline, float)
+    den = float(np.sum(d * d))
+    if den <= 0.0:
+        return 1.0
+    return float(np.clip(np.sum(d * (np.asarray(measured, float) - baseline)) / den, 0.0, 1.0))
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of the stepwise back-analysis: what the model drives with and fits."""
+
+    name: str
+    space: str = "log"              # the fit's misfit: "blows" or "log"
+    classes: tuple = ()             # soil classes with their own SRD multiplier
+    energy: str = "hammer"          # "hammer" (normalised hammer energy) or "enthru"
+    exponent: bool = False          # fit the exponent of the energy law
+    residual_stress: bool = False   # apply the multi-blow (residual stress) ratio
+    stacked: bool = False           # blend with the depth mean of the other foundations
+
+
+STEPS = (
+    Step("A: one E_ref, one SRD multiplier, fit in blows/m (the calibration fit of drive.md)", space="blows"),
+    Step("B: as A, fit in log blow count", space="log"),
+    Step("C: + sand / clay shaft and toe multipliers (ridge)", classes=CLASSES),
+    Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru"),
+)
+
+
+def _scores(predicted, measured) -> dict:
+    r = np.asarray(predicted, float) - np.asarray(measured, float)
+    return {"rmse [blows/m]": float(np.sqrt(np.mean(r * r))), "bias [blows/m]": float(np.mean(r))}
+
+
+def record_baselines(piles, groups) -> np.ndarray:
+    """Per record of ``piles``: the naive baseline with the record's foundation held out
+    (:func:`naive_baseline`; NaN where no other foundation was driven to that depth)."""
+    out = []
+    by_group = {g: [p for p in piles if p.cpt_group == g] for g in groups}
+    for p in piles:
+        others = [q for g, qs in by_group.items() if g != p.cpt_group for q in qs]
+        out.append(naive_baseline(others, [p])[0])
+    return np.concatenate(out) if out else np.zeros(0)
+
+
+def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, steps=STEPS,
+                              stress_ratio=None) -> tuple[list[dict], dict]:
+    """Leave-one-foundation-out cross-validation of every step of ``steps`` on the records of
+    ``piles`` (their :class:`ResponseSurface`), against the naive baseline computed the same
+    way (every held-out record scored where the baseline exists, the same records for every
+    step). enthru_factor : per record, the energy factor of the ``"enthru"`` steps;
+    stress_ratio : per record, multi-blow / single-blow blow count (steps with
+    ``residual_stress``). Returns (a row per step, the predictions per step)."""
+    measured = np.concatenate([p.measured for p in piles])
+    group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
+    groups = sorted(set(group.tolist()))
+    baseline = record_baselines(piles, groups)
+    ok = np.isfinite(baseline)
+    rows, predictions = [], {}
+    for step in steps:
+        surf = surface.with_energy_factor(enthru_factor) if step.energy == "enthru" \
+            else surface
+        predicted = np.full(measured.size, np.nan)
+        fits = []
+        for g in groups:
+            train, test = group != g, group == g
+            sub = surf.subset(train)
+            fitted = fit_regularised(sub, measured[train], step.classes, step.space,
+                                     n_eff=len(groups) - 1, exponent=step.exponent)
+            pred = predict_with(surf.subset(test), fitted)
+            if step.residual_stress:
+                pred = pred * stress_ratio[test]
+            if step.stacked:
+                train_piles = [p for p in piles if p.cpt_group != g]
+                inner = record_baselines(train_piles, [x for x in groups if x != g])
+                phys = predict_with(sub, fitted)
+                if step.residual_stress:
+                    phys = phys * stress_ratio[train]
+                good = np.isfinite(inner)
+                w = stacking_weight(phys[good], inner[good], measured[train][good])
+                fitted["stacking_weight [-]"] = w
+                base = baseline[test]
+                pred = np.where(np.isfinite(base), base + w * (pred - base), pred)
+            predicted[test] = pred
+            fits.append(fitted)
+        predictions[step.name] = predicted
+        row = {"step": step.name, **_scores(predicted[ok], measured[ok]),
+               "rmse_baseline [blows/m]": _scores(baseline[ok], measured[ok])["rmse [blows/m]"],
+               "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
+               "points [-]": int(ok.sum()), "folds [-]": len(groups)}
+        for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
+                    "energy_exponent [-]", "stacking_weight [-]"):
+            if key in fits[0]:
+                values = [f[key] for f in fits]
+                row[f"{key} folds median"] = float(np.median(values))
+                row[f"{key} folds min"] = float(np.min(values))
+                row[f"{key} folds max"] = float(np.max(values))
+        rows.append(row)
+    return rows, {"predictions": predictions, "baseline": baseline, "measured": measured,
+                  "group": group, "scored": ok}
+
+
+# ----------------------------------------------------------------------------- stepwise run
+PREDICTIVE_STEPS = (
+    ("grid1", Step("A: one E_ref, one SRD multiplier, fit in blows/m (the calibration fit of drive.md)",
+                   space="blows")),
+    ("grid1", Step("B: as A, fit in log blow count")),
+    ("grid2", Step("C: + sand shaft, clay shaft and toe multipliers (ridge)", classes=CLASSES)),
+    ("grid2", Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru")),
+    ("grid2", Step("E: + energy law E_ref setting^b (tried, not kept)", classes=CLASSES,
+                   energy="enthru", exponent=True)),
+    ("grid2", Step("F: D + residual stress (3 blows per depth)", classes=CLASSES,
+                   energy="enthru", residual_stress=True)),
+    ("grid2", Step("G: F stacked with the depth mean of the other foundations",
+                   classes=CLASSES, energy="enthru", residual_stress=True, stacked=True)),
+)
+"""The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
+grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`).
+The final model is the last step."""
+GRID2_MULTIPLIERS = (0.3, 0.45, 0.65, 0.9, 1.25, 1.7)
+"""Common SRD multipliers of the second grid, about the class multipliers of the first fit."""
+RESIDUAL_STRESS_BLOWS = 3
+"""Blows per depth of the residual-stress runs (each from the state the last left) [-]."""
+
+
+def record_surface(piles, results, energies, multipliers) -> ResponseSurface:
+    """The :class:`ResponseSurface` of the records of ``piles`` from their
+    :func:`simulate_pile` ``results`` on the grid."""
+    def cat(key):
+        return np.concatenate([r[key] for r in results])
+
+    counts = np.concatenate([np.transpose(r["count"], (2, 0, 1)) for r in results])
+    sand = cat("srd_shaft_sand")
+    return ResponseSurface(energies, multipliers, counts, cat("run_multiplier"), sand,
+                           cat("srd_shaft") - sand, cat("srd_toe"),
+                           setting=np.concatenate([p.energy for p in piles]))
+
+
+def enthru_factor(piles) -> np.ndarray:
+    """Per record: ENTHRU / (0.75 x hammer energy) [-] (1 where the record gives no ENTHRU):
+    the factor on the blow energy that drives with the recorded ENTHRU (0.75: the records'
+    usual ratio, absorbed in E_ref)."""
+    out = []
+    for p in piles:
+        f = (p.enthru / p.energy / 0.75 if p.enthru is not None else np.ones(p.depths.size))
+        out.append(np.where(np.isfinite(f) & (f > 0), f, 1.0))
+    return np.concatenate(out)
+
+
+def final_model(model: Model, fitted: dict) -> Model:
+    """``model`` with the fitted class multipliers (on its own)."""
+    return replace(model, srd_sand=model.srd_sand * fitted["srd_sand [-]"],
+                   srd_clay=model.srd_clay * fitted["srd_clay [-]"],
+                   srd_toe=model.srd_toe * fitted["srd_toe [-]"])
+
+
+def _enthru_piles(piles):
+    """The piles with their blow energy trace the recorded ENTHRU / 0.75."""
+    return [replace(p, energy=p.energy * f)
+            for p, f in zip(piles, np.split(enthru_factor(piles),
+                                            np.cumsum([p.depths.size for p in piles])[:-1]),
+                            strict=True)]
+
+
+def predictive_backanalysis(args, model: Model, calibration, prediction, out: Path,
+                            energies, multipliers) -> int:
+    """The stepwise back-analysis (``--cross-validate``): every step of
+    :data:`PREDICTIVE_STEPS` cross-validated leave one foundation out against the naive
+    baseline, the final step fitted on all calibration piles and the prediction piles
+    predicted with it (direct runs). Writes ``isfog_backanalysis.json`` and
+    ``cross_validation_steps.csv`` in ``out`` (and the JSON to ``--json``)."""
+    start = time.perf_counter()
+    times = {}
+    measured = np.concatenate([p.measured for p in calibration])
+    groups = sorted({p.cpt_group for p in calibration})
+    n_cal = len(calibration)
+    warm_up(model, calibration[0])
+    # grid 1: the method's SRD distribution
+    t = time.perf_counter()
+    g1 = run_piles(calibration + prediction, model, energies, multipliers, args.workers)
+    times["grid1 [s]"] = time.perf_counter() - t
+    surf1 = record_surface(calibration, g1[:n_cal], energies, multipliers)
+    factor = enthru_factor(calibration)
+    first = fit_regularised(surf1.with_energy_factor(factor), measured, CLASSES, "log",
+                            n_eff=len(groups))
+    # grid 2: the SRD distribution of the first fit (the effective multiplier of the surface
+    # then only has to carry the folds' small deviations from it)
+    model2 = final_model(model, first)
+    t = time.perf_counter()
+    m2 = np.asarray(GRID2_MULTIPLIERS)
+    e2 = np.geomspace(energies[0], energies[-1] * 1.25, energies.size)
+    g2 = run_piles(calibration + prediction, model2, e2, m2, args.workers)
+    times["grid2 [s]"] = time.perf_counter() - t
+    surf2 = record_surface(calibration, g2[:n_cal], e2, m2)
+    # the final fit (step D's) on every calibration pile, and its direct runs
+    final = fit_regularised(surf2.with_energy_factor(factor), measured, CLASSES, "log",
+                            n_eff=len(groups))
+    model_f = final_model(model2, final)
+    piles_f = _enthru_piles(calibration + prediction)
+    t = time.perf_counter()
+    one = run_piles(piles_f, model_f, [final["E_ref [J]"]], [1.0], args.workers)
+    several = run_piles(piles_f, replace(model_f, blows_per_depth=RESIDUAL_STRESS_BLOWS),
+                        [final["E_ref [J]"]], [1.0], args.workers)
+    times["direct [s]"] = time.perf_counter() - t
+    direct1 = np.concatenate([r["count"][0, 0] for r in one[:n_cal]])
+    directn = np.concatenate([r["count"][0, 0] for r in several[:n_cal]])
+    stress_ratio = np.where(direct1 > 0, directn / np.where(direct1 > 0, direct1, 1.0), 1.0)
+    surface_at_final = predict_with(surf2.with_energy_factor(factor), final)
+    # the steps
+    t = time.perf_counter()
+    rows, records = [], None
+    for which, step in PREDICTIVE_STEPS:
+        surf = surf1 if which == "grid1" else surf2
+        r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio)
+        rows += r
+        if records is None:
+            records = [{"location_id": p.location_id, "cpt_group": p.cpt_group,
+                        "z [m]": float(z), "measured [blows/m]": float(n)}
+                       for p in calibration for z, n in zip(p.depths, p.measured, strict=True)]
+            for rec, b in zip(records, res["baseline"], strict=True):
+                rec["naive [blows/m]"] = float(b)
+        for rec, v in zip(records, res["predictions"][step.name], strict=True):
+            rec[step.name.split(":")[0]] = float(v)
+        print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
+              f"{r[0]['bias [blows/m]']:+.1f} blows/m (naive "
+              f"{r[0]['rmse_baseline [blows/m]']:.1f}, "
+              f"{r[0]['bias_baseline [blows/m]']:+.1f})", flush=True)
+    times["cross_validation [s]"] = time.perf_counter() - t
+    write_csv(out / "cross_validation_steps.csv", rows)
+    write_csv(out / "cross_validation_records.csv", records)
+    # the final model's predictions: the multi-blow direct runs, stacked with the depth mean
+    # of every calibration foundation with the weight fitted on them (inner baseline)
+    inner = record_baselines(calibration, groups)
+    good = np.isfinite(inner)
+    weight = stacking_weight(directn[good], inner[good], measured[good])
+    pred_rows = []
+    for p, r in zip(prediction, several[n_cal:], strict=True):
+        base = naive_baseline(calibration, [p])[0]
+        physics = r["count"][0, 0]
+        blend = np.where(np.isfinite(base), base + weight * (physics - base), physics)
+        for k, z in enumerate(p.depths):
+            pred_rows.append({"location_id": p.location_id, "z [m]": float(z),
+                              "blowcount [blows/m]": float(blend[k]),
+                              "physics [blows/m]": float(physics[k]),
+                              "naive [blows/m]": float(base[k])})
+    write_csv(out / "prediction_piles_blowcount.csv", pred_rows)
+    ds = driving_system(model)
+    max_energy = float(max(np.max(p.energy) for p in piles_f) * final["E_ref [J]"])
+    per_pile = {}
+    for row in pred_rows:
+        per_pile.setdefault(row["location_id"], []).append(row["blowcount [blows/m]"])
+    summary = {
+        "steps": [{k: v for k, v in r.items()} for r in rows],
+        "final_step": rows[-1]["step"],
+        "cv_rmse [blows/m]": rows[-1]["rmse [blows/m]"],
+        "cv_bias [blows/m]": rows[-1]["bias [blows/m]"],
+        "naive_rmse [blows/m]": rows[-1]["rmse_baseline [blows/m]"],
+        "naive_bias [blows/m]": rows[-1]["bias_baseline [blows/m]"],
+        "cv_points [-]": rows[-1]["points [-]"], "cv_folds [-]": rows[-1]["folds [-]"],
+        "first_fit": first, "final_fit": final,
+        "final_srd_multipliers [-]": {"sand": model_f.srd_sand, "clay": model_f.srd_clay,
+                                      "toe": model_f.srd_toe},
+        "stacking_weight_final [-]": weight,
+        "surface_vs_direct_at_final": {
+            "rms [blows/m]": rmse(surface_at_final, direct1),
+            "bias [blows/m]": float(np.mean(surface_at_final - direct1))},
+        "calibration_direct": {
+            "rmse_single_blow [blows/m]": rmse(direct1, measured),
+            "bias_single_blow [blows/m]": float(np.mean(direct1 - measured)),
+            "rmse_residual_stress [blows/m]": rmse(directn, measured),
+            "bias_residual_stress [blows/m]": float(np.mean(directn - measured)),
+            "residual_stress_ratio_5_50_95 [-]": np.percentile(
+                stress_ratio[direct1 > 0], [5, 50, 95]).tolist()},
+        "largest_blow_energy [J]": max_energy,
+        "hammer_rated_energy [J]": ds["rated_energy [J]"],
+        "prediction_piles_mean_blowcount [blows/m]": {
+            k: float(np.mean(v)) for k, v in per_pile.items()},
+        "prediction_points [-]": len(pred_rows),
+        "cpt": "the 0.5 m series of each pile's foundation, for every pile (calibration and "
+               "prediction)",
+        "model": {k: getattr(model_f, k) for k in Model.__dataclass_fields__},
+        "times": times, "wall_time [s]": time.perf_counter() - start,
+        "workers [-]": args.workers,
+    }
+    text = json.dumps(_jsonable(summary), indent=2) + "\n"
+    (out / "isfog_backanalysis.json").write_text(text)
+    if args.json:
+        args.json.parent.mkdir(parents=True, exist_ok=True)
+        args.json.write_text(text)
+    print(f"\n{'step':<70} {'CV RMSE':>8} {'bias':>6} {'naive':>6} {'bias':>6}")
+    for r in rows:
+        print(f"{r['step']:<70} {r['rmse [blows/m]']:8.1f} {r['bias [blows/m]']:+6.1f} "
+              f"{r['rmse_baseline [blows/m]']:6.1f} {r['bias_baseline [blows/m]']:+6.1f}")
+    print(f"\nfinal fit (all {n_cal} calibration piles): E_ref {final['E_ref [J]'] / 1e3:.0f} kJ,"
+          f" SRD x sand {model_f.srd_sand:.2f}, clay {model_f.srd_clay:.2f}, toe "
+          f"{model_f.srd_toe:.2f}; stacking weight {weight:.2f}; largest blow energy "
+          f"{max_energy / 1e3:.0f} kJ (rating {ds['rated_energy [J]'] / 1e3:.0f} kJ)")
+    print("prediction piles, predicted blow count [blows/m] at every whole metre driven:")
+    for p in prediction:
+        counts = [f"{r['blowcount [blows/m]']:.0f}" for r in pred_rows
+                  if r["location_id"] == p.location_id]
+        print(f"  {p.location_id} ({p.depths[0]:g}-{p.depths[-1]:g} m, mean "
+              f"{np.mean(per_pile[p.location_id]):.1f}): {' '.join(counts)}")
+    print(f"wall time {summary['wall_time [s]']:.0f} s; results in {out}")
+    return 0
+
+
 # ----------------------------------------------------------------------------- output
 def write_csv(path: Path, rows: list[dict]) -> None:
     with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer = csv.DictWriter(handle, fieldnames=list(dict.fromkeys(k for r in rows
+                                                                      for k in r)))
         writer.writeheader()
         for row in rows:
             writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
@@ -834,8 +1275,9 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--hammer", default=Model.hammer, help="hammer of anvilwave/hammer/data")
     parser.add_argument("--piles", help="calibration piles to use, e.g. AD,AE (default: all)")
     parser.add_argument("--prediction-piles", help="prediction piles (default: all)")
-    parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="fullres",
-                        help="CPT of the prediction piles (default: full resolution)")
+    parser.add_argument("--prediction-cpt", choices=("fullres", "0p5m"), default="0p5m",
+                        help="CPT of the prediction piles (default: the 0.5 m series, the "
+                             "processing of the calibration piles)")
     parser.add_argument("--energies", type=int, default=7,
                         help="reference energies of the grid (log-spaced)")
     parser.add_argument("--energy-range", default="150e3,3200e3",
@@ -847,6 +1289,9 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--cross-validate", action="store_true",
                         help="leave-one-foundation-out cross-validation against the naive "
                              "baseline (mean of the other foundations at each depth)")
+    parser.add_argument("--json", type=Path,
+                        help="with --cross-validate: also write the summary JSON here (e.g. "
+                             "docs/data/isfog_backanalysis.json)")
     parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
                         help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
     parser.add_argument("--segment-length", type=float, default=Model.segment_length,
@@ -892,6 +1337,9 @@ def main(argv=None) -> int:
     print(f"{len(calibration)} calibration piles ({sum(len(p.depths) for p in calibration)} "
           f"records), {len(prediction)} prediction piles; grid {energies.size} energies x "
           f"{multipliers.size} multipliers; {args.workers} workers")
+    if args.cross_validate:
+        return predictive_backanalysis(args, model, calibration, prediction, out, energies,
+                                       multipliers)
 
     t = time.perf_counter()
     warm_up(model, calibration[0])
@@ -914,18 +1362,6 @@ def main(argv=None) -> int:
         fits["fit_energy_only"] = fit(interp, measured, False)
     chosen = fits["fit"] if with_multiplier else fits["fit_energy_only"]
     times["fit [s]"] = time.perf_counter() - t
-    cross = None
-    if args.cross_validate:
-        t = time.perf_counter()
-        cv_rows, cross = leave_one_foundation_out(calibration, grid, energies, multipliers,
-                                                  with_multiplier)
-        write_csv(out / "cross_validation.csv", cv_rows)
-        times["cross_validation [s]"] = time.perf_counter() - t
-        print(f"leave one foundation out ({cross['folds [-]']} folds, {cross['points [-]']} "
-              f"records): RMSE {cross['rmse_model [blows/m]']:.1f} blows/m against "
-              f"{cross['rmse_baseline [blows/m]']:.1f} for the baseline (mean of the other "
-              f"foundations), skill {cross['skill [-]']:+.2f}; the model better in "
-              f"{cross['folds_model_better [-]']} of {cross['folds [-]']} folds")
     e_ref, mult = chosen["E_ref [J]"], chosen["srd_multiplier [-]"]
     print(f"fit: E_ref {e_ref / 1e3:.1f} kJ, SRD multiplier {mult:.3f} (interpolated RMSE "
           f"{chosen['rmse_interpolated [blows/m]']:.1f} blows/m)")
@@ -1025,7 +1461,6 @@ def main(argv=None) -> int:
                                  "hammer energy",
             "prediction_cpt": args.prediction_cpt,
         },
-        "cross_validation": cross,
         "data": str(data),
         "times": times,
         "workers [-]": args.workers,

@@ -161,6 +161,35 @@ def test_backanalysis_on_two_calibration_piles(tmp_path):
         assert (out / name).stat().st_size > 0
 
 
+@pytest.mark.skipif(not (ISFOG / "calibration_piles_0p5m.csv").exists(),
+                    reason=f"the ISFOG 2020 records are not in {ISFOG} (they are read from "
+                           "../shared beside the repository, never copied into it)")
+def test_stepwise_backanalysis_on_two_foundations(tmp_path):
+    out = tmp_path / "isfog"
+    data_json = tmp_path / "data" / "isfog_backanalysis.json"
+    bench = _benchmark()
+    code = bench.main(["--data", str(ISFOG), "--out", str(out), "--piles", "AD,AI",
+                       "--prediction-piles", "AA", "--energies", "2", "--multipliers",
+                       "0.5,1.0", "--segment-length", "1.0", "--duration", "0.12",
+                       "--workers", "1", "--cross-validate", "--json", str(data_json)])
+    assert code == 0
+    summary = json.loads(data_json.read_text())
+    assert summary == json.loads((out / "isfog_backanalysis.json").read_text())
+    steps = summary["steps"]
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFG")
+    # one baseline for every step, computed on the same records
+    assert len({(s["rmse_baseline [blows/m]"], s["points [-]"]) for s in steps}) == 1
+    assert all(math.isfinite(s["rmse [blows/m]"]) for s in steps)
+    assert summary["cv_rmse [blows/m]"] == steps[-1]["rmse [blows/m]"]
+    assert summary["cv_folds [-]"] == 2
+    records = _csv(out / "cross_validation_records.csv")
+    assert len(records) == 24 + 23  # AD: 3-26 m, AI: 3-25 m
+    prediction = _csv(out / "prediction_piles_blowcount.csv")
+    z = [float(r["z [m]"]) for r in prediction]
+    assert z == list(np.arange(z[0], z[-1] + 1.0))
+    assert all(float(r["blowcount [blows/m]"]) >= 0.0 for r in prediction)
+
+
 def _synthetic_piles(bench):
     """Three foundations of two piles, driven at 1-3 m (foundation C only to 2 m), measured
     blow counts by hand."""
@@ -186,23 +215,136 @@ def test_naive_baseline_is_the_mean_of_the_other_foundations_at_each_depth():
     assert math.isnan(c[0][2])  # no other foundation driven to 3 m
 
 
-def test_leave_one_foundation_out_scores_a_perfect_model_against_the_baseline():
-    """A grid whose blow counts are the measured ones at every energy: each fold predicts its
-    held-out piles exactly (RMSE 0, skill 1), while the baseline's error follows by hand."""
+def test_stepwise_cross_validation_scores_a_perfect_model_against_the_baseline():
+    """A surface whose blow counts are the measured ones at every grid node: each fold
+    predicts its held-out piles exactly (RMSE 0), while the baseline's error follows by
+    hand; the stacked step then keeps the physics (weight 1)."""
     bench = _benchmark()
     piles = _synthetic_piles(bench)
-    energies, multipliers = np.array([1e5, 1e6]), np.array([1.0])
-    grid = [{"count": np.broadcast_to(p.measured, (1, 2, p.measured.size)).copy(),
-             "run_multiplier": np.zeros(p.measured.size)} for p in piles]
-    rows, summary = bench.leave_one_foundation_out(piles, grid, energies, multipliers, False)
-    assert [r["foundation"] for r in rows] == ["A", "B", "C", "overall"]
-    assert summary["rmse_model [blows/m]"] == pytest.approx(0.0, abs=1e-9)
-    assert summary["skill [-]"] == pytest.approx(1.0)
-    # fold A: baseline 13.5, 24, 61 against A1 (10, 20, 30) and A2 (12, 22, 32)
-    errors = np.array([3.5, 4.0, 31.0, 1.5, 2.0, 29.0])
-    assert rows[0]["rmse_baseline [blows/m]"] == pytest.approx(math.sqrt(np.mean(errors**2)))
-    # fold C (1-2 m): baseline (10+12+20+22)/4 = 16 at 1 m, (20+22+40+42)/4 = 31 at 2 m
-    c_errors = np.array([11.0, 25.0, 9.0, 23.0])
-    assert rows[2]["rmse_baseline [blows/m]"] == pytest.approx(math.sqrt(np.mean(c_errors**2)))
-    assert summary["points_without_baseline [-]"] == 0
-    assert summary["folds_model_better [-]"] == 3
+    measured = np.concatenate([p.measured for p in piles])
+    n = measured.size
+    counts = np.broadcast_to(measured[:, None, None], (n, 2, 2)).copy()
+    surface = bench.ResponseSurface([1e5, 1e6], [0.5, 1.0], counts, np.zeros(n),
+                                    np.ones(n), np.zeros(n), np.zeros(n))
+    steps = [bench.Step("log"), bench.Step("classes", classes=bench.CLASSES),
+             bench.Step("stacked", stacked=True)]
+    rows, res = bench.stepwise_cross_validation(piles, surface, np.ones(n), steps)
+    assert [r["step"] for r in rows] == ["log", "classes", "stacked"]
+    for r in rows:
+        assert r["rmse [blows/m]"] == pytest.approx(0.0, abs=1e-9)
+        assert r["points [-]"] == n and r["folds [-]"] == 3
+    assert rows[2]["stacking_weight [-] folds min"] == pytest.approx(1.0)
+    # the baseline per record: A at 1-3 m (13.5, 24, 61), B (8.5, 14, 31), C (16, 31)
+    base = np.array([13.5, 24.0, 61.0] * 2 + [(10 + 12 + 5 + 7) / 4, (20 + 22 + 6 + 8) / 4,
+                                               31.0] * 2 + [16.0, 31.0] * 2)
+    np.testing.assert_allclose(res["baseline"], base)
+    expected = math.sqrt(np.mean((base - measured) ** 2))
+    assert rows[0]["rmse_baseline [blows/m]"] == pytest.approx(expected)
+    assert rows[0]["bias_baseline [blows/m]"] == pytest.approx(np.mean(base - measured))
+
+
+# ---------------------------------------------------------------- the regularised fit
+def _synthetic_surface(bench, n=60, seed=1):
+    """A known blow-count law on a grid: log N = 3 + 2 log m - log(E/E0) - 0.5 log(E/E0)^2
+    (E0 = 500 kJ; the curvature in log E separates E_ref from the common multiplier), m the
+    record's effective multiplier; records with random sand / clay / toe SRD and energy
+    factors 0.3-1 and settings 0.2-0.9 (the normalised energies of a record set)."""
+    rng = np.random.default_rng(seed)
+    energies = np.geomspace(100e3, 3200e3, 81)
+    multipliers = np.geomspace(0.1, 2.0, 9)
+    share = rng.dirichlet([1.0, 1.0, 1.0], size=n) * 5e6
+    factor = rng.uniform(0.3, 1.0, n)
+    setting = rng.uniform(0.2, 0.9, n)
+    le = np.log(energies / 500e3)
+    lc = (3.0 + 2.0 * np.log(multipliers)[:, None] - le[None, :] - 0.5 * le[None, :] ** 2)
+    counts = np.broadcast_to(np.exp(lc), (n, *lc.shape)).copy()
+    surface = bench.ResponseSurface(energies, multipliers, counts, np.zeros(n),
+                                    share[:, 0], share[:, 1], share[:, 2], factor, setting)
+    return surface
+
+
+def test_regularised_fit_recovers_known_parameters():
+    bench = _benchmark()
+    surface = _synthetic_surface(bench)
+    truth = (600e3, 0.6, 0.3, 0.9)
+    measured = surface(*truth)
+    # a vanishing prior: the exact values come back (the linear interpolation of the
+    # quadratic in log E on 81 nodes errs by < 1e-3 in log N: tolerance 1 %)
+    fitted = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=100.0)
+    got = [fitted[k] for k in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]")]
+    np.testing.assert_allclose(got, truth, rtol=1e-2)
+    np.testing.assert_allclose(bench.predict_with(surface, fitted), measured, rtol=1e-2)
+    # the blows/m misfit finds them too
+    fitted = bench.fit_regularised(surface, measured, bench.CLASSES, "blows", prior_sd=100.0)
+    got = [fitted[k] for k in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]")]
+    np.testing.assert_allclose(got, truth, rtol=1e-2)
+
+
+def test_regularised_fit_recovers_the_energy_law_exponent():
+    bench = _benchmark()
+    surface = _synthetic_surface(bench)
+    measured = surface(600e3, 0.6, 0.3, 0.9, 0.8)
+    fitted = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=100.0,
+                                   n_eff=1e6, exponent=True)
+    assert fitted["energy_exponent [-]"] == pytest.approx(0.8, abs=0.01)
+    assert fitted["E_ref [J]"] == pytest.approx(600e3, rel=2e-2)
+
+
+def test_strong_prior_pulls_the_class_multipliers_together():
+    bench = _benchmark()
+    surface = _synthetic_surface(bench)
+    measured = surface(600e3, 0.6, 0.3, 0.9)
+    free = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=100.0)
+    tight = bench.fit_regularised(surface, measured, bench.CLASSES, "log", prior_sd=1e-3)
+
+    def spread(f):
+        return np.ptp(np.log([f["srd_sand [-]"], f["srd_clay [-]"], f["srd_toe [-]"]]))
+
+    assert spread(free) == pytest.approx(math.log(0.9 / 0.3), rel=2e-2)
+    assert spread(tight) < 0.01  # one multiplier for all: the prior dominates
+    assert tight["objective [-]"] > free["objective [-]"]
+
+
+def test_response_surface_runs_below_the_weight_and_extrapolates_above():
+    bench = _benchmark()
+    # one record, log N = log(10) + log(m) at both energies; the pile runs at m <= 0.4
+    mult = np.array([0.25, 0.5, 1.0])
+    counts = np.array([[[0.0, 0.0], [5.0, 5.0], [10.0, 10.0]]])
+    s = bench.ResponseSurface([1e5, 1e6], mult, counts, [0.4], [1.0], [0.0], [0.0])
+    assert s(3e5, 0.39)[0] == 0.0
+    # between the run node (0.25) and 0.5: extrapolated from 0.5 and 1.0, 10 m
+    assert s(3e5, 0.45)[0] == pytest.approx(4.5, rel=1e-9)
+    assert s(3e5, 0.7)[0] == pytest.approx(7.0, rel=1e-9)
+    # the effective multiplier of a record: SRD-weighted class multipliers
+    s2 = bench.ResponseSurface([1e5, 1e6], mult, counts, [0.0], [1.0], [1.0], [2.0])
+    assert s2.effective_multiplier(1.0, 0.5, 0.25)[0] == pytest.approx((1 + 0.5 + 0.5) / 4)
+
+
+def test_stacking_weight_by_hand():
+    bench = _benchmark()
+    base = np.array([10.0, 20.0, 30.0])
+    # measured halfway between baseline and physics: w = 0.5
+    assert bench.stacking_weight(base + 4.0, base, base + 2.0) == pytest.approx(0.5)
+    assert bench.stacking_weight(base + 4.0, base, base - 2.0) == 0.0  # clipped to [0, 1]
+    assert bench.stacking_weight(base, base, base + 1.0) == 1.0
+
+
+def test_docs_table_is_the_benchmarks_data_file():
+    """The cross-validation table of docs/validation.md holds the numbers of the JSON the
+    benchmark wrote (docs/data/isfog_backanalysis.json), to the table's 0.1 blows/m."""
+    data = json.loads((ROOT / "docs" / "data" / "isfog_backanalysis.json").read_text())
+    text = (ROOT / "docs" / "validation.md").read_text()
+    marker = "<!-- generated: docs/data/isfog_backanalysis.json -->"
+    assert marker in text
+    lines = text.split(marker, 1)[1].strip().splitlines()
+    rows = []
+    for line in lines[2:]:
+        if not line.startswith("|"):
+            break
+        rows.append([c.strip() for c in line.strip("|").split("|")])
+    assert len(rows) == len(data["steps"])
+    keys = ("rmse [blows/m]", "bias [blows/m]", "rmse_baseline [blows/m]",
+            "bias_baseline [blows/m]")
+    for row, step in zip(rows, data["steps"], strict=True):
+        assert row[0] == step["step"]
+        assert [float(c) for c in row[1:5]] == [float(f"{step[k]:.1f}") for k in keys], row[0]
