@@ -3,13 +3,14 @@
 Run: python benchmarks/bench_revisions.py BASE [OTHER] [--rounds R] [--repeat N] [--compile C]
 
 BASE and OTHER are git revisions (OTHER by default the working tree this file is in, with its
-uncommitted changes). Each revision is checked out with ``git worktree`` into a temporary
-folder (removed at the end) and runs in subprocesses of this Python (the same environment),
-``PYTHONPATH`` pointing at that checkout, so that only the code differs. The subprocesses
-alternate, BASE, OTHER, BASE, OTHER, ... (R rounds), and each one steps every blow kind N
-times, the kinds interleaved; the machine may be shared, so a subprocess reports per kind the
-minimum and the median of its N blows' wall times (the stepping only, as
-:meth:`anvilwave.engine.direct.Engine.blow` times it: compilation and start-up excluded).
+uncommitted changes) or folders holding a checkout (reused with its numba cache). Each revision
+is checked out with ``git worktree`` into a temporary folder (removed at the end) and runs in
+subprocesses of this Python (the same environment), ``PYTHONPATH`` pointing at that checkout,
+so that only the code differs. The subprocesses alternate, BASE, OTHER, BASE, OTHER, ... (R
+rounds), and each one steps every blow kind N times, the kinds interleaved; the machine may be
+shared, so a subprocess reports per kind the minimum and the median of its N blows' wall times
+(the stepping only, as :meth:`anvilwave.engine.direct.Engine.blow` times it: compilation and
+start-up excluded).
 
 The blow kinds are benchmarks/bench_engine.py's: the Table 1 blow for each ram model (the modal
 ram unit, its chain, the hammer's Smith rod) and anvil model (rom, lumped, classic, none), recorded
@@ -108,15 +109,24 @@ def child_compile() -> dict:
     return {"first": first, "warm": time.perf_counter() - start}
 
 
-def _run_child(checkout: Path, mode: str, repeat: int, cache_dir: str | None = None) -> dict:
+def _start_child(checkout: Path, mode: str, repeat: int,
+                 cache_dir: str | None = None) -> subprocess.Popen:
     env = dict(os.environ, PYTHONPATH=str(checkout))
     if cache_dir is not None:
         env["NUMBA_CACHE_DIR"] = cache_dir
-    result = subprocess.run([sys.executable, __file__, "--child", mode, "--repeat", str(repeat)],
-                            env=env, capture_output=True, text=True, check=False)
-    if result.returncode != 0:
-        sys.exit(f"bench_revisions: the {checkout} subprocess failed:\n{result.stderr}")
-    payload = json.loads(result.stdout.strip().splitlines()[-1])
+    return subprocess.Popen([sys.executable, __file__, "--child", mode, "--repeat", str(repeat)],
+                            env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _run_child(checkout: Path, mode: str, repeat: int, cache_dir: str | None = None) -> dict:
+    return _child_result(checkout, _start_child(checkout, mode, repeat, cache_dir))
+
+
+def _child_result(checkout: Path, child: subprocess.Popen) -> dict:
+    stdout, stderr = child.communicate()
+    if child.returncode != 0:
+        sys.exit(f"bench_revisions: the {checkout} subprocess failed:\n{stderr}")
+    payload = json.loads(stdout.strip().splitlines()[-1])
     if Path(payload.pop("anvilwave")).resolve() != (checkout / "anvilwave").resolve():
         sys.exit(f"bench_revisions: the subprocess did not import anvilwave from {checkout}")
     return payload
@@ -130,8 +140,8 @@ def _checkouts(revisions: list[str]):
         try:
             folders = []
             for k, rev in enumerate(revisions):
-                if rev == WORKING_TREE:
-                    folders.append(ROOT)
+                if rev == WORKING_TREE or Path(rev).is_dir():
+                    folders.append(ROOT if rev == WORKING_TREE else Path(rev).resolve())
                     continue
                 folder = Path(tmp) / f"rev{k}"
                 subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", "-q",
@@ -148,7 +158,9 @@ def _checkouts(revisions: list[str]):
 def _label(rev: str) -> str:
     if rev == WORKING_TREE:
         return rev
-    sha = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", rev],
+    folder = Path(rev).is_dir()
+    sha = subprocess.run(["git", "-C", rev if folder else str(ROOT), "rev-parse", "--short",
+                          "HEAD" if folder else rev],
                          capture_output=True, text=True, check=True).stdout.strip()
     return f"{rev} ({sha})" if sha != rev else rev
 
@@ -179,8 +191,10 @@ def main() -> None:
           f"{args.repeat} blows per kind in each; load average {load:.2f} on "
           f"{os.cpu_count()} cores")
     with _checkouts(revisions) as folders:
-        for folder in folders:  # compile or load every kernel once, untimed
-            _run_child(folder, "blows", 1)
+        # compile or load every kernel once, untimed (both revisions at once)
+        warming = [_start_child(folder, "blows", 1) for folder in folders]
+        for folder, child in zip(folders, warming, strict=True):
+            _child_result(folder, child)
         runs = ([], [])
         for _ in range(args.rounds):
             for folder, results in zip(folders, runs, strict=True):
