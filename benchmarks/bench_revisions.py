@@ -208,7 +208,7 @@ def main() -> None:
           f"{'B/A of min':>10s} {'B/A median (range)':>24s}")
     print(f"{'':24s} {'':5s} {'min':>9s} {'median':>10s} {'min':>9s} {'median':>10s}")
     worst = 0.0
-    for name in runs[0][0]:
+    for name in runs[0][0] if args.rounds else ():
         steps = runs[0][0][name][0]
         per_step = [[(r[name][1] / steps * 1e6, r[name][2] / steps * 1e6) for r in rev_runs]
                     for rev_runs in runs]
@@ -219,7 +219,8 @@ def main() -> None:
         print(f"{name:24s} {steps:5d} {lows[0]:9.2f} {medians[0]:10.2f} {lows[1]:9.2f} "
               f"{medians[1]:10.2f} {lows[1] / lows[0]:10.3f} {statistics.median(ratios):8.3f} "
               f"({min(ratios):.3f}-{max(ratios):.3f})")
-    print(f"\nlargest B/A of the minima: {worst:.3f}")
+    if args.rounds:
+        print(f"\nlargest B/A of the minima: {worst:.3f}")
     if args.compile:
         print("\ncold compilation of the Table 1 blow's loop (first blow - warm blow, empty "
               "numba cache) [s]:")
