@@ -839,7 +839,8 @@ class Step:
 
 
 STEPS = (
-    Step("A: one E_ref, one SRD multiplier, fit in blows/m (the calibration fit of drive.md)", space="blows"),
+    Step("A: one E_ref, one SRD multiplier, fit in blows/m (the calibration fit of drive.md)",
+         space="blows"),
     Step("B: as A, fit in log blow count", space="log"),
     Step("C: + sand / clay shaft and toe multipliers (ridge)", classes=CLASSES),
     Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru"),
@@ -921,8 +922,8 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
 
 # ----------------------------------------------------------------------------- stepwise run
 PREDICTIVE_STEPS = (
-    ("grid1", Step("A: one E_ref, one SRD multiplier, fit in blows/m (the calibration fit of drive.md)",
-                   space="blows")),
+    ("grid1", Step("A: one E_ref, one SRD multiplier, fit in blows/m "
+                   "(the calibration fit of drive.md)", space="blows")),
     ("grid1", Step("B: as A, fit in log blow count")),
     ("grid2", Step("C: + sand shaft, clay shaft and toe multipliers (ridge)", classes=CLASSES)),
     ("grid2", Step("D: + drive with the recorded ENTHRU", classes=CLASSES, energy="enthru")),
