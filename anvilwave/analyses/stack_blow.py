@@ -1,0 +1,251 @@
+"""One blow of a system with the driving stack (:class:`anvilwave.anvil_rom.stack.StackUnit`),
+stepped in-process in DESIGN.md's coupling order, for the comparison with the reference FEA
+stack while the engine's loop does not yet take the stack.
+
+The ram is the system's modal ram unit (:class:`anvilwave.hammer.modal_ram.ModalRamUnit`), the
+pile/soil the pile unit's kernel (:class:`anvilwave.fmu.units.pile_soil.PileSoilState`), the
+anvil any unit with ``forces``/``step``/``rest_on_pile``/``energy`` (the stack, or the anvil
+unit itself). From t_n to t_n+1: read the ram toe and the pile head (states), the anvil unit's
+two contact forces (feedthrough, at t_n), then every unit steps over h with its force held.
+The ram starts half a step before the first contact, as the engine's blow.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from anvilwave.anvil_rom.fem.geometry import AnvilSpec, Interfaces
+from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data
+from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.stack import StackBody, StackUnit, stack_modal_data
+from anvilwave.anvil_rom.unit import ContactParameters
+from anvilwave.config.cache import cache_dir, modal_key
+from anvilwave.config.system import SystemConfig
+from anvilwave.engine.direct import anvil_modal_data, contact_stiffnesses
+from anvilwave.fmu.units.pile_soil import PileSoilState, pile_outputs
+from anvilwave.hammer.modal_ram import ModalRamUnit
+from anvilwave.inputs import InputError
+
+
+@dataclasses.dataclass
+class StackBlow:
+    """Records of one blow (every step).
+
+    Parameters
+    ----------
+    time : numpy.ndarray
+        t_n [s], 0 half a step before the first contact.
+    ram_force : numpy.ndarray
+        Ram-anvil contact force [N].
+    pile_force : numpy.ndarray
+        Force into the pile head [N].
+    energy_residual : numpy.ndarray
+        Energy balance of the anvil unit, (E_n + D_n - E_0 - W_n) [J]: its energy, the
+        friction and dashpot dissipation, the work the ram and the pile did on it.
+    friction_energy : float
+        Energy the seat friction dissipated [J].
+    input_energy : float
+        The ram's kinetic energy at impact [J].
+    """
+
+    time: np.ndarray
+    ram_force: np.ndarray
+    pile_force: np.ndarray
+    energy_residual: np.ndarray
+    friction_energy: float
+    input_energy: float
+
+
+def stack_interfaces(anvil: AnvilSpec, ring: AnvilSpec) -> tuple[Interfaces, Interfaces]:
+    """The ports of the two bodies: the anvil's ram face and seat, the ring's seat and pile wall.
+
+    The seat is the radial overlap of the anvil's flat bottom face and the ring's flat top
+    face; the ring's bottom port is the anvil file's pile ring.
+
+    Parameters
+    ----------
+    anvil : AnvilSpec
+        The anvil (with its interfaces).
+    ring : AnvilSpec
+        The ring (an outline off the axis).
+
+    Returns
+    -------
+    anvil_ports : Interfaces
+        Ram face, and the seat as the bottom port.
+    ring_ports : Interfaces
+        The seat (the whole top face) as the top port, the pile wall as the bottom port.
+
+    Raises
+    ------
+    InputError
+        If the ring is not an outline or the faces do not overlap.
+    """
+    if ring.outline is None or anvil.outline is None:
+        raise InputError(ring.source, "geometry", "the stack needs both bodies as outlines")
+    pts = np.asarray(ring.outline, float)
+    top = pts[np.isclose(pts[:, 1], pts[:, 1].min())][:, 0]
+    apts = np.asarray(anvil.outline, float)
+    bottom = apts[np.isclose(apts[:, 1], apts[:, 1].max())][:, 0]
+    inner, outer = max(top.min(), bottom.min()), min(top.max(), bottom.max())
+    if not outer > inner:
+        raise InputError(ring.source, "geometry", "the ring's flat top face must overlap the "
+                                                  "anvil's flat bottom face (the seat)")
+    itf = anvil.interfaces
+    anvil_ports = Interfaces(itf.ram_contact_radius, 0.5 * (inner + outer), outer - inner)
+    ring_ports = Interfaces(float(top.max()), itf.pile_contact_radius, itf.pile_contact_width)
+    return anvil_ports, ring_ports
+
+
+def cached_stack_data(spec: AnvilSpec, ports: Interfaces, fmax: float):
+    """:func:`anvilwave.anvil_rom.stack.stack_modal_data` through the modal-data cache folder.
+
+    Parameters
+    ----------
+    spec : AnvilSpec
+        The body.
+    ports : Interfaces
+        Its stack ports.
+    fmax : float
+        Frequency content [Hz].
+
+    Returns
+    -------
+    ModalData
+        The modes with the radial keys.
+    """
+    keyed = dataclasses.replace(spec, interfaces=ports)
+    path = cache_dir() / f"stack-{modal_key(keyed, fmax)}.npz"
+    if path.is_file():
+        return load_modal_data(path)
+    data = stack_modal_data(spec, ports, fmax)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    save_modal_data(data, path)
+    return data
+
+
+def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: float = 0.0,
+               seat_stiffness: float | None = None, penalty_size: float = 0.1) -> StackUnit:
+    """The system's anvil (and ``ring``) as a :class:`StackUnit` with the system's contacts.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (a ROM anvil with static correction, a modal ram).
+    ring : AnvilSpec or None
+        The anvil ring; None: the anvil alone, on its own ports (the engine's anvil unit).
+    seat_friction : float, default 0.0
+        Coulomb coefficient of the seat [-].
+    seat_stiffness : float or None, default None
+        The seat's penalty [N/m]; None: the reference FEA's, E / ``penalty_size`` per area of
+        the seat (:data:`anvilwave.fea.impact.DEFAULT_CONTACT_STIFFNESS_FACTOR` = 1).
+    penalty_size : float, default 0.1
+        Element size the default seat penalty is taken at [m] (the FEA's mesh size).
+
+    Returns
+    -------
+    StackUnit
+        The unit (not yet at rest).
+    """
+    k_ram, k_pile = contact_stiffnesses(dataclasses.replace(
+        cfg, hammer=dataclasses.replace(cfg.hammer, ram=dataclasses.replace(
+            cfg.hammer.ram, toe_stiffness=cfg.hammer.ram.modes.toe_stiffness))))
+    contact = ContactParameters(k_ram, k_pile, cfg.anvil.ram_contact_damping,
+                                cfg.anvil.pile_contact_damping)
+    s = cfg.anvil
+    fmax = float(s.fmax)
+    if ring is None:
+        rom = ModalAnvil.from_modal_data(anvil_modal_data(cfg), fmax=fmax,
+                                         damping_ratio=s.damping_ratio,
+                                         static_correction=s.static_correction)
+        return StackUnit(rom, contact, gravity=cfg.gravity)
+    anvil_ports, ring_ports = stack_interfaces(s.spec, ring)
+    anvil = StackBody.from_modal_data(cached_stack_data(s.spec, anvil_ports, fmax), "bottom",
+                                      fmax, s.static_correction, cfg.source)
+    body = StackBody.from_modal_data(cached_stack_data(ring, ring_ports, fmax), "top", fmax,
+                                     s.static_correction, ring.source)
+    if seat_stiffness is None:
+        r_out = anvil_ports.pile_contact_radius + 0.5 * anvil_ports.pile_contact_width
+        r_in = r_out - anvil_ports.pile_contact_width
+        seat_stiffness = ring.material.youngs_modulus / penalty_size * np.pi * (r_out**2
+                                                                                  - r_in**2)
+    return StackUnit(anvil, contact, body, seat_stiffness=float(seat_stiffness),
+                     seat_friction=seat_friction, gravity=cfg.gravity)
+
+
+def run_stack_blow(cfg: SystemConfig, unit, h: float | None = None,
+                   duration: float | None = None) -> StackBlow:
+    """One blow of ``cfg`` with ``unit`` as the anvil, at the fixed step ``h``.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (a modal ram).
+    unit : StackUnit or AnvilUnit
+        The anvil unit (``forces``, ``step``, ``set_step``, ``rest_on_pile``, ``energy``).
+    h : float, optional
+        Step [s]; default the system's ``time_step``.
+    duration : float, optional
+        Window [s]; default the system's.
+
+    Returns
+    -------
+    StackBlow
+        The records.
+    """
+    h = float(cfg.time_step if h is None else h)
+    duration = float(cfg.duration if duration is None else duration)
+    n = int(round(duration / h))
+    unit.set_step(h)
+    weight = unit.total_mass * cfg.gravity if hasattr(unit, "total_mass") \
+        else unit.anvil.total_mass * cfg.gravity
+    pile = PileSoilState(cfg.pile_soil, weight, cfg.gravity)
+    u_top0, _ = unit.rest_on_pile(0.0)
+    ram = ModalRamUnit(cfg.hammer.ram.modes, cfg.gravity)
+    velocity = float(cfg.impact_velocity)
+    ram.start(u_top0 - 0.5 * h * velocity, velocity, h)
+    mass = float(cfg.hammer.ram.modes.total_mass)
+    time = np.arange(n) * h
+    f_ram = np.empty(n)
+    f_pile = np.empty(n)
+    residual = np.empty(n)
+    arrays = pile.arrays
+    work = 0.0
+    e0 = None
+    u_r, v_r = float(ram.toe[0]), float(ram.toe[1])
+    out = pile_outputs(arrays.pile, arrays.probes, pile.u, pile.v, pile.face0)
+    u_p, v_p = out[0], out[1]
+    for i in range(n):
+        fr, fp = unit.forces(u_r, v_r, u_p, v_p)
+        f_ram[i], f_pile[i] = fr, fp
+        energy = sum(unit.energy(u_r, v_r, u_p, v_p)) + unit_losses(unit)
+        if e0 is None:
+            e0 = energy
+        residual[i] = energy - e0 - work
+        unit.step(fr, fp, h)
+        ram.step(fr)
+        pile.step(fp, h)
+        u_r1, v_r1 = float(ram.toe[0]), float(ram.toe[1])
+        out = pile_outputs(arrays.pile, arrays.probes, pile.u, pile.v, pile.face0)
+        work += fr * (u_r1 - u_r) - fp * (out[0] - u_p)
+        u_r, v_r, u_p, v_p = u_r1, v_r1, out[0], out[1]
+    friction = float(getattr(unit, "friction_energy", 0.0))
+    return StackBlow(time, f_ram, f_pile, residual, friction, 0.5 * mass * velocity**2)
+
+
+def unit_losses(unit) -> float:
+    """Friction and dashpot dissipation an anvil unit has booked so far [J].
+
+    Parameters
+    ----------
+    unit : StackUnit or AnvilUnit
+        The unit.
+
+    Returns
+    -------
+    float
+        Dissipated energy [J] (0 for a unit that books none).
+    """
+    return float(getattr(unit, "friction_energy", 0.0) + getattr(unit, "dashpot_work", 0.0))
