@@ -2,7 +2,20 @@
 Table 1 blow.
 
 Run: python benchmarks/study_anvil_ring.py [--out results/study_ring] [--mesh-size 0.1]
-     [--truncate 10] [--friction 0 0.1 0.2 0.3] [--sleeve CLEARANCE]
+     [--truncate 10] [--friction 0 0.1 0.2 0.3] [--sleeve CLEARANCE] [--rom]
+
+With ``--rom`` the ring-less run is also run with the anvil unit alone (the baseline) and
+every ring run with the ROM stack
+(:class:`anvilwave.anvil_rom.stack.StackUnit`: anvil and ring each their own modes to the
+system's 5 kHz with static correction, the seat friction coefficient of the run; the ring-pile
+contact frictionless, as the ROM's pile port has no radial motion) between the modal ram and
+the 1D pile without soil (:func:`anvilwave.analyses.stack_blow.run_stack_blow`, the system's
+20 us step), and compared with the FEA run (both low-passed at 5 kHz, the ROM shifted by its
+half-step start): peak pile-head and ram force, the RMS of the difference over the window
+relative to the FEA signal's RMS, the largest band-level difference from 50 Hz to 4 kHz, and
+the ROM unit's energy balance (its energy change plus friction and dashpot dissipation
+against the work the ram and the pile did on it, largest over the blow, as a fraction of the
+blow's kinetic energy).
 
 The paper's Table 1 stack (anvilwave/examples/table1.toml through
 :func:`anvilwave.analyses.compare.fea_config`: the 275 t, D 1.8 m ram at 6.16 m/s, the xl8
@@ -35,7 +48,8 @@ from pathlib import Path
 
 import numpy as np
 
-from anvilwave.analyses.compare import fea_config, lowpass
+from anvilwave.analyses.compare import fea_config, lowpass, without_soil
+from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
 from anvilwave.anvil_rom.fem.geometry import load_anvil
 from anvilwave.config.system import load_system
 from anvilwave.fea.impact import run_impact_fea
@@ -80,6 +94,40 @@ def summary(result):
     }
 
 
+def rom_against_fea(cfg, ring, mu, fea, mesh_size):
+    """The ROM stack's blow against the FEA run ``fea`` (module docstring)."""
+    start = time.perf_counter()
+    blow = run_stack_blow(cfg, stack_unit(cfg, ring, seat_friction=mu, penalty_size=mesh_size))
+    wall = time.perf_counter() - start
+    t = fea.time
+    h = float(blow.time[1] - blow.time[0])
+    rom_t = blow.time - 0.5 * h  # first contact at t = 0, as the FEA
+    row = {"rom_wall_time [s]": wall}
+    numbers = band_numbers_between(8.9, TOP_BAND)
+    for name, rom, ref in (("pile", blow.pile_force, fea.anvil_pile_force),
+                           ("ram", blow.ram_force, fea.ram_anvil_force)):
+        r = lowpass(t, np.interp(t, rom_t, rom), CUTOFF)
+        f = lowpass(t, ref, CUTOFF)
+        row[f"{name}_peak_rom [N]"] = float(r.max())
+        row[f"{name}_peak_fea [N]"] = float(f.max())
+        row[f"{name}_peak_error [-]"] = float(r.max() / f.max() - 1.0)
+        row[f"{name}_rms_error [-]"] = float(np.sqrt(np.mean((r - f) ** 2) / np.mean(f**2)))
+        if name == "pile":
+            dt = float(t[1] - t[0])
+            a = third_octave_band_energies(np.interp(t, rom_t, rom) - rom[0], dt, numbers)
+            b = third_octave_band_energies(ref - ref[0], dt, numbers)
+            inside = (b.lower_frequency >= b.valid_range[0]) & (b.centre_frequency <= TOP_BAND)
+            deviation = np.where(inside, a.level - b.level, 0.0)
+            worst = int(np.argmax(np.abs(deviation)))
+            row["band_error_max [dB]"] = float(abs(deviation[worst]))
+            row["band_error_at [Hz]"] = float(b.centre_frequency[worst])
+            row["band_error [dB]"] = [float(x) for x in deviation]
+    row["rom_friction_energy [-]"] = blow.friction_energy / blow.input_energy
+    row["rom_energy_balance [-]"] = float(np.abs(blow.energy_residual).max()
+                                          / blow.input_energy)
+    return row
+
+
 def main(argv=None):
     """Run the study and write ``study.json`` to ``--out``."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -88,6 +136,7 @@ def main(argv=None):
     parser.add_argument("--truncate", type=float, default=10.0)
     parser.add_argument("--friction", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3])
     parser.add_argument("--sleeve", type=float, default=None)
+    parser.add_argument("--rom", action="store_true")
     args = parser.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -105,10 +154,17 @@ def main(argv=None):
                 cases[f"ring, mu {mu:g}"], sleeve_radius=outer + args.sleeve,
                 sleeve_friction=mu)
     rows = {}
+    system = without_soil(load_system(EXAMPLES / "table1.toml"))
+    roms = {}
     for name, config in cases.items():
         start = time.perf_counter()
-        rows[name] = summary(run_impact_fea(config))
+        result = run_impact_fea(config)
+        rows[name] = summary(result)
         print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
+        if args.rom and (name.startswith("ring") or name == "no ring"):
+            roms[name] = rom_against_fea(system, None if config.ring is None else ring,
+                                         config.seat_friction, result, args.mesh_size)
+            rows[name]["rom"] = roms[name]
     names = list(rows)
     for name in names[1:]:
         reference = rows[names[0] if name == names[1] else names[1]]
@@ -132,6 +188,15 @@ def main(argv=None):
               f"@{r.get('band_of_max_deviation [Hz]', 0.0):5.0f}Hz "
               f"{r['friction_energy [-]'] * 100:7.2f} % "
               f"{r['energy_balance_residual [-]'] * 100:6.3f} %")
+    if roms:
+        print(f"{'ROM vs FEA':18s} {'pile peak':>10s} {'ram peak':>9s} {'pile rms':>9s} "
+              f"{'ram rms':>8s} {'bands':>13s} {'friction':>9s} {'balance':>8s}")
+    for name, r in roms.items():
+        print(f"{name:18s} {r['pile_peak_error [-]'] * 100:+8.2f} % "
+              f"{r['ram_peak_error [-]'] * 100:+7.2f} % {r['pile_rms_error [-]'] * 100:7.2f} % "
+              f"{r['ram_rms_error [-]'] * 100:6.2f} % {r['band_error_max [dB]']:5.2f}dB "
+              f"@{r['band_error_at [Hz]']:5.0f}Hz {r['rom_friction_energy [-]'] * 100:7.2f} % "
+              f"{r['rom_energy_balance [-]'] * 100:6.3f} %")
     (out / "study.json").write_text(json.dumps({"mesh_size [m]": args.mesh_size,
                                                 "truncate_length [m]": args.truncate,
                                                 "runs": rows}, indent=1))

@@ -229,7 +229,8 @@ def run_stack_blow(cfg: SystemConfig, unit, h: float | None = None,
         pile.step(fp, h)
         u_r1, v_r1 = float(ram.toe[0]), float(ram.toe[1])
         out = pile_outputs(arrays.pile, arrays.probes, pile.u, pile.v, pile.face0)
-        work += fr * (u_r1 - u_r) - fp * (out[0] - u_p)
+        # F_n against (u_n+1 - u_n-1) / 2: the central-difference scheme's work pairing
+        work += 0.5 * h * (fr * (v_r1 + v_r) - fp * (out[1] + v_p))
         u_r, v_r, u_p, v_p = u_r1, v_r1, out[0], out[1]
     friction = float(getattr(unit, "friction_energy", 0.0))
     return StackBlow(time, f_ram, f_pile, residual, friction, 0.5 * mass * velocity**2)

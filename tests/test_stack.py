@@ -1,0 +1,108 @@
+"""The driving stack as one unit (anvil + anvil ring, two modal bodies, seat friction) on the
+paper's Table 1: without a ring it is the anvil unit's blow to the bit; the ring stack rests in
+exact equilibrium, balances its energy with friction on, and follows the reference FEA stack
+on a short window."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from anvilwave.analyses.compare import fea_config, lowpass, without_soil
+from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
+from anvilwave.anvil_rom.fem.geometry import load_anvil
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+from anvilwave.fea.impact import run_impact_fea
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
+
+
+@pytest.fixture(scope="module")
+def table1():
+    return without_soil(load_system(EXAMPLES / "table1.toml"))
+
+
+@pytest.fixture(scope="module")
+def ring():
+    return load_anvil(EXAMPLES / "anvils" / "xl8_ring.toml")
+
+
+def test_without_ring_the_stack_is_the_anvil_units_blow_to_the_bit(table1):
+    engine = build_engine(table1)
+    stack = run_stack_blow(table1, stack_unit(table1, None), duration=0.01)
+    anvil = run_stack_blow(table1, engine.anvil.unit, duration=0.01)
+    assert np.array_equal(stack.ram_force, anvil.ram_force)
+    assert np.array_equal(stack.pile_force, anvil.pile_force)
+    # and the runner is the in-process engine's blow (its records at t = -h/2 + n h): the same
+    # pile-head force to the bit
+    head = engine.blow(duration=0.01).columns["anvil_pile_force [N]"]
+    assert np.array_equal(head[:anvil.pile_force.size], anvil.pile_force)
+
+
+def test_ring_stack_rests_in_equilibrium(table1, ring):
+    """At rest on the pile with the ram out of reach, the seat carries the anvil's weight and
+    the pile the stack's, and nothing moves over 200 steps (the static state is the scheme's
+    fixed point: to 1e-9 of the weights, the rounding of the modal sums)."""
+    unit = stack_unit(table1, ring)
+    unit.set_step(2e-5)
+    _, weight = unit.rest_on_pile(0.0)
+    anvil_weight = unit.anvil.rom.total_mass * table1.gravity
+    for _ in range(200):
+        f_ram, f_pile = unit.forces(-1.0, 0.0, 0.0, 0.0)
+        unit.step(f_ram, f_pile, 2e-5)
+    assert f_ram == 0.0
+    assert f_pile == pytest.approx(weight, rel=1e-9)
+    assert unit.state.forces[1] == pytest.approx(anvil_weight, rel=1e-9)
+    assert unit.friction_energy == 0.0
+
+
+@pytest.mark.parametrize("mu", [0.0, 0.2])
+def test_ring_stack_energy_balance(table1, ring, mu):
+    """The unit's energy change plus friction and dashpot dissipation against the work the ram
+    and the pile did on it, over the first 8 ms (the main pulse), at 10 us: within 0.5 % of
+    the blow (the issue's bar; measured 0.1-0.25 % at 10 us, ~0.5 % at the system's 20 us
+    where the massless part's energy, not in shadow form, is first order in h)."""
+    blow = run_stack_blow(table1, stack_unit(table1, ring, seat_friction=mu), h=1e-5,
+                          duration=0.008)
+    assert np.abs(blow.energy_residual).max() < 5e-3 * blow.input_energy
+    if mu == 0.0:
+        assert blow.friction_energy == 0.0
+    else:
+        assert blow.friction_energy > 1e-3 * blow.input_energy
+
+
+def test_friction_zero_is_frictionless_and_coulomb_bounds_hold(table1, ring):
+    """mu = 0 gives no tangential force at all; with friction |T| <= mu F_seat every step."""
+    unit = stack_unit(table1, ring, seat_friction=0.2)
+    blow_state = []
+    unit.set_step(2e-5)
+    u_top, _ = unit.rest_on_pile(0.0)
+    u_ram = u_top + 1e-4  # a ram pressed 0.1 mm into the top face, held
+    for _ in range(300):
+        f_ram, f_pile = unit.forces(u_ram, 0.0, 0.0, 0.0)
+        unit.step(f_ram, f_pile, 2e-5)
+        blow_state.append(unit.state.forces.copy())
+    F = np.array(blow_state)
+    assert np.all(np.abs(F[:, 3]) <= 0.2 * F[:, 1] * (1 + 1e-12))
+    assert np.abs(F[:, 3]).max() > 0.0
+
+
+@pytest.mark.slow
+def test_rom_stack_follows_the_fea_stack_on_a_short_window(table1, ring):
+    """The first 8 ms (the pulse's rise and peak; the FEA's pile cut at 5 m, ~10 s), mu 0:
+    the ROM stack's peak pile-head force within 10 % of the FEA's, both low-passed at 5 kHz.
+    Measured -7.4 % here and -6.2 % on the full 25 ms with the pile cut at 10 m
+    (benchmarks/study_anvil_ring.py): the issue's 3 % is NOT met yet (docs/validation.md);
+    this bounds what the one-port seat gives today, so that a regression shows."""
+    config = dataclasses.replace(fea_config(table1, mesh_size=0.1, truncate_length=5.0),
+                                 ring=ring, duration=0.008)
+    fea = run_impact_fea(config)
+    blow = run_stack_blow(table1, stack_unit(table1, ring), duration=0.008)
+    t = fea.time
+    rom = lowpass(t, np.interp(t, blow.time - 1e-5, blow.pile_force), 5000.0)
+    ref = lowpass(t, fea.anvil_pile_force, 5000.0)
+    assert rom.max() == pytest.approx(ref.max(), rel=0.10)
