@@ -20,6 +20,7 @@ from numpydoc.docscrape import get_doc_object
 
 MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.analyses.compare",
+    "anvilwave.analyses.stack_blow",
     "anvilwave.analyses.match",
     "anvilwave.anvil_rom.arrays",
     "anvilwave.anvil_rom.chain",
@@ -105,6 +106,7 @@ MODULES_FMU = (
 MODULES_KERNELS = (
     "anvilwave.engine.direct",
     "anvilwave.anvil_rom.rings",
+    "anvilwave.anvil_rom.stack",
     "anvilwave.anvil_rom.unit",
     "anvilwave.anvil_rom.rom",
     "anvilwave.pile.kernels",
