@@ -106,3 +106,22 @@ def test_rom_stack_follows_the_fea_stack_on_a_short_window(table1, ring):
     rom = lowpass(t, np.interp(t, blow.time - 1e-5, blow.pile_force), 5000.0)
     ref = lowpass(t, fea.anvil_pile_force, 5000.0)
     assert rom.max() == pytest.approx(ref.max(), rel=0.10)
+
+
+def test_forces_read_twice_change_nothing(table1, ring):
+    """A master may read the feedthrough more than once a step: the same state, dissipation
+    and dashpot work as reading it once (bit for bit)."""
+    units = [stack_unit(table1, ring, seat_friction=0.2) for _ in range(2)]
+    for unit in units:
+        unit.set_step(2e-5)
+        u_top, _ = unit.rest_on_pile(0.0)
+    for i in range(200):
+        u_ram, v_ram = u_top + 6.0 * 2e-5 * min(i, 20) - 6.0e-5, 6.0 if i < 20 else 0.0
+        for reads, unit in enumerate(units, start=1):
+            for _ in range(reads):
+                f_ram, f_pile = unit.forces(u_ram, v_ram, 0.0, 0.0)
+            unit.step(f_ram, f_pile, 2e-5)
+    a, b = (u.state for u in units)
+    assert np.array_equal(a.anvil_state, b.anvil_state)
+    assert np.array_equal(a.friction, b.friction)
+    assert a.friction[3] > 0.0  # the ram dashpot worked

@@ -82,7 +82,8 @@ class StackState(NamedTuple):
         [F_ram, F_seat, F_pile, T] of the last evaluation [N].
     friction : numpy.ndarray
         [T (stick spring force) [N], w0 at the last update [m], dissipated energy [J],
-        dashpot work [J], started (1.0 once w0 is set) [-]].
+        dashpot work [J], started (1.0 once w0 is set) [-], dashpot power at the last
+        :func:`stack_forces` [W]] (a master may read the forces more than once a step).
     active : numpy.ndarray
         The normal contacts' active set (1.0: closed), shape (3,).
     work : numpy.ndarray
@@ -274,7 +275,7 @@ class StackUnit:
                       c.pile_stiffness, c.pile_damping, self.seat_friction, k_eff,
                       self.gravity, 1.0])
         self.state = StackState(P, _table(a), _table(r), np.zeros(2 * a.rom.n_modes),
-                                np.zeros(2 * r.rom.n_modes), A, e, np.zeros(4), np.zeros(5),
+                                np.zeros(2 * r.rom.n_modes), A, e, np.zeros(4), np.zeros(6),
                                 np.zeros(3), np.zeros((3, 4)), np.zeros(10))
         self.set_step(1e-5)
 
@@ -573,7 +574,7 @@ def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
         power = 0.0
         for i in range(3):
             power += (F[i] - Fe[i]) * rate[i]
-        state.friction[3] += power * state.parameters[9]
+        state.friction[5] = power  # booked over the step by stack_step
     return F[0], F[2]
 
 
@@ -603,6 +604,7 @@ def stack_step(state):
     fr[0] = T
     fr[1] = w0
     fr[2] += dissipated
+    fr[3] += fr[5] * P[9]
     F[3] = T
     gravity = P[8]
     for body in range(2):
