@@ -65,8 +65,6 @@ PENDING = {
     ("drive.md", "| fit | E_ref | SRD multiplier | RMSE | bias |"):
         "benchmarks/isfog_backanalysis.py (222 s on 2 cores, the ISFOG records in ../shared) "
         "does not write docs/data yet",
-    ("theory.md", "| segments | one port | three rings |"):
-        "band levels per pile segment length: no script in the repository computes them",
     ("fmi.md", "| tool (SSP step 5 us)    | anvil       | ram-anvil peak      | anvil-pile peak |"):
         "external co-simulation tools (OMSimulator in ../shared, libcosim, fmpy); fmi.md is "
         "edited elsewhere, left as it is",
