@@ -1357,6 +1357,52 @@ def write_cross_validation_docs(summary: dict, data: Path, groups: dict, command
         substitutions=subs, values=summary, command=command)
 
 
+CALIBRATION_DOCS = "isfog_calibration"
+"""docs/data/isfog_calibration.json: the calibration fit of docs/drive.md."""
+
+
+def calibration_docs(summary: dict) -> tuple[dict, dict]:
+    """The table and the substitutions of docs/drive.md's calibration fit from the summary of
+    a default run (its ``calibration_summary.json``): the two-parameter fit's RMSE and bias
+    from the direct runs, the energy-only fit's from the grid's interpolation (it is not run
+    directly); the largest blow energy of each is the records' largest normalised energy
+    times its E_ref."""
+    both, alone = summary["fit_energy_and_multiplier"], summary["fit_energy_only"]
+    largest = summary["largest_blow_energy [J]"] / summary["E_ref [J]"]
+    table = {"columns": ["fit", "E_ref", "SRD multiplier", "largest blow energy",
+                         "RMSE [blows/m]", "bias [blows/m]"],
+             "formats": [None, "kJ0", "f2", "kJ0", "f1", "f1"],
+             "rows": [["energy and multiplier (default; direct runs)", both["E_ref [J]"],
+                       both["srd_multiplier [-]"], largest * both["E_ref [J]"],
+                       summary["rmse [blows/m]"], summary["bias [blows/m]"]],
+                      ["energy only (interpolated)", alone["E_ref [J]"],
+                       alone["srd_multiplier [-]"], largest * alone["E_ref [J]"],
+                       alone["rmse_interpolated [blows/m]"],
+                       alone["bias_interpolated [blows/m]"]]]}
+    rmse_range, bias_range = (summary["rmse_per_pile_range [blows/m]"],
+                              summary["bias_per_pile_range [blows/m]"])
+    subs = {
+        "wall_time": [summary["wall_time [s]"], "int"],
+        "blows": [len(summary["grid_energies [J]"]) * len(summary["grid_multipliers [-]"])
+                  * summary["calibration_records [-]"], "int"],
+        "rated_energy": [summary["driving_system"]["rated_energy [J]"], "kJ0"],
+        "rmse_min": [rmse_range[0], "int"], "rmse_max": [rmse_range[1], "int"],
+        "rmse_median": [summary["rmse_per_pile_median [blows/m]"], "int"],
+        "bias_min": [bias_range[0], "int"], "bias_max": [bias_range[1], "int"],
+    }
+    return {"fits": table}, subs
+
+
+def write_calibration_docs(summary: dict, data: Path, command: str) -> Path:
+    """docs/data/isfog_calibration.json from the summary of a default run."""
+    tables, subs = calibration_docs(summary)
+    return write_doc_data(
+        CALIBRATION_DOCS, about="the ISFOG 2020 calibration fit: one E_ref and one SRD "
+        "multiplier on every calibration pile (docs/drive.md)",
+        inputs=records_inputs(data, summary["model"]["hammer"]), tables=tables,
+        substitutions=subs, values=summary, command=command)
+
+
 def docs_command(argv: list[str]) -> str:
     """The command of a ``--cross-validate --docs`` run with the arguments ``argv`` (without
     ``--docs-from FILE``, with ``--docs``)."""
@@ -1403,12 +1449,14 @@ def parse_args(argv=None) -> argparse.Namespace:
                         help="leave-one-foundation-out cross-validation against the naive "
                              "baseline (mean of the other foundations at each depth)")
     parser.add_argument("--docs", action="store_true",
-                        help="with --cross-validate: also write the docs' data file "
-                             "docs/data/isfog_backanalysis.json (the summary stays in --out)")
+                        help="also write the docs' data file: docs/data/isfog_calibration.json"
+                             " (with --cross-validate: isfog_backanalysis.json; the summary "
+                             "stays in --out)")
     parser.add_argument("--docs-from", type=Path, metavar="RESULT_JSON",
-                        help="only rewrite docs/data/isfog_backanalysis.json from the "
-                             "isfog_backanalysis.json of an earlier --cross-validate run made "
-                             "with the other arguments given (the command it records)")
+                        help="only rewrite the docs' data file from the summary of an earlier "
+                             "run (isfog_backanalysis.json of --cross-validate, else "
+                             "calibration_summary.json) made with the other arguments given "
+                             "(the command it records)")
     parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
                         help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
     parser.add_argument("--segment-length", type=float, default=Model.segment_length,
@@ -1433,14 +1481,21 @@ def main(argv=None) -> int:
     if args.docs_from is not None:
         try:
             summary = json.loads(args.docs_from.read_text())
-            summary["steps"], summary["model"]
-        except (OSError, ValueError, KeyError) as exc:
-            print(f"isfog_backanalysis: --docs-from {args.docs_from}: not the "
-                  f"isfog_backanalysis.json of a --cross-validate run ({exc})", file=sys.stderr)
+            summary["model"]["hammer"]
+            if "steps" not in summary:
+                summary["fit_energy_only"], summary["rmse_per_pile_range [blows/m]"]
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            print(f"isfog_backanalysis: --docs-from {args.docs_from}: not the summary of a run "
+                  f"(isfog_backanalysis.json or calibration_summary.json; {exc!r})",
+                  file=sys.stderr)
             return 2
-        groups = {p.location_id: p.cpt_group for p in prediction_piles(data)}
-        write_cross_validation_docs(summary, Path(os.path.abspath(args.data)), groups,
-                                    docs_command(args.argv))
+        if "steps" in summary:
+            groups = {p.location_id: p.cpt_group for p in prediction_piles(data)}
+            write_cross_validation_docs(summary, Path(os.path.abspath(args.data)), groups,
+                                        docs_command(args.argv))
+        else:
+            write_calibration_docs(summary, Path(os.path.abspath(args.data)),
+                                   docs_command(args.argv))
         return 0
     start = time.perf_counter()
     times = {}
@@ -1607,8 +1662,11 @@ def main(argv=None) -> int:
         plot_predictions(out / "prediction_piles.png", prediction, pred_direct, e_ref)
     times["plots [s]"] = time.perf_counter() - t
     summary["wall_time [s]"] = time.perf_counter() - start
-    (out / "calibration_summary.json").write_text(
-        json.dumps(_jsonable(summary), indent=2) + "\n")
+    summary = _jsonable(summary)
+    (out / "calibration_summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    if args.docs:
+        write_calibration_docs(summary, Path(os.path.abspath(args.data)),
+                               docs_command(args.argv))
     print(f"calibration ({len(calibration)} piles, {measured.size} records, direct runs): "
           f"RMSE {summary['rmse [blows/m]']:.1f} blows/m, bias "
           f"{summary['bias [blows/m]']:+.1f} blows/m; per pile RMSE "

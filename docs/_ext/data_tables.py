@@ -70,6 +70,7 @@ FORMATS = {
     "pct+sig2": lambda v: _signed(_sig2(100.0 * v), v, True) + " %",
     "ms+": lambda v: milliseconds(v),
     "ms": lambda v: milliseconds(v, sign=False),
+    "ms2": lambda v: _signed(f"{v * 1e3:.2f}", v, False) + " ms",
     "dB": lambda v: _signed(f"{v:.1f}", v, False) + " dB",
     "dB2": lambda v: _signed(f"{v:.2f}", v, False) + " dB",
     "dB+": lambda v: _signed(f"{v:.1f}", v, True),
