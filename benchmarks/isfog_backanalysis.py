@@ -1388,7 +1388,8 @@ def calibration_docs(summary: dict) -> tuple[dict, dict]:
         "rated_energy": [summary["driving_system"]["rated_energy [J]"], "kJ0"],
         "rmse_min": [rmse_range[0], "int"], "rmse_max": [rmse_range[1], "int"],
         "rmse_median": [summary["rmse_per_pile_median [blows/m]"], "int"],
-        "bias_min": [bias_range[0], "int"], "bias_max": [bias_range[1], "int"],
+        "bias_min": [bias_range[0], "int+"], "bias_max": [bias_range[1], "int+"],
+        "workers": [summary["workers [-]"], "int"],
     }
     return {"fits": table}, subs
 

@@ -124,13 +124,19 @@ def _csv(path):
 @pytest.mark.skipif(not (ISFOG / "calibration_piles_0p5m.csv").exists(),
                     reason=f"the ISFOG 2020 records are not in {ISFOG} (they are read from "
                            "../shared beside the repository, never copied into it)")
-def test_backanalysis_on_two_calibration_piles(tmp_path):
+def test_backanalysis_on_two_calibration_piles(tmp_path, monkeypatch):
     out = tmp_path / "isfog"
-    code = _benchmark().main(["--data", str(ISFOG), "--out", str(out), "--piles", "AD,AE",
-                              "--prediction-piles", "AA", "--energies", "3",
-                              "--multipliers", "0.7,1.0", "--segment-length", "1.0",
-                              "--duration", "0.12", "--workers", "1"])
+    monkeypatch.setattr(benchmark("doc_data"), "DOC_DATA", tmp_path / "data")
+    bench = _benchmark()
+    code = bench.main(["--data", str(ISFOG), "--out", str(out), "--piles", "AD,AE",
+                       "--prediction-piles", "AA", "--energies", "3",
+                       "--multipliers", "0.7,1.0", "--segment-length", "1.0",
+                       "--duration", "0.12", "--workers", "1", "--docs"])
     assert code == 0
+    docs = json.loads((tmp_path / "data" / "isfog_calibration.json").read_text())
+    assert docs["values"] == json.loads((out / "calibration_summary.json").read_text())
+    assert docs["tables"]["fits"]["rows"][0][4] == docs["values"]["rmse [blows/m]"]
+    assert docs["substitutions"]["blows"][0] == 3 * 2 * 47
     fit = _csv(out / "calibration_fit.csv")
     assert [r["location_id"] for r in fit] == ["AD", "AE", "overall"]
     assert {"rmse [blows/m]", "bias [blows/m]", "points [-]"} <= set(fit[0])
@@ -362,3 +368,20 @@ def test_prediction_means_text_by_hand():
     groups = {"AA": "A", "AB": "A", "AC": "A", "CJ": "C", "CK": "C"}
     assert bench.prediction_means_text(means, groups) == "64-68 blows/m (AA-AC) and 59-60 (CJ-CK)"
     assert bench.prediction_means_text({"AA": 3.0}, {"AA": "A"}) == "3-3 blows/m (AA-AA)"
+
+
+def test_calibration_docs_data_file_is_the_runs_summary():
+    """docs/data/isfog_calibration.json (drive.md's calibration fit): its table and quoted
+    numbers are those of the run's summary, kept as its values, derived again here. The run
+    (85 piles, about 88,000 blows, minutes on 2 cores) is beyond the suite; the two-pile run
+    above checks that a run writes its summary into the file."""
+    bench = _benchmark()
+    data = doc_data("isfog_calibration")
+    summary = data["values"]
+    tables, subs = bench.calibration_docs(summary)
+    assert tables == data["tables"] and subs == data["substitutions"]
+    both, alone = tables["fits"]["rows"]
+    assert alone[2] == 1.0  # the energy-only fit keeps the method's SRD
+    # one records' largest normalised energy behind both fits' largest blow
+    assert both[3] / both[1] == pytest.approx(alone[3] / alone[1], rel=1e-12)
+    assert summary["largest_blow_energy [J]"] == pytest.approx(both[3], rel=1e-12)

@@ -61,6 +61,7 @@ def milliseconds(value: float, sign: bool = True) -> str:
 
 FORMATS = {
     "int": lambda v: _signed(f"{round(v):d}", v, False),
+    "int+": lambda v: _signed(f"{round(v):d}", v, True),
     "sig2": lambda v: _signed(_sig2(v), v, False),
     "f1": lambda v: _signed(f"{v:.1f}", v, False),
     "f2": lambda v: _signed(f"{v:.2f}", v, False),
