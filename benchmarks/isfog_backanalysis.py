@@ -105,8 +105,10 @@ energy), whose error against direct runs at the final values is reported. The fi
 (multi-blow) runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
 baseline's, the folds' parameter ranges), ``cross_validation_records.csv`` (every record:
 measured, baseline, each step's prediction), ``prediction_piles_blowcount.csv`` and
-``isfog_backanalysis.json`` (also written to ``--json``, e.g.
-``docs/data/isfog_backanalysis.json``).
+``isfog_backanalysis.json``; with ``--docs``, the docs' data file
+``docs/data/isfog_backanalysis.json`` too (benchmarks/doc_data.py's format: the table and the
+quoted numbers of docs/validation.md, the summary as its values). ``--docs-from RESULT_JSON``
+writes the docs' data file from an earlier run's ``isfog_backanalysis.json`` without running.
 
 Outputs in DIR: ``calibration_fit.csv`` (RMSE and bias = mean of predicted - measured, per
 pile and overall),
@@ -125,6 +127,7 @@ import csv
 import json
 import math
 import os
+import shlex
 import sys
 import tempfile
 import time
@@ -132,6 +135,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from doc_data import write_doc_data
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT_DATA = ROOT.parent / "shared" / "reference" / "isfog2020"
@@ -988,7 +992,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     :data:`PREDICTIVE_STEPS` cross-validated leave one foundation out against the naive
     baseline, the final step fitted on all calibration piles and the prediction piles
     predicted with it (direct runs). Writes ``isfog_backanalysis.json`` and
-    ``cross_validation_steps.csv`` in ``out`` (and the JSON to ``--json``)."""
+    ``cross_validation_steps.csv`` in ``out`` (and, with ``--docs``, the docs' data file)."""
     start = time.perf_counter()
     times = {}
     measured = np.concatenate([p.measured for p in calibration])
@@ -1102,11 +1106,12 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
         "times": times, "wall_time [s]": time.perf_counter() - start,
         "workers [-]": args.workers,
     }
-    text = json.dumps(_jsonable(summary), indent=2) + "\n"
-    (out / "isfog_backanalysis.json").write_text(text)
-    if args.json:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        args.json.write_text(text)
+    summary = _jsonable(summary)
+    (out / "isfog_backanalysis.json").write_text(json.dumps(summary, indent=2) + "\n")
+    if args.docs:
+        write_cross_validation_docs(summary, Path(os.path.abspath(args.data)),
+                                    {p.location_id: p.cpt_group for p in prediction},
+                                    docs_command(args.argv))
     print(f"\n{'step':<70} {'CV RMSE':>8} {'bias':>6} {'naive':>6} {'bias':>6}")
     for r in rows:
         print(f"{r['step']:<70} {r['rmse [blows/m]']:8.1f} {r['bias [blows/m]']:+6.1f} "
@@ -1259,6 +1264,159 @@ def plot_predictions(path: Path, piles, results, e_ref: float) -> None:
     plt.close(fig)
 
 
+# ----------------------------------------------------------------------------- docs data
+DOCS_NAME = "isfog_backanalysis"
+"""docs/data/isfog_backanalysis.json: the cross-validation's table and quoted numbers."""
+STEP_COLUMNS = {
+    "step": (None, "step"),
+    "CV RMSE [blows/m]": ("f1", "rmse [blows/m]"),
+    "CV bias [blows/m]": ("f1", "bias [blows/m]"),
+    "naive RMSE [blows/m]": ("f1", "rmse_baseline [blows/m]"),
+    "naive bias [blows/m]": ("f1", "bias_baseline [blows/m]"),
+}
+"""The columns of docs/validation.md's cross-validation table: (format, key of a step)."""
+
+
+def records_inputs(data: Path, hammer: str) -> list[Path]:
+    """The files a run reads: the records (CSV files of ``data``) and the hammer's file
+    (``data`` unresolved: the data file names the records as ``../shared/...``)."""
+    return [*sorted(Path(data).glob("*.csv")),
+            ROOT / "anvilwave" / "hammer" / "data" / f"{hammer}.toml"]
+
+
+def _range_text(values) -> str:
+    """``64-68``: the smallest and largest value, rounded down and up to whole numbers."""
+    return f"{math.floor(min(values)):d}-{math.ceil(max(values)):d}"
+
+
+def prediction_means_text(means: dict, groups: dict) -> str:
+    """``64-68 blows/m (AA-AC), 67-72 (CD-CF) and 59-60 (CJ-CL)``: the range of the
+    prediction piles' mean blow counts per foundation (``groups``: pile -> foundation)."""
+    by_group: dict[str, list[str]] = {}
+    for pile in sorted(means):
+        by_group.setdefault(groups[pile], []).append(pile)
+    parts = [f"{_range_text([means[p] for p in piles])}"
+             + (" blows/m" if i == 0 else "") + f" ({piles[0]}-{piles[-1]})"
+             for i, piles in enumerate(by_group.values())]
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + " and " + parts[-1]
+
+
+def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
+    """The table and the substitutions of docs/validation.md's section from the summary of a
+    ``--cross-validate`` run (its ``isfog_backanalysis.json``); ``groups``: prediction pile
+    -> foundation."""
+    steps = {s["step"].split(":")[0]: s for s in summary["steps"]}
+    table = {"columns": list(STEP_COLUMNS), "formats": [f for f, _ in STEP_COLUMNS.values()],
+             "rows": [[s[k] for _, k in STEP_COLUMNS.values()] for s in summary["steps"]]}
+    score = {k: s["rmse [blows/m]"] for k, s in steps.items()}
+    final_fit, model = summary["final_fit"], summary["model"]
+    ratio = summary["calibration_direct"]["residual_stress_ratio_5_50_95 [-]"]
+    surface = summary["surface_vs_direct_at_final"]
+    means = summary["prediction_piles_mean_blowcount [blows/m]"]
+    subs = {
+        "points": [summary["cv_points [-]"], "int"],
+        "training_foundations": [summary["cv_folds [-]"] - 1, "int"],
+        "wall_time": [summary["wall_time [s]"], "int"],
+        "c_gain": [score["C"] - score["B"], "int"],
+        "srd_sand": [model["srd_sand"], "f2"],
+        "srd_clay": [model["srd_clay"], "f2"],
+        "srd_toe": [model["srd_toe"], "f2"],
+        "sand_toe_factor": [model["sand_toe_factor"], "f2"],
+        "e_ref": [final_fit["E_ref [J]"], "kJ0"],
+        "d_gain": [score["D"] - score["C"], "f1"],
+        "energy_exponent": [steps["E"]["energy_exponent [-] folds median"], "f2"],
+        "e_gain": [score["E"] - score["D"], "f1"],
+        "residual_stress_p5": [ratio[0] - 1.0, "pct+sig2"],
+        "residual_stress_p95": [ratio[2] - 1.0, "pct+sig2"],
+        "f_change": [score["F"] - score["D"], "f1+"],
+        "stacking_weight": [summary["stacking_weight_final [-]"], "f2"],
+        "stacking_weight_folds": [steps["G"]["stacking_weight [-] folds median"], "f2"],
+        "cv_rmse": [summary["cv_rmse [blows/m]"], "f1"],
+        "naive_rmse": [summary["naive_rmse [blows/m]"], "f1"],
+        "physics_above_naive": [score["D"] - summary["naive_rmse [blows/m]"], "f1"],
+        "largest_blow_energy": [summary["largest_blow_energy [J]"], "kJ0"],
+        "rated_energy": [summary["hammer_rated_energy [J]"], "kJ0"],
+        "surface_rms": [surface["rms [blows/m]"], "f1"],
+        "surface_bias": [surface["bias [blows/m]"], "f1+"],
+        "prediction_piles": [len(means), "int"],
+        "prediction_means": [prediction_means_text(means, groups), None],
+    }
+    return {"steps": table}, subs
+
+
+def write_cross_validation_docs(summary: dict, data: Path, groups: dict, command: str) -> Path:
+    """docs/data/isfog_backanalysis.json (benchmarks/doc_data.py's format) from the summary of
+    a ``--cross-validate`` run; ``command``: the command that computed it."""
+    tables, subs = cross_validation_docs(summary, groups)
+    return write_doc_data(
+        DOCS_NAME, about="the ISFOG 2020 back-analysis cross-validated leave one foundation "
+        "out, step by step, against the naive depth-mean baseline (docs/validation.md, \"Does "
+        "the back-analysis predict?\")",
+        inputs=records_inputs(data, summary["model"]["hammer"]), tables=tables,
+        substitutions=subs, values=summary, command=command)
+
+
+CALIBRATION_DOCS = "isfog_calibration"
+"""docs/data/isfog_calibration.json: the calibration fit of docs/drive.md."""
+
+
+def calibration_docs(summary: dict) -> tuple[dict, dict]:
+    """The table and the substitutions of docs/drive.md's calibration fit from the summary of
+    a default run (its ``calibration_summary.json``): the two-parameter fit's RMSE and bias
+    from the direct runs, the energy-only fit's from the grid's interpolation (it is not run
+    directly); the largest blow energy of each is the records' largest normalised energy
+    times its E_ref."""
+    both, alone = summary["fit_energy_and_multiplier"], summary["fit_energy_only"]
+    largest = summary["largest_blow_energy [J]"] / summary["E_ref [J]"]
+    table = {"columns": ["fit", "E_ref", "SRD multiplier", "largest blow energy",
+                         "RMSE [blows/m]", "bias [blows/m]"],
+             "formats": [None, "kJ0", "f2", "kJ0", "f1", "f1"],
+             "rows": [["energy and multiplier (default; direct runs)", both["E_ref [J]"],
+                       both["srd_multiplier [-]"], largest * both["E_ref [J]"],
+                       summary["rmse [blows/m]"], summary["bias [blows/m]"]],
+                      ["energy only (interpolated)", alone["E_ref [J]"],
+                       alone["srd_multiplier [-]"], largest * alone["E_ref [J]"],
+                       alone["rmse_interpolated [blows/m]"],
+                       alone["bias_interpolated [blows/m]"]]]}
+    rmse_range, bias_range = (summary["rmse_per_pile_range [blows/m]"],
+                              summary["bias_per_pile_range [blows/m]"])
+    subs = {
+        "wall_time": [summary["wall_time [s]"], "int"],
+        "blows": [len(summary["grid_energies [J]"]) * len(summary["grid_multipliers [-]"])
+                  * summary["calibration_records [-]"], "int"],
+        "rated_energy": [summary["driving_system"]["rated_energy [J]"], "kJ0"],
+        "rmse_min": [rmse_range[0], "int"], "rmse_max": [rmse_range[1], "int"],
+        "rmse_median": [summary["rmse_per_pile_median [blows/m]"], "int"],
+        "bias_min": [bias_range[0], "int+"], "bias_max": [bias_range[1], "int+"],
+        "workers": [summary["workers [-]"], "int"],
+    }
+    return {"fits": table}, subs
+
+
+def write_calibration_docs(summary: dict, data: Path, command: str) -> Path:
+    """docs/data/isfog_calibration.json from the summary of a default run."""
+    tables, subs = calibration_docs(summary)
+    return write_doc_data(
+        CALIBRATION_DOCS, about="the ISFOG 2020 calibration fit: one E_ref and one SRD "
+        "multiplier on every calibration pile (docs/drive.md)",
+        inputs=records_inputs(data, summary["model"]["hammer"]), tables=tables,
+        substitutions=subs, values=summary, command=command)
+
+
+def docs_command(argv: list[str]) -> str:
+    """The command of a ``--cross-validate --docs`` run with the arguments ``argv`` (without
+    ``--docs-from FILE``, with ``--docs``)."""
+    rest, skip = [], False
+    for arg in argv:
+        if skip:
+            skip = False
+        elif arg == "--docs-from":
+            skip = True
+        elif not arg.startswith("--docs-from=") and arg != "--docs":
+            rest.append(arg)
+    return shlex.join(["python", "benchmarks/isfog_backanalysis.py", *rest, "--docs"])
+
+
 # ----------------------------------------------------------------------------- main
 def _list(text: str | None) -> list[str] | None:
     return [t.strip() for t in text.split(",") if t.strip()] if text else None
@@ -1290,16 +1448,24 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--cross-validate", action="store_true",
                         help="leave-one-foundation-out cross-validation against the naive "
                              "baseline (mean of the other foundations at each depth)")
-    parser.add_argument("--json", type=Path,
-                        help="with --cross-validate: also write the summary JSON here (e.g. "
-                             "docs/data/isfog_backanalysis.json)")
+    parser.add_argument("--docs", action="store_true",
+                        help="also write the docs' data file: docs/data/isfog_calibration.json"
+                             " (with --cross-validate: isfog_backanalysis.json; the summary "
+                             "stays in --out)")
+    parser.add_argument("--docs-from", type=Path, metavar="RESULT_JSON",
+                        help="only rewrite the docs' data file from the summary of an earlier "
+                             "run (isfog_backanalysis.json of --cross-validate, else "
+                             "calibration_summary.json) made with the other arguments given "
+                             "(the command it records)")
     parser.add_argument("--sand-toe-factor", type=float, default=Model.sand_toe_factor,
                         help="Alm & Hamre sand toe factor (0.10: 2018 revision; 0.15: 2001)")
     parser.add_argument("--segment-length", type=float, default=Model.segment_length,
                         help="pile segment length [m]")
     parser.add_argument("--duration", type=float, default=Model.duration,
                         help="blow window [s]")
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)
+    return args
 
 
 def main(argv=None) -> int:
@@ -1311,6 +1477,25 @@ def main(argv=None) -> int:
         print(f"isfog_backanalysis: skipped, the ISFOG 2020 records were not found in {data} "
               "(expected beside the repository in ../shared/reference/isfog2020; give "
               "--data DIR)")
+        return 0
+    if args.docs_from is not None:
+        try:
+            summary = json.loads(args.docs_from.read_text())
+            summary["model"]["hammer"]
+            if "steps" not in summary:
+                summary["fit_energy_only"], summary["rmse_per_pile_range [blows/m]"]
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            print(f"isfog_backanalysis: --docs-from {args.docs_from}: not the summary of a run "
+                  f"(isfog_backanalysis.json or calibration_summary.json; {exc!r})",
+                  file=sys.stderr)
+            return 2
+        if "steps" in summary:
+            groups = {p.location_id: p.cpt_group for p in prediction_piles(data)}
+            write_cross_validation_docs(summary, Path(os.path.abspath(args.data)), groups,
+                                        docs_command(args.argv))
+        else:
+            write_calibration_docs(summary, Path(os.path.abspath(args.data)),
+                                   docs_command(args.argv))
         return 0
     start = time.perf_counter()
     times = {}
@@ -1477,8 +1662,11 @@ def main(argv=None) -> int:
         plot_predictions(out / "prediction_piles.png", prediction, pred_direct, e_ref)
     times["plots [s]"] = time.perf_counter() - t
     summary["wall_time [s]"] = time.perf_counter() - start
-    (out / "calibration_summary.json").write_text(
-        json.dumps(_jsonable(summary), indent=2) + "\n")
+    summary = _jsonable(summary)
+    (out / "calibration_summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    if args.docs:
+        write_calibration_docs(summary, Path(os.path.abspath(args.data)),
+                               docs_command(args.argv))
     print(f"calibration ({len(calibration)} piles, {measured.size} records, direct runs): "
           f"RMSE {summary['rmse [blows/m]']:.1f} blows/m, bias "
           f"{summary['bias [blows/m]']:+.1f} blows/m; per pile RMSE "

@@ -86,6 +86,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from doc_data import system_inputs, write_doc_data
 from study_anvil_size import FULL_WINDOW, Case, geometry_numbers
 from study_anvil_size import case_config as size_case_config
 
@@ -486,10 +487,59 @@ def band_table(results: dict) -> str:
     return "\n".join(lines)
 
 
+DOCS_COLUMNS = {
+    "ROM": "rom", "1 rigid mass (today)": "lumped",
+    "2a + anvil flexibility in series": "series",
+    "2b + anvil 2×2 static flexibility": "static", "2c two-mass anvil": "two_mass",
+    "3 pile spring EA/dx": "ea_dx", "4a classic (Table 1)": "classic",
+    "4b classic, GRLWEAP cushion": "classic_grlweap",
+}
+"""docs/validation.md's columns of pile-peak errors: label -> model of :data:`MODELS`."""
+RIGID = ("lumped", "ea_dx", "classic", "classic_grlweap")
+"""The rigid-mass conventions (1, 3, 4a, 4b)."""
+
+
+def docs_table(results: dict) -> tuple[dict, dict]:
+    """docs/validation.md's table (the FEA's peak and arrival, every model's pile-peak error)
+    and the numbers its text quotes, from the study's results (study.json's ``cases``)."""
+    rows = []
+    for case, row in results.items():
+        models = row["models"]
+        rows.append([case, models["fea"]["peak_anvil_pile_force [N]"],
+                     models["fea"]["pile_force_arrival_time [s]"],
+                     *[models[m]["peak_anvil_pile_force_error [-]"]
+                       for m in DOCS_COLUMNS.values()]])
+    table = {"columns": ["anvil", "FEA peak", "FEA arrival", *DOCS_COLUMNS],
+             "formats": [None, "MN0", "ms2", *["pct+"] * len(DOCS_COLUMNS)], "rows": rows}
+    rigid = [r["models"][m]["peak_anvil_pile_force_error [-]"]
+             for r in results.values() for m in RIGID]
+    subs = {"xl8_lumped": [-results["xl8"]["models"]["lumped"][
+                "peak_anvil_pile_force_error [-]"], "pct"],
+            "rigid_min": [min(rigid), "pct+sig2"], "rigid_max": [max(rigid), "pct+sig2"]}
+    return {"errors": table}, subs
+
+
+def write_docs(results: dict, command: str | None = None) -> None:
+    """docs/data/study_lumped_conventions.json from the study's results."""
+    tables, subs = docs_table(results)
+    write_doc_data("study_lumped_conventions", about="pile-peak errors of the ROM and of the "
+                   "lumped-mass conventions against one FEA per anvil (docs/validation.md, "
+                   "\"Does a lumped anvil overestimate the pile force?\")",
+                   inputs=system_inputs(ROOT / "anvilwave" / "examples" / "table1.toml"),
+                   tables=tables, substitutions=subs, values=results, command=command)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_lumped")
+    parser.add_argument("--docs-from", type=Path, default=None, metavar="STUDY_JSON",
+                        help="only rewrite docs/data/study_lumped_conventions.json from the "
+                             "study.json of an earlier run of this script")
     args = parser.parse_args()
+    if args.docs_from is not None:
+        write_docs(json.loads(args.docs_from.read_text())["cases"],
+                   command="python benchmarks/study_lumped_conventions.py")
+        return
     args.out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     base = base_config()
@@ -510,6 +560,7 @@ def main() -> None:
     (args.out / "table.md").write_text(tables)
     (args.out / "study.json").write_text(json.dumps(
         {"cases": results, "total_time [s]": total}, indent=2, default=float) + "\n")
+    write_docs(json.loads(json.dumps(results, default=float)))
     print("\n" + tables)
     print(f"total {total:.0f} s")
 

@@ -617,15 +617,128 @@ def _row(run: ModelRun, fea: ModelRun, fea_columns, t_fea) -> dict:
             "peak_pile_force_error_5kHz [-]": peak, "wall_time [s]": run.wall_time}
 
 
+DOCS_BANDS = (1000.0, 1259.0, 1585.0, 1995.0, 2512.0, 3162.0, 3981.0)
+"""[Hz] the one-third-octave bands of docs/validation.md's tables (nominal centres)."""
+FMAX_DOCS = (FMAX_ANVIL, 10000.0)
+"""[Hz] the fmax of the docs' runs: the default and ``--fmax 10000``."""
+OPEN_ROWS = {
+    "1 ring (the ROM's port)": "rings 1", "2 rings": "rings 2", "3 rings": "rings 3",
+    "6 rings": "rings 6", "6 rings, FEA ram pressure": "rings 6, FEA ram pressure",
+    "6 rings, 8 m tube head": "rings 6 + tube 8 m",
+    "6 rings, 8 m tube head, FEA ram pressure": "rings 6 + tube 8 m, FEA ram",
+    "6 rings, static head spring only": "rings 6 + static head spring",
+    "6 rings, head rotation": "rings 6 + head rotation",
+    "6 rings, head rotation, FEA ram pressure": "rings 6 + head rotation, FEA ram",
+}
+"""The rows of the docs' first table (the FEA's ram force prescribed): label -> variant."""
+CLOSED_ROWS = {
+    "the ROM's ports (one ram port, one ring)": "closed: rings 1 (the ROM's ports)",
+    "6 rings + head rotation": "closed: rings 6 + head rotation",
+    "+ the wall's local flexibility": "closed: + wall's local flexibility",
+    "+ the ram face in 6 annuli": "closed: + ram face in 6 annuli",
+    "the same, no ram contact dashpot": "closed: the same, no ram contact dashpot",
+}
+"""The rows of the docs' closed-loop table (1D pile), at every CLOSED_SEGMENTS."""
+FEA_PILE_ROWS = {
+    "one ram port (the ROM's)": "one ram port", "ram face in 6 annuli": "ram face in 6 annuli",
+    "ram face in 2 halves of its radius": "ram face in 2 halves",
+    "ram face as a disc and its outer sixth (rim)": "ram face as disc + rim",
+    "the same, no ram contact dashpot": "6 annuli, no dashpot",
+}
+"""The rows of the docs' table of the FEA's pile: label -> variant (after its prefix)."""
+
+
+def _bands(row: dict) -> list[float]:
+    """A variant's deviations [dB] in the bands of :data:`DOCS_BANDS`."""
+    centre = np.array(row["band_centre_frequency [Hz]"])
+    out = []
+    for f in DOCS_BANDS:
+        (i,) = np.flatnonzero(np.abs(centre / f - 1.0) < 0.01)
+        out.append(row["deviation_from_fea [dB]"][i])
+    return out
+
+
+def docs_tables(rows: dict, rows_10k: dict, wall_elements: int = 3) -> dict:
+    """docs/validation.md's three tables from the rows of a run at the default fmax and of
+    one at 10 kHz (study.json)."""
+    bands = [f"{f:.0f}" for f in DOCS_BANDS]
+    peaks = ["peak pile (5 kHz band)", "peak ram (5 kHz band)"]
+    open_table = {"columns": ["variant", *bands, "peak (5 kHz band)"],
+                  "formats": [None, *["dB+"] * len(bands), "pct+"],
+                  "rows": [[label, *_bands(rows[key]), rows[key]["peak_pile_force_error_5kHz [-]"]]
+                           for label, key in OPEN_ROWS.items()]}
+    closed = {"columns": ["variant, ram in the loop", "segments", *bands, "max ≤ 1.26 kHz",
+                          *peaks],
+              "formats": [None, None, *["dB+"] * len(bands), "f1", "pct+", "pct+"],
+              "rows": []}
+    for segment in CLOSED_SEGMENTS:
+        for label, key in CLOSED_ROWS.items():
+            r = rows[f"{key}, {segment:g} m"]
+            closed["rows"].append([label, f"{segment:g} m", *_bands(r),
+                                   r["max_deviation_to_1259_Hz [dB]"],
+                                   r["peak_pile_force_error_5kHz [-]"],
+                                   r["peak_ram_force_error_5kHz [-]"]])
+    prefix = f"closed: the FEA's pile ({wall_elements} rings), "
+    fea_pile = {"columns": [f"the FEA's pile ({wall_elements} rings), ram in the loop", "fmax",
+                            *bands, "max 50 Hz-4 kHz", *peaks],
+                "formats": [None, None, *["dB+"] * len(bands), "f1", "pct+", "pct+"],
+                "rows": []}
+    for fmax, run in zip(FMAX_DOCS, (rows, rows_10k), strict=True):
+        for label, key in FEA_PILE_ROWS.items():
+            r = run[prefix + key]
+            fea_pile["rows"].append([label, f"{fmax / 1e3:g} kHz", *_bands(r),
+                                     r["max_deviation_to_3981_Hz [dB]"],
+                                     r["peak_pile_force_error_5kHz [-]"],
+                                     r["peak_ram_force_error_5kHz [-]"]])
+    return {"open_loop": open_table, "closed_loop": closed, "fea_pile": fea_pile}
+
+
+def write_docs(system: Path, rows: dict, rows_10k: dict, command: str | None = None) -> None:
+    """docs/data/study_pile_port.json from the rows of the two runs (default fmax, 10 kHz)."""
+    # lazy: benchmarks/doc_data.py is on the path when this runs as a script, not when the
+    # tests load this file by its path (tests/study_loop.py, tests/test_study_pile_port.py)
+    from doc_data import system_inputs, write_doc_data
+
+    write_doc_data("study_pile_port", about="the anvil-pile port study: band levels of the "
+                   "pile-head force against the FEA per interface variant (docs/validation.md, "
+                   "\"What the 1.6-4 kHz bands need\", \"The ram in the loop\", \"The FEA's "
+                   "own pile under the ROM\")", inputs=system_inputs(system),
+                   tables=docs_tables(rows, rows_10k),
+                   values={f"fmax {f:g} Hz": r for f, r in zip(FMAX_DOCS, (rows, rows_10k),
+                                                               strict=True)},
+                   command=command)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--system", type=Path, default=EXAMPLES / "table1.toml")
     parser.add_argument("--out", type=Path, default=ROOT / "results" / "study_pile_port")
     parser.add_argument("--fmax", type=float, default=FMAX_ANVIL,
                         help="modes of the anvil and the ram up to this frequency [Hz]")
+    parser.add_argument("--docs", action="store_true",
+                        help="run at the default fmax and at 10 kHz (OUT/fmax_5000, "
+                             "OUT/fmax_10000) and write docs/data/study_pile_port.json")
+    parser.add_argument("--docs-from", type=Path, nargs=2, metavar=("STUDY_JSON", "STUDY_10K"),
+                        help="only rewrite docs/data/study_pile_port.json from the study.json "
+                             "of an earlier run at the default fmax and of one at --fmax 10000")
     args = parser.parse_args()
-    args.out.mkdir(parents=True, exist_ok=True)
-    cfg = without_soil(load_system(args.system))
+    if args.docs_from is not None:
+        write_docs(args.system, *(json.loads(p.read_text()) for p in args.docs_from),
+                   command="python benchmarks/study_pile_port.py --docs")
+        return
+    if args.docs:
+        runs = [run_study(args.system, args.out / f"fmax_{f:.0f}", f) for f in FMAX_DOCS]
+        write_docs(args.system, *runs)
+        return
+    run_study(args.system, args.out, args.fmax)
+
+
+def run_study(system: Path, out: Path, fmax: float) -> dict:
+    """Every variant of the study (module docstring) on ``system`` with the anvil's and the
+    ram's modes to ``fmax`` [Hz]; writes study.json and fea.csv in ``out``, prints the table and
+    returns study.json's rows."""
+    out.mkdir(parents=True, exist_ok=True)
+    cfg = without_soil(load_system(system))
     start = time.perf_counter()
     record = instrumented_fea(cfg)
     t_fea, node_radii, node_forces = (record[k] for k in ("time [s]", "ram_radii [m]",
@@ -637,7 +750,7 @@ def main() -> None:
                                                                     PATCHES + 1))
     resultant = node_forces.sum(axis=1)
     fea_columns = {"time [s]": t_fea, "anvil_pile_force [N]": pile_force}
-    write_csv(fea_columns, args.out / "fea.csv")
+    write_csv(fea_columns, out / "fea.csv")
     fea = ModelRun("fea", fea_columns, float("nan"), {})
 
     def uniform(t):
@@ -653,8 +766,8 @@ def main() -> None:
     pile = (material.youngs_modulus, material.density, np.pi * (r_out**2 - r_in**2),
             r_out - r_in, cfg.pile_soil.pile.length)
     start = time.perf_counter()
-    anvil = anvil_ports(cfg, r_in, r_out, ram_radius, args.fmax)
-    print(f"anvil ports: {anvil.omega.size} modes to {args.fmax:g} Hz "
+    anvil = anvil_ports(cfg, r_in, r_out, ram_radius, fmax)
+    print(f"anvil ports: {anvil.omega.size} modes to {fmax:g} Hz "
           f"({time.perf_counter() - start:.1f} s)", flush=True)
     rings = {1: [[0, 1, 2, 3, 4, 5]], 2: [[0, 1, 2], [3, 4, 5]], 3: [[0, 1], [2, 3], [4, 5]],
              6: [[k] for k in range(PATCHES)]}
@@ -705,9 +818,9 @@ def main() -> None:
         print(f"{name} done ({run.wall_time:.1f} s)", flush=True)
     # the ram in the loop: its own modes, its face in annuli or uniform
     start = time.perf_counter()
-    ram = ram_face_ports(cfg, args.fmax)
+    ram = ram_face_ports(cfg, fmax)
     local = wall_local_flexibility(material, r_in, r_out)
-    print(f"ram ports: {ram.omega.size} modes to {args.fmax:g} Hz; the wall's local "
+    print(f"ram ports: {ram.omega.size} modes to {fmax:g} Hz; the wall's local "
           f"flexibility ({time.perf_counter() - start:.1f} s)", flush=True)
     fea_both = dict(fea_columns, **{"ram_anvil_force [N]": resultant})
     damping = cfg.anvil.ram_contact_damping
@@ -769,7 +882,7 @@ def main() -> None:
                 band_limited(columns, "ram_anvil_force [N]", t_fea, BAND).max()
                 / band_limited(fea_both, "ram_anvil_force [N]", t_fea, BAND).max() - 1.0)}
         print(f"{name} done ({run.wall_time:.1f} s)", flush=True)
-    (args.out / "study.json").write_text(json.dumps(rows, indent=2) + "\n")
+    (out / "study.json").write_text(json.dumps(rows, indent=2) + "\n")
     first = next(iter(rows.values()))
     shown = [i for i, c in enumerate(first["band_centre_frequency [Hz]"]) if 950 < c < 4500]
     print("\nband level deviation from the FEA [dB] (the FEA's ram force drives every variant "
@@ -783,6 +896,7 @@ def main() -> None:
             + f" {row['max_deviation_to_1259_Hz [dB]']:10.1f} "
               f"{row['max_deviation_to_3981_Hz [dB]']:8.1f} "
               f"{row['peak_pile_force_error_5kHz [-]']:+8.3f}")
+    return rows
 
 
 if __name__ == "__main__":
