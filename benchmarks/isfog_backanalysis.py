@@ -1647,7 +1647,7 @@ def main(argv=None) -> int:
                                  "hammer energy",
             "prediction_cpt": args.prediction_cpt,
         },
-        "data": str(data),
+        "data": os.path.relpath(Path(data).resolve(), ROOT),  # no absolute path in a result
         "times": times,
         "workers [-]": args.workers,
     }
