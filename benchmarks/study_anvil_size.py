@@ -44,6 +44,7 @@ from pathlib import Path
 
 from doc_data import system_inputs, write_doc_data
 
+import anvilwave
 from anvilwave.analyses.compare import (
     ModelRun,
     comparison_bandwidth,
@@ -59,6 +60,9 @@ from anvilwave.hammer.database import load_hammer
 from anvilwave.hammer.ram import RamRod
 
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = Path(anvilwave.__file__).resolve().parent / "examples"
+"""The example files of the anvilwave that runs (the checkout's, or an installed wheel's)."""
+PACKAGE = EXAMPLES.parent
 FULL_WINDOW = 0.025
 """The paper's window at full scale (8 m pile) [s]."""
 
@@ -108,7 +112,7 @@ def case_config(case: Case) -> SystemConfig:
     contact dashpot), and the step is the automatic one: the ram's cut-off then stays above the
     comparison band of the case, and the scaled series is similar down to its discretisation.
     """
-    cfg = without_soil(load_system(ROOT / "anvilwave" / "examples" / case.file))
+    cfg = without_soil(load_system(EXAMPLES / case.file))
     segment = max(cfg.pile_soil.pile.segment_length, 0.5 * case.scale)
     pile = dataclasses.replace(cfg.pile_soil.pile, segment_length=segment)
     cfg = dataclasses.replace(
@@ -280,8 +284,8 @@ def write_docs_table(results: dict) -> None:
         "small_rom_rms_ram": [small["rom"][rms_ram], "pct"],
     }
     inputs = [p for case in (*SERIES["scaled"], *SERIES["class"])
-              for p in system_inputs(ROOT / "anvilwave" / "examples" / case.file)]
-    inputs += [ROOT / "anvilwave" / "hammer" / "data" / f"{c.hammer}.toml"
+              for p in system_inputs(EXAMPLES / case.file)]
+    inputs += [PACKAGE / "hammer" / "data" / f"{c.hammer}.toml"
                for c in SERIES["class"] if c.hammer]
     write_doc_data(
         "study_anvil_size", about="The anvil-size study (docs/validation.md, \"The anvil-size "
