@@ -5,10 +5,12 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 import pytest
+from packaging.requirements import Requirement
 
 import anvilwave
 from anvilwave.anvil_rom.fem.elasticity import assemble
@@ -109,18 +111,56 @@ PLAIN_HOST_PACKAGES = ("fmpy", "numpy", "scipy", "numba")
 FMU): the Python of the tests that take the FMUs to a host without anvilwave."""
 
 
-@pytest.fixture(scope="session")
-def plain_python(request) -> Path:
-    """A venv with only :data:`PLAIN_HOST_PACKAGES` (no anvilwave, no pythonfmu): its python.
+def _distribution_closure(names) -> list:
+    """The installed distributions ``names`` need, with their requirements' (markers evaluated
+    for this Python; extras not followed): importlib.metadata's view of this venv."""
+    seen: dict[str, metadata.Distribution] = {}
+    todo = list(names)
+    while todo:
+        name = todo.pop()
+        key = name.lower().replace("_", "-")
+        if key in seen:
+            continue
+        dist = metadata.distribution(name)
+        seen[key] = dist
+        for text in dist.requires or []:
+            req = Requirement(text)
+            if req.marker is None or req.marker.evaluate({"extra": ""}):
+                todo.append(req.name)
+    return list(seen.values())
 
-    Made once in pytest's cache folder and reused by later sessions while it imports them;
-    skipped with the reason when pip cannot install them (no package index reachable).
+
+@pytest.fixture(scope="session")
+def plain_python(tmp_path_factory) -> Path:
+    """A venv with only :data:`PLAIN_HOST_PACKAGES` and what they require (no anvilwave, no
+    pythonfmu, no pip): its python.
+
+    The venv is made without pip, and its site-packages gets links to the files of exactly
+    those distributions as this Python has them installed (each distribution's RECORD names its
+    top-level files and folders). So the packages are the tests' own (same versions, nothing
+    downloaded), and nothing else is importable there: not anvilwave (its editable finder is a
+    ``.pth`` file of this venv that is not linked), not pythonfmu.
     """
-    folder = Path(request.config.cache.mkdir("plain-fmu-host")) / "venv"
+    folder = tmp_path_factory.mktemp("plain-fmu-host") / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(folder)], check=True)
     python = folder / "bin" / "python"
-    probe = [str(python), "-I", "-c", "import " + ", ".join(PLAIN_HOST_PACKAGES)]
-    if python.exists() and subprocess.run(probe, capture_output=True).returncode == 0:
-        return python
+    site = Path(subprocess.run([str(python), "-I", "-c", "import sysconfig; "
+                                "print(sysconfig.get_paths()['purelib'])"], check=True,
+                               capture_output=True, text=True).stdout.strip())
+    for dist in _distribution_closure(PLAIN_HOST_PACKAGES):
+        base = Path(dist.locate_file(""))
+        tops = {Path(f).parts[0] for f in dist.files or [] if not Path(f).is_absolute()}
+        for top in sorted(tops - {"..", "__pycache__"}):
+            if (base / top).exists() and not (site / top).exists():
+                (site / top).symlink_to(base / top)
+    probe = subprocess.run([str(python), "-I", "-c", "import " + ", ".join(PLAIN_HOST_PACKAGES)
+                            + "\ntry:\n import anvilwave\nexcept ImportError: pass\n"
+                            "else: raise SystemExit('anvilwave importable')\n"
+                            "try:\n import pythonfmu\nexcept ImportError: pass\n"
+                            "else: raise SystemExit('pythonfmu importable')"],
+                           capture_output=True, text=True)
+    assert probe.returncode == 0, probe.stderr
+    return python
     subprocess.run([sys.executable, "-m", "venv", "--clear", str(folder)], check=True)
     pip = subprocess.run([str(python), "-m", "pip", "install", "-q", *PLAIN_HOST_PACKAGES],
                          capture_output=True, text=True, timeout=1800)

@@ -4,7 +4,8 @@ Each pythonfmu FMU carries the anvilwave code its slave runs as the package
 ``anvilwave_fmu_<digest>`` (:mod:`anvilwave.fmu.vendoring`, :mod:`anvilwave.fmu.units.vendor_init`)
 and pythonfmu's Python part. The units of Table 1's system (``build_system_fmus(...,
 native_units=False)``) run under fmpy in a fresh venv with only fmpy, numpy, scipy and numba
-(:func:`tests.conftest.plain_python`: made once, reused; skipped when pip cannot install them),
+(:func:`tests.conftest.plain_python`: a venv without pip whose site-packages links exactly
+those distributions),
 and in this Python: with anvilwave importable and byte-identical (the package's modules are
 anvilwave's), and with anvilwave imported but taken as different (the FMU's own copies beside
 it). The three runs execute the same Python source on the same inputs, so the outputs must be
