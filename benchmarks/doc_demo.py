@@ -142,13 +142,21 @@ def value_substitutions(values: dict) -> dict:
     tests/test_doc_tables.py can recompute them from the stored values."""
     upper = [i for i, b in enumerate(SPECTRA_BANDS) if 1500.0 < b < 4100.0]
     subs = {}
-    for name, m in (("rom", values["rom"]), ("rod_ram", values["variants"]["rod_ram"]),
-                    ("rings3", values["variants"]["pile_rings_3"]),
-                    ("tube", values["variants"]["pile_rings_3_tube"])):
-        subs[f"{name}_pile_peak_error"] = [m["peak_anvil_pile_force_error [-]"], "pct+"]
-        subs[f"{name}_ram_peak_error"] = [m["peak_ram_anvil_force_error [-]"], "pct+"]
-        subs[f"{name}_rms_ram"] = [m["ram_anvil_force_normalised_rms_error [-]"], "pct"]
-        subs[f"{name}_rms_pile"] = [m["anvil_pile_force_normalised_rms_error [-]"], "pct"]
+    quoted = {"rom": ("pile_peak", "ram_peak", "rms_ram", "rms_pile"),
+              "rod_ram": ("pile_peak", "rms_ram"), "tube": ("pile_peak", "ram_peak"),
+              "rings3": ("pile_peak", "ram_peak", "rms_ram", "rms_pile")}
+    keys = {"pile_peak": ("peak_anvil_pile_force_error [-]", "pct+"),
+            "ram_peak": ("peak_ram_anvil_force_error [-]", "pct+"),
+            "rms_ram": ("ram_anvil_force_normalised_rms_error [-]", "pct"),
+            "rms_pile": ("anvil_pile_force_normalised_rms_error [-]", "pct")}
+    runs = {"rom": values["rom"], "rod_ram": values["variants"]["rod_ram"],
+            "rings3": values["variants"]["pile_rings_3"],
+            "tube": values["variants"]["pile_rings_3_tube"]}
+    for name, figures in quoted.items():
+        for figure in figures:
+            key, fmt = keys[figure]
+            suffix = f"{figure}_error" if figure.endswith("peak") else figure
+            subs[f"{name}_{suffix}"] = [runs[name][key], fmt]
     subs["rom_raw_ram"] = [
         values["rom"]["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"], "pct+"]
     subs["ram_modes"] = [values["summary"]["ram_modes"], "int"]
