@@ -1,6 +1,6 @@
 """The demo's figures for the docs: docs/data/demo.json (docs/demo.md, docs/validation.md).
 
-Run: python benchmarks/doc_demo.py [--demo DIR]
+Run: python benchmarks/doc_demo.py [--demo DIR] [--substitutions-only]
 
 DIR is the folder of an ``anvilwave demo --out DIR`` run (default: run the demo into a
 temporary folder first, about a minute and a half). From its comparison.json and summary.json:
@@ -24,7 +24,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from doc_data import system_inputs, write_doc_data
+from doc_data import DOC_DATA, system_inputs, write_doc_data
 
 from anvilwave.analyses.compare import ModelRun, band_levels, metrics, without_soil
 from anvilwave.cli import main as anvilwave_main
@@ -136,6 +136,37 @@ COMPARISON_COLUMNS = {
 """The columns of docs/demo.md's table: (format, metric)."""
 
 
+def value_substitutions(values: dict) -> dict:
+    """The numbers the prose quotes that follow from the file's ``values`` alone (the ROM's,
+    the rod ram's and the rings' errors, the band levels from 1.6 to 4 kHz), so that
+    tests/test_doc_tables.py can recompute them from the stored values."""
+    upper = [i for i, b in enumerate(SPECTRA_BANDS) if 1500.0 < b < 4100.0]
+    subs = {}
+    quoted = {"rom": ("pile_peak", "ram_peak", "rms_ram", "rms_pile"),
+              "rod_ram": ("pile_peak", "rms_ram"), "tube": ("pile_peak", "ram_peak"),
+              "rings3": ("pile_peak", "ram_peak", "rms_ram", "rms_pile")}
+    keys = {"pile_peak": ("peak_anvil_pile_force_error [-]", "pct+"),
+            "ram_peak": ("peak_ram_anvil_force_error [-]", "pct+"),
+            "rms_ram": ("ram_anvil_force_normalised_rms_error [-]", "pct"),
+            "rms_pile": ("anvil_pile_force_normalised_rms_error [-]", "pct")}
+    runs = {"rom": values["rom"], "rod_ram": values["variants"]["rod_ram"],
+            "rings3": values["variants"]["pile_rings_3"],
+            "tube": values["variants"]["pile_rings_3_tube"]}
+    for name, figures in quoted.items():
+        for figure in figures:
+            key, fmt = keys[figure]
+            suffix = f"{figure}_error" if figure.endswith("peak") else figure
+            subs[f"{name}_{suffix}"] = [runs[name][key], fmt]
+    subs["rom_raw_ram"] = [
+        values["rom"]["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"], "pct+"]
+    subs["ram_modes"] = [values["summary"]["ram_modes"], "int"]
+    for name, key in (("rom", "rom"), ("rings3", "pile_rings_3")):
+        levels = [values["spectra"][key][i] for i in upper]
+        subs[f"{name}_bands_1k6_4k_min"] = [min(levels), "dB+"]
+        subs[f"{name}_bands_1k6_4k_max"] = [max(levels), "dB+"]
+    return subs
+
+
 def comparison_row(label: str, m: dict) -> list:
     return [label, *(m[key] for _, key in COMPARISON_COLUMNS.values())]
 
@@ -149,7 +180,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--demo", type=Path, default=None,
                         help="the folder of an `anvilwave demo --out DIR` run")
+    parser.add_argument("--substitutions-only", action="store_true",
+                        help="only recompute the quoted numbers that follow from the stored "
+                             "values of docs/data/demo.json")
     args = parser.parse_args()
+    if args.substitutions_only:
+        rewrite_value_substitutions()
+        return
     with tempfile.TemporaryDirectory() as folder:
         demo = args.demo
         if demo is None:
@@ -236,21 +273,33 @@ def write(demo: Path) -> None:
         if name == "modal_ram_no_dashpot":
             subs[f"{name}_raw_ram"] = [
                 m["peak_ram_anvil_force_unfiltered_vs_reference_band_error [-]"], "pct+"]
+    values = {"rom": cmp["rom"], "lumped": cmp["lumped"], "interfaces": interfaces,
+              "variants": variants, "summary": {k: summary[k] for k in (
+                  "anvil_modes", "ram_modes", "anvil_fmax [Hz]")},
+              "spectra": {"rom": band_deviations(spectra, "rom"),
+                          "lumped": band_deviations(spectra, "lumped"),
+                          "interfaces": band_deviations(resolved["pile_head_force_spectra"],
+                                                        "rom"),
+                          **{n: band_deviations(ring_spectra, n) for n in
+                             ("pile_rings_3", "pile_rings_3_tube")}}}
+    subs.update(value_substitutions(values))
     write_doc_data(
         "demo", about="The demo's Table 1 comparison (anvilwave demo) and the Table 1 variants "
         "run against its FEA: errors against the FEA, every series low-passed at 5 kHz.",
         inputs=system_inputs(TABLE1) + system_inputs(INTERFACES),
         command="python benchmarks/doc_demo.py",
         tables={"comparison": comparison, "spectra": spectra_table}, substitutions=subs,
-        values={"rom": cmp["rom"], "lumped": cmp["lumped"], "interfaces": interfaces,
-                "variants": variants, "summary": {k: summary[k] for k in (
-                    "anvil_modes", "ram_modes", "anvil_fmax [Hz]")},
-                "spectra": {"rom": band_deviations(spectra, "rom"),
-                            "lumped": band_deviations(spectra, "lumped"),
-                            "interfaces": band_deviations(resolved["pile_head_force_spectra"],
-                                                          "rom"),
-                            **{n: band_deviations(ring_spectra, n) for n in
-                               ("pile_rings_3", "pile_rings_3_tube")}}})
+        values=values)
+
+
+def rewrite_value_substitutions() -> None:
+    """Set docs/data/demo.json's :func:`value_substitutions` from its stored values (no rerun:
+    the values, the inputs and their hashes stay as the last run wrote them)."""
+    path = DOC_DATA / "demo.json"
+    data = json.loads(path.read_text(encoding="utf-8"))
+    data["substitutions"].update(value_substitutions(data["values"]))
+    path.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
+    print(f"wrote {path.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

@@ -298,3 +298,13 @@ def test_pile_port_data_file():
                              (3981.0, "max_deviation_to_3981_Hz [dB]")):
                 assert row[key] == pytest.approx(
                     np.nanmax(deviation[centre <= top * 1.01]), abs=1e-12), (name, key)
+
+
+def test_demo_quoted_numbers_follow_from_its_values():
+    """The numbers of docs/data/demo.json that the prose quotes from its stored values (the
+    ROM's, the rod ram's and the rings' errors, the 1.6-4 kHz band levels) are
+    benchmarks/doc_demo.py's reading of those values; the values themselves are checked
+    against a demo run in tests/test_compare.py."""
+    data = doc_data("demo")
+    derived = benchmark("doc_demo").value_substitutions(data["values"])
+    assert {k: data["substitutions"][k] for k in derived} == derived
