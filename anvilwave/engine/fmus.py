@@ -121,7 +121,8 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
     contacts = {"ram_contact_stiffness": k_ram, "pile_contact_stiffness": k_pile,
                 "ram_contact_damping": float(s.ram_contact_damping),
                 "pile_contact_damping": float(s.pile_contact_damping),
-                "gravity": float(cfg.gravity), "input_extrapolation": True}
+                "gravity": float(cfg.gravity), "input_extrapolation": True,
+                "ram_toe_mass": cfg.hammer.ram.toe_mass}
     rom = {**contacts, "fmax": float(s.fmax if s.fmax is not None else modal.fmax),
            "damping_ratio": float(s.damping_ratio if s.damping_ratio is not None
                                   else modal.damping_ratio),
