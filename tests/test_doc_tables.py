@@ -182,6 +182,9 @@ def test_number_formats():
     assert r.render(-0.00291, "ms+") == "−2.9 ms" and r.render(4.2e-5, "ms+") == "+0.04 ms"
     assert [r.render(v, "sig2") for v in (38.2, 9.84, 0.716)] == ["38", "9.8", "0.72"]
     assert r.render(15.93e6, "MN") == "15.9 MN" and r.render(None, "pct") == ""
+    assert [r.render(v, "pct+3") for v in (0.001713, -0.000645, 0.0)] == \
+        ["+0.171 %", "−0.065 %", "+0.000 %"]
+    assert r.render(-0.00091, "pct+2") == "−0.09 %"
 
 
 @pytest.mark.skipif(not (SHARED / "reference" / "grlweap-s4000").is_dir(),

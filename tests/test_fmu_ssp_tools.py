@@ -117,16 +117,14 @@ def systems(tmp_path_factory):
 def check_peaks(tool: str, model: str, peaks, systems, jacobi=None, tolerances=None) -> None:
     """Peaks (F_ram, F_pile) [N] within 1 % of the FMI engine's (module docstring); for a
     Jacobi master (``jacobi``: its tolerance against the fmpy master in the Jacobi exchange on
-    the SSP step) the lumped anvil's F_ram within 3 % of the fmpy master on the SSP step and
-    ``jacobi`` of the Jacobi one."""
+    the SSP step) also the lumped anvil's F_ram within ``jacobi`` of the Jacobi one."""
     references = dict(zip(("F_ram", "F_pile"), systems["engine"][model], strict=True))
     tolerances = dict(tolerances or {"F_ram": 0.01, "F_pile": 0.01})
     what = {"F_ram": "FMI engine", "F_pile": "FMI engine"}
     if model == "lumped":
         references["F_ram"] = systems["engine"]["lumped_ram_on_the_ssp_step"]
         what["F_ram"] = "fmpy master on the SSP step"
-        if jacobi is not None:  # the exchange on unresolved contact steps: module docstring
-            tolerances["F_ram"] = 0.03
+        if jacobi is not None:  # the Jacobi exchange against the same master: module docstring
             same = systems["engine"]["lumped_ram_jacobi_on_the_ssp_step"]
             print(f"\n{tool} lumped F_ram: fmpy master in the Jacobi exchange {same / 1e6:.2f} "
                   f"MN ({peaks[0] / same - 1:+.1e})")
@@ -287,11 +285,13 @@ def test_libcosim_runs_the_lumped_system_ssp(systems, tmp_path):
 @pytest.mark.slow
 def test_the_jacobi_lumped_ram_peak_converges_with_the_step(systems):
     """The lumped anvil's ram force peak in the Jacobi exchange (input extrapolation on, as the
-    SSP) against the DESIGN order, fmpy master on both, the SSP's start and contact placement,
-    over the first 150 us (the impact): the difference of the Jacobi tools (module docstring)
-    is the step's, and the contact dashpot's. Measured -0.054 % at h/8, -0.005 % at h/16 (+2.18 %
-    at the SSP's h/4, +24 % at h/2, +71 % at h), and -0.11 % at h/4 without the dashpot: bands
-    5x-10x those measured."""
+    SSP, with its ``ram_toe_mass``) against the DESIGN order, fmpy master on both, the SSP's
+    start and contact placement, over the first 150 us (the impact). Measured -0.69 % at h/2,
+    -0.065 % at the SSP's h/4, -0.0056 % at h/8: about 11x per halving, the bands 4x (a
+    second-order coupling error would fall 4x). Without the toe's response to the force
+    changes (``ram_toe_mass`` 0) the Jacobi peak is +2.18 % at h/4 (module docstring): it
+    must stay above 1 %, so that the toe mass is what brings the exchange within 1 %; without
+    the contact dashpot -0.11 % at h/4 with or without it (band 1 %)."""
     units, step = systems["lumped_units"], systems["step"]
 
     def peak(exchange, divisor, anvil):
@@ -307,9 +307,11 @@ def test_the_jacobi_lumped_ram_peak_converges_with_the_step(systems):
         design = peak("design", divisor, anvil)
         print(f"\nlumped F_ram peak at the SSP step / {divisor} {anvil}: Jacobi "
               f"{jacobi / 1e6:.2f} MN, DESIGN order {design / 1e6:.2f} MN "
-              f"({jacobi / design - 1:+.3%})")
+              f"({jacobi / design - 1:+.4%})")
         return abs(jacobi / design - 1.0)
 
-    assert difference(2) <= 5e-3
-    assert difference(4) <= 5e-4
+    coarse, ssp, fine = difference(0.5), difference(1), difference(2)
+    assert ssp <= 5e-3  # within 1 % with room: measured 6.5e-4
+    assert fine <= ssp / 4 and ssp <= coarse / 4
+    assert difference(1, ram_toe_mass=0.0) >= 1e-2
     assert difference(1, ram_contact_damping=0.0) <= 1e-2
