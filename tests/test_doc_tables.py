@@ -50,9 +50,6 @@ PENDING = {
     ("validation.md", "| stack | pile peak | ram peak | pile RMS | ram RMS | bands | ROM "
                       "friction energy | ROM balance |"):
         "benchmarks/study_anvil_ring.py --rom (3 FEAs, 1 min each) does not write docs/data yet",
-    ("fmi.md", "| tool (SSP step 5 us)    | anvil       | ram-anvil peak      | anvil-pile peak |"):
-        "external co-simulation tools (OMSimulator in ../shared, libcosim, fmpy); fmi.md is "
-        "edited elsewhere, left as it is",
 }
 """Measured tables still typed by hand: (page, header row) -> what computes them and why they
 are not generated yet. test_pending_tables_still_exist keeps this list from going stale."""

@@ -18,7 +18,11 @@ in ``anvilwave/fmu/native/anvil_unit.c``):
    :func:`extrapolated_input`: u + s (v + a d / 2) + a s^2 / 2 and v + a s (the velocity inputs
    are the neighbours' half-step values, their mean velocity over their last step, so that
    v + a d / 2 is the velocity at t_in; for a leapfrog neighbour this predicts its next step
-   exactly when its acceleration does not change);
+   exactly when its acceleration does not change). With the parameter ``ram_toe_mass`` m > 0
+   the ram's extrapolation adds the toe's response to the change of the F_ram it holds: a
+   holds the deceleration by the force over the step that gave v, the toe holds since t_in
+   the force read there, so dv = -(F_held - F) s / m (exact for a leapfrog mass; ``build-fmus``
+   sets m from the ram model, :attr:`anvilwave.hammer.ram.RamRod.toe_mass`);
 3. ``fmi2DoStep`` advances the anvil with the forces at the step start (inputs extrapolated to
    it: s = 0 when they were just set) and keeps their difference to the forces of the last
    output read since the step before (what the neighbours hold over this step) as an impulse
@@ -39,16 +43,24 @@ fmpy master) the age is 0 and the correction 0: the results are bitwise those wi
 off. Right after a separation the correction can make a force output slightly negative for one
 step (an impulse of the coupling, not a tension in the contact).
 
-Measured on Table 1 (tests/test_fmu_system.py): under libcosim at h/4 of the engine's step the
-peak forces are within 0.3 % of the DESIGN order on the same step, and the force differences
-fall 13-19x per halving of the step. With the lumped anvil the ram peak is +2.2 % at h/4
-(-0.05 % at h/8; F_pile 0.0005 %): the ram toe slows by about F/Z in the step where the
-dashpot's force jumps, which an extrapolation from the points before cannot see, and the
-overshoot and undershoot that follow have not died out at the rigid anvil's peak, four steps
-after the contact (tests/test_fmu_ssp_tools.py). Without the impulse
-correction the ram peak is 1.6 % off at h/4 (3.3 % with a linear extrapolation); sub-stepping
-the anvil with the extrapolated inputs gains nothing (the forces the neighbours hold over their
-step set the error).
+Measured on Table 1 (benchmarks/doc_fmi_tools.py, docs/data/fmi_tools.json, checked by
+tests/test_fmu_system.py and tests/test_fmu_ssp_tools.py): under libcosim at h/4 of the
+engine's step the ROM's peak forces are within 0.03 % of the DESIGN order on the same step
+(F_ram -0.029 %, F_pile -0.001 %) and within 0.15 % of the fmpy master at h (+0.142 %, -0.060
+%), the whole series within 0.12 % of the peaks; the lumped anvil's ram peak is -0.065 % of the
+DESIGN order on the same step (F_pile +0.004 % of the engine), libcosim and fmpy's SSP runner
+alike. The ram toe's response is what the lumped anvil needs: in the step where the contact
+dashpot's force jumps, the toe slows under the force it holds, which an extrapolation from the
+points before cannot see; without it the ram peak was +2.18 % at h/4 (the overshoot and
+undershoot that follow had not died out at the rigid anvil's peak, four steps after the
+contact), and the ROM's series 3.1 %. The toe mass is the toe's first response, not the rod's
+impedance E A / c: a modal ram with modes up to 5 kHz (Table 1's, m = 5.6 t) follows a force
+step at 5 us with 9 % of the -dF/Z of a rod, and with Z in place of m the exchange is unstable.
+With the toe mass the lumped ram peak converges with the step about 11x per halving (-0.69 % at
+h/2, -0.065 % at h/4, -0.0056 % at h/8). Without the impulse correction the ram peak was 1.6 %
+off at h/4 (3.3 % with a linear extrapolation), before the toe mass; sub-stepping the anvil
+with the extrapolated inputs gains nothing (the forces the neighbours hold over their step set
+the error).
 """
 
 from __future__ import annotations
