@@ -626,6 +626,7 @@ BAD_FILES = {
     *[("Anvil", {"modal_data_file": name}, reason) for name, (_, reason) in BAD_FILES.items()],
     ("AnvilLumped", {"mass": -5.0}, "mass: must be positive"),
     ("AnvilLumped", {"ram_contact_damping": -1.0}, "ram_contact_damping: must be >= 0"),
+    ("AnvilLumped", {"ram_toe_mass": -1.0}, "ram_toe_mass: must be >= 0 [kg], got -1"),
 ])
 def test_invalid_parameters_give_fmi2error_with_the_reason(built, kind, parameters, reason):
     fmu = Driven(built[kind])
@@ -733,6 +734,8 @@ def test_build_rejects_bad_input_and_writes_nothing(built, tmp_path):
         build_native_anvil_fmu(data, tmp_path, modal_data_file="x.bin", **CONTACTS)
     with pytest.raises(InputError, match="participation_ram: is missing"):
         build_native_anvil_fmu({"frequencies": [0.0, 100.0]}, tmp_path, **CONTACTS)
+    with pytest.raises(InputError, match=r"ram_toe_mass: must be >= 0 \[kg\], got -2"):
+        build_native_anvil_fmu(data, tmp_path, ram_toe_mass=-2.0, **CONTACTS)
     assert list(tmp_path.iterdir()) == []
 
 
