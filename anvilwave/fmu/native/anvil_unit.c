@@ -34,8 +34,10 @@
  *   with the forces at the step start and keeps their difference to the forces of the last
  *   output read since the step before as an impulse correction of the force outputs, except
  *   when that output came from the start time's inputs: then it steps with the forces of
- *   that output, with no correction. With inputs set at the unit's time before the outputs
- *   are read (the DESIGN.md order), nothing changes.
+ *   that output, with no correction. With ram_toe_mass [kg] > 0 (Real parameter, default 0)
+ *   the ram's extrapolation adds the toe's response to the change of the F_ram output it
+ *   holds since the inputs (extrapolated_input). With inputs set at the unit's time before
+ *   the outputs are read (the DESIGN.md order), nothing changes.
  * - A bad parameter value or modal-data file, a failed ring contact problem: the model's
  *   reason, reported by the FMI layer (unit_core.h) as an error.
  */
