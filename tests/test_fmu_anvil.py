@@ -391,6 +391,7 @@ def _has_status_shim(path: Path) -> bool:
     ("Anvil", {"modal_data_file": "missing.npz"}, "modal-data file not found"),
     ("Anvil", {"pile_contact_stiffness": -1.0}, "pile_stiffness: must be positive"),
     ("AnvilLumped", {"mass": -5.0}, "mass: must be positive"),
+    ("AnvilLumped", {"ram_toe_mass": -1.0}, "ram_toe_mass: must be >= 0 [kg], got -1"),
 ])
 def test_invalid_parameters_give_fmi2error_with_the_reason(built, kind, parameters, reason):
     fmu = Driven(built[kind])

@@ -227,6 +227,24 @@ def rod_toe_modes(length: float, area: float, n_modes: int) -> RamToeModes:
     return RamToeModes(omega, p, gravity, mass, 1.0 / residual, C0 * n_modes / (2 * length))
 
 
+def test_toe_mass_is_the_first_response_to_a_force_step():
+    """RamRod.toe_mass: for the closed-form modes of a uniform rod with N flexible modes,
+    1 / sum p^2 = M / (2 N + 1); the modal unit, at rest, given a force step F, gets the mean
+    toe velocity -F h / toe_mass over its first step (its per-mode c = 2 (1 - cos w h) / w^2
+    is h^2 (1 - (w h)^2 / 12): 1e-4 at the highest mode's w h = 0.033, so 2e-4); a Smith rod's
+    toe mass is its toe node's."""
+    length, area, n_modes, h, force = 2.0, 0.1, 40, 1e-7, 1.0e6
+    modes = rod_toe_modes(length, area, n_modes)
+    ram = RamRod(np.array([modes.total_mass]), np.zeros(0), modes=modes)
+    assert ram.toe_mass == pytest.approx(modes.total_mass / (2 * n_modes + 1), rel=1e-12)
+    unit = ModalRamUnit(modes, gravity=0.0)
+    unit.start(0.0, 0.0, h)
+    _, velocity = unit.step(force)
+    assert velocity == pytest.approx(-force * h / ram.toe_mass, rel=2e-4)
+    rod = RamRod.from_segments([1000.0, 2000.0, 300.0], [1e10, 2e10])
+    assert rod.toe_mass == 300.0
+
+
 def test_modal_ram_unit_rod_strikes_a_stiff_wall():
     """A uniform rod (L 2 m, A 0.1 m^2) at v0 = 5 m/s against a stiff wall spring: the force is
     the impedance plateau E A v0 / c for 2 L / c, then the rod leaves (Saint-Venant). With 400

@@ -26,7 +26,9 @@ takes them as parameters).
 ``system.ssp`` is for Jacobi-type masters (OSP libcosim, OMSimulator, fmpy's SSP runner: every
 unit steps, then the outputs are exchanged, so the anvil's forces reach ram and pile one step
 late). Its anvil has ``input_extrapolation`` on (:mod:`anvilwave.fmu.coupling`: the inputs
-extrapolated to the unit's time, the missed contact impulse given back), and its fixed step is
+extrapolated to the unit's time, the ram toe's response to the force it holds included with
+``ram_toe_mass``, :attr:`anvilwave.hammer.ram.RamRod.toe_mass`, the missed contact impulse
+given back), and its fixed step is
 the engine's step h over :data:`SSP_STEP_DIVISOR`, from -2.5 step (the engine's time axis: the
 first contact at 0). Every parameter value of the SSP is also the FMUs' default (they are built
 with them, ``input_extrapolation`` included: in the DESIGN.md order of the fmpy master it
@@ -34,8 +36,8 @@ changes no bit), so a tool that ignores the SSP's bindings runs the same system,
 FMU's DefaultExperiment (native or pythonfmu) is the SSP's. The ram (native or pythonfmu)
 places the first contact in the middle of the third step whatever the start time
 (:mod:`anvilwave.fmu.units.ram`, ``anvilwave/fmu/native/ram_model.c``). Measured on Table 1
-(modal ram, ROM anvil) with libcosim at h/4: peak forces within 0.3 % of the fmpy master
-(DESIGN.md order) on the same step.
+(modal ram) with libcosim at h/4: peak forces within 0.03 % (ROM anvil) and 0.07 % (lumped
+anvil) of the fmpy master (DESIGN.md order) on the same step (docs/data/fmi_tools.json).
 """
 
 from __future__ import annotations
@@ -121,7 +123,8 @@ def system_parameters(cfg: SystemConfig, modal) -> dict[str, dict[str, Any]]:
     contacts = {"ram_contact_stiffness": k_ram, "pile_contact_stiffness": k_pile,
                 "ram_contact_damping": float(s.ram_contact_damping),
                 "pile_contact_damping": float(s.pile_contact_damping),
-                "gravity": float(cfg.gravity), "input_extrapolation": True}
+                "gravity": float(cfg.gravity), "input_extrapolation": True,
+                "ram_toe_mass": cfg.hammer.ram.toe_mass}
     rom = {**contacts, "fmax": float(s.fmax if s.fmax is not None else modal.fmax),
            "damping_ratio": float(s.damping_ratio if s.damping_ratio is not None
                                   else modal.damping_ratio),

@@ -71,7 +71,11 @@ import numpy as np
 from anvilwave.anvil_rom.fem.modalfile import ModalData, check_modal_data, load_modal_data
 from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.anvil_rom.unit import ContactParameters
-from anvilwave.fmu.coupling import INPUT_EXTRAPOLATION_DESCRIPTION
+from anvilwave.fmu.coupling import (
+    INPUT_EXTRAPOLATION_DESCRIPTION,
+    RAM_TOE_MASS_DESCRIPTION,
+    check_ram_toe_mass,
+)
 from anvilwave.fmu.native_units import (
     COMMON_SOURCES,
     DEFAULT_EXPERIMENT,
@@ -177,6 +181,7 @@ _COMMON = (
              "Anvil top face displacement (ram contact), positive down [m]"),
     Variable("u_bottom", "U_BOTTOM", "Real", "output", "m",
              "Anvil bottom ring displacement (pile contact), positive down [m]"),
+    _parameter("ram_toe_mass", "kg", RAM_TOE_MASS_DESCRIPTION),
 )
 INPUTS = ("u_ram", "v_ram", "u_pile", "v_pile")
 OUTPUTS = ("F_ram", "F_pile", "u_top", "u_bottom")
@@ -193,7 +198,7 @@ FEEDTHROUGH = {
 FALLBACKS: dict[str, Any] = {
     "ram_contact_damping": 0.0, "pile_contact_damping": 0.0, "gravity": GRAVITY,
     "start_at_rest": True, "initial_pile_head_displacement": 0.0, "static_correction": False,
-    "modal_data_file": MODAL_RESOURCE, "input_extrapolation": False,
+    "modal_data_file": MODAL_RESOURCE, "input_extrapolation": False, "ram_toe_mass": 0.0,
 }
 """Start values of parameters the build does not set (contact stiffnesses have none)."""
 
@@ -511,7 +516,9 @@ def build_native_anvil_fmu(modal, out_path: str | Path, *, lumped: bool = False,
         ``pile_contact_stiffness`` [N/m] (required), ``ram_contact_damping``,
         ``pile_contact_damping`` [N s/m], ``gravity`` [m/s^2], ``start_at_rest``,
         ``initial_pile_head_displacement`` [m], ``input_extrapolation`` (default off; on for
-        Jacobi-type masters, see :mod:`anvilwave.fmu.coupling`); ROM: ``fmax`` [Hz] (default
+        Jacobi-type masters, see :mod:`anvilwave.fmu.coupling`), ``ram_toe_mass`` [kg]
+        (default 0; the extrapolation's ram toe mass,
+        :func:`~anvilwave.fmu.coupling.extrapolated_input`); ROM: ``fmax`` [Hz] (default
         the data's; 0 keeps all modes), ``damping_ratio`` [-] (default the data's),
         ``static_correction`` (default off, on for a ModalAnvil that has one); lumped: ``mass``
         [kg].
@@ -694,6 +701,7 @@ def _check_physics(data, values: dict[str, Any], lumped: bool) -> None:
 
     ContactParameters(values["ram_contact_stiffness"], values["pile_contact_stiffness"],
                       values["ram_contact_damping"], values["pile_contact_damping"])
+    check_ram_toe_mass(values["ram_toe_mass"], "native Anvil FMU build")
     if lumped:
         ModalAnvil.rigid(values["mass"])
     else:

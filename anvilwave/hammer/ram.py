@@ -311,6 +311,20 @@ class RamRod:
         return float(1.0 / (np.sum(1.0 / self.stiffness) + toe))
 
     @property
+    def toe_mass(self) -> float:
+        """The toe's mass for a force step [kg].
+
+        1 / sum_j p_toe,j^2 of a modal ram's modes, else the toe node's mass (the whole mass
+        when rigid). A force step dF on the toe changes its velocity by -dF t / m over the
+        first instants t, before the ram's modes (or springs) spread it: a modal unit's toe
+        coordinate is u = sum_j p_toe,j q_j with q_j'' = -p_toe,j F + ... at t = 0. Its modes
+        up to fmax cannot carry the rod's -dF / Z within about 1 / (2 fmax).
+        """
+        if self.modes is not None:
+            return float(1.0 / np.sum(np.square(self.modes.participation)))
+        return float(self.mass[-1])
+
+    @property
     def toe_impedance(self) -> float:
         """Bar impedance of the striking face's section, E A / c = A sqrt(E rho) [N s/m].
 

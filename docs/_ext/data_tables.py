@@ -69,6 +69,8 @@ FORMATS = {
     "pct": lambda v: percent(v),
     "pct+": lambda v: percent(v, sign=True),
     "pct+sig2": lambda v: _signed(_sig2(100.0 * v), v, True) + " %",
+    "pct+2": lambda v: _signed(f"{100.0 * v:.2f}", v, True) + " %",
+    "pct+3": lambda v: _signed(f"{100.0 * v:.3f}", v, True) + " %",
     "ms+": lambda v: milliseconds(v),
     "ms": lambda v: milliseconds(v, sign=False),
     "ms2": lambda v: _signed(f"{v * 1e3:.2f}", v, False) + " ms",
@@ -86,6 +88,7 @@ FORMATS = {
     "per_m1": lambda v: _signed(f"{v:.1f}", v, False) + " /m",
     "m0": lambda v: _signed(f"{v:.0f}", v, False) + " m",
     "us1": lambda v: _signed(f"{v * 1e6:.1f}", v, False) + " µs",
+    "t1": lambda v: _signed(f"{v / 1e3:.1f}", v, False) + " t",
 }
 """Format name -> function of the raw value (SI units as the data file stores them)."""
 

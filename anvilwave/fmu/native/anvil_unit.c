@@ -34,8 +34,10 @@
  *   with the forces at the step start and keeps their difference to the forces of the last
  *   output read since the step before as an impulse correction of the force outputs, except
  *   when that output came from the start time's inputs: then it steps with the forces of
- *   that output, with no correction. With inputs set at the unit's time before the outputs
- *   are read (the DESIGN.md order), nothing changes.
+ *   that output, with no correction. With ram_toe_mass [kg] > 0 (Real parameter, default 0)
+ *   the ram's extrapolation adds the toe's response to the change of the F_ram output it
+ *   holds since the inputs (extrapolated_input). With inputs set at the unit's time before
+ *   the outputs are read (the DESIGN.md order), nothing changes.
  * - A bad parameter value or modal-data file, a failed ring contact problem: the model's
  *   reason, reported by the FMI layer (unit_core.h) as an error.
  */
@@ -54,7 +56,7 @@ enum { MASS, LUMPED_BASE };
 enum {
     RAM_CONTACT_STIFFNESS, PILE_CONTACT_STIFFNESS, RAM_CONTACT_DAMPING, PILE_CONTACT_DAMPING,
     GRAVITY, START_AT_REST, INITIAL_PILE_HEAD_DISPLACEMENT, INPUT_EXTRAPOLATION,
-    U_RAM, V_RAM, U_PILE, V_PILE, F_RAM, F_PILE, U_TOP, U_BOTTOM, N_COMMON
+    U_RAM, V_RAM, U_PILE, V_PILE, F_RAM, F_PILE, U_TOP, U_BOTTOM, RAM_TOE_MASS, N_COMMON
 };
 
 #define MODAL_RESOURCE "modal_data.bin"
@@ -75,7 +77,8 @@ enum {
     {(vr) + 12, UNIT_OUTPUT, "F_ram", 0.0, UNIT_REAL, NULL},                                 \
     {(vr) + 13, UNIT_OUTPUT, "F_pile", 0.0, UNIT_REAL, NULL},                                \
     {(vr) + 14, UNIT_OUTPUT, "u_top", 0.0, UNIT_REAL, NULL},                                 \
-    {(vr) + 15, UNIT_OUTPUT, "u_bottom", 0.0, UNIT_REAL, NULL}
+    {(vr) + 15, UNIT_OUTPUT, "u_bottom", 0.0, UNIT_REAL, NULL},                             \
+    {(vr) + 16, UNIT_PARAMETER, "ram_toe_mass", 0.0, UNIT_REAL, NULL}
 
 static const UnitVariable ROM_VARIABLES[] = {
     {MODAL_DATA_FILE, UNIT_PARAMETER, "modal_data_file", 0.0, UNIT_STRING, MODAL_RESOURCE},
@@ -111,6 +114,11 @@ typedef struct {
     double sent[2];              /* ... of the last output read since the last step [N] */
     int has_evaluated, has_sent;
     int evaluated_at_start, sent_at_start; /* from the start time's inputs */
+    double ram_toe_mass;  /* the ram toe's mass for a force step [kg]; 0: none */
+    double output_ram;    /* F_ram output of the last evaluation, corrected [N] */
+    double sent_output;   /* ... of the last one read since the last step [N] */
+    double held;          /* the F_ram output the ram holds over the last step [N] */
+    double ram_forces[2]; /* F_ram over the step that gave the inputs and since them [N] */
     /* before the first contact (Python: approach_input) */
     int touched;       /* the ram contact has carried a force */
     double last_step;  /* the last communication step [s]; 0: none yet */
@@ -184,11 +192,14 @@ static int load_modal_data(AnvilModel *m, const char *name, char *reason, size_t
 /* ------------------------------------------------------------------ input extrapolation */
 /* Python: extrapolated_input. A neighbour's (displacement [m], velocity [m/s]) age [s] after it
  * was received; velocity is its half-step value, previous_velocity the one received interval
- * [s] earlier (interval 0: no acceleration). */
+ * [s] earlier (interval 0: no acceleration); with a toe mass [kg] > 0 plus the toe's response
+ * to the change of the contact force [N] from force (over the step that gave velocity) to
+ * force_after (since). */
 static void extrapolated_input(double displacement, double velocity, double previous_velocity,
-                               double age, double interval, double *u, double *v)
+                               double age, double interval, double force, double force_after,
+                               double toe_mass, double *u, double *v)
 {
-    double acceleration;
+    double acceleration, change;
     if (age == 0.0) {
         *u = displacement;
         *v = velocity;
@@ -198,6 +209,11 @@ static void extrapolated_input(double displacement, double velocity, double prev
     *u = displacement + age * (velocity + 0.5 * interval * acceleration) +
          0.5 * acceleration * age * age;
     *v = velocity + acceleration * age;
+    if (toe_mass > 0.0) {
+        change = -(force_after - force) * age / toe_mass;
+        *u = *u + age * change;
+        *v = *v + change;
+    }
 }
 
 /* Python: InputExtrapolation(time), a fresh state at the unit's time (and the approach's:
@@ -213,6 +229,8 @@ static void start_extrapolation(AnvilState *s, double time)
     s->correction[0] = s->correction[1] = 0.0;
     s->has_evaluated = s->has_sent = 0;
     s->evaluated_at_start = s->sent_at_start = 0;
+    s->output_ram = s->sent_output = s->held = 0.0;
+    s->ram_forces[0] = s->ram_forces[1] = 0.0;
 }
 
 /* Python: InputExtrapolation.note_inputs, before new inputs are stored (the unit's hook
@@ -228,6 +246,7 @@ static void inputs_set(void *p, const double *slots, double time)
     if (time > s->input_time) {
         s->previous_velocity[0] = r[V_RAM];
         s->previous_velocity[1] = r[V_PILE];
+        s->ram_forces[0] = s->held;
         s->input_interval = s->input_time > s->input_start ? time - s->input_time : 0.0;
         s->input_time = time;
     }
@@ -242,6 +261,7 @@ static void outputs_read(void *p)
     s->sent[1] = s->evaluated[1];
     s->has_sent = 1;
     s->sent_at_start = s->evaluated_at_start;
+    s->sent_output = s->output_ram;
 }
 
 /* Python: approach_input and AnvilSlaveBase.approached. Until the ram contact has carried a
@@ -266,9 +286,9 @@ static void extrapolated_inputs(const AnvilState *s, const double *r, double tim
 {
     double age = time - s->input_time;
     extrapolated_input(r[U_RAM], r[V_RAM], s->previous_velocity[0], age, s->input_interval,
-                       u_ram, v_ram);
+                       s->ram_forces[0], s->ram_forces[1], s->ram_toe_mass, u_ram, v_ram);
     extrapolated_input(r[U_PILE], r[V_PILE], s->previous_velocity[1], age, s->input_interval,
-                       u_pile, v_pile);
+                       0.0, 0.0, 0.0, u_pile, v_pile);
 }
 
 /* ------------------------------------------------------------------ the unit */
@@ -289,6 +309,10 @@ static void *start(void *p, const double *slots, char *const *strings, double st
     if (!anvil_check_parameters(&contact, r[GRAVITY], r[INITIAL_PILE_HEAD_DISPLACEMENT],
                                 reason, reason_size))
         return NULL;
+    if (!(isfinite(r[RAM_TOE_MASS]) && r[RAM_TOE_MASS] >= 0.0)) { /* check_ram_toe_mass */
+        snprintf(reason, reason_size, "ram_toe_mass: must be >= 0 [kg], got %g", r[RAM_TOE_MASS]);
+        return NULL;
+    }
     if (!m->lumped && !load_modal_data(m, strings[MODAL_DATA_FILE], reason, reason_size))
         return NULL;
     if ((s = (AnvilState *)calloc(1, sizeof *s)) == NULL) {
@@ -311,6 +335,7 @@ static void *start(void *p, const double *slots, char *const *strings, double st
     s->base = base;
     s->extrapolation = r[INPUT_EXTRAPOLATION] != 0.0;
     start_extrapolation(s, start_time);
+    s->ram_toe_mass = r[RAM_TOE_MASS];
     return s;
 }
 
@@ -345,6 +370,7 @@ static void evaluate(AnvilState *s, const double *slots, double time)
         s->evaluated_at_start = s->input_time == s->input_start;
         s->outputs[0] += s->correction[0];
         s->outputs[1] += s->correction[1];
+        s->output_ram = s->outputs[0];
     }
     s->outputs_valid = 1;
 }
@@ -379,9 +405,11 @@ static int step(void *p, const double *slots, double time, double h, char *reaso
         if (s->has_sent) {
             s->correction[0] = force_ram - s->sent[0];
             s->correction[1] = force_pile - s->sent[1];
+            s->held = s->sent_output;
         } else {
             s->correction[0] = s->correction[1] = 0.0;
         }
+        if (time == s->input_time) s->ram_forces[1] = s->held;
         s->has_sent = 0;
     } else {
         if (!s->outputs_valid) evaluate(s, slots, time);

@@ -27,8 +27,10 @@ equals the ``u_top`` output.
 Input extrapolation (parameter ``input_extrapolation``, default off; ``system.ssp`` turns it
 on): for Jacobi-type masters, which read the anvil's forces after its step with the inputs of
 the step before, the inputs are extrapolated to the unit's time and the contact impulse the
-neighbours missed is given back (:mod:`anvilwave.fmu.coupling`). In the DESIGN.md order it changes
-no bit.
+neighbours missed is given back (:mod:`anvilwave.fmu.coupling`); with ``ram_toe_mass`` (the
+ram toe's mass for a force step [kg], default 0: none) the ram toe's state is extrapolated
+with its response to the changes of the force it holds. In the DESIGN.md order it changes no
+bit.
 """
 
 from __future__ import annotations
@@ -51,8 +53,10 @@ from anvilwave.anvil_rom.unit import (
 )
 from anvilwave.fmu.coupling import (
     INPUT_EXTRAPOLATION_DESCRIPTION,
+    RAM_TOE_MASS_DESCRIPTION,
     InputExtrapolation,
     approach_input,
+    check_ram_toe_mass,
 )
 from anvilwave.fmu.units.base import UnitSlave
 from anvilwave.inputs import InputError
@@ -125,6 +129,7 @@ class AnvilSlaveBase(UnitSlave):
         "start_at_rest": True,
         "initial_pile_head_displacement": 0.0,
         "input_extrapolation": False,
+        "ram_toe_mass": 0.0,
     }
     # inputs each output depends on directly (subclasses narrow it when they can)
     feedthrough: ClassVar[dict[str, tuple[str, ...]]] = {
@@ -159,6 +164,7 @@ class AnvilSlaveBase(UnitSlave):
           self.feedthrough["u_top"])
         o("u_bottom", "m", "Anvil bottom ring displacement (pile contact), positive down [m]",
           self.feedthrough["u_bottom"])
+        p("ram_toe_mass", "kg", RAM_TOE_MASS_DESCRIPTION)
 
     def register_anvil_parameters(self) -> None:
         """Register the parameters of the anvil model itself.
@@ -197,7 +203,7 @@ class AnvilSlaveBase(UnitSlave):
         Raises
         ------
         InputError
-            If ``gravity`` is not finite.
+            If ``gravity`` is not finite or ``ram_toe_mass`` is negative or not finite.
         """
         par = self.parameters
         contact = ContactParameters(
@@ -208,6 +214,7 @@ class AnvilSlaveBase(UnitSlave):
         gravity = par["gravity"]
         if not abs(gravity) < float("inf"):
             raise InputError(self.instance_name, "gravity", f"must be finite, got {gravity!r}")
+        check_ram_toe_mass(par["ram_toe_mass"], self.instance_name)
         return AnvilUnit(self.make_anvil(), contact, gravity)
 
     def start_component(self) -> None:
@@ -222,7 +229,8 @@ class AnvilSlaveBase(UnitSlave):
         # compile (or load) the step kernel now, on copies, not inside the first doStep
         unit = self.component
         modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
-        self.extrapolation = (InputExtrapolation(self.start_time)
+        self.extrapolation = (InputExtrapolation(self.start_time,
+                                                 self.parameters["ram_toe_mass"])
                               if self.parameters["input_extrapolation"] else None)
         self.touched = False
         self.last_step = 0.0
