@@ -545,16 +545,20 @@ def prediction_piles(data: Path, only: list[str] | None = None,
 # ----------------------------------------------------------------------------- runs
 def run_piles(piles, model: Model, energies, multipliers, workers: int) -> list[dict]:
     """:func:`simulate_pile` for every pile, over ``workers`` processes."""
-    jobs = [(p, model, np.asarray(energies, float), np.asarray(multipliers, float))
-            for p in piles]
+    return _map(_simulate, [(p, model, np.asarray(energies, float),
+                             np.asarray(multipliers, float)) for p in piles], workers)
+
+
+def _map(function, jobs: list, workers: int) -> list:
+    """``function`` over ``jobs``, in ``workers`` processes (forked) or in this one."""
     if workers <= 1 or len(jobs) <= 1:
-        return [_simulate(j) for j in jobs]
+        return [function(j) for j in jobs]
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor
 
     with ProcessPoolExecutor(min(workers, len(jobs)),
                              mp_context=mp.get_context("fork")) as pool:
-        return list(pool.map(_simulate, jobs))
+        return list(pool.map(function, jobs))
 
 
 def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> list[dict]:
@@ -582,15 +586,7 @@ def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> lis
 
 def run_shaft_by_class(piles, model: Model, rates, workers: int) -> list[dict]:
     """:func:`shaft_by_class` for every pile, over ``workers`` processes."""
-    jobs = [(p, model, np.asarray(rates, float)) for p in piles]
-    if workers <= 1 or len(jobs) <= 1:
-        return [shaft_by_class(j) for j in jobs]
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(min(workers, len(jobs)),
-                             mp_context=mp.get_context("fork")) as pool:
-        return list(pool.map(shaft_by_class, jobs))
+    return _map(shaft_by_class, [(p, model, np.asarray(rates, float)) for p in piles], workers)
 
 
 def _simulate(job: tuple) -> dict:

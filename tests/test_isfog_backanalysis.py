@@ -211,8 +211,11 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
                 and math.isfinite(float(x["naive [blows/m]"]))]
         assert int(r["points [-]"]) == len(mine) == {"AD": 23, "AI": 23}[r["location_id"]]
         err = [float(x["I"]) - float(x["measured [blows/m]"]) for x in mine]
-        assert float(r["I rmse [blows/m]"]) == pytest.approx(math.sqrt(np.mean(np.square(err))))
-        assert float(r["I bias [blows/m]"]) == pytest.approx(np.mean(err))
+        # the CSV files keep 6 significant digits: each count (< 1000 blows/m, the refusal
+        # count) within 5e-4 of its value, and so the scores within 1e-3
+        assert float(r["I rmse [blows/m]"]) == pytest.approx(
+            math.sqrt(np.mean(np.square(err))), abs=1e-3)
+        assert float(r["I bias [blows/m]"]) == pytest.approx(np.mean(err), abs=1e-3)
     prediction = _csv(out / "prediction_piles_blowcount.csv")
     z = [float(r["z [m]"]) for r in prediction]
     assert z == list(np.arange(z[0], z[-1] + 1.0))
