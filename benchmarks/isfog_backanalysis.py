@@ -94,18 +94,33 @@ E. an energy law E_ref x setting^b (b about 1, prior sd 0.25): tried, not kept;
 F. residual stress: three blows per depth, each from the state the last left, as the
    ratio of the third blow's count to the single blow's at the final parameters;
 G. F stacked with the naive baseline: baseline + w (physics - baseline), w fitted by least
-   squares on the training foundations (their baselines leave each of them out in turn).
+   squares on the training foundations (their baselines leave each of them out in turn);
+H. D with the hammer held physical: every fold's E_ref at most the S-800's rating over the
+   largest blow energy per unit E_ref of its training records (ENTHRU factor x setting), so
+   that no blow asks more than the rated energy;
+I. H + ONE factor r on Alm & Hamre's friction-fatigue rate k (the shaft friction decaying
+   with the distance h from the tip as exp(-r k h); r = 1 the paper's, a weak Gaussian prior
+   on log r, sd ln 4), fitted with the other parameters on the training foundations only;
+J. I stacked with the naive baseline as in G (a blend, not physics).
 
-Cost: the blow counts of every record are simulated on a grid of common SRD multipliers x
-reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD distribution of the
-all-pile fit of step D, so that the folds' class multipliers are small deviations about it);
-the folds fit on a :class:`ResponseSurface` (bilinear in log count, log multiplier, log
-energy), whose error against direct runs at the final values is reported. The final model
-(step G's fit on all calibration piles) predicts the prediction piles from direct
-(multi-blow) runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
+Cost: the blow counts of every calibration record are simulated on a grid of common SRD
+multipliers x reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD
+distribution of the all-pile fit of step D on grid 1, so that the folds' class multipliers are small
+deviations about it); the folds fit on a :class:`ResponseSurface` (bilinear in log count, log
+multiplier, log energy), whose error against direct runs at the final values is reported. The
+fatigue factor enters the surface through each record's sand and clay shaft SRD computed
+(statically, :func:`shaft_by_class`) at the factors :data:`FATIGUE_RATES`: the change of the
+SRD's total, like the class multipliers; the change of its distribution along the shaft is
+what the direct runs at the final values check. The final model (step I's fit on all
+calibration piles, :data:`FINAL_STEP`: the last physics step) predicts the prediction piles
+from direct runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
 baseline's, the folds' parameter ranges), ``cross_validation_records.csv`` (every record:
-measured, baseline, each step's prediction), ``prediction_piles_blowcount.csv`` and
-``isfog_backanalysis.json``; with ``--docs``, the docs' data file
+measured, baseline, each step's prediction), ``cross_validation_piles.csv`` (per pile: RMSE
+and bias of the baseline and of every step over its scored records),
+``prediction_piles_blowcount.csv`` (the final model's blow count, beside it the blend with the
+depth mean of the calibration foundations and that mean) and ``isfog_backanalysis.json``;
+``--cache DIR`` keeps the grids' and direct runs' blow counts, keyed by all their inputs, so
+that a rerun only fits; with ``--docs``, the docs' data file
 ``docs/data/isfog_backanalysis.json`` too (benchmarks/doc_data.py's format: the table and the
 quoted numbers of docs/validation.md, the summary as its values). ``--docs-from RESULT_JSON``
 writes the docs' data file from an earlier run's ``isfog_backanalysis.json`` without running.
@@ -124,6 +139,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import hashlib
 import json
 import math
 import os
@@ -180,6 +196,7 @@ class Model:
     fullres_min_layer: float = 0.5      # [m] thinnest layer kept from a full-resolution CPT
     fullres_toe_window: float = 1.0     # [m] toe averaging window, full-resolution CPT
     sand_toe_factor: float = 0.10       # [-] the 2018 revision (0.15: Alm & Hamre 2001)
+    fatigue_rate: float = 1.0           # [-] factor on Alm & Hamre's friction-fatigue rate k
     faces: str | None = None            # friction faces; None: the coring default
     blows_per_depth: int = 1            # > 1: each blow starts from the state the last left
     srd_sand: float = 1.0               # [-] multiplier of the shaft SRD in sand
@@ -302,6 +319,49 @@ def soil_profile(pile: PileRecord, model: Model):
     return SoilProfile(layers, cpt=cpt, net_area_ratio=model.net_area_ratio)
 
 
+def srd_source(pile: PileRecord, model: Model, profile, fatigue_rate: float | None = None):
+    """The Alm & Hamre (2001) SRD source of a pile (``fatigue_rate``: the factor on the
+    friction-fatigue rate, default the model's)."""
+    from anvilwave.config.drive import SrdSource
+    from anvilwave.pile.soil.profile import AlmHamre2001
+
+    rate = model.fatigue_rate if fatigue_rate is None else fatigue_rate
+    return SrdSource("alm-hamre-2001", profile, AlmHamre2001(
+        sand_toe_factor=model.sand_toe_factor,
+        toe_window=model.fullres_toe_window if pile.fullres else 0.0,
+        fatigue_rate_factor=rate), "coring", model.faces)
+
+
+def shaft_by_class(job: tuple) -> dict:
+    """Sand and clay shaft SRD [N] of one pile at every depth for every friction-fatigue rate
+    factor (no blows: the static SRD only).
+
+    job : (PileRecord, Model, rate factors [-]). Returns ``sand`` and ``clay``, each of shape
+    (depths, rates), with the model's class multipliers applied as in :func:`simulate_pile`.
+    """
+    from anvilwave.config.drive import pile_soil_at
+    from anvilwave.config.system import load_system
+
+    pile, model, rates = job
+    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
+        path = Path(tmp) / f"{pile.location_id}.toml"
+        path.write_text(system_toml(pile, model))
+        cfg = load_system(path)
+    profile = soil_profile(pile, model)
+    seg = cfg.pile_soil.pile.discretise()
+    length = cfg.pile_soil.pile.length
+    out = {k: np.zeros((len(pile.depths), len(rates))) for k in ("sand", "clay")}
+    for ir, rate in enumerate(rates):
+        srd = srd_source(pile, model, profile, float(rate))
+        for iz, tip in enumerate(pile.depths):
+            ps, _, _ = pile_soil_at(cfg.pile_soil, srd, float(tip), 1.0)
+            cap_shaft = ps.soil.capacities[0]
+            sand = segment_is_sand(profile, seg, length, float(tip))
+            out["sand"][iz, ir] = float(np.sum(cap_shaft[sand])) * model.srd_sand
+            out["clay"][iz, ir] = float(np.sum(cap_shaft[~sand])) * model.srd_clay
+    return out
+
+
 def segment_is_sand(profile, seg, pile_length: float, tip: float) -> np.ndarray:
     """Per pile segment: is the soil at the middle of its embedded part sand (Robertson)."""
     top = np.clip(seg.top - (pile_length - tip), 0.0, tip)
@@ -332,10 +392,9 @@ def simulate_pile(job: tuple) -> dict:
     under its weight (the SRD scales with the multiplier, so the threshold is exact).
     """
     from anvilwave.analyses.drive import blow_count, driving_weight, set_of_blow
-    from anvilwave.config.drive import SrdSource, pile_soil_at
+    from anvilwave.config.drive import pile_soil_at
     from anvilwave.config.system import load_system
     from anvilwave.engine.direct import build_engine
-    from anvilwave.pile.soil.profile import AlmHamre2001
 
     pile, model, energies, multipliers = job
     with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
@@ -344,9 +403,7 @@ def simulate_pile(job: tuple) -> dict:
         cfg = load_system(path)
     engine = build_engine(cfg)
     profile = soil_profile(pile, model)
-    srd = SrdSource("alm-hamre-2001", profile, AlmHamre2001(
-        sand_toe_factor=model.sand_toe_factor,
-        toe_window=model.fullres_toe_window if pile.fullres else 0.0), "coring", model.faces)
+    srd = srd_source(pile, model, profile)
     weight = driving_weight(cfg, engine.static_head_force)
     seg = cfg.pile_soil.pile.discretise()
     length = cfg.pile_soil.pile.length
@@ -488,16 +545,48 @@ def prediction_piles(data: Path, only: list[str] | None = None,
 # ----------------------------------------------------------------------------- runs
 def run_piles(piles, model: Model, energies, multipliers, workers: int) -> list[dict]:
     """:func:`simulate_pile` for every pile, over ``workers`` processes."""
-    jobs = [(p, model, np.asarray(energies, float), np.asarray(multipliers, float))
-            for p in piles]
+    return _map(_simulate, [(p, model, np.asarray(energies, float),
+                             np.asarray(multipliers, float)) for p in piles], workers)
+
+
+def _map(function, jobs: list, workers: int) -> list:
+    """``function`` over ``jobs``, in ``workers`` processes (forked) or in this one."""
     if workers <= 1 or len(jobs) <= 1:
-        return [_simulate(j) for j in jobs]
+        return [function(j) for j in jobs]
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor
 
     with ProcessPoolExecutor(min(workers, len(jobs)),
                              mp_context=mp.get_context("fork")) as pool:
-        return list(pool.map(_simulate, jobs))
+        return list(pool.map(function, jobs))
+
+
+def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> list[dict]:
+    """``run(piles, model, *grid)`` (a list of per-pile dicts of arrays), read from / written
+    to ``cache`` (a folder; None: no cache) under a name that hashes every input of the run:
+    the piles' records, the model and the grid (the results depend on nothing else but the
+    code and the records' files)."""
+    if cache is None:
+        return run(piles, model, *grid)
+    key = repr((tag, model, [np.asarray(g, float).tolist() for g in grid],
+                [(p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
+                  p.depths.tolist(), p.energy.tolist()) for p in piles]))
+    path = Path(cache) / f"{tag}-{hashlib.sha256(key.encode()).hexdigest()[:20]}.npz"
+    if path.exists():
+        with np.load(path) as z:
+            n = int(z["piles"])
+            return [{k.split("/", 1)[1]: z[k] for k in z.files if k.startswith(f"{i}/")}
+                    for i in range(n)]
+    results = run(piles, model, *grid)
+    Path(cache).mkdir(parents=True, exist_ok=True)
+    arrays = {f"{i}/{k}": np.asarray(v) for i, r in enumerate(results) for k, v in r.items()}
+    np.savez(path, piles=len(results), **arrays)
+    return results
+
+
+def run_shaft_by_class(piles, model: Model, rates, workers: int) -> list[dict]:
+    """:func:`shaft_by_class` for every pile, over ``workers`` processes."""
+    return _map(shaft_by_class, [(p, model, np.asarray(rates, float)) for p in piles], workers)
 
 
 def _simulate(job: tuple) -> dict:
@@ -670,6 +759,13 @@ CLASSES = ("sand", "clay", "toe")
 EXPONENT_SD = 0.25
 """Prior standard deviation [-] of the exponent b of the energy law E = E_ref setting^b
 about 1 (a blow energy proportional to the hammer's setting)."""
+FATIGUE_RATES = tuple(2.0 ** np.arange(-4.0, 2.5, 1.0))
+"""Factors on Alm & Hamre's friction-fatigue rate k at which each record's sand and clay
+shaft SRD is computed (1/16 ... 4: from almost no fatigue to a decay four times as fast);
+between them the SRD is interpolated linearly in log(factor), and the fit stays within."""
+FATIGUE_SD = math.log(4.0)
+"""Prior standard deviation [-] of log(fatigue rate factor) about 0 (the paper's rate): a
+weak prior, the rate within a factor 4 of the paper's at one standard deviation."""
 
 
 class ResponseSurface:
@@ -690,11 +786,16 @@ class ResponseSurface:
     at multiplier 1 [N]; energy_factor : (n,) factor on the reference energy of each record
     [-] (1: the normalised hammer energy; ENTHRU / (0.75 x hammer energy) to drive with the
     recorded ENTHRU); setting : (n,) normalised hammer energy of each record [-] (for an
-    energy law E = E_ref setting^b, b != 1).
+    energy law E = E_ref setting^b, b != 1); rates, sand_rate, clay_rate : friction-fatigue
+    rate factors (r,) [-] and the sand and clay shaft SRD of each record at each (n, r) [N]
+    (:func:`shaft_by_class`): a rate factor other than the grid's enters, like the class
+    multipliers, through the effective multiplier (its change of the SRD's total; the change
+    of its distribution along the shaft is checked against direct runs, :func:`main`).
     """
 
     def __init__(self, energies, multipliers, counts, run, sand, clay, toe,
-                 energy_factor=None, setting=None):
+                 energy_factor=None, setting=None, rates=None, sand_rate=None,
+                 clay_rate=None):
         self.le = np.log(np.asarray(energies, float))
         self.lm = np.log(np.asarray(multipliers, float))
         lc = np.log(np.clip(np.asarray(counts, float), COUNT_FLOOR, REFUSAL_COUNT))
@@ -717,13 +818,19 @@ class ResponseSurface:
                               else np.asarray(energy_factor, float))
         self.setting = (np.ones(lc.shape[0]) if setting is None
                         else np.asarray(setting, float))
+        self.lr = None if rates is None else np.log(np.asarray(rates, float))
+        self.sand_rate = None if rates is None else np.asarray(sand_rate, float)
+        self.clay_rate = None if rates is None else np.asarray(clay_rate, float)
 
     def subset(self, rows) -> ResponseSurface:
         """The surface of the records ``rows`` (a boolean mask or indices)."""
         s = object.__new__(ResponseSurface)
-        s.le, s.lm = self.le, self.lm
+        s.le, s.lm, s.lr = self.le, self.lm, self.lr
         for k in ("lc", "run", "sand", "clay", "toe", "energy_factor", "setting"):
             setattr(s, k, getattr(self, k)[rows])
+        for k in ("sand_rate", "clay_rate"):
+            v = getattr(self, k)
+            setattr(s, k, None if v is None else v[rows])
         return s
 
     def with_energy_factor(self, factor) -> ResponseSurface:
@@ -731,9 +838,22 @@ class ResponseSurface:
         s.energy_factor = np.asarray(factor, float)
         return s
 
-    def effective_multiplier(self, m_sand: float, m_clay: float, m_toe: float) -> np.ndarray:
+    def shaft_at_rate(self, rate: float | None) -> tuple[np.ndarray, np.ndarray]:
+        """Sand and clay shaft SRD [N] of every record at the fatigue rate factor ``rate``
+        (None: the grid's own), linear in log(rate) between the tabulated factors."""
+        if rate is None:
+            return self.sand, self.clay
+        if self.lr is None:
+            raise ValueError("this surface has no friction-fatigue tables")
+        i, w = self._cell(self.lr, math.log(rate))
+        return ((1 - w) * self.sand_rate[:, i] + w * self.sand_rate[:, i + 1],
+                (1 - w) * self.clay_rate[:, i] + w * self.clay_rate[:, i + 1])
+
+    def effective_multiplier(self, m_sand: float, m_clay: float, m_toe: float,
+                             rate: float | None = None) -> np.ndarray:
         total = self.sand + self.clay + self.toe
-        return ((m_sand * self.sand + m_clay * self.clay + m_toe * self.toe)
+        sand, clay = self.shaft_at_rate(rate)
+        return ((m_sand * sand + m_clay * clay + m_toe * self.toe)
                 / np.where(total > 0, total, 1.0))
 
     @staticmethod
@@ -743,11 +863,13 @@ class ResponseSurface:
         return i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])
 
     def __call__(self, e_ref: float, m_sand: float = 1.0, m_clay: float | None = None,
-                 m_toe: float | None = None, exponent: float = 1.0) -> np.ndarray:
+                 m_toe: float | None = None, exponent: float = 1.0,
+                 rate: float | None = None) -> np.ndarray:
         """Blow counts [blows/m] of every record at E_ref [J] and the class multipliers [-]
-        (clay and toe default to the sand one); blow energy E_ref setting^exponent."""
+        (clay and toe default to the sand one); blow energy E_ref setting^exponent; the
+        shaft at the friction-fatigue rate factor ``rate`` (None: the grid's)."""
         m = self.effective_multiplier(m_sand, m_sand if m_clay is None else m_clay,
-                                      m_sand if m_toe is None else m_toe)
+                                      m_sand if m_toe is None else m_toe, rate)
         im, wm = self._cell(self.lm, np.log(m))
         ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor)
                             + (exponent - 1.0) * np.log(self.setting))
@@ -766,12 +888,18 @@ def misfit(predicted, measured, space: str) -> np.ndarray:
 
 def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
                     space: str = "log", prior_sd: float = PRIOR_SD,
-                    n_eff: float = 1.0, exponent: bool = False) -> dict:
+                    n_eff: float = 1.0, exponent: bool = False, fatigue: bool = False,
+                    e_max: float | None = None) -> dict:
     """E_ref, a common SRD multiplier, (``classes``, a subset of :data:`CLASSES`) the
-    deviations of the classes' multipliers from it and (``exponent``) the exponent b of the
-    energy law E = E_ref setting^b, minimising
+    deviations of the classes' multipliers from it, (``exponent``) the exponent b of the
+    energy law E = E_ref setting^b and (``fatigue``) the factor r on the friction-fatigue
+    rate, minimising
 
-        mean(r^2) / s^2 + [sum(d_c^2) / prior_sd^2 + (b - 1)^2 / EXPONENT_SD^2] / n_eff
+        mean(r^2) / s^2 + [sum(d_c^2) / prior_sd^2 + (b - 1)^2 / EXPONENT_SD^2
+                           + log(r)^2 / FATIGUE_SD^2] / n_eff
+
+    with E_ref at most ``e_max`` [J] when given (the hammer's rating over the largest
+    blow energy per unit E_ref of the records),
 
     (a Gaussian MAP estimate: r the :func:`misfit` in ``space``, s its
     :data:`RESIDUAL_SCALE`, d_c = log(m_c) - log(m) the class deviations with a prior of
@@ -785,39 +913,66 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
     measured = np.asarray(measured, float)
     s2 = RESIDUAL_SCALE[space] ** 2
     nc = len(classes)
+    ib = 2 + nc                            # index of b in the parameter vector
+    ir = ib + (1 if exponent else 0)       # index of log(r)
+    lr_range = ((surface.lr[0], surface.lr[-1]) if fatigue and surface.lr is not None
+                else (0.0, 0.0))
+    if fatigue and surface.lr is None:
+        raise ValueError("a fit of the fatigue rate needs a surface with fatigue tables")
+    le_max = math.inf if e_max is None else math.log(e_max)
 
     def unpack(p):
         d = dict(zip(classes, p[2:2 + nc], strict=True))
-        b = float(p[2 + nc]) if exponent else 1.0
-        return (math.exp(p[0]), *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b)
+        b = float(p[ib]) if exponent else 1.0
+        rate = math.exp(min(max(float(p[ir]), lr_range[0]), lr_range[1])) if fatigue else None
+        return (math.exp(min(float(p[0]), le_max)),
+                *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b, rate)
 
     def objective(p):
         r = misfit(surface(*unpack(p)), measured, space)
         penalty = float(np.sum(np.asarray(p[2:2 + nc]) ** 2)) / prior_sd ** 2
         if exponent:
-            penalty += (float(p[2 + nc]) - 1.0) ** 2 / EXPONENT_SD ** 2
+            penalty += (float(p[ib]) - 1.0) ** 2 / EXPONENT_SD ** 2
+        if fatigue:
+            lr = float(p[ir])
+            # the prior on the clipped value; beyond the table a growing penalty brings the
+            # simplex back (the SRD is flat there)
+            clipped = min(max(lr, lr_range[0]), lr_range[1])
+            penalty += clipped ** 2 / FATIGUE_SD ** 2 + 100.0 * (lr - clipped) ** 2
+        if e_max is not None and p[0] > le_max:
+            penalty += 100.0 * (float(p[0]) - le_max) ** 2
         return float(np.mean(r * r)) / s2 + penalty / n_eff
 
     tail = np.r_[np.zeros(nc), [1.0] if exponent else []]
-    starts = [np.r_[math.log(e), math.log(m), tail]
-              for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)]
+    starts = [np.r_[min(math.log(e), le_max), math.log(m), tail, [lr0] if fatigue else []]
+              for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)
+              for lr0 in ((math.log(0.25), 0.0, math.log(2.0)) if fatigue else (0.0,))]
     res = None
     p0 = min(starts, key=objective)
     for _ in range(3):  # restarted: a fresh simplex where the last one shrank in a valley
         res = minimize(objective, p0 if res is None else res.x, method="Nelder-Mead",
                        options={"xatol": 1e-5, "fatol": 1e-12, "maxfev": 6000,
                                 "adaptive": True})
-    e_ref, m_sand, m_clay, m_toe, b = unpack(res.x)
+    e_ref, m_sand, m_clay, m_toe, b, rate = unpack(res.x)
     at_edge = bool(not (surface.le[0] < math.log(e_ref) < surface.le[-1]))
-    return {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
-            "srd_toe [-]": m_toe, "energy_exponent [-]": b, "objective [-]": float(res.fun),
-            "energy_at_grid_edge": at_edge}
+    out = {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
+           "srd_toe [-]": m_toe, "energy_exponent [-]": b, "objective [-]": float(res.fun),
+           "energy_at_grid_edge": at_edge}
+    if e_max is not None:
+        out["E_ref_max [J]"] = e_max
+        out["energy_at_rating"] = bool(math.log(e_ref) >= le_max - 1e-6)
+    if fatigue:
+        out["fatigue_rate [-]"] = rate
+        out["fatigue_rate_at_table_edge"] = bool(
+            not (lr_range[0] + 1e-6 < math.log(rate) < lr_range[1] - 1e-6))
+    return out
 
 
 def predict_with(surface: ResponseSurface, fitted: dict) -> np.ndarray:
     """Blow counts [blows/m] of the surface's records at the fitted values."""
     return surface(fitted["E_ref [J]"], fitted["srd_sand [-]"], fitted["srd_clay [-]"],
-                   fitted["srd_toe [-]"], fitted.get("energy_exponent [-]", 1.0))
+                   fitted["srd_toe [-]"], fitted.get("energy_exponent [-]", 1.0),
+                   fitted.get("fatigue_rate [-]"))
 
 
 def stacking_weight(physics, baseline, measured) -> float:
@@ -840,6 +995,8 @@ class Step:
     exponent: bool = False          # fit the exponent of the energy law
     residual_stress: bool = False   # apply the multi-blow (residual stress) ratio
     stacked: bool = False           # blend with the depth mean of the other foundations
+    energy_cap: bool = False        # the largest blow energy within the hammer's rating
+    fatigue: bool = False           # fit the factor on the friction-fatigue rate
 
 
 STEPS = (
@@ -867,14 +1024,23 @@ def record_baselines(piles, groups) -> np.ndarray:
     return np.concatenate(out) if out else np.zeros(0)
 
 
+def largest_energy_per_e_ref(surface: ResponseSurface) -> float:
+    """The largest blow energy per unit E_ref of the surface's records [-] (energy factor x
+    normalised hammer energy)."""
+    return float(np.max(surface.energy_factor * surface.setting))
+
+
 def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, steps=STEPS,
-                              stress_ratio=None) -> tuple[list[dict], dict]:
+                              stress_ratio=None, rated_energy: float | None = None
+                              ) -> tuple[list[dict], dict]:
     """Leave-one-foundation-out cross-validation of every step of ``steps`` on the records of
     ``piles`` (their :class:`ResponseSurface`), against the naive baseline computed the same
     way (every held-out record scored where the baseline exists, the same records for every
     step). enthru_factor : per record, the energy factor of the ``"enthru"`` steps;
     stress_ratio : per record, multi-blow / single-blow blow count (steps with
-    ``residual_stress``). Returns (a row per step, the predictions per step)."""
+    ``residual_stress``); rated_energy : the hammer's rating [J] (steps with ``energy_cap``:
+    E_ref at most the rating over the largest blow energy per unit E_ref of the training
+    records). Returns (a row per step, the predictions per step)."""
     measured = np.concatenate([p.measured for p in piles])
     group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
     groups = sorted(set(group.tolist()))
@@ -889,8 +1055,11 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
         for g in groups:
             train, test = group != g, group == g
             sub = surf.subset(train)
+            e_max = (rated_energy / largest_energy_per_e_ref(sub) if step.energy_cap
+                     else None)
             fitted = fit_regularised(sub, measured[train], step.classes, step.space,
-                                     n_eff=len(groups) - 1, exponent=step.exponent)
+                                     n_eff=len(groups) - 1, exponent=step.exponent,
+                                     fatigue=step.fatigue, e_max=e_max)
             pred = predict_with(surf.subset(test), fitted)
             if step.residual_stress:
                 pred = pred * stress_ratio[test]
@@ -913,7 +1082,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
                "points [-]": int(ok.sum()), "folds [-]": len(groups)}
         for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
-                    "energy_exponent [-]", "stacking_weight [-]"):
+                    "energy_exponent [-]", "fatigue_rate [-]", "stacking_weight [-]"):
             if key in fits[0]:
                 values = [f[key] for f in fits]
                 row[f"{key} folds median"] = float(np.median(values))
@@ -937,27 +1106,42 @@ PREDICTIVE_STEPS = (
                    energy="enthru", residual_stress=True)),
     ("grid2", Step("G: F stacked with the depth mean of the other foundations",
                    classes=CLASSES, energy="enthru", residual_stress=True, stacked=True)),
+    ("grid2", Step("H: D with the largest blow energy within the hammer's rating",
+                   classes=CLASSES, energy="enthru", energy_cap=True)),
+    ("grid2", Step("I: H + friction-fatigue rate factor (one parameter)", classes=CLASSES,
+                   energy="enthru", energy_cap=True, fatigue=True)),
+    ("grid2", Step("J: I stacked with the depth mean of the other foundations",
+                   classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
+                   stacked=True)),
 )
 """The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
 grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`).
-The final model is the last step."""
+The final model is :data:`FINAL_STEP`, the last physics step (no blend with the baseline)."""
+FINAL_STEP = "I"
+"""The step whose all-pile fit predicts the prediction piles (direct runs)."""
 GRID2_MULTIPLIERS = (0.3, 0.45, 0.65, 0.9, 1.25, 1.7)
 """Common SRD multipliers of the second grid, about the class multipliers of the first fit."""
 RESIDUAL_STRESS_BLOWS = 3
 """Blows per depth of the residual-stress runs (each from the state the last left) [-]."""
 
 
-def record_surface(piles, results, energies, multipliers) -> ResponseSurface:
+def record_surface(piles, results, energies, multipliers, rates=None,
+                   fatigue=None) -> ResponseSurface:
     """The :class:`ResponseSurface` of the records of ``piles`` from their
-    :func:`simulate_pile` ``results`` on the grid."""
+    :func:`simulate_pile` ``results`` on the grid (and, with ``rates``, their
+    :func:`shaft_by_class` ``fatigue`` results at those fatigue rate factors)."""
     def cat(key):
         return np.concatenate([r[key] for r in results])
 
     counts = np.concatenate([np.transpose(r["count"], (2, 0, 1)) for r in results])
     sand = cat("srd_shaft_sand")
+    tables = {}
+    if rates is not None:
+        tables = {"rates": rates, "sand_rate": np.concatenate([f["sand"] for f in fatigue]),
+                  "clay_rate": np.concatenate([f["clay"] for f in fatigue])}
     return ResponseSurface(energies, multipliers, counts, cat("run_multiplier"), sand,
                            cat("srd_shaft") - sand, cat("srd_toe"),
-                           setting=np.concatenate([p.energy for p in piles]))
+                           setting=np.concatenate([p.energy for p in piles]), **tables)
 
 
 def enthru_factor(piles) -> np.ndarray:
@@ -986,24 +1170,59 @@ def _enthru_piles(piles):
                             strict=True)]
 
 
+def per_pile_scores(piles, records: dict, steps: list[str], scored) -> list[dict]:
+    """RMSE and bias [blows/m] of every step and of the baseline per pile, over the pile's
+    scored records (``records``: measured, baseline and every step's predictions per record,
+    in the order of the piles' records; ``scored``: the records with a baseline)."""
+    rows, k = [], 0
+    for p in piles:
+        n = p.depths.size
+        ok = scored[k:k + n]
+        m = records["measured"][k:k + n][ok]
+        row = {"location_id": p.location_id, "cpt_group": p.cpt_group, "points [-]": int(
+            ok.sum())}
+        for name, values in [("naive", records["baseline"]),
+                             *[(st, records["predictions"][st]) for st in steps]]:
+            label = name.split(":")[0]
+            sc = _scores(values[k:k + n][ok], m) if ok.any() else {
+                "rmse [blows/m]": math.nan, "bias [blows/m]": math.nan}
+            row[f"{label} rmse [blows/m]"] = sc["rmse [blows/m]"]
+            row[f"{label} bias [blows/m]"] = sc["bias [blows/m]"]
+        rows.append(row)
+        k += n
+    return rows
+
+
 def predictive_backanalysis(args, model: Model, calibration, prediction, out: Path,
                             energies, multipliers) -> int:
     """The stepwise back-analysis (``--cross-validate``): every step of
     :data:`PREDICTIVE_STEPS` cross-validated leave one foundation out against the naive
-    baseline, the final step fitted on all calibration piles and the prediction piles
-    predicted with it (direct runs). Writes ``isfog_backanalysis.json`` and
-    ``cross_validation_steps.csv`` in ``out`` (and, with ``--docs``, the docs' data file)."""
+    baseline, the final step (:data:`FINAL_STEP`) fitted on all calibration piles and the
+    prediction piles predicted with it (direct runs). Writes ``isfog_backanalysis.json``,
+    ``cross_validation_steps.csv``, ``cross_validation_records.csv`` and
+    ``cross_validation_piles.csv`` in ``out`` (and, with ``--docs``, the docs' data file)."""
     start = time.perf_counter()
     times = {}
+    cache = args.cache
     measured = np.concatenate([p.measured for p in calibration])
     groups = sorted({p.cpt_group for p in calibration})
     n_cal = len(calibration)
+    ds = driving_system(model)
+    rated = ds["rated_energy [J]"]
     warm_up(model, calibration[0])
-    # grid 1: the method's SRD distribution
+
+    def grid_runs(piles, mdl, e, m):
+        return run_piles(piles, mdl, e, m, args.workers)
+
+    def shafts(piles, mdl, rates):
+        return run_shaft_by_class(piles, mdl, rates, args.workers)
+
+    # grid 1: the method's SRD distribution (the calibration piles' records only: the folds
+    # fit on them; the prediction piles are run directly at the final values)
     t = time.perf_counter()
-    g1 = run_piles(calibration + prediction, model, energies, multipliers, args.workers)
+    g1 = cached(cache, "grid1", grid_runs, calibration, model, energies, multipliers)
     times["grid1 [s]"] = time.perf_counter() - t
-    surf1 = record_surface(calibration, g1[:n_cal], energies, multipliers)
+    surf1 = record_surface(calibration, g1, energies, multipliers)
     factor = enthru_factor(calibration)
     first = fit_regularised(surf1.with_energy_factor(factor), measured, CLASSES, "log",
                             n_eff=len(groups))
@@ -1013,90 +1232,138 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     t = time.perf_counter()
     m2 = np.asarray(GRID2_MULTIPLIERS)
     e2 = np.geomspace(energies[0], energies[-1] * 1.25, energies.size)
-    g2 = run_piles(calibration + prediction, model2, e2, m2, args.workers)
+    g2 = cached(cache, "grid2", grid_runs, calibration, model2, e2, m2)
     times["grid2 [s]"] = time.perf_counter() - t
-    surf2 = record_surface(calibration, g2[:n_cal], e2, m2)
-    # the final fit (step D's) on every calibration pile, and its direct runs
-    final = fit_regularised(surf2.with_energy_factor(factor), measured, CLASSES, "log",
-                            n_eff=len(groups))
-    model_f = final_model(model2, final)
-    piles_f = _enthru_piles(calibration + prediction)
+    # the sand and clay shaft SRD of every record at each fatigue rate factor (static)
     t = time.perf_counter()
-    one = run_piles(piles_f, model_f, [final["E_ref [J]"]], [1.0], args.workers)
-    several = run_piles(piles_f, replace(model_f, blows_per_depth=RESIDUAL_STRESS_BLOWS),
-                        [final["E_ref [J]"]], [1.0], args.workers)
-    times["direct [s]"] = time.perf_counter() - t
-    direct1 = np.concatenate([r["count"][0, 0] for r in one[:n_cal]])
-    directn = np.concatenate([r["count"][0, 0] for r in several[:n_cal]])
+    rates = np.asarray(FATIGUE_RATES)
+    fat = cached(cache, "fatigue", shafts, calibration, model2, rates)
+    times["fatigue_srd [s]"] = time.perf_counter() - t
+    surf2 = record_surface(calibration, g2, e2, m2, rates, fat)
+    at_one = int(np.argmin(np.abs(np.log(rates))))
+    fatigue_table_check = float(np.max(np.abs(surf2.sand_rate[:, at_one] + surf2.clay_rate[
+        :, at_one] - surf2.sand - surf2.clay) / np.maximum(surf2.sand + surf2.clay, 1.0)))
+    surf2f = surf2.with_energy_factor(factor)
+    # step D's fit on every calibration pile: its direct runs give the residual-stress ratio
+    fit_d = fit_regularised(surf2f, measured, CLASSES, "log", n_eff=len(groups))
+    model_d = final_model(model2, fit_d)
+    piles_e = _enthru_piles(calibration + prediction)
+    t = time.perf_counter()
+    one = cached(cache, "direct_d1", grid_runs, piles_e[:n_cal], model_d,
+                 [fit_d["E_ref [J]"]], [1.0])
+    several = cached(cache, "direct_d3", grid_runs, piles_e[:n_cal],
+                     replace(model_d, blows_per_depth=RESIDUAL_STRESS_BLOWS),
+                     [fit_d["E_ref [J]"]], [1.0])
+    direct1 = np.concatenate([r["count"][0, 0] for r in one])
+    directn = np.concatenate([r["count"][0, 0] for r in several])
     stress_ratio = np.where(direct1 > 0, directn / np.where(direct1 > 0, direct1, 1.0), 1.0)
-    surface_at_final = predict_with(surf2.with_energy_factor(factor), final)
+    # the final step's fit on every calibration pile and its direct runs (every pile)
+    e_max = rated / largest_energy_per_e_ref(surf2f)
+    final = fit_regularised(surf2f, measured, CLASSES, "log", n_eff=len(groups),
+                            fatigue=True, e_max=e_max)
+    model_f = replace(final_model(model2, final), fatigue_rate=final["fatigue_rate [-]"])
+    direct_f = cached(cache, "direct_final", grid_runs, piles_e, model_f,
+                      [final["E_ref [J]"]], [1.0])
+    times["direct [s]"] = time.perf_counter() - t
+    final_cal = np.concatenate([r["count"][0, 0] for r in direct_f[:n_cal]])
+    surface_at_final = predict_with(surf2f, final)
+    surface_at_d = predict_with(surf2f, fit_d)
     # the steps
     t = time.perf_counter()
     rows, records = [], None
     for which, step in PREDICTIVE_STEPS:
         surf = surf1 if which == "grid1" else surf2
-        r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio)
+        r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio,
+                                           rated)
         rows += r
         if records is None:
-            records = [{"location_id": p.location_id, "cpt_group": p.cpt_group,
-                        "z [m]": float(z), "measured [blows/m]": float(n)}
-                       for p in calibration for z, n in zip(p.depths, p.measured, strict=True)]
-            for rec, b in zip(records, res["baseline"], strict=True):
-                rec["naive [blows/m]"] = float(b)
-        for rec, v in zip(records, res["predictions"][step.name], strict=True):
-            rec[step.name.split(":")[0]] = float(v)
+            records = {"measured": res["measured"], "baseline": res["baseline"],
+                       "scored": res["scored"], "predictions": {}}
+        records["predictions"][step.name] = res["predictions"][step.name]
         print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
               f"{r[0]['bias [blows/m]']:+.1f} blows/m (naive "
               f"{r[0]['rmse_baseline [blows/m]']:.1f}, "
               f"{r[0]['bias_baseline [blows/m]']:+.1f})", flush=True)
     times["cross_validation [s]"] = time.perf_counter() - t
+    step_names = [st.name for _, st in PREDICTIVE_STEPS]
+    record_rows = []
+    k = 0
+    for p in calibration:
+        for z, n in zip(p.depths, p.measured, strict=True):
+            rec = {"location_id": p.location_id, "cpt_group": p.cpt_group, "z [m]": float(z),
+                   "measured [blows/m]": float(n),
+                   "naive [blows/m]": float(records["baseline"][k])}
+            for name in step_names:
+                rec[name.split(":")[0]] = float(records["predictions"][name][k])
+            record_rows.append(rec)
+            k += 1
+    pile_rows = per_pile_scores(calibration, records, step_names, records["scored"])
     write_csv(out / "cross_validation_steps.csv", rows)
-    write_csv(out / "cross_validation_records.csv", records)
-    # the final model's predictions: the multi-blow direct runs, stacked with the depth mean
-    # of every calibration foundation with the weight fitted on them (inner baseline)
+    write_csv(out / "cross_validation_records.csv", record_rows)
+    write_csv(out / "cross_validation_piles.csv", pile_rows)
+    # the final model's predictions: its direct runs, and beside them the blend with the
+    # depth mean of every calibration foundation (weight fitted on them, inner baseline)
     inner = record_baselines(calibration, groups)
     good = np.isfinite(inner)
-    weight = stacking_weight(directn[good], inner[good], measured[good])
+    weight_g = stacking_weight(directn[good], inner[good], measured[good])
+    weight = stacking_weight(final_cal[good], inner[good], measured[good])
     pred_rows = []
-    for p, r in zip(prediction, several[n_cal:], strict=True):
+    for p, r in zip(prediction, direct_f[n_cal:], strict=True):
         base = naive_baseline(calibration, [p])[0]
         physics = r["count"][0, 0]
         blend = np.where(np.isfinite(base), base + weight * (physics - base), physics)
-        for k, z in enumerate(p.depths):
+        for i, z in enumerate(p.depths):
             pred_rows.append({"location_id": p.location_id, "z [m]": float(z),
-                              "blowcount [blows/m]": float(blend[k]),
-                              "physics [blows/m]": float(physics[k]),
-                              "naive [blows/m]": float(base[k])})
+                              "blowcount [blows/m]": float(physics[i]),
+                              "stacked [blows/m]": float(blend[i]),
+                              "naive [blows/m]": float(base[i])})
     write_csv(out / "prediction_piles_blowcount.csv", pred_rows)
-    ds = driving_system(model)
-    max_energy = float(max(np.max(p.energy) for p in piles_f) * final["E_ref [J]"])
+    max_energy = float(max(np.max(p.energy) for p in piles_e) * final["E_ref [J]"])
+    max_energy_d = float(max(np.max(p.energy) for p in piles_e) * fit_d["E_ref [J]"])
     per_pile = {}
     for row in pred_rows:
         per_pile.setdefault(row["location_id"], []).append(row["blowcount [blows/m]"])
+    final_row = next(r for r in rows if r["step"].split(":")[0] == FINAL_STEP)
+    pile_rmse = [r[f"{FINAL_STEP} rmse [blows/m]"] for r in pile_rows if r["points [-]"]]
+    pile_naive = [r["naive rmse [blows/m]"] for r in pile_rows if r["points [-]"]]
     summary = {
         "steps": [{k: v for k, v in r.items()} for r in rows],
-        "final_step": rows[-1]["step"],
-        "cv_rmse [blows/m]": rows[-1]["rmse [blows/m]"],
-        "cv_bias [blows/m]": rows[-1]["bias [blows/m]"],
-        "naive_rmse [blows/m]": rows[-1]["rmse_baseline [blows/m]"],
-        "naive_bias [blows/m]": rows[-1]["bias_baseline [blows/m]"],
-        "cv_points [-]": rows[-1]["points [-]"], "cv_folds [-]": rows[-1]["folds [-]"],
-        "first_fit": first, "final_fit": final,
+        "final_step": final_row["step"],
+        "cv_rmse [blows/m]": final_row["rmse [blows/m]"],
+        "cv_bias [blows/m]": final_row["bias [blows/m]"],
+        "naive_rmse [blows/m]": final_row["rmse_baseline [blows/m]"],
+        "naive_bias [blows/m]": final_row["bias_baseline [blows/m]"],
+        "cv_points [-]": final_row["points [-]"], "cv_folds [-]": final_row["folds [-]"],
+        "piles_final_below_naive [-]": int(np.sum(np.asarray(pile_rmse)
+                                                  < np.asarray(pile_naive))),
+        "piles_scored [-]": len(pile_rmse),
+        "first_fit": first, "fit_d": fit_d, "final_fit": final,
+        "fatigue_rates [-]": rates.tolist(),
+        "fatigue_table_vs_grid_max_rel [-]": fatigue_table_check,
+        "srd_multipliers_d [-]": {"sand": model_d.srd_sand, "clay": model_d.srd_clay,
+                                  "toe": model_d.srd_toe},
         "final_srd_multipliers [-]": {"sand": model_f.srd_sand, "clay": model_f.srd_clay,
                                       "toe": model_f.srd_toe},
+        "stacking_weight_g [-]": weight_g,
         "stacking_weight_final [-]": weight,
+        "surface_vs_direct_at_d": {
+            "rms [blows/m]": rmse(surface_at_d, direct1),
+            "bias [blows/m]": float(np.mean(surface_at_d - direct1))},
         "surface_vs_direct_at_final": {
-            "rms [blows/m]": rmse(surface_at_final, direct1),
-            "bias [blows/m]": float(np.mean(surface_at_final - direct1))},
+            "rms [blows/m]": rmse(surface_at_final, final_cal),
+            "bias [blows/m]": float(np.mean(surface_at_final - final_cal))},
         "calibration_direct": {
-            "rmse_single_blow [blows/m]": rmse(direct1, measured),
-            "bias_single_blow [blows/m]": float(np.mean(direct1 - measured)),
-            "rmse_residual_stress [blows/m]": rmse(directn, measured),
-            "bias_residual_stress [blows/m]": float(np.mean(directn - measured)),
+            "rmse_single_blow_d [blows/m]": rmse(direct1, measured),
+            "bias_single_blow_d [blows/m]": float(np.mean(direct1 - measured)),
+            "rmse_residual_stress_d [blows/m]": rmse(directn, measured),
+            "bias_residual_stress_d [blows/m]": float(np.mean(directn - measured)),
+            "rmse_final [blows/m]": rmse(final_cal, measured),
+            "bias_final [blows/m]": float(np.mean(final_cal - measured)),
             "residual_stress_ratio_5_50_95 [-]": np.percentile(
                 stress_ratio[direct1 > 0], [5, 50, 95]).tolist()},
+        "largest_blow_energy_d [J]": max_energy_d,
         "largest_blow_energy [J]": max_energy,
-        "hammer_rated_energy [J]": ds["rated_energy [J]"],
+        "hammer_rated_energy [J]": rated,
         "prediction_piles_mean_blowcount [blows/m]": {
             k: float(np.mean(v)) for k, v in per_pile.items()},
         "prediction_points [-]": len(pred_rows),
@@ -1116,10 +1383,13 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     for r in rows:
         print(f"{r['step']:<70} {r['rmse [blows/m]']:8.1f} {r['bias [blows/m]']:+6.1f} "
               f"{r['rmse_baseline [blows/m]']:6.1f} {r['bias_baseline [blows/m]']:+6.1f}")
-    print(f"\nfinal fit (all {n_cal} calibration piles): E_ref {final['E_ref [J]'] / 1e3:.0f} kJ,"
-          f" SRD x sand {model_f.srd_sand:.2f}, clay {model_f.srd_clay:.2f}, toe "
-          f"{model_f.srd_toe:.2f}; stacking weight {weight:.2f}; largest blow energy "
-          f"{max_energy / 1e3:.0f} kJ (rating {ds['rated_energy [J]'] / 1e3:.0f} kJ)")
+    print(f"\nfinal fit ({FINAL_STEP}, all {n_cal} calibration piles): E_ref "
+          f"{final['E_ref [J]'] / 1e3:.0f} kJ (at most {e_max / 1e3:.0f}), fatigue rate x"
+          f"{final['fatigue_rate [-]']:.2f}, SRD x sand {model_f.srd_sand:.2f}, clay "
+          f"{model_f.srd_clay:.2f}, toe {model_f.srd_toe:.2f}; largest blow energy "
+          f"{max_energy / 1e3:.0f} kJ (rating {rated / 1e3:.0f} kJ); direct RMSE "
+          f"{rmse(final_cal, measured):.1f} blows/m, surface vs direct "
+          f"{rmse(surface_at_final, final_cal):.1f}")
     print("prediction piles, predicted blow count [blows/m] at every whole metre driven:")
     for p in prediction:
         counts = [f"{r['blowcount [blows/m]']:.0f}" for r in pred_rows
@@ -1310,34 +1580,58 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
              "rows": [[s[k] for _, k in STEP_COLUMNS.values()] for s in summary["steps"]]}
     score = {k: s["rmse [blows/m]"] for k, s in steps.items()}
     final_fit, model = summary["final_fit"], summary["model"]
+    fit_d, srd_d = summary["fit_d"], summary["srd_multipliers_d [-]"]
     ratio = summary["calibration_direct"]["residual_stress_ratio_5_50_95 [-]"]
+    direct = summary["calibration_direct"]
     surface = summary["surface_vs_direct_at_final"]
+    surface_d = summary["surface_vs_direct_at_d"]
     means = summary["prediction_piles_mean_blowcount [blows/m]"]
+    naive = summary["naive_rmse [blows/m]"]
     subs = {
         "points": [summary["cv_points [-]"], "int"],
         "training_foundations": [summary["cv_folds [-]"] - 1, "int"],
         "wall_time": [summary["wall_time [s]"], "int"],
         "c_gain": [score["C"] - score["B"], "int"],
-        "srd_sand": [model["srd_sand"], "f2"],
-        "srd_clay": [model["srd_clay"], "f2"],
-        "srd_toe": [model["srd_toe"], "f2"],
+        "srd_sand": [srd_d["sand"], "f2"],
+        "srd_clay": [srd_d["clay"], "f2"],
+        "srd_toe": [srd_d["toe"], "f2"],
         "sand_toe_factor": [model["sand_toe_factor"], "f2"],
-        "e_ref": [final_fit["E_ref [J]"], "kJ0"],
+        "e_ref": [fit_d["E_ref [J]"], "kJ0"],
         "d_gain": [score["D"] - score["C"], "f1"],
         "energy_exponent": [steps["E"]["energy_exponent [-] folds median"], "f2"],
         "e_gain": [score["E"] - score["D"], "f1"],
         "residual_stress_p5": [ratio[0] - 1.0, "pct+sig2"],
         "residual_stress_p95": [ratio[2] - 1.0, "pct+sig2"],
         "f_change": [score["F"] - score["D"], "f1+"],
-        "stacking_weight": [summary["stacking_weight_final [-]"], "f2"],
+        "stacking_weight": [summary["stacking_weight_g [-]"], "f2"],
         "stacking_weight_folds": [steps["G"]["stacking_weight [-] folds median"], "f2"],
-        "cv_rmse": [summary["cv_rmse [blows/m]"], "f1"],
-        "naive_rmse": [summary["naive_rmse [blows/m]"], "f1"],
-        "physics_above_naive": [score["D"] - summary["naive_rmse [blows/m]"], "f1"],
-        "largest_blow_energy": [summary["largest_blow_energy [J]"], "kJ0"],
+        "g_rmse": [score["G"], "f1"],
+        "largest_blow_energy_d": [summary["largest_blow_energy_d [J]"], "kJ0"],
         "rated_energy": [summary["hammer_rated_energy [J]"], "kJ0"],
+        "h_change": [score["H"] - score["D"], "f1+"],
+        "e_ref_max": [final_fit["E_ref_max [J]"], "kJ0"],
+        "i_gain": [score["I"] - score["H"], "f1+"],
+        "fatigue_rate": [final_fit["fatigue_rate [-]"], "f2"],
+        "fatigue_rate_folds_min": [steps["I"]["fatigue_rate [-] folds min"], "f2"],
+        "fatigue_rate_folds_max": [steps["I"]["fatigue_rate [-] folds max"], "f2"],
+        "final_srd_sand": [model["srd_sand"], "f2"],
+        "final_srd_clay": [model["srd_clay"], "f2"],
+        "final_srd_toe": [model["srd_toe"], "f2"],
+        "final_e_ref": [final_fit["E_ref [J]"], "kJ0"],
+        "largest_blow_energy": [summary["largest_blow_energy [J]"], "kJ0"],
+        "cv_rmse": [summary["cv_rmse [blows/m]"], "f1"],
+        "cv_bias": [summary["cv_bias [blows/m]"], "f1+"],
+        "naive_rmse": [naive, "f1"],
+        "naive_bias": [summary["naive_bias [blows/m]"], "f1+"],
+        "final_minus_naive": [summary["cv_rmse [blows/m]"] - naive, "f1+"],
+        "best_physics": [min(score[k] for k in "ABCDFHI"), "f1"],
+        "j_rmse": [score["J"], "f1"],
+        "piles_below_naive": [summary["piles_final_below_naive [-]"], "int"],
+        "piles_scored": [summary["piles_scored [-]"], "int"],
+        "final_direct_rmse": [direct["rmse_final [blows/m]"], "f1"],
         "surface_rms": [surface["rms [blows/m]"], "f1"],
         "surface_bias": [surface["bias [blows/m]"], "f1+"],
+        "surface_rms_d": [surface_d["rms [blows/m]"], "f1"],
         "prediction_piles": [len(means), "int"],
         "prediction_means": [prediction_means_text(means, groups), None],
     }
@@ -1405,14 +1699,14 @@ def write_calibration_docs(summary: dict, data: Path, command: str) -> Path:
 
 def docs_command(argv: list[str]) -> str:
     """The command of a ``--cross-validate --docs`` run with the arguments ``argv`` (without
-    ``--docs-from FILE``, with ``--docs``)."""
+    ``--docs-from FILE`` and ``--cache DIR``, which change no result; with ``--docs``)."""
     rest, skip = [], False
     for arg in argv:
         if skip:
             skip = False
-        elif arg == "--docs-from":
+        elif arg in ("--docs-from", "--cache"):
             skip = True
-        elif not arg.startswith("--docs-from=") and arg != "--docs":
+        elif (not arg.startswith(("--docs-from=", "--cache=")) and arg != "--docs"):
             rest.append(arg)
     return shlex.join(["python", "benchmarks/isfog_backanalysis.py", *rest, "--docs"])
 
@@ -1452,6 +1746,10 @@ def parse_args(argv=None) -> argparse.Namespace:
                         help="also write the docs' data file: docs/data/isfog_calibration.json"
                              " (with --cross-validate: isfog_backanalysis.json; the summary "
                              "stays in --out)")
+    parser.add_argument("--cache", type=Path, metavar="DIR",
+                        help="with --cross-validate: keep the grids' and the direct runs' "
+                             "blow counts in DIR and reuse them when every input is the same "
+                             "(a rerun then only fits)")
     parser.add_argument("--docs-from", type=Path, metavar="RESULT_JSON",
                         help="only rewrite the docs' data file from the summary of an earlier "
                              "run (isfog_backanalysis.json of --cross-validate, else "

@@ -271,6 +271,39 @@ def test_friction_fatigue_lowers_the_shaft_resistance_of_a_segment_as_the_tip_pa
     assert out_far[0] == pytest.approx(0.2 * out_near[0], rel=1e-12)
 
 
+def test_friction_fatigue_rate_factor_against_the_closed_form_shaft_resistance():
+    # Clay with qt = a z (u2 = 0), fs = c and sigma'v0 = gamma z: k = r sqrt(a / gamma) / 80
+    # is constant, fs,res = 0.004 a z (1 - 0.0025 a / gamma) = b z, and the shaft resistance
+    # per unit perimeter with the tip at p is, with kappa = k and h = p - z,
+    #   int_0^p [b z + (c - b z) exp(-kappa h)] dz
+    #   = b p^2 / 2 + c (1 - e) / kappa - b [p (1 - e) / kappa - (1 - e (1 + kappa p)) / kappa^2]
+    # with e = exp(-kappa p). a = 0.2 MPa/m, gamma = 8 kN/m3: sqrt(25) / 80 = 0.0625 1/m.
+    a, c, gamma, tip = 0.2e6, 60e3, 8e3, 23.0
+    cpt = Cpt(np.array([0.0, 40.0]), np.array([0.0, 40.0 * a]), np.full(2, c), np.zeros(2))
+    profile = SoilProfile([SoilLayer(0, 40, "clay", gamma)], cpt)
+    b = 0.004 * a * (1.0 - 0.0025 * a / gamma)
+    tops, lengths = segments_below_mudline(30.0, tip, dx=0.5)
+    for rate in (0.5, 1.0, 3.0):
+        kappa = rate * math.sqrt(a / gamma) / 80.0
+        e = math.exp(-kappa * tip)
+        per_length = (b * tip ** 2 / 2 + c * (1 - e) / kappa
+                      - b * (tip * (1 - e) / kappa - (1 - e * (1 + kappa * tip)) / kappa ** 2))
+        result = srd_distribution(profile, AlmHamre2001(fatigue_rate_factor=rate), tip, tops,
+                                  lengths, D, T)
+        # Gauss quadrature of a smooth integrand on 0.1 m pieces: 1e-9 is round-off room
+        assert result.srd_shaft == pytest.approx(per_length * (PERIMETER_OUT + PERIMETER_IN),
+                                                 rel=1e-9)
+    # a faster decay leaves less friction behind the tip
+    slow = srd_distribution(profile, AlmHamre2001(fatigue_rate_factor=0.5), tip, tops, lengths,
+                            D, T).srd_shaft
+    fast = srd_distribution(profile, AlmHamre2001(fatigue_rate_factor=3.0), tip, tops, lengths,
+                            D, T).srd_shaft
+    assert fast < slow
+    for bad in (0.0, -0.5, float("nan")):
+        with pytest.raises(ValueError, match="fatigue_rate_factor"):
+            AlmHamre2001(fatigue_rate_factor=bad)
+
+
 def test_alm_hamre_needs_a_cpt_reaching_the_tip():
     profile = SoilProfile([sand(0, 60)], linear_cpt(depth_end=20.0))
     with pytest.raises(ValueError, match="CPT"):

@@ -116,6 +116,25 @@ def test_friction_fatigue_lowers_the_friction_at_a_point_as_the_tip_passes_it():
     assert sm.alm_hamre_2001_degraded_friction(fs_i, fs_res, k, 12.0, 10.0) == fs_i
 
 
+def test_friction_fatigue_rate_factor_scales_the_distance_behind_the_tip():
+    # k r h = k (r h): with the rate factor r the friction at h behind the tip is the paper's
+    # friction at r h (exact identity of the exponential; 1e-13 is round-off only)
+    fs_i = sm.alm_hamre_2001_sand_initial_friction(SAND_QT, SAND_SV, SAND_DELTA)
+    fs_res = sm.alm_hamre_2001_sand_residual_friction(fs_i)
+    k1 = sm.alm_hamre_2001_friction_fatigue_k(SAND_QT, SAND_SV)
+    # sqrt(15 MPa / 100 kPa) / 80 = sqrt(150) / 80 = 0.153093 1/m, times r = 2.5
+    assert sm.alm_hamre_2001_friction_fatigue_k(SAND_QT, SAND_SV, 2.5) == pytest.approx(
+        2.5 * math.sqrt(150.0) / 80.0, rel=1e-14)
+    k = sm.alm_hamre_2001_friction_fatigue_k(SAND_QT, SAND_SV, rate_factor=2.5)
+    h = np.array([0.0, 0.7, 3.0, 11.0])
+    slow = sm.alm_hamre_2001_degraded_friction(fs_i, fs_res, k1, 10.0, 10.0 + 2.5 * h)
+    fast = sm.alm_hamre_2001_degraded_friction(fs_i, fs_res, k, 10.0, 10.0 + h)
+    np.testing.assert_allclose(fast, slow, rtol=1e-13)
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="rate_factor"):
+            sm.alm_hamre_2001_friction_fatigue_k(SAND_QT, SAND_SV, bad)
+
+
 def test_alm_hamre_functions_are_vectorised():
     qt = np.array([[5e6, 10e6, 20e6], [6e6, 12e6, 24e6]])
     sv = np.array([50e3, 100e3, 150e3])

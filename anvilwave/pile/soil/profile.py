@@ -510,11 +510,15 @@ class AlmHamre2001:
     toe_window : float, default 0.0
         Length over which the unit toe resistance is averaged, centred on the tip [m] (0: the
         value at the tip).
+    fatigue_rate_factor : float, default 1.0
+        Factor on the friction-fatigue shape factor k [-] (1: the paper's rate; see
+        :func:`anvilwave.pile.soil.srd_methods.alm_hamre_2001_friction_fatigue_k`).
 
     Raises
     ------
     ValueError
-        If ``clay_residual_floor`` is unknown or ``toe_window`` is negative.
+        If ``clay_residual_floor`` is unknown, ``toe_window`` is negative or
+        ``fatigue_rate_factor`` is not positive and finite.
 
     References
     ----------
@@ -530,6 +534,7 @@ class AlmHamre2001:
     clay_residual_floor: str = sm.CLAY_RESIDUAL_FLOORS[0]
     atmospheric_pressure: float = sm.ATMOSPHERIC_PRESSURE
     toe_window: float = 0.0
+    fatigue_rate_factor: float = 1.0
 
     name = "alm-hamre-2001"
 
@@ -539,6 +544,9 @@ class AlmHamre2001:
                              f"got {self.clay_residual_floor!r}")
         if self.toe_window < 0.0:
             raise ValueError("toe_window must not be negative")
+        if not (np.isfinite(self.fatigue_rate_factor) and self.fatigue_rate_factor > 0.0):
+            raise ValueError("fatigue_rate_factor must be positive and finite, got "
+                             f"{self.fatigue_rate_factor!r}")
 
     def check(self, profile: SoilProfile, deepest: float) -> None:
         """Check that ``profile`` has the data needed down to ``deepest``.
@@ -611,7 +619,7 @@ class AlmHamre2001:
             fs_res = np.where(sand, sm.alm_hamre_2001_sand_residual_friction(fs_i_sand),
                               sm.alm_hamre_2001_clay_residual_friction(
                                   qt, sigma_v, self.clay_residual_floor, fs_initial=fs_i_clay))
-            k = sm.alm_hamre_2001_friction_fatigue_k(qt, sigma_v)
+            k = sm.alm_hamre_2001_friction_fatigue_k(qt, sigma_v, self.fatigue_rate_factor)
         f = sm.alm_hamre_2001_degraded_friction(fs_i, fs_res, k, z, tip_depth)
         outside = np.where(sand, self.sand_outside_factor, self.clay_outside_factor)
         inside = np.where(sand, self.sand_inside_factor, self.clay_inside_factor)

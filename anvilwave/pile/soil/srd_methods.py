@@ -201,10 +201,13 @@ def alm_hamre_2001_clay_residual_friction(qt, sigma_v, floor="zero", fs_initial=
                      f"{CLAY_RESIDUAL_FLOORS}")
 
 
-def alm_hamre_2001_friction_fatigue_k(qt, sigma_v):
-    """Shape factor of the friction degradation, k = sqrt(qt / sigma'v0) / 80 [1/m].
+def alm_hamre_2001_friction_fatigue_k(qt, sigma_v, rate_factor=1.0):
+    """Shape factor of the friction degradation, k = r sqrt(qt / sigma'v0) / 80 [1/m].
 
-    Alm & Hamre (2001), the same for sand and clay.
+    Alm & Hamre (2001), the same for sand and clay; r = 1 is the paper's rate. A factor
+    r != 1 scales the rate of the exponential decay with the distance from the tip (the
+    friction at the distance h behind the tip with the factor r is that at r h with r = 1),
+    leaving the initial and residual frictions unchanged.
 
     Parameters
     ----------
@@ -212,14 +215,24 @@ def alm_hamre_2001_friction_fatigue_k(qt, sigma_v):
         Corrected cone resistance [Pa] (>= 0).
     sigma_v : float or array_like
         Vertical effective stress sigma'v0 [Pa] (> 0).
+    rate_factor : float or array_like, default 1.0
+        Factor r on the paper's rate [-] (> 0).
 
     Returns
     -------
     float or numpy.ndarray
         Shape factor k [1/m].
+
+    Raises
+    ------
+    ValueError
+        If ``rate_factor`` is not a positive finite number.
     """
+    rate = np.asarray(rate_factor, dtype=float)
+    if not np.all(np.isfinite(rate) & (rate > 0.0)):
+        raise ValueError(f"rate_factor must be positive and finite, got {rate_factor!r}")
     qt, sigma_v = np.asarray(qt, dtype=float), np.asarray(sigma_v, dtype=float)
-    return np.sqrt(qt / sigma_v) / ALM_HAMRE_2001_SHAPE_DIVISOR
+    return rate * np.sqrt(qt / sigma_v) / ALM_HAMRE_2001_SHAPE_DIVISOR
 
 
 def alm_hamre_2001_degraded_friction(fs_i, fs_res, k, depth, tip_depth):
