@@ -45,7 +45,9 @@ def sessions(path: Path) -> list[tuple[int, str, list[str]]]:
 
 def mask(text: str) -> list[str]:
     text = re.sub(r"\b\d+(\.\d+)? s\b", "<time> s", text)
-    text = re.sub(r"\b\d+\.\d+s\b", "<time>s", text)  # a wall-time column
+    # a wall-time column, right-aligned: its width changes with the time, so the blanks
+    # before it are taken as one
+    text = re.sub(r" *\b\d+\.\d+s\b", " <time>s", text)
     text = re.sub(r"\(\d+(\.\d+)? ms per blow\)", "(<time> ms per blow)", text)
     text = re.sub(r"\([\d.]+x real time\)", "(<ratio>x real time)", text)
     return [line.rstrip() for line in text.splitlines()
