@@ -45,8 +45,8 @@ def test_without_ring_the_stack_is_the_anvil_units_blow_to_the_bit(table1):
 
 def test_ring_stack_rests_in_equilibrium(table1, ring):
     """At rest on the pile with the ram out of reach, the seat rings carry the anvil's weight
-    and the pile rings the stack's, and nothing moves over 200 steps (the static state is the scheme's
-    fixed point: to 1e-9 of the weights, the rounding of the modal sums)."""
+    and the pile rings the stack's, and nothing moves over 200 steps (the static state is the
+    scheme's fixed point: to 1e-9 of the weights, the rounding of the modal sums)."""
     unit = stack_unit(table1, ring)
     unit.set_step(2e-5)
     _, weight = unit.rest_on_pile(0.0)
