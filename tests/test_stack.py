@@ -1,22 +1,23 @@
 """The driving stack as one unit (anvil + anvil ring, two modal bodies, seat friction) on the
 paper's Table 1: without a ring it is the anvil unit's blow to the bit; the ring stack rests in
-exact equilibrium, balances its energy with friction on, and follows the reference FEA stack
-on a short window."""
+exact equilibrium, balances its energy with friction on, and keeps the reference FEA stack's
+peaks within the issue's bars."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from anvilwave.analyses.compare import fea_config, lowpass, without_soil
+from anvilwave.analyses.compare import lowpass, without_soil
 from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
+from anvilwave.anvil_rom import stack
 from anvilwave.anvil_rom.fem.geometry import load_anvil
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
-from anvilwave.fea.impact import run_impact_fea
+
+from .doc_tables import SAME_RUN, doc_data
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
 
@@ -95,20 +96,35 @@ def test_friction_zero_is_frictionless_and_coulomb_bounds_hold(table1, ring):
 
 
 @pytest.mark.slow
-def test_rom_stack_follows_the_fea_stack_on_a_short_window(table1, ring):
-    """The first 8 ms (the pulse's rise and peak; the FEA's pile cut at 5 m, ~10 s), mu 0:
-    the ROM stack's peak pile-head force within 10 % of the FEA's, both low-passed at 5 kHz.
-    Measured -7.4 % here and -6.2 % on the full 25 ms with the pile cut at 10 m
-    (benchmarks/study_anvil_ring.py): the issue's 3 % is NOT met yet (docs/validation.md);
-    this bounds what the one-port seat gives today, so that a regression shows."""
-    config = dataclasses.replace(fea_config(table1, mesh_size=0.1, truncate_length=5.0),
-                                 ring=ring, duration=0.008)
-    fea = run_impact_fea(config)
-    blow = run_stack_blow(table1, stack_unit(table1, ring), duration=0.008)
-    t = fea.time
-    rom = lowpass(t, np.interp(t, blow.time - 1e-5, blow.pile_force), 5000.0)
-    ref = lowpass(t, fea.anvil_pile_force, 5000.0)
-    assert rom.max() == pytest.approx(ref.max(), rel=0.10)
+@pytest.mark.parametrize("mu", [0.0, 0.2])
+def test_rom_stack_peaks_within_the_issues_bars(table1, ring, mu):
+    """The ROM stack's 25 ms blow on Table 1 (eight seat rings, three pile rings), low-passed
+    at 5 kHz on the FEA's 10 us grid as benchmarks/study_anvil_ring.py does: its peaks are the
+    docs' data file's (the same run, tests/doc_tables.SAME_RUN), and against the stored FEA
+    stack's peaks of that run (docs/data/anvil_ring.json, the FEA of the same coefficient on
+    the seat and the ring-pile contact) within the issue's bars, pile 3 % and ram 5 %. The FEA
+    is not rerun here (1 min each; its own checks are tests/test_fea_ring.py); the ROM's two
+    blows take a few seconds once the bodies' modes are cached."""
+    stored = doc_data("anvil_ring")["values"]["runs"][f"ring, mu {mu:g}"]["rom"]
+    blow = run_stack_blow(table1, stack_unit(table1, ring, seat_friction=mu))
+    t = np.arange(2501) * 1e-5  # the FEA's output grid over the 25 ms
+    shifted = blow.time - 0.5 * (blow.time[1] - blow.time[0])  # first contact at t = 0
+    for name, series, bar in (("pile", blow.pile_force, 0.03), ("ram", blow.ram_force, 0.05)):
+        peak = lowpass(t, np.interp(t, shifted, series), 5000.0).max()
+        assert peak == pytest.approx(stored[f"{name}_peak_rom [N]"], **SAME_RUN)
+        assert abs(peak / stored[f"{name}_peak_fea [N]"] - 1.0) < bar, name
+
+
+def test_more_friction_sweeps_change_nothing(table1, ring, monkeypatch):
+    """The seat pairs' Gauss-Seidel sweeps are converged: twice as many change the pile-head
+    force by less than 1e-6 of its peak over the main pulse at mu 0.2 (measured 7e-8 from 8 to
+    32 sweeps; 4 sweeps were 3.8e-5 off)."""
+    blows = []
+    for sweeps in (stack.FRICTION_SWEEPS, 2 * stack.FRICTION_SWEEPS):
+        monkeypatch.setattr(stack, "FRICTION_SWEEPS", sweeps)
+        unit = stack_unit(table1, ring, seat_friction=0.2)
+        blows.append(run_stack_blow(table1, unit, duration=0.008).pile_force)
+    assert np.abs(blows[0] - blows[1]).max() < 1e-6 * blows[1].max()
 
 
 def test_forces_read_twice_change_nothing(table1, ring):

@@ -70,6 +70,7 @@ FORMATS = {
     "pct+": lambda v: percent(v, sign=True),
     "pct+sig2": lambda v: _signed(_sig2(100.0 * v), v, True) + " %",
     "pctsig2": lambda v: _signed(_sig2(100.0 * v), v, False) + " %",
+    "pct1": lambda v: _signed(f"{100.0 * v:.1f}", v, False) + " %",
     "ms+": lambda v: milliseconds(v),
     "ms": lambda v: milliseconds(v, sign=False),
     "ms2": lambda v: _signed(f"{v * 1e3:.2f}", v, False) + " ms",
