@@ -176,6 +176,8 @@ def test_number_formats():
     assert r.render(-0.00291, "ms+") == "−2.9 ms" and r.render(4.2e-5, "ms+") == "+0.04 ms"
     assert [r.render(v, "sig2") for v in (38.2, 9.84, 0.716)] == ["38", "9.8", "0.72"]
     assert r.render(15.93e6, "MN") == "15.9 MN" and r.render(None, "pct") == ""
+    assert [r.render(v, "pct1") for v in (0.1041, -0.0084)] == ["10.4 %", "−0.8 %"]
+    assert [r.render(v, "pctsig2") for v in (0.0384, 0.00029)] == ["3.8 %", "0.029 %"]
 
 
 @pytest.mark.skipif(not (SHARED / "reference" / "grlweap-s4000").is_dir(),
