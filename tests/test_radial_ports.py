@@ -12,6 +12,7 @@ import pytest
 import scipy.linalg
 
 from anvilwave.anvil_rom.fem.elasticity import (
+    annulus_vectors,
     assemble,
     interface_vectors,
     radial_interface_vectors,
@@ -56,6 +57,25 @@ def test_radial_vector_is_the_mean_radial_displacement(cylinder):
     assert c_pile @ u == pytest.approx(1e-3 * 2.0 * RADIUS / 3.0, rel=1e-12)
     # radial only: no axial resultant (a self-balanced load)
     assert np.abs(c_ram @ model.axial_free) < 1e-15
+
+
+def test_radial_annuli_are_the_mean_radial_displacement_of_each_annulus(cylinder):
+    """annulus_vectors(radial=True), the seat rings' radial ports of the ROM stack: under
+    u_r = a r each annulus reads its own area-weighted mean of a r, (2 / 3) a (r2^3 - r1^3) /
+    (r2^2 - r1^2), and their area-weighted sum is the whole face's radial vector."""
+    model = cylinder[0]
+    C, areas = annulus_vectors(model, 0.0, 0.0, RADIUS, 4, radial=True)
+    xy = model.node_coordinates
+    u = np.zeros(model.basis.N)
+    u[model.node_dofs[:, 0]] = 1e-3 * xy[:, 0]
+    u = u[model.free_dofs]
+    edges = np.linspace(0.0, RADIUS, 5)
+    r1, r2 = edges[:-1], edges[1:]
+    mean = 1e-3 * 2.0 / 3.0 * (r2**3 - r1**3) / (r2**2 - r1**2)
+    assert C.T @ u == pytest.approx(mean, rel=1e-12)
+    assert areas == pytest.approx(np.pi * (r2**2 - r1**2), rel=1e-12)
+    whole = radial_interface_vectors(model, PORTS)[0]
+    assert np.abs(C @ areas / areas.sum() - whole).max() < 1e-12 * np.abs(whole).max()
 
 
 def test_static_radial_displacement_under_a_self_balanced_load(cylinder):

@@ -1,22 +1,23 @@
 """The driving stack as one unit (anvil + anvil ring, two modal bodies, seat friction) on the
 paper's Table 1: without a ring it is the anvil unit's blow to the bit; the ring stack rests in
-exact equilibrium, balances its energy with friction on, and follows the reference FEA stack
-on a short window."""
+exact equilibrium, balances its energy with friction on, and keeps the reference FEA stack's
+peaks within the issue's bars."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from anvilwave.analyses.compare import fea_config, lowpass, without_soil
+from anvilwave.analyses.compare import lowpass, without_soil
 from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
+from anvilwave.anvil_rom import stack
 from anvilwave.anvil_rom.fem.geometry import load_anvil
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
-from anvilwave.fea.impact import run_impact_fea
+
+from .doc_tables import SAME_RUN, doc_data
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
 
@@ -44,19 +45,19 @@ def test_without_ring_the_stack_is_the_anvil_units_blow_to_the_bit(table1):
 
 
 def test_ring_stack_rests_in_equilibrium(table1, ring):
-    """At rest on the pile with the ram out of reach, the seat carries the anvil's weight and
-    the pile the stack's, and nothing moves over 200 steps (the static state is the scheme's
-    fixed point: to 1e-9 of the weights, the rounding of the modal sums)."""
+    """At rest on the pile with the ram out of reach, the seat rings carry the anvil's weight
+    and the pile rings the stack's, and nothing moves over 200 steps (the static state is the
+    scheme's fixed point: to 1e-9 of the weights, the rounding of the modal sums)."""
     unit = stack_unit(table1, ring)
     unit.set_step(2e-5)
     _, weight = unit.rest_on_pile(0.0)
-    anvil_weight = unit.anvil.rom.total_mass * table1.gravity
+    anvil_weight = unit.anvil.total_mass * table1.gravity
     for _ in range(200):
         f_ram, f_pile = unit.forces(-1.0, 0.0, 0.0, 0.0)
         unit.step(f_ram, f_pile, 2e-5)
     assert f_ram == 0.0
     assert f_pile == pytest.approx(weight, rel=1e-9)
-    assert unit.state.forces[1] == pytest.approx(anvil_weight, rel=1e-9)
+    assert unit.seat_force == pytest.approx(anvil_weight, rel=1e-9)
     assert unit.friction_energy == 0.0
 
 
@@ -76,7 +77,8 @@ def test_ring_stack_energy_balance(table1, ring, mu):
 
 
 def test_friction_zero_is_frictionless_and_coulomb_bounds_hold(table1, ring):
-    """mu = 0 gives no tangential force at all; with friction |T| <= mu F_seat every step."""
+    """mu = 0 gives no tangential force at all; with friction |T| <= mu F_seat on every seat
+    ring every step."""
     unit = stack_unit(table1, ring, seat_friction=0.2)
     blow_state = []
     unit.set_step(2e-5)
@@ -87,25 +89,42 @@ def test_friction_zero_is_frictionless_and_coulomb_bounds_hold(table1, ring):
         unit.step(f_ram, f_pile, 2e-5)
         blow_state.append(unit.state.forces.copy())
     F = np.array(blow_state)
-    assert np.all(np.abs(F[:, 3]) <= 0.2 * F[:, 1] * (1 + 1e-12))
-    assert np.abs(F[:, 3]).max() > 0.0
+    S, N = unit.seat_rings, 1 + unit.seat_rings + unit.pile_rings
+    T, seat = F[:, N:], F[:, 1:1 + S]
+    assert np.all(np.abs(T) <= 0.2 * seat * (1 + 1e-12))
+    assert np.abs(T).max() > 0.0
 
 
 @pytest.mark.slow
-def test_rom_stack_follows_the_fea_stack_on_a_short_window(table1, ring):
-    """The first 8 ms (the pulse's rise and peak; the FEA's pile cut at 5 m, ~10 s), mu 0:
-    the ROM stack's peak pile-head force within 10 % of the FEA's, both low-passed at 5 kHz.
-    Measured -7.4 % here and -6.2 % on the full 25 ms with the pile cut at 10 m
-    (benchmarks/study_anvil_ring.py): the issue's 3 % is NOT met yet (docs/validation.md);
-    this bounds what the one-port seat gives today, so that a regression shows."""
-    config = dataclasses.replace(fea_config(table1, mesh_size=0.1, truncate_length=5.0),
-                                 ring=ring, duration=0.008)
-    fea = run_impact_fea(config)
-    blow = run_stack_blow(table1, stack_unit(table1, ring), duration=0.008)
-    t = fea.time
-    rom = lowpass(t, np.interp(t, blow.time - 1e-5, blow.pile_force), 5000.0)
-    ref = lowpass(t, fea.anvil_pile_force, 5000.0)
-    assert rom.max() == pytest.approx(ref.max(), rel=0.10)
+@pytest.mark.parametrize("mu", [0.0, 0.2])
+def test_rom_stack_peaks_within_the_issues_bars(table1, ring, mu):
+    """The ROM stack's 25 ms blow on Table 1 (eight seat rings, three pile rings), low-passed
+    at 5 kHz on the FEA's 10 us grid as benchmarks/study_anvil_ring.py does: its peaks are the
+    docs' data file's (the same run, tests/doc_tables.SAME_RUN), and against the stored FEA
+    stack's peaks of that run (docs/data/anvil_ring.json, the FEA of the same coefficient on
+    the seat and the ring-pile contact) within the issue's bars, pile 3 % and ram 5 %. The FEA
+    is not rerun here (1 min each; its own checks are tests/test_fea_ring.py); the ROM's two
+    blows take a few seconds once the bodies' modes are cached."""
+    stored = doc_data("anvil_ring")["values"]["runs"][f"ring, mu {mu:g}"]["rom"]
+    blow = run_stack_blow(table1, stack_unit(table1, ring, seat_friction=mu))
+    t = np.arange(2501) * 1e-5  # the FEA's output grid over the 25 ms
+    shifted = blow.time - 0.5 * (blow.time[1] - blow.time[0])  # first contact at t = 0
+    for name, series, bar in (("pile", blow.pile_force, 0.03), ("ram", blow.ram_force, 0.05)):
+        peak = lowpass(t, np.interp(t, shifted, series), 5000.0).max()
+        assert peak == pytest.approx(stored[f"{name}_peak_rom [N]"], **SAME_RUN)
+        assert abs(peak / stored[f"{name}_peak_fea [N]"] - 1.0) < bar, name
+
+
+def test_more_friction_sweeps_change_nothing(table1, ring, monkeypatch):
+    """The seat pairs' Gauss-Seidel sweeps are converged: twice as many change the pile-head
+    force by less than 1e-6 of its peak over the main pulse at mu 0.2 (measured 7e-8 from 8 to
+    32 sweeps; 4 sweeps were 3.8e-5 off)."""
+    blows = []
+    for sweeps in (stack.FRICTION_SWEEPS, 2 * stack.FRICTION_SWEEPS):
+        monkeypatch.setattr(stack, "FRICTION_SWEEPS", sweeps)
+        unit = stack_unit(table1, ring, seat_friction=0.2)
+        blows.append(run_stack_blow(table1, unit, duration=0.008).pile_force)
+    assert np.abs(blows[0] - blows[1]).max() < 1e-6 * blows[1].max()
 
 
 def test_forces_read_twice_change_nothing(table1, ring):
@@ -123,5 +142,5 @@ def test_forces_read_twice_change_nothing(table1, ring):
             unit.step(f_ram, f_pile, 2e-5)
     a, b = (u.state for u in units)
     assert np.array_equal(a.anvil_state, b.anvil_state)
-    assert np.array_equal(a.friction, b.friction)
-    assert a.friction[3] > 0.0  # the ram dashpot worked
+    assert np.array_equal(a.energies, b.energies)
+    assert a.energies[1] > 0.0  # the ram dashpot worked

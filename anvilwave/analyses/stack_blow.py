@@ -13,13 +13,13 @@ The ram starts half a step before the first contact, as the engine's blow.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 
 import numpy as np
 
-from anvilwave.anvil_rom.fem.geometry import AnvilSpec, Interfaces
-from anvilwave.anvil_rom.fem.modalfile import load_modal_data, save_modal_data
+from anvilwave.anvil_rom.fem.geometry import AnvilSpec
 from anvilwave.anvil_rom.rom import ModalAnvil
-from anvilwave.anvil_rom.stack import StackBody, StackUnit, stack_modal_data
+from anvilwave.anvil_rom.stack import Face, StackBody, StackBodyData, StackUnit, stack_body_data
 from anvilwave.anvil_rom.unit import ContactParameters
 from anvilwave.config.cache import cache_dir, modal_key
 from anvilwave.config.system import SystemConfig
@@ -58,11 +58,23 @@ class StackBlow:
     input_energy: float
 
 
-def stack_interfaces(anvil: AnvilSpec, ring: AnvilSpec) -> tuple[Interfaces, Interfaces]:
-    """The ports of the two bodies: the anvil's ram face and seat, the ring's seat and pile wall.
+SEAT_RINGS = 8
+"""Seat rings of the ROM stack by default: the seat's 0.55 m on Table 1 in 0.07 m rings, at
+least one element edge each on the bodies' 0.05 m meshes (``benchmarks/study_anvil_ring.py``
+compares one seat ring with the default against the FEA stack)."""
+
+PILE_RINGS = 3
+"""Rings of the ring's bottom face on the pile wall by default (one element edge each on the
+ring's 0.05 m mesh across the 0.14 m wall)."""
+
+
+def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
+                pile_rings: int = PILE_RINGS) -> tuple[tuple[Face, ...], tuple[Face, ...]]:
+    """The ports of the two bodies (:mod:`anvilwave.anvil_rom.stack`'s order).
 
     The seat is the radial overlap of the anvil's flat bottom face and the ring's flat top
-    face; the ring's bottom port is the anvil file's pile ring.
+    face, in ``seat_rings`` rings (axial and radial on both bodies); the anvil's ram face is
+    its file's; the ring's bottom port is the anvil file's pile ring, in ``pile_rings``.
 
     Parameters
     ----------
@@ -70,18 +82,22 @@ def stack_interfaces(anvil: AnvilSpec, ring: AnvilSpec) -> tuple[Interfaces, Int
         The anvil (with its interfaces).
     ring : AnvilSpec
         The ring (an outline off the axis).
+    seat_rings : int, default SEAT_RINGS
+        S [-].
+    pile_rings : int, default PILE_RINGS
+        K [-].
 
     Returns
     -------
-    anvil_ports : Interfaces
-        Ram face, and the seat as the bottom port.
-    ring_ports : Interfaces
-        The seat (the whole top face) as the top port, the pile wall as the bottom port.
+    anvil_faces : tuple of Face
+        Ram face, the seat's S axial and S radial rings.
+    ring_faces : tuple of Face
+        The seat's S axial and S radial rings, the pile wall's K axial rings.
 
     Raises
     ------
     InputError
-        If the ring is not an outline or the faces do not overlap.
+        If a body is not an outline or the faces do not overlap.
     """
     if ring.outline is None or anvil.outline is None:
         raise InputError(ring.source, "geometry", "the stack needs both bodies as outlines")
@@ -94,40 +110,52 @@ def stack_interfaces(anvil: AnvilSpec, ring: AnvilSpec) -> tuple[Interfaces, Int
         raise InputError(ring.source, "geometry", "the ring's flat top face must overlap the "
                                                   "anvil's flat bottom face (the seat)")
     itf = anvil.interfaces
-    anvil_ports = Interfaces(itf.ram_contact_radius, 0.5 * (inner + outer), outer - inner)
-    ring_ports = Interfaces(float(top.max()), itf.pile_contact_radius, itf.pile_contact_width)
-    return anvil_ports, ring_ports
+    wall_in, wall_out = itf.pile_ring
+    anvil_faces = (Face("axial", "top", 0.0, itf.ram_contact_radius, 1),
+                   Face("axial", "bottom", inner, outer, seat_rings),
+                   Face("radial", "bottom", inner, outer, seat_rings))
+    ring_faces = (Face("axial", "top", inner, outer, seat_rings),
+                  Face("radial", "top", inner, outer, seat_rings),
+                  Face("axial", "bottom", wall_in, wall_out, pile_rings))
+    return anvil_faces, ring_faces
 
 
-def cached_stack_data(spec: AnvilSpec, ports: Interfaces, fmax: float):
-    """:func:`anvilwave.anvil_rom.stack.stack_modal_data` through the modal-data cache folder.
+def cached_stack_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> StackBodyData:
+    """:func:`anvilwave.anvil_rom.stack.stack_body_data` through the modal-data cache folder.
 
     Parameters
     ----------
     spec : AnvilSpec
         The body.
-    ports : Interfaces
+    faces : tuple of Face
         Its stack ports.
     fmax : float
         Frequency content [Hz].
 
     Returns
     -------
-    ModalData
-        The modes with the radial keys.
+    StackBodyData
+        The modes on the ports.
     """
-    keyed = dataclasses.replace(spec, interfaces=ports)
-    path = cache_dir() / f"stack-{modal_key(keyed, fmax)}.npz"
+    key = hashlib.sha256((modal_key(spec, fmax) + repr(faces)).encode()).hexdigest()
+    path = cache_dir() / f"stackbody-{key}.npz"
     if path.is_file():
-        return load_modal_data(path)
-    data = stack_modal_data(spec, ports, fmax)
+        with np.load(path) as npz:
+            return StackBodyData(npz["frequencies"], npz["participation"], npz["flexibility"],
+                                 npz["participation_gravity"], float(npz["total_mass"]),
+                                 npz["areas"])
+    data = stack_body_data(spec, faces, fmax)
     path.parent.mkdir(parents=True, exist_ok=True)
-    save_modal_data(data, path)
+    partial = path.with_name(path.name + ".part.npz")
+    np.savez(partial, **dataclasses.asdict(data))
+    partial.replace(path)
     return data
 
 
 def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: float = 0.0,
-               seat_stiffness: float | None = None, penalty_size: float = 0.1) -> StackUnit:
+               seat_stiffness: float | None = None, penalty_size: float = 0.1,
+               seat_rings: int = SEAT_RINGS, pile_rings: int = PILE_RINGS,
+               ring_fmax: float | None = None) -> StackUnit:
     """The system's anvil (and ``ring``) as a :class:`StackUnit` with the system's contacts.
 
     Parameters
@@ -143,6 +171,12 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
         the seat (:data:`anvilwave.fea.impact.DEFAULT_CONTACT_STIFFNESS_FACTOR` = 1).
     penalty_size : float, default 0.1
         Element size the default seat penalty is taken at [m] (the FEA's mesh size).
+    seat_rings : int, default SEAT_RINGS
+        The seat in this many rings [-].
+    pile_rings : int, default PILE_RINGS
+        The ring's pile port in this many rings [-].
+    ring_fmax : float or None, default None
+        The ring's own truncation [Hz]; None: the system's fmax.
 
     Returns
     -------
@@ -161,18 +195,24 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
                                          damping_ratio=s.damping_ratio,
                                          static_correction=s.static_correction)
         return StackUnit(rom, contact, gravity=cfg.gravity)
-    anvil_ports, ring_ports = stack_interfaces(s.spec, ring)
-    anvil = StackBody.from_modal_data(cached_stack_data(s.spec, anvil_ports, fmax), "bottom",
-                                      fmax, s.static_correction, cfg.source)
-    body = StackBody.from_modal_data(cached_stack_data(ring, ring_ports, fmax), "top", fmax,
-                                     s.static_correction, ring.source)
+    anvil_faces, ring_faces = stack_faces(s.spec, ring, seat_rings, pile_rings)
+    ring_fmax = fmax if ring_fmax is None else float(ring_fmax)
+    anvil = StackBody.from_data(cached_stack_data(s.spec, anvil_faces, fmax), fmax,
+                                s.static_correction, _damping(s.damping_ratio, s.spec))
+    body = StackBody.from_data(cached_stack_data(ring, ring_faces, ring_fmax), ring_fmax,
+                               s.static_correction, _damping(s.damping_ratio, ring))
     if seat_stiffness is None:
-        r_out = anvil_ports.pile_contact_radius + 0.5 * anvil_ports.pile_contact_width
-        r_in = r_out - anvil_ports.pile_contact_width
-        seat_stiffness = ring.material.youngs_modulus / penalty_size * np.pi * (r_out**2
-                                                                                  - r_in**2)
-    return StackUnit(anvil, contact, body, seat_stiffness=float(seat_stiffness),
-                     seat_friction=seat_friction, gravity=cfg.gravity)
+        seat = anvil_faces[1]
+        seat_stiffness = ring.material.youngs_modulus / penalty_size * np.pi * (
+            seat.r_out**2 - seat.r_in**2)
+    return StackUnit(anvil, contact, body, seat_rings=seat_rings, pile_rings=pile_rings,
+                     seat_stiffness=float(seat_stiffness), seat_friction=seat_friction,
+                     gravity=cfg.gravity)
+
+
+def _damping(ratio: float | None, spec: AnvilSpec) -> float:
+    """The system's modal damping ratio, or the body file's when the system sets none."""
+    return float(spec.damping_ratio if ratio is None else ratio)
 
 
 def run_stack_blow(cfg: SystemConfig, unit, h: float | None = None,

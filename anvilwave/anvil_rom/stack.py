@@ -1,45 +1,50 @@
 """The driving stack as one anvil unit: the anvil and the anvil ring, two modal bodies.
 
-Each body is a Mode Displacement Method ROM (:class:`anvilwave.anvil_rom.rom.ModalAnvil`, its
-own free-free modes truncated at the system's fmax, its static correction); the unit keeps
-the anvil's outward interface, ram in, pile out (DESIGN.md). Three compression-only contacts,
-ram-anvil (top of the anvil), the seat anvil-ring (the anvil's bottom port on the ring's top
-port) and ring-pile (the ring's bottom port), and Coulomb friction at the seat along the
-radius.
+Each body is a Mode Displacement Method ROM (its own free-free modes truncated at the system's
+fmax, its static correction); the unit keeps the anvil's outward interface, ram in, pile out
+(DESIGN.md). Its contacts, each between a port of one side and a port of the other:
 
-Displacements of the ports (z down; the anvil a, the ring r; m the modal sums, R the residual
-flexibility of each body between its axial ports 0 (top), 1 (bottom) and its radial ports 2
-(top), 3 (bottom), the radial participations of the modal file)::
+* the ram on the anvil's top face (one port, compression-only, with the ram contact's dashpot);
+* the seat, the anvil's flat bottom face on the ring's flat top face where they overlap, in S
+  equal-width rings (:func:`annulus_vectors` on both faces): per ring a compression-only normal
+  contact on the two bodies' axial participations, and a Coulomb friction pair on their radial
+  participations (the two faces slide along the radius as the bodies bulge);
+* the ring's bottom face on the pile wall in K equal-width rings (compression-only, the pile's
+  contact spring and dashpot shared by ring area, on the 1D pile head).
 
-    u_a,top = m + Ra00 F_r - Ra01 F_s - Ra03 T       u_a,bot = m + Ra01 F_r - Ra11 F_s - Ra13 T
-    u_r,top = m + Rr00 F_s - Rr01 F_p + Rr02 T       u_r,bot = m + Rr01 F_s - Rr11 F_p + Rr12 T
+With one seat ring and one pile ring the faces close at once over their width; in the FEA they
+close and slide unevenly (the anvil comes down tilted on the seat, the ring rocks on the pile
+wall); ``benchmarks/study_anvil_ring.py`` compares one port each with the rings against the
+FEA stack.
 
-with F_r, F_s, F_p the three normal forces (compression positive) and T the seat's friction
-force (the anvil pushed by -T along the radius, the ring by +T). The overlaps d = (u_ram -
-u_a,top, u_a,bot - u_r,top, u_r,bot - u_pile) and F_i = k_i d_i (+ dashpot) make the normal
-forces a 3 x 3 linear complementarity problem A F = g + e T, F >= 0, with
+Every contact c has an upper side (the anvil, or the ram) and a lower one (the ring, or the
+pile); its relative displacement is s_c = u_upper - u_lower (z down; along the radius for a
+friction pair) and its force X_c pushes the upper side by -X_c and the lower by +X_c. With Q_b
+the modal loads of body b per unit contact force (its port participations through the
+incidence of the contacts) and R_b its residual flexibility between its ports::
 
-    A = diag(1 / k) + [[Ra00, -Ra01, 0], [-Ra01, Ra11 + Rr00, -Rr01], [0, -Rr01, Rr11]]
-    e = [Ra03, -(Ra13 + Rr02), Rr12]
+    s = s_ext - sum_b Q_b^T q_b - G X,      G = sum_b B_b^T R_b B_b
 
-solved by :func:`anvilwave.anvil_rom.rings.contact_lcp` (the rings' pivoting) with the
-dashpots folded into an equivalent overlap d + (c / k) d', as the anvil unit does. The seat's
-relative radial displacement is w = w_modal + e . F - (Ra33 + Rr22) T: the stick spring k_t
-of :func:`anvilwave.anvil_rom.contact.coulomb_friction` in series with the two bodies'
-radial residual flexibility is the pair's effective spring k_eff = 1 / (1 / k_t + Ra33 +
-Rr22), driven by w0 = w_modal + e . F. Each step: the normal forces at t_n with the friction
-force of the step before (the e T coupling, the Poisson part of the static correction, lags
-one step), then T_n by return mapping on the increment of w0 under the cone mu F_s,n, then
-both bodies' modes advanced exactly with the four forces held.
+(B_b the incidence, s_ext the ram's and the pile's displacements). The normal forces F solve
+the complementarity problem A F = g, F >= 0 (:func:`anvilwave.anvil_rom.rings.contact_lcp`),
+A = diag(1 / k) + G_NN, g = s_N (modal) - G_NT T + (c / k) s_N' with the friction forces T of
+the step before (the dashpots folded into an equivalent overlap, as the anvil unit does). Then
+each friction pair by :func:`anvilwave.anvil_rom.contact.coulomb_friction` under the cone
+mu F_s: its stick spring k_t in series with the two bodies' radial residual flexibility, the
+pair's k_eff = 1 / (1 / k_t + G_tt), driven by w = s_t (modal) - G_tN F - sum_(u != t) G_tu T_u
+(Gauss-Seidel sweeps over the pairs, each from the step's start); then both bodies' modes are
+advanced exactly with all forces held. Energy: per mode the shadow form, plus the complementary
+energy X^T (G + diag(1 / k)) X / 2 of the massless part (contact and stick springs, residual
+flexibility); friction and dashpot dissipation are booked.
 
-Kernel data (:class:`StackState`): ``parameters`` [k_ram, c_ram, k_seat, c_seat, k_pile, c_pile,
-mu, k_eff, gravity, h]; per body a table (n, 9): a, b, c, m_e (the step coefficients of
-:func:`anvilwave.anvil_rom.rom.modal_transition`), p_top, p_bottom, p_grav, omega, p_radial
-(at the seat) and a state [q (n) at t_n, q (n) at t_n-1].
+Contact order: 0 the ram, 1 .. S the seat rings (inner to outer), S + 1 .. S + K the pile rings,
+then the S friction pairs. Ports: the anvil [ram face, S seat rings axial, S radial], the ring
+[S seat rings axial, S radial, K pile rings axial].
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -47,159 +52,306 @@ import numpy as np
 from numba import njit
 
 from anvilwave.anvil_rom.contact import coulomb_friction
-from anvilwave.anvil_rom.fem.elasticity import interface_vectors
-from anvilwave.anvil_rom.fem.geometry import AnvilSpec, Interfaces
-from anvilwave.anvil_rom.fem.modalfile import ModalData
-from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes, modal_data_from_modes
+from anvilwave.anvil_rom.fem.elasticity import annulus_vectors
+from anvilwave.anvil_rom.fem.geometry import AnvilSpec
+from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
+from anvilwave.anvil_rom.fem.modes import elastic_flexibility
+from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 from anvilwave.anvil_rom.rings import contact_lcp
-from anvilwave.anvil_rom.rom import ModalAnvil, residual_flexibility
+from anvilwave.anvil_rom.rom import ModalAnvil, modal_transition
 from anvilwave.anvil_rom.unit import GRAVITY, AnvilUnit, ContactParameters
 from anvilwave.inputs import InputError
 
-
-class StackState(NamedTuple):
-    """The stack kernels' arrays (module docstring).
-
-    Parameters
-    ----------
-    parameters : numpy.ndarray
-        [k_ram, c_ram, k_seat, c_seat, k_pile, c_pile, mu, k_eff, gravity, h] [N/m, N s/m,
-        N/m, N s/m, N/m, N s/m, -, N/m, m/s^2, s].
-    anvil_coefficients : numpy.ndarray
-        The anvil's table, shape (n_a, 9): a, b, c, m_e, p_top, p_bottom, p_grav, omega,
-        p_radial at the seat.
-    ring_coefficients : numpy.ndarray
-        The ring's table, shape (n_r, 9), the same columns (p_top: the seat).
-    anvil_state : numpy.ndarray
-        q of the anvil at t_n and t_n-1, shape (2 n_a,) [m kg^1/2].
-    ring_state : numpy.ndarray
-        q of the ring at t_n and t_n-1, shape (2 n_r,) [m kg^1/2].
-    flexibility : numpy.ndarray
-        A of the normal contacts, shape (3, 3) [m/N].
-    coupling : numpy.ndarray
-        e, the friction force's share of the overlaps, shape (3,) [m/N].
-    forces : numpy.ndarray
-        [F_ram, F_seat, F_pile, T] of the last evaluation [N].
-    friction : numpy.ndarray
-        [T (stick spring force) [N], w0 at the last update [m], dissipated energy [J],
-        dashpot work [J], started (1.0 once w0 is set) [-], dashpot power at the last
-        :func:`stack_forces` [W]] (a master may read the forces more than once a step).
-    active : numpy.ndarray
-        The normal contacts' active set (1.0: closed), shape (3,).
-    work : numpy.ndarray
-        Scratch, shape (3, 4).
-    interface : numpy.ndarray
-        Modal sums of the state, [u_a,top, v_a,top, u_a,bot, v_a,bot, w_a,rad, u_r,top,
-        v_r,top, u_r,bot, v_r,bot, w_r,rad] [m, m/s].
-    """
-
-    parameters: np.ndarray
-    anvil_coefficients: np.ndarray
-    ring_coefficients: np.ndarray
-    anvil_state: np.ndarray
-    ring_state: np.ndarray
-    flexibility: np.ndarray
-    coupling: np.ndarray
-    forces: np.ndarray
-    friction: np.ndarray
-    active: np.ndarray
-    work: np.ndarray
-    interface: np.ndarray
+FRICTION_SWEEPS = 8
+"""Gauss-Seidel sweeps over the seat's friction pairs a step (their coupling through the
+radial residual flexibility); ``tests/test_stack.py`` checks that more sweeps change the blow
+by less than 1e-6 of its peak."""
 
 
 @dataclass(frozen=True)
-class StackBody:
-    """One modal body of the stack with its radial participation at the seat.
+class Face:
+    """Ports on a flat face of a body: ``count`` equal-width annuli from ``r_in`` to ``r_out``.
 
     Parameters
     ----------
-    rom : ModalAnvil
-        The body's ROM (two axial ports: top, bottom).
-    participation_radial : numpy.ndarray
-        Radial participation of the kept modes at the seat port, shape (n,) [kg^-1/2].
-    residual : numpy.ndarray
-        Residual flexibility between the ports (axial top, axial bottom, radial top, radial
-        bottom), shape (4, 4) [m/N] (zeros without static correction).
+    direction : {"axial", "radial"}
+        Uniform pressures (axial) or uniform radial tractions (radial) on the annuli.
+    side : {"top", "bottom"}
+        The body's top (smallest z) or bottom (largest z) face.
+    r_in : float
+        Inner radius [m].
+    r_out : float
+        Outer radius [m].
+    count : int
+        Number of annuli [-].
     """
 
-    rom: ModalAnvil
-    participation_radial: np.ndarray
-    residual: np.ndarray
-
-    @classmethod
-    def from_modal_data(cls, data: ModalData, seat: str, fmax: float,
-                        static_correction: bool = True, source: str = "modal data"
-                        ) -> StackBody:
-        """The body from a modal file with the radial keys, truncated at ``fmax``.
-
-        Parameters
-        ----------
-        data : ModalData
-            Modes with the radial keys (``modal_data_from_modes(radial=True)``).
-        seat : {"bottom", "top"}
-            Which port is the seat: the anvil's bottom port or the ring's top port.
-        fmax : float
-            Highest frequency kept [Hz] (the system's).
-        static_correction : bool, default True
-            Add the residual flexibility of the truncated modes.
-        source : str, default "modal data"
-            Name of the input the errors refer to.
-
-        Returns
-        -------
-        StackBody
-            The body.
-
-        Raises
-        ------
-        InputError
-            If ``data`` has no radial keys or ``seat`` is neither port.
-        """
-        if data.radial_flexibility is None:
-            raise InputError(source, "radial_flexibility", "a stack body needs the radial "
-                                                           "participations at its ports")
-        if seat not in ("top", "bottom"):
-            raise InputError(source, "seat", f"must be 'top' or 'bottom', got {seat!r}")
-        rom = ModalAnvil.from_modal_data(data, fmax=fmax, static_correction=static_correction,
-                                         source=source)
-        keep = np.asarray(data.frequencies) <= rom.fmax
-        radial = np.vstack([data.participation_ram_radial, data.participation_pile_radial])
-        radial = radial[:, keep]
-        residual = np.zeros((4, 4))
-        if static_correction:
-            residual = residual_flexibility(data.radial_flexibility, rom.omega,
-                                            rom.participation_ram, rom.participation_pile,
-                                            *radial)
-        return cls(rom, radial[1 if seat == "bottom" else 0], residual)
+    direction: str
+    side: str
+    r_in: float
+    r_out: float
+    count: int
 
 
-def stack_modal_data(spec: AnvilSpec, interfaces: Interfaces, fmax: float) -> ModalData:
-    """Free-free modes of one stack body with its stack ports and their radial participations.
+@dataclass(frozen=True)
+class StackBodyData:
+    """A body's modes projected on its ports (the stack's modal file, cached by the caller).
 
-    :func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes` on ``spec`` with ``interfaces``,
-    projected with the radial keys (``modal_data_from_modes(radial=True)``).
+    Parameters
+    ----------
+    frequencies : numpy.ndarray
+        Natural frequencies, shape (n,) [Hz] (0: the axial rigid-body mode).
+    participation : numpy.ndarray
+        The ports' participations b^T phi, shape (ports, n) [kg^-1/2].
+    flexibility : numpy.ndarray
+        Inertia-relief flexibility between the ports (all modes), shape (ports, ports) [m/N].
+    participation_gravity : numpy.ndarray
+        phi^T M e_z, shape (n,) [kg^1/2].
+    total_mass : float
+        Mass [kg].
+    areas : numpy.ndarray
+        Area of each port, shape (ports,) [m^2].
+    """
+
+    frequencies: np.ndarray
+    participation: np.ndarray
+    flexibility: np.ndarray
+    participation_gravity: np.ndarray
+    total_mass: float
+    areas: np.ndarray
+
+
+def stack_body_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> StackBodyData:
+    """Free-free modes of one stack body to ``fmax`` on the annuli of ``faces``.
+
+    The outline gets a vertex at every annulus edge (the load vectors exact on the mesh),
+    :func:`anvilwave.anvil_rom.fem.pipeline.compute_anvil_modes` solves the modes, and each
+    face's annuli are :func:`anvilwave.anvil_rom.fem.elasticity.annulus_vectors` (axial or
+    radial) with their inertia-relief flexibility
+    (:func:`anvilwave.anvil_rom.fem.modes.elastic_flexibility`).
 
     Parameters
     ----------
     spec : AnvilSpec
-        The body (anvil or ring outline).
-    interfaces : Interfaces
-        Its two ports: the top face r <= ``ram_contact_radius`` and the bottom ring
-        ``pile_contact_radius`` +- ``pile_contact_width`` / 2 [m].
+        The body (an outline).
+    faces : tuple of Face
+        Its ports, in order.
     fmax : float
         Frequency content [Hz].
 
     Returns
     -------
-    ModalData
-        The modes with the radial keys.
+    StackBodyData
+        Modes and ports.
+
+    Raises
+    ------
+    InputError
+        If the body is not an outline, or an annulus has no element edge.
     """
-    spec = AnvilSpec(spec.name, spec.material, spec.outline, spec.mesh_file, interfaces,
-                     spec.mesh_size, fmax, spec.damping_ratio, spec.source)
-    modes = compute_anvil_modes(spec, fmax)
-    _, _, a_top, a_bottom = interface_vectors(modes.model, interfaces)
-    return modal_data_from_modes(spec, modes.model, modes.modes, modes.b_ram, modes.b_pile,
-                                 (a_top, a_bottom), radial=True)
+    if spec.outline is None:
+        raise InputError(spec.source, "geometry", "a stack body must be an outline")
+    outline = np.asarray(spec.outline, float)
+    z_top, z_bottom = outline[:, 1].min(), outline[:, 1].max()
+    for f in faces:
+        outline = split_outline_at_radii(outline, z_top if f.side == "top" else z_bottom,
+                                         np.linspace(f.r_in, f.r_out, f.count + 1))
+    spec = dataclasses.replace(spec, outline=outline, interfaces=None, fmax=fmax)
+    result = compute_anvil_modes(spec, fmax)
+    model, modes = result.model, result.modes
+    columns, areas = [], []
+    for f in faces:
+        z = model.mesh.p[1].min() if f.side == "top" else model.mesh.p[1].max()
+        B, A = annulus_vectors(model, z, f.r_in, f.r_out, f.count, radial=f.direction == "radial")
+        if np.any(A == 0.0):
+            raise InputError(spec.source, "mesh.size", f"{f.count} annuli from {f.r_in:g} to "
+                                                       f"{f.r_out:g} m need as many element "
+                                                       "edges: refine the mesh")
+        columns.append(B)
+        areas.append(A)
+    B = np.column_stack(columns)
+    G = elastic_flexibility(model, B)
+    return StackBodyData(np.asarray(modes.frequencies, float), B.T @ modes.shapes,
+                         0.5 * (G + G.T), modes.shapes.T @ (model.mass @ model.axial_free),
+                         float(model.total_mass()), np.concatenate(areas))
+
+
+@dataclass(frozen=True)
+class StackBody:
+    """One modal body of the stack: its kept modes and the residual flexibility of its ports.
+
+    Parameters
+    ----------
+    omega : numpy.ndarray
+        Circular frequencies of the kept modes, shape (n,) [rad/s].
+    participation : numpy.ndarray
+        The ports' participations, shape (ports, n) [kg^-1/2].
+    residual : numpy.ndarray
+        Residual flexibility between the ports, shape (ports, ports) [m/N] (zeros without
+        static correction).
+    participation_gravity : numpy.ndarray
+        shape (n,) [kg^1/2].
+    total_mass : float
+        Mass [kg].
+    areas : numpy.ndarray
+        Port areas, shape (ports,) [m^2].
+    damping_ratio : float, default 0.0
+        Modal damping ratio of the flexible modes [-].
+    """
+
+    omega: np.ndarray
+    participation: np.ndarray
+    residual: np.ndarray
+    participation_gravity: np.ndarray
+    total_mass: float
+    areas: np.ndarray
+    damping_ratio: float = 0.0
+
+    @classmethod
+    def from_data(cls, data: StackBodyData, fmax: float, static_correction: bool = True,
+                  damping_ratio: float = 0.0) -> StackBody:
+        """The body truncated at ``fmax`` with its static correction.
+
+        Parameters
+        ----------
+        data : StackBodyData
+            The body's modes and ports.
+        fmax : float
+            Highest frequency kept [Hz].
+        static_correction : bool, default True
+            Add the residual flexibility of the truncated modes
+            (:func:`anvilwave.anvil_rom.rom.residual_flexibility`).
+        damping_ratio : float, default 0.0
+            Modal damping ratio [-].
+
+        Returns
+        -------
+        StackBody
+            The body.
+        """
+        keep = np.asarray(data.frequencies) <= fmax * (1 + 1e-12)
+        omega = 2.0 * np.pi * np.asarray(data.frequencies)[keep]
+        P = np.asarray(data.participation)[:, keep]
+        residual = np.zeros_like(data.flexibility)
+        if static_correction:
+            flexible = omega > 0.0
+            residual = data.flexibility - (P[:, flexible] / omega[flexible] ** 2) @ P[:, flexible].T
+        return cls(omega, P, residual, np.asarray(data.participation_gravity)[keep],
+                   float(data.total_mass), np.asarray(data.areas), float(damping_ratio))
+
+    @property
+    def n_modes(self) -> int:
+        """Number of kept modes.
+
+        Returns
+        -------
+        int
+            n [-].
+        """
+        return int(self.omega.size)
+
+
+class StackState(NamedTuple):
+    """The stack kernels' arrays (module docstring); m contacts, N = 1 + S + K normal ones.
+
+    Parameters
+    ----------
+    parameters : numpy.ndarray
+        [gravity [m/s^2], h [s], S [-], K [-]].
+    anvil_coefficients : numpy.ndarray
+        The anvil's modes, shape (n_a, 6): a, b, c, m_e (:func:`modal_transition`), omega,
+        p_grav.
+    ring_coefficients : numpy.ndarray
+        The ring's, shape (n_r, 6).
+    anvil_loads : numpy.ndarray
+        Q of the anvil, its modal loads per unit contact force, shape (n_a, m) [kg^-1/2].
+    ring_loads : numpy.ndarray
+        Q of the ring, shape (n_r, m) [kg^-1/2].
+    anvil_state : numpy.ndarray
+        q of the anvil at t_n and t_n-1, shape (2 n_a,) [m kg^1/2].
+    ring_state : numpy.ndarray
+        q of the ring at t_n and t_n-1, shape (2 n_r,) [m kg^1/2].
+    external : numpy.ndarray
+        The ram's (row 0) and the pile's (row 1) share of each contact's s, shape (2, m).
+    stiffness : numpy.ndarray
+        k of each contact (friction pairs: k_t), shape (m,) [N/m].
+    ratios : numpy.ndarray
+        c / k of the normal contacts, shape (N,) [s].
+    friction_pairs : numpy.ndarray
+        Per pair [mu, k_eff], shape (S, 2) [-, N/m].
+    coupling : numpy.ndarray
+        G, shape (m, m) [m/N].
+    flexibility : numpy.ndarray
+        A, shape (N, N) [m/N].
+    forces : numpy.ndarray
+        X of the last evaluation, shape (m,) [N].
+    relative : numpy.ndarray
+        s from the modes and the neighbours (no G X) and its rate, shape (2, m) [m, m/s].
+    slip : numpy.ndarray
+        w of each pair at its last update, shape (S,) [m].
+    energies : numpy.ndarray
+        [friction dissipation [J], dashpot work to t_n [J], started (1.0 once w is set) [-],
+        dashpot power at the last :func:`stack_forces` [W]].
+    active : numpy.ndarray
+        The normal contacts' active set (1.0: closed), shape (N,).
+    work : numpy.ndarray
+        Scratch, shape (N, N + 3).
+    """
+
+    parameters: np.ndarray
+    anvil_coefficients: np.ndarray
+    ring_coefficients: np.ndarray
+    anvil_loads: np.ndarray
+    ring_loads: np.ndarray
+    anvil_state: np.ndarray
+    ring_state: np.ndarray
+    external: np.ndarray
+    stiffness: np.ndarray
+    ratios: np.ndarray
+    friction_pairs: np.ndarray
+    coupling: np.ndarray
+    flexibility: np.ndarray
+    forces: np.ndarray
+    relative: np.ndarray
+    slip: np.ndarray
+    energies: np.ndarray
+    active: np.ndarray
+    work: np.ndarray
+
+
+def stack_incidence(seat_rings: int, pile_rings: int) -> tuple[np.ndarray, np.ndarray,
+                                                             np.ndarray]:
+    """Incidence of the contacts on the two bodies' ports and the neighbours (module docstring).
+
+    Parameters
+    ----------
+    seat_rings : int
+        S [-].
+    pile_rings : int
+        K [-].
+
+    Returns
+    -------
+    anvil : numpy.ndarray
+        B of the anvil, shape (1 + 2 S, m): -1 where the anvil is a contact's upper side,
+        +1 where it is the lower one.
+    ring : numpy.ndarray
+        B of the ring, shape (2 S + K, m).
+    external : numpy.ndarray
+        The ram's (+1) and the pile's (-1) share of each contact's s, shape (2, m).
+    """
+    S, K = seat_rings, pile_rings
+    m = 1 + S + K + S
+    Ba, Br, ext = np.zeros((1 + 2 * S, m)), np.zeros((2 * S + K, m)), np.zeros((2, m))
+    Ba[0, 0] = 1.0
+    ext[0, 0] = 1.0
+    for s in range(S):
+        Ba[1 + s, 1 + s], Br[s, 1 + s] = -1.0, 1.0  # the seat's normal contact
+        Ba[1 + S + s, 1 + S + K + s], Br[S + s, 1 + S + K + s] = -1.0, 1.0  # its friction
+    for k in range(K):
+        Br[2 * S + k, 1 + S + k] = -1.0
+        ext[1, 1 + S + k] = -1.0
+    return Ba, Br, ext
 
 
 @dataclass
@@ -213,32 +365,43 @@ class StackUnit:
     Parameters
     ----------
     anvil : StackBody or ModalAnvil
-        The anvil (a ModalAnvil: the single-body unit, no ring).
+        The anvil, ports [ram face, S seat rings axial, S radial] (a ModalAnvil: the
+        single-body unit, no ring).
     contact : ContactParameters
-        Ram and pile contact springs and dashpots (the pile's: on the ring with one).
+        Ram and pile contact springs and dashpots (the pile's: on the ring with one, shared by
+        the pile rings' areas).
     ring : StackBody or None, default None
-        The anvil ring; None: the anvil alone on the pile.
+        The anvil ring, ports [S seat rings axial, S radial, K pile rings axial]; None: the
+        anvil alone on the pile.
+    seat_rings : int, default 1
+        S [-].
+    pile_rings : int, default 1
+        K [-].
     seat_stiffness : float, default 0.0
-        Normal penalty spring of the seat [N/m] (> 0 with a ring).
+        Normal penalty of the whole seat [N/m] (> 0 with a ring), shared by the seat rings'
+        areas.
     seat_damping : float, default 0.0
-        Dashpot of the seat [N s/m].
+        Dashpot of the whole seat [N s/m], shared likewise.
     seat_friction : float, default 0.0
         Coulomb coefficient of the seat [-].
     tangential_stiffness : float or None, default None
-        Stick spring k_t of the seat [N/m]; None: the seat's normal spring (as the reference
-        FEA's pairs).
+        Stick spring of the whole seat [N/m], shared likewise; None: the seat's normal spring
+        (as the reference FEA's pairs).
     gravity : float, default GRAVITY
         Gravitational acceleration [m/s^2].
 
     Raises
     ------
     InputError
-        If a ring is given without a positive seat stiffness, or a coefficient is negative.
+        If a ring is given without a positive seat stiffness, a coefficient is negative, or the
+        bodies' ports do not match the rings.
     """
 
     anvil: StackBody | ModalAnvil
     contact: ContactParameters
     ring: StackBody | None = None
+    seat_rings: int = 1
+    pile_rings: int = 1
     seat_stiffness: float = 0.0
     seat_damping: float = 0.0
     seat_friction: float = 0.0
@@ -248,35 +411,43 @@ class StackUnit:
     def __post_init__(self):
         self._h = None
         if self.ring is None:
-            rom = self.anvil.rom if isinstance(self.anvil, StackBody) else self.anvil
-            self.single = AnvilUnit(rom, self.contact, gravity=self.gravity)
+            self.single = AnvilUnit(self.anvil, self.contact, gravity=self.gravity)
             self.state = None
             return
         self.single = None
-        for key in ("seat_stiffness",):
-            value = getattr(self, key)
-            if not (np.isfinite(value) and value > 0.0):
-                raise InputError("stack", key, f"must be positive [N/m], got {value!r}")
+        if not (np.isfinite(self.seat_stiffness) and self.seat_stiffness > 0.0):
+            raise InputError("stack", "seat_stiffness",
+                             f"must be positive [N/m], got {self.seat_stiffness!r}")
         for key in ("seat_damping", "seat_friction"):
             value = getattr(self, key)
             if not (np.isfinite(value) and value >= 0.0):
                 raise InputError("stack", key, f"must be >= 0, got {value!r}")
+        S, K = int(self.seat_rings), int(self.pile_rings)
         a, r, c = self.anvil, self.ring, self.contact
-        Ra, Rr = a.residual, r.residual
-        k = np.array([c.ram_stiffness, self.seat_stiffness, c.pile_stiffness])
-        A = np.diag(1.0 / k) + np.array([[Ra[0, 0], -Ra[0, 1], 0.0],
-                                         [-Ra[0, 1], Ra[1, 1] + Rr[0, 0], -Rr[0, 1]],
-                                         [0.0, -Rr[0, 1], Rr[1, 1]]])
-        e = np.array([Ra[0, 3], -(Ra[1, 3] + Rr[0, 2]), Rr[1, 2]])
+        if a.participation.shape[0] != 1 + 2 * S or r.participation.shape[0] != 2 * S + K:
+            raise InputError("stack", "seat_rings", f"the bodies' ports do not match {S} seat "
+                                                    f"and {K} pile rings")
+        Ba, Br, ext = stack_incidence(S, K)
+        G = Ba.T @ a.residual @ Ba + Br.T @ r.residual @ Br
+        seat_share = r.areas[:S] / r.areas[:S].sum()
+        pile_share = r.areas[2 * S:] / r.areas[2 * S:].sum()
         kt = self.seat_stiffness if self.tangential_stiffness is None \
             else self.tangential_stiffness
-        k_eff = 1.0 / (1.0 / kt + Ra[3, 3] + Rr[2, 2])
-        P = np.array([c.ram_stiffness, c.ram_damping, self.seat_stiffness, self.seat_damping,
-                      c.pile_stiffness, c.pile_damping, self.seat_friction, k_eff,
-                      self.gravity, 1.0])
-        self.state = StackState(P, _table(a), _table(r), np.zeros(2 * a.rom.n_modes),
-                                np.zeros(2 * r.rom.n_modes), A, e, np.zeros(4), np.zeros(6),
-                                np.zeros(3), np.zeros((3, 4)), np.zeros(10))
+        k = np.concatenate([[c.ram_stiffness], self.seat_stiffness * seat_share,
+                            c.pile_stiffness * pile_share, kt * seat_share])
+        damping = np.concatenate([[c.ram_damping], self.seat_damping * seat_share,
+                                  c.pile_damping * pile_share])
+        N = 1 + S + K
+        A = np.diag(1.0 / k[:N]) + G[:N, :N]
+        t = np.arange(N, N + S)
+        pairs = np.column_stack([np.full(S, float(self.seat_friction)),
+                                 1.0 / (1.0 / k[t] + G[t, t])])
+        self.state = StackState(
+            np.array([self.gravity, 1.0, S, K], float), _table(a), _table(r),
+            np.ascontiguousarray(a.participation.T @ Ba),
+            np.ascontiguousarray(r.participation.T @ Br), np.zeros(2 * a.n_modes),
+            np.zeros(2 * r.n_modes), ext, k, damping / k[:N], pairs, G, A, np.zeros(N + S),
+            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 3)))
         self.set_step(1e-5)
 
     def set_step(self, h: float) -> None:
@@ -293,13 +464,13 @@ class StackUnit:
         if h == self._h:
             return
         s = self.state
-        for body, C, S in ((self.anvil, s.anvil_coefficients, s.anvil_state),
+        for body, C, Q in ((self.anvil, s.anvil_coefficients, s.anvil_state),
                            (self.ring, s.ring_coefficients, s.ring_state)):
-            n = body.rom.n_modes
+            n = body.n_modes
             if self._h is not None:
-                S[n:] = S[:n] - (S[:n] - S[n:]) * (h / self._h)
-            C[:, :4] = body.rom.transition(h)
-        s.parameters[9] = h
+                Q[n:] = Q[:n] - (Q[:n] - Q[n:]) * (h / self._h)
+            C[:, :4] = modal_transition(body.omega, body.damping_ratio, h)
+        s.parameters[1] = h
         self._h = h
 
     @property
@@ -313,12 +484,14 @@ class StackUnit:
         """
         if self.single is not None:
             return self.single.anvil.total_mass
-        return self.anvil.rom.total_mass + self.ring.rom.total_mass
+        return self.anvil.total_mass + self.ring.total_mass
 
     def rest_on_pile(self, pile_head_displacement: float = 0.0) -> tuple[float, float]:
         """Static equilibrium on the pile under gravity (ram not yet touching); sets the state.
 
-        Frictionless rest (T = 0): the seat carries the anvil's weight, the pile the stack's.
+        Frictionless rest (T = 0): the seat rings carry the anvil's weight, the pile rings the
+        stack's; which rings carry is found by active set (a ring in tension opens, an
+        overlapping open one closes).
 
         Parameters
         ----------
@@ -335,35 +508,32 @@ class StackUnit:
         if self.single is not None:
             return self.single.rest_on_pile(pile_head_displacement)
         s = self.state
-        g = self.gravity
-        w_a = self.anvil.rom.total_mass * g
-        w = self.total_mass * g
-        Ra, Rr = self.anvil.residual, self.ring.residual
-        qa = self.anvil.rom.static_modal_coordinates(0.0, w_a)
-        qr = _static_coordinates(self.ring.rom, w_a, w)
-        pr, pa = self.ring.rom, self.anvil.rom
-        # the ring's bottom port sits on the pile spring, the anvil's seat on the seat spring
-        u_rb = pile_head_displacement + w / self.contact.pile_stiffness
-        qr[0] = (u_rb - (pr.participation_pile[1:] @ qr[1:] + Rr[0, 1] * w_a - Rr[1, 1] * w)
-                 ) / pr.participation_pile[0]
-        u_rt = pr.participation_ram @ qr + Rr[0, 0] * w_a - Rr[0, 1] * w
-        u_ab = u_rt + w_a / self.seat_stiffness
-        qa[0] = (u_ab - (pa.participation_pile[1:] @ qa[1:] - Ra[1, 1] * w_a)
-                 ) / pa.participation_pile[0]
-        for q, S in ((qa, s.anvil_state), (qr, s.ring_state)):
-            S[:q.size] = q
-            S[q.size:] = q
-        s.forces[:] = 0.0, w_a, w, 0.0
-        s.friction[:] = 0.0
-        s.active[:] = 0.0, 1.0, 1.0
-        u_top = float(pa.participation_ram @ qa - Ra[0, 1] * w_a)
-        return u_top, w
+        S, K = self.seat_rings, self.pile_rings
+        N = 1 + S + K
+        closed = list(range(1, N))
+        for _ in range(4 * N):
+            X, q, gap = _static(self, closed, pile_head_displacement)
+            opening = [i for i in closed if X[i] < 0.0]
+            closing = [i for i in range(1, N) if i not in closed and gap[i] > 0.0]
+            if not opening and not closing:
+                break
+            closed = sorted(set(closed) - set(opening[:1]) | set(closing[:1]))
+        else:
+            raise RuntimeError("stack rest: the active set did not settle")
+        for qq, Q in zip(q, (s.anvil_state, s.ring_state), strict=True):
+            Q[:qq.size] = qq
+            Q[qq.size:] = qq
+        s.forces[:] = X
+        s.active[:] = [1.0 if i in closed else 0.0 for i in range(N)]
+        s.slip[:] = 0.0
+        s.energies[:] = 0.0
+        return float(-gap[0]), float(X[1 + S:N].sum())
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
         """Contact forces (F_ram, F_pile) [N] for the neighbour states (feedthrough).
 
-        The seat's normal force and the friction force held are kept for :meth:`step`.
+        The seat's normal forces and the friction forces held are kept for :meth:`step`.
 
         Parameters
         ----------
@@ -403,7 +573,20 @@ class StackUnit:
             self.single.step(force_ram, force_pile, h)
             return
         self.set_step(h)
-        stack_step(self.state)
+        stack_step(self.state, FRICTION_SWEEPS)
+
+    @property
+    def seat_force(self) -> float:
+        """The seat's normal force of the last evaluation [N] (0 without a ring).
+
+        Returns
+        -------
+        float
+            The sum over the seat rings [N].
+        """
+        if self.state is None:
+            return 0.0
+        return float(self.state.forces[1:1 + self.seat_rings].sum())
 
     @property
     def friction_energy(self) -> float:
@@ -414,7 +597,7 @@ class StackUnit:
         float
             The sum of :func:`anvilwave.anvil_rom.contact.coulomb_friction`'s dissipation [J].
         """
-        return 0.0 if self.state is None else float(self.state.friction[2])
+        return 0.0 if self.state is None else float(self.state.energies[0])
 
     @property
     def dashpot_work(self) -> float:
@@ -432,17 +615,16 @@ class StackUnit:
         """
         if self.state is None:
             return 0.0
-        fr, h = self.state.friction, self.state.parameters[9]
-        return float(fr[3] + 0.5 * h * fr[5])
+        e, h = self.state.energies, self.state.parameters[1]
+        return float(e[1] + 0.5 * h * e[3])
 
     def energy(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
         """(kinetic, potential) energy of the stack [J] in the conserved (shadow) form.
 
         Per mode m_e ((q_n - q_n-1) / h)^2 / 2 + w^2 q_n q_n-1 / 2 - g p_grav (q_n + q_n-1) / 2,
-        plus the complementary energy of the massless part (contact springs, residual
-        flexibility, stick spring), X^T C X / 2 with X = [F_ram, F_seat, F_pile, T] and
-        C = [[A, -e], [-e^T, 1 / k_eff]] at the present forces (dashpots left out).
+        plus the complementary energy X^T (G + diag(1 / k)) X / 2 of the massless part at the
+        present forces (normal forces without the dashpots; module docstring).
 
         Parameters
         ----------
@@ -468,91 +650,108 @@ class StackUnit:
 
 
 def _table(body: StackBody) -> np.ndarray:
-    """The (n, 9) table of a body (step coefficients set by ``set_step``)."""
-    rom = body.rom
-    C = np.zeros((rom.n_modes, 9))
-    C[:, 4] = rom.participation_ram
-    C[:, 5] = rom.participation_pile
-    C[:, 6] = rom.participation_gravity
-    C[:, 7] = rom.omega
-    C[:, 8] = body.participation_radial
+    """The (n, 6) table of a body (step coefficients set by ``set_step``)."""
+    C = np.zeros((body.n_modes, 6))
+    C[:, 4] = body.omega
+    C[:, 5] = body.participation_gravity
     return C
 
 
-def _static_coordinates(rom: ModalAnvil, force_top: float, force_bottom: float) -> np.ndarray:
-    """Flexible coordinates of a body under its two port forces (the rigid one 0)."""
-    return rom.static_modal_coordinates(force_top, force_bottom)
+def _static(unit: StackUnit, closed: list, pile: float):
+    """Static state with the normal contacts ``closed`` carrying (the others and the ram
+    open, no friction): (X, [q_anvil, q_ring], s - G X of every contact)."""
+    s = unit.state
+    g = unit.gravity
+    bodies = ((unit.anvil, s.anvil_loads), (unit.ring, s.ring_loads))
+
+    def residual(z):
+        X = np.zeros(s.forces.size)
+        X[closed] = z[2:]
+        q, equations = [], []
+        for b, (body, Q) in enumerate(bodies):
+            f = Q @ X + body.participation_gravity * g
+            rigid = body.omega == 0.0
+            qq = np.where(rigid, z[b], f / np.where(rigid, 1.0, body.omega) ** 2)
+            equations.append(f[rigid][0])
+            q.append(qq)
+        gap = (s.external[1] * pile - s.anvil_loads.T @ q[0] - s.ring_loads.T @ q[1]
+               - s.coupling @ X)
+        equations.extend(X[closed] / s.stiffness[closed] - gap[closed])
+        return np.array(equations), X, q, gap
+
+    n = 2 + len(closed)
+    r0 = residual(np.zeros(n))[0]
+    J = np.column_stack([residual(e)[0] - r0 for e in np.eye(n)])  # linear: exact
+    _, X, q, gap = residual(np.linalg.solve(J, -r0))
+    return X, q, gap
 
 
 @njit(cache=True)
-def stack_interface(state):
-    """Modal sums of both bodies at t_n into ``state.interface`` (:class:`StackState`).
+def stack_relative(state, u_ram, v_ram, u_pile, v_pile):
+    """Each contact's s and rate from the modes and the neighbours into ``state.relative``.
+
+    s_c = s_ext - sum_b Q_b^T q_b at t_n, its rate with (q_n - q_n-1) / h (module docstring;
+    the G X part is the complementarity problem's).
 
     Parameters
     ----------
     state : StackState
-        The stack's arrays (``interface`` written).
+        The stack's arrays (``relative`` written).
+    u_ram : float
+        Ram toe displacement [m].
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
     """
-    h = state.parameters[9]
+    h = state.parameters[1]
+    x, ext = state.relative, state.external
+    m = x.shape[1]
+    for c in range(m):
+        x[0, c] = ext[0, c] * u_ram + ext[1, c] * u_pile
+        x[1, c] = ext[0, c] * v_ram + ext[1, c] * v_pile
     for body in range(2):
-        C = state.anvil_coefficients if body == 0 else state.ring_coefficients
+        Q = state.anvil_loads if body == 0 else state.ring_loads
         S = state.anvil_state if body == 0 else state.ring_state
-        n = C.shape[0]
-        ut = 0.0
-        vt = 0.0
-        ub = 0.0
-        vb = 0.0
-        w = 0.0
+        n = Q.shape[0]
         for j in range(n):
             q = S[j]
             qd = (q - S[n + j]) / h
-            ut += C[j, 4] * q
-            vt += C[j, 4] * qd
-            ub += C[j, 5] * q
-            vb += C[j, 5] * qd
-            w += C[j, 8] * q
-        o = 5 * body
-        state.interface[o] = ut
-        state.interface[o + 1] = vt
-        state.interface[o + 2] = ub
-        state.interface[o + 3] = vb
-        state.interface[o + 4] = w
+            for c in range(m):
+                x[0, c] -= Q[j, c] * q
+                x[1, c] -= Q[j, c] * qd
 
 
 @njit(cache=True)
-def _normal_forces(state, u_ram, v_ram, u_pile, v_pile, with_dashpots, out):
-    """The 3 x 3 complementarity problem of the normal forces into ``out`` (module
-    docstring), the friction force held; ``with_dashpots`` False: the elastic parts."""
-    P, x = state.parameters, state.interface
-    T = state.friction[0]
-    e = state.coupling
-    d = np.empty(3)
-    rate = np.empty(3)
-    d[0] = u_ram - x[0]
-    rate[0] = v_ram - x[1]
-    d[1] = x[2] - x[5]
-    rate[1] = x[3] - x[6]
-    d[2] = x[7] - u_pile
-    rate[2] = x[8] - v_pile
-    g = np.empty(3)
-    for i in range(3):
-        g[i] = d[i] + e[i] * T
+def _normal_forces(state, with_dashpots, out, active):
+    """The normal forces' complementarity problem into ``out`` (module docstring), the
+    friction forces held; ``with_dashpots`` False: the elastic parts."""
+    x, G, X = state.relative, state.coupling, state.forces
+    N = out.shape[0]
+    m = X.shape[0]
+    g = state.work[:, N + 2]
+    for i in range(N):
+        g[i] = x[0, i]
+        for t in range(N, m):
+            g[i] -= G[i, t] * X[t]
         if with_dashpots:
-            g[i] += P[2 * i + 1] / P[2 * i] * rate[i]
-    contact_lcp(state.flexibility, g, out, state.active, state.work)
-    return rate
+            g[i] += state.ratios[i] * x[1, i]
+    contact_lcp(state.flexibility, g, out, active, state.work[:, :N + 1])
 
 
 @njit(cache=True)
 def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
     """Contact forces (F_ram, F_pile) [N] at t_n for the neighbour states (feedthrough).
 
-    The three normal forces are kept in ``state.forces`` for :func:`stack_step`.
+    The normal forces are kept in ``state.forces`` for :func:`stack_step`, the dashpots'
+    power in ``state.energies[3]``.
 
     Parameters
     ----------
     state : StackState
-        The stack's arrays (``interface``, ``forces``, ``active`` written).
+        The stack's arrays (``relative``, ``forces``, ``active``, ``energies`` written).
     u_ram : float
         Ram toe displacement [m] (positive down).
     v_ram : float
@@ -569,63 +768,92 @@ def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
     f_pile : float
         Pile contact force [N].
     """
-    stack_interface(state)
-    F = np.empty(3)
-    rate = _normal_forces(state, u_ram, v_ram, u_pile, v_pile, True, F)
-    state.forces[:3] = F
-    if state.parameters[1] > 0.0 or state.parameters[3] > 0.0 or state.parameters[5] > 0.0:
-        active = state.active.copy()
-        Fe = np.empty(3)
-        _normal_forces(state, u_ram, v_ram, u_pile, v_pile, False, Fe)
-        state.active[:] = active
-        power = 0.0
-        for i in range(3):
-            power += (F[i] - Fe[i]) * rate[i]
-        state.friction[5] = power  # booked over the step by stack_step
-    return F[0], F[2]
+    stack_relative(state, u_ram, v_ram, u_pile, v_pile)
+    N = state.active.shape[0]
+    F = np.empty(N)
+    _normal_forces(state, True, F, state.active)
+    power = 0.0
+    if np.any(state.ratios > 0.0):
+        Fe = np.empty(N)
+        _normal_forces(state, False, Fe, state.active.copy())
+        for i in range(N):
+            power += (F[i] - Fe[i]) * state.relative[1, i]
+    state.energies[3] = power  # booked over the step by stack_step
+    state.forces[:N] = F
+    S = int(state.parameters[2])
+    pile = 0.0
+    for i in range(1 + S, N):
+        pile += F[i]
+    return F[0], pile
 
 
 @njit(cache=True)
-def stack_step(state):
+def stack_step(state, sweeps):
     """Update the seat friction at t_n, then advance both bodies over h with the forces held.
 
-    The friction force by return mapping (:func:`anvilwave.anvil_rom.contact.coulomb_friction`)
-    on the increment of w0 = w_modal + e . F under the cone mu F_seat (module docstring),
-    its dissipation added to ``state.friction[2]``; then every mode of each body by the exact
-    step with its port forces (anvil: F_ram on top, -F_seat below, -T radially at the seat;
-    ring: F_seat on top, -F_pile below, +T radially) and gravity held.
+    Each pair's force by return mapping (:func:`anvilwave.anvil_rom.contact.coulomb_friction`)
+    on the increment of its w under the cone mu F_seat (module docstring), ``sweeps``
+    Gauss-Seidel sweeps over the pairs, the dissipation added to ``state.energies[0]``; then
+    every mode of each body by the exact step with all contact forces and gravity held.
 
     Parameters
     ----------
     state : StackState
-        The stack's arrays after :func:`stack_forces` at t_n (states and ``friction``
-        written).
+        The stack's arrays after :func:`stack_forces` at t_n (states, ``forces``, ``slip``,
+        ``energies`` written).
+    sweeps : int
+        Gauss-Seidel sweeps [-].
     """
-    P, x, F, fr = state.parameters, state.interface, state.forces, state.friction
-    e = state.coupling
-    w0 = x[4] - x[9] + e[0] * F[0] + e[1] * F[1] + e[2] * F[2]
-    if fr[4] == 0.0:
-        fr[1] = w0
-        fr[4] = 1.0
-    T, dissipated = coulomb_friction(fr[0], w0 - fr[1], F[1], P[6], P[7])
-    fr[0] = T
-    fr[1] = w0
-    fr[2] += dissipated
-    fr[3] += fr[5] * P[9]
-    F[3] = T
-    gravity = P[8]
+    P, x, X, G, e = state.parameters, state.relative, state.forces, state.coupling, state.energies
+    N = state.active.shape[0]
+    m = X.shape[0]
+    S = m - N
+    base = np.empty(S)
+    for p in range(S):
+        t = N + p
+        base[p] = x[0, t]
+        for i in range(N):
+            base[p] -= G[t, i] * X[i]
+    T0 = X[N:].copy()
+    if e[2] == 0.0:
+        for p in range(S):
+            w = base[p]
+            for u in range(S):
+                if u != p:
+                    w -= G[N + p, N + u] * T0[u]
+            state.slip[p] = w
+        e[2] = 1.0
+    dissipated = np.zeros(S)
+    for _ in range(sweeps):
+        for p in range(S):
+            w = base[p]
+            for u in range(S):
+                if u != p:
+                    w -= G[N + p, N + u] * X[N + u]
+            X[N + p], dissipated[p] = coulomb_friction(
+                T0[p], w - state.slip[p], X[1 + p], state.friction_pairs[p, 0],
+                state.friction_pairs[p, 1])
+    for p in range(S):
+        w = base[p]
+        for u in range(S):
+            if u != p:
+                w -= G[N + p, N + u] * X[N + u]
+        state.slip[p] = w
+        e[0] += dissipated[p]
+    e[1] += e[3] * P[1]
+    gravity = P[0]
     for body in range(2):
         C = state.anvil_coefficients if body == 0 else state.ring_coefficients
-        S = state.anvil_state if body == 0 else state.ring_state
-        top = F[0] if body == 0 else F[1]
-        bottom = F[1] if body == 0 else F[2]
-        radial = -T if body == 0 else T
+        Q = state.anvil_loads if body == 0 else state.ring_loads
+        Z = state.anvil_state if body == 0 else state.ring_state
         n = C.shape[0]
         for j in range(n):
-            f = C[j, 4] * top - C[j, 5] * bottom + C[j, 8] * radial + C[j, 6] * gravity
-            q = S[j]
-            S[j] = C[j, 0] * q + C[j, 1] * S[n + j] + C[j, 2] * f
-            S[n + j] = q
+            f = C[j, 5] * gravity
+            for c in range(m):
+                f += Q[j, c] * X[c]
+            q = Z[j]
+            Z[j] = C[j, 0] * q + C[j, 1] * Z[n + j] + C[j, 2] * f
+            Z[n + j] = q
 
 
 @njit(cache=True)
@@ -635,7 +863,7 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
     Parameters
     ----------
     state : StackState
-        The stack's arrays (``interface``, ``active`` written; the kept forces unchanged).
+        The stack's arrays (``relative`` written; the kept forces and active set unchanged).
     u_ram : float
         Ram toe displacement [m].
     v_ram : float
@@ -653,28 +881,28 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
         Potential energy [J].
     """
     P = state.parameters
-    h = P[9]
+    h = P[1]
     kinetic = 0.0
     total = 0.0
     for body in range(2):
         C = state.anvil_coefficients if body == 0 else state.ring_coefficients
-        S = state.anvil_state if body == 0 else state.ring_state
+        Z = state.anvil_state if body == 0 else state.ring_state
         n = C.shape[0]
         for j in range(n):
-            q, qp = S[j], S[n + j]
+            q, qp = Z[j], Z[n + j]
             rate = (q - qp) / h
             kinetic += 0.5 * C[j, 3] * rate * rate
-            total += 0.5 * C[j, 7] ** 2 * q * qp - P[8] * C[j, 6] * 0.5 * (q + qp)
-    stack_interface(state)
-    active = state.active.copy()
-    F = np.empty(3)
-    _normal_forces(state, u_ram, v_ram, u_pile, v_pile, False, F)
-    state.active[:] = active
-    A, e = state.flexibility, state.coupling
-    T = state.friction[0]
-    for i in range(3):
-        for j in range(3):
-            total += 0.5 * F[i] * A[i, j] * F[j]
-        total -= F[i] * e[i] * T
-    total += 0.5 * T * T / P[7]
+            total += 0.5 * C[j, 4] ** 2 * q * qp - P[0] * C[j, 5] * 0.5 * (q + qp)
+    stack_relative(state, u_ram, v_ram, u_pile, v_pile)
+    N = state.active.shape[0]
+    X = state.forces.copy()
+    F = np.empty(N)
+    _normal_forces(state, False, F, state.active.copy())
+    X[:N] = F
+    G, k = state.coupling, state.stiffness
+    m = X.shape[0]
+    for i in range(m):
+        total += 0.5 * X[i] * X[i] / k[i]
+        for j in range(m):
+            total += 0.5 * X[i] * G[i, j] * X[j]
     return kinetic, total

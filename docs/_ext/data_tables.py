@@ -71,6 +71,8 @@ FORMATS = {
     "pct+sig2": lambda v: _signed(_sig2(100.0 * v), v, True) + " %",
     "pct+2": lambda v: _signed(f"{100.0 * v:.2f}", v, True) + " %",
     "pct+3": lambda v: _signed(f"{100.0 * v:.3f}", v, True) + " %",
+    "pctsig2": lambda v: _signed(_sig2(100.0 * v), v, False) + " %",
+    "pct1": lambda v: _signed(f"{100.0 * v:.1f}", v, False) + " %",
     "ms+": lambda v: milliseconds(v),
     "ms": lambda v: milliseconds(v, sign=False),
     "ms2": lambda v: _signed(f"{v * 1e3:.2f}", v, False) + " ms",

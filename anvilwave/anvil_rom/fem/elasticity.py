@@ -477,11 +477,14 @@ def ram_annulus_vectors(model: AxisymmetricModel, interfaces: Interfaces
                            interfaces.ram_annuli)
 
 
-def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int
-                    ) -> tuple[np.ndarray, np.ndarray]:
+def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float, count: int,
+                    radial: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Unit-resultant uniform pressures on ``count`` equal-width annuli from r_lo to r_hi [m].
 
     On the boundary face at height z [m] (each facet to the annulus holding its midpoint).
+    With ``radial``, each annulus's uniform radial traction 1 / A instead
+    (:func:`face_radial_vector`: the area-weighted mean radial displacement of the annulus,
+    what a friction traction on it works on).
 
     Parameters
     ----------
@@ -495,11 +498,13 @@ def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float
         Outer radius [m].
     count : int
         Number of annuli.
+    radial : bool, default False
+        The radial tractions instead of the axial pressures.
 
     Returns
     -------
     B : numpy.ndarray
-        Unit-resultant uniform pressures, shape (n_free, count).
+        Unit-resultant uniform pressures (or radial tractions), shape (n_free, count).
     areas : numpy.ndarray
         The annuli's areas, shape (count,) [m^2] (0 for an annulus without facet).
     """
@@ -510,7 +515,7 @@ def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float
     for k in range(count):
         lo = edges[k] - (tol if k == 0 else 0.0)
         hi = edges[k + 1] + (tol if k == count - 1 else 0.0)
-        b, a = face_load_vector(
+        b, a = (face_radial_vector if radial else face_load_vector)(
             model, lambda r, zz, lo=lo, hi=hi: (np.abs(zz - z) < tol) & (r >= lo) & (r < hi))
         columns.append(b)
         areas.append(a)
