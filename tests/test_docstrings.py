@@ -33,6 +33,7 @@ MODULES_PHYSICS_AND_OUTPUT = (
     "anvilwave.anvil_rom.fem.modes",
     "anvilwave.anvil_rom.fem.pipeline",
     "anvilwave.fea.bodies",
+    "anvilwave.fea.cache",
     "anvilwave.fea.impact",
     "anvilwave.fea.solver",
     "anvilwave.hammer.cushion",

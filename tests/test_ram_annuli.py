@@ -129,9 +129,9 @@ def test_engine_is_the_study_loop_with_six_ram_annuli(table1, blow):
 
 @pytest.fixture(scope="module")
 def against_fea(table1, blow):
-    from anvilwave.fea.impact import run_impact_fea
+    from anvilwave.fea.cache import cached_impact_fea
 
-    fea = run_impact_fea(fea_config(table1))
+    fea = cached_impact_fea(fea_config(table1))
     return {"fea": ModelRun("fea", fea.to_columns(), fea.wall_time, {}),
             "rom": ModelRun("rom", blow.columns, 0.0, {})}
 

@@ -19,7 +19,8 @@ import numpy as np
 from anvilwave.config.system import SystemConfig
 from anvilwave.engine.direct import build_engine
 from anvilwave.engine.fmi import run_fmi
-from anvilwave.fea.impact import FeaConfig, run_impact_fea
+from anvilwave.fea.cache import cached_impact_fea
+from anvilwave.fea.impact import FeaConfig
 from anvilwave.inputs import InputError
 from anvilwave.output.figure_style import save_figure
 from anvilwave.output.progress import Step
@@ -372,7 +373,7 @@ def run_models(cfg: SystemConfig, work_dir, *, rom_engine: str = "fmi", fea=True
             setup.__exit__(None, None, None)  # the stepping has started: its bar takes over
             progress(fraction)
 
-        result = run_impact_fea(config, progress=stepping if talk else None)
+        result = cached_impact_fea(config, progress=stepping if talk else None)
         setup.__exit__(None, None, None)
         runs["fea"] = ModelRun("fea", result.to_columns(), result.wall_time,
                                {"n_dof": result.n_dof, "n_steps": result.n_steps,

@@ -327,11 +327,13 @@ def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
             pass  # unreadable: realised again and replaced below
 
     mass, stiffness = chain_from_modes(omega, participation)
-    _write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
+    write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
     return mass, stiffness
 
 
 KERNEL_SUFFIX = ".head.npz"
+FEA_SUFFIX = ".fea.npz"
+"""File name ending of a reference FEA's result (:mod:`anvilwave.fea.cache`)."""
 
 
 def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step: float,
@@ -377,13 +379,23 @@ def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step:
         except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
             pass  # unreadable: computed again and replaced below
     kernel = ring_kernel(material, r_in, r_out, length, step, steps, rings)
-    _write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
+    write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
     return kernel
 
 
-def _write_atomic(path: Path, write) -> None:
-    """``write(file object)`` into a temporary file beside ``path``, then rename it onto
-    ``path``; a cache that cannot be written is skipped (the value is only not reused)."""
+def write_atomic(path: Path, write) -> None:
+    """Write a cache entry atomically, or not at all.
+
+    ``write(file object)`` writes into a temporary file beside ``path``, which is then renamed
+    onto ``path``; a cache that cannot be written is skipped (the value is only not reused).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The entry's file.
+    write : callable
+        Called with the open binary file object.
+    """
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=path.name[:16] + "-", suffix=".part", dir=path.parent)
@@ -402,7 +414,7 @@ def _store(data, path: Path) -> None:
     """Write modal data atomically (:func:`_write_atomic` of
     :func:`anvilwave.anvil_rom.fem.modalfile.write_modal_data`)."""
 
-    _write_atomic(path, lambda fh: write_modal_data(data, fh))
+    write_atomic(path, lambda fh: write_modal_data(data, fh))
 
 
 def cache_info() -> dict:
@@ -414,7 +426,8 @@ def cache_info() -> dict:
         ``{"directory": str, "entries": int, "bytes": int, "files": [...]}``; each file
         ``{"name", "bytes"}`` with ``"modes", "fmax [Hz]", "n_dof", "total_mass [kg]"`` (modal
         data), ``"chain_masses", "total_mass [kg]"`` (a modal ram's chain),
-        ``"head_kernel_steps", "rings"`` (a tube head's ring kernel) or ``"unreadable"``.
+        ``"head_kernel_steps", "rings"`` (a tube head's ring kernel), ``"fea_output_samples"``
+        (a reference FEA's result, :mod:`anvilwave.fea.cache`) or ``"unreadable"``.
     """
     directory = cache_dir()
     files = sorted(directory.glob("*" + SUFFIX)) if directory.is_dir() else []
@@ -426,6 +439,9 @@ def cache_info() -> dict:
                 with np.load(path, allow_pickle=False) as npz:
                     row.update({"chain_masses": int(npz["mass"].size),
                                 "total_mass [kg]": float(npz["mass"].sum())})
+            elif path.name.endswith(FEA_SUFFIX):
+                with np.load(path, allow_pickle=False) as npz:
+                    row.update({"fea_output_samples": int(npz["time"].size)})
             elif path.name.endswith(KERNEL_SUFFIX):
                 with np.load(path, allow_pickle=False) as npz:
                     row.update({"head_kernel_steps": int(npz["kernel"].shape[0]),
