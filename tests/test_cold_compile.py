@@ -14,15 +14,19 @@ be this process's blow (compiled or loaded here) to the bit.
 from __future__ import annotations
 
 import dataclasses
+import dis
 import hashlib
 import json
 import os
 import subprocess
 import sys
+import types
 
 import numpy as np
 import pytest
+from numba.core.registry import CPUDispatcher
 
+import anvilwave.engine.direct as engine_direct
 from anvilwave.config.system import load_system
 from anvilwave.engine.direct import build_engine
 
@@ -55,3 +59,57 @@ def test_ring_loop_compiles_on_an_empty_numba_cache_and_blows_the_same(tmp_path)
     assert any((tmp_path / "numba").rglob("*.nbi")), "the subprocess did not use the empty cache"
     cold = json.loads(child.stdout.strip().splitlines()[-1])
     assert cold == ring_blow_digests()
+
+
+ALLOCATING = {"zeros", "empty", "ones", "full", "array", "copy", "zeros_like", "empty_like",
+              "ones_like", "full_like", "arange", "linspace", "concatenate", "stack", "hstack",
+              "vstack", "dot", "outer", "astype", "flatten"}
+"""Names whose call makes a new array (numpy's constructors, ``.copy()``, ``.astype()``)."""
+
+
+def loop_functions(root) -> dict[str, CPUDispatcher]:
+    """Every compiled function ``root`` reaches through the globals its code loads (a module's
+    attribute too), inlined or not, by qualified name."""
+    found: dict[str, CPUDispatcher] = {}
+    stack = [root]
+    while stack:
+        function = stack.pop()
+        name = f"{function.py_func.__module__}.{function.py_func.__qualname__}"
+        if name in found:
+            continue
+        found[name] = function
+        space = function.py_func.__globals__
+        loaded = None
+        for instruction in dis.get_instructions(function.py_func):
+            value = None
+            if instruction.opname == "LOAD_GLOBAL":
+                value = space.get(instruction.argval)
+            elif instruction.opname in ("LOAD_ATTR", "LOAD_METHOD") and loaded is not None:
+                value = getattr(loaded, instruction.argval, None)
+            loaded = value if isinstance(value, types.ModuleType) else None
+            if isinstance(value, CPUDispatcher):
+                stack.append(value)
+    return found
+
+
+def allocations(function: CPUDispatcher) -> list[str]:
+    """The calls of ALLOCATING names in ``function``'s own code, as 'line: name'."""
+    return [f"{instruction.positions.lineno}: {instruction.argval}"
+            for instruction in dis.get_instructions(function.py_func)
+            if instruction.opname in ("LOAD_ATTR", "LOAD_METHOD")
+            and instruction.argval in ALLOCATING]
+
+
+def test_nothing_the_loop_calls_allocates_an_array():
+    """The cheap check of every variant of the loop (the subprocess above compiles one): the
+    code of each function the loop reaches calls no array constructor. It reads names, not
+    types (an array expression such as a + b is not seen); a name found here fails to compile
+    on an empty cache."""
+    reached = loop_functions(engine_direct._blow)
+    assert {"anvilwave.anvil_rom.rings.ring_unit_energy_at",
+            "anvilwave.anvil_rom.unit.modal_unit_energy_at",
+            "anvilwave.hammer.driving_system.driving_system_step",
+            "anvilwave.pile.kernels.pile_advance"} <= set(reached)
+    found = {name: lines for name, function in reached.items()
+             if (lines := allocations(function))}
+    assert found == {}
