@@ -86,8 +86,10 @@ class RingState(NamedTuple):
     ring_modal : numpy.ndarray
         ``ring``: the rings' modal (u, v) of the state, shape (2, K) [m, m/s] (written).
     scratch : numpy.ndarray
-        The solvers' scratch, shape (m, m + 4): the active sets of the forces and of their
-        elastic parts, the overlaps, the elimination.
+        The solvers' scratch, shape (m, m + 6): the active sets of the forces and of their
+        elastic parts, the overlaps, the active set and the forces a step before (the energy's,
+        :func:`ring_unit_energy_at`), the elimination (m, m + 1). Allocated with the unit: the
+        compiled blow loop allocates nothing.
     residual : numpy.ndarray
         ``R``: the residual flexibility between the ram annuli and the rings, shape (m, m)
         [m/N].
@@ -123,6 +125,11 @@ class RingState(NamedTuple):
     ram_offsets : numpy.ndarray
         The annuli's offsets from the ram unit's toe now and a step before [m] and their rate
         [m/s], shape (3, J) (written).
+    face_before : numpy.ndarray
+        The energy's scratch (:func:`ring_unit_energy_at`): the anvil's modal displacement at
+        the ram face's annuli a step before, row 0 of shape (2, J) [m] (written; row 1 unused).
+    ring_before : numpy.ndarray
+        The same at the rings, row 0 of shape (2, K) [m] (written; row 1 unused).
     """
 
     participation: np.ndarray
@@ -147,10 +154,13 @@ class RingState(NamedTuple):
     ram_toe_participation: np.ndarray
     ram_state: np.ndarray
     ram_offsets: np.ndarray
+    face_before: np.ndarray
+    ring_before: np.ndarray
 
 
 STATE = ("forces", "elastic_forces", "ring_modal", "scratch", "head_history", "head_shift",
-         "head_rest", "head_count", "face_modal", "ram_state", "ram_offsets")
+         "head_rest", "head_count", "face_modal", "ram_state", "ram_offsets", "face_before",
+         "ring_before")
 """The fields of :class:`RingState` that change as the unit runs; the rest is data."""
 
 
@@ -469,7 +479,7 @@ def ring_contact(rings, u_ram, v_ram, u_pile, v_pile):
     J = face.shape[1]
     active = scratch[:, 0]
     g = scratch[:, 2]
-    work = scratch[:, 3:]
+    work = scratch[:, 5:]
     ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, False, rings.head_shift[0],
                   offsets[0], offsets[2])
     contact_lcp(A, g, F, active, work)
@@ -519,7 +529,7 @@ def ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile):
     J = face.shape[1]
     active = scratch[:, 1]
     g = scratch[:, 2]
-    work = scratch[:, 3:]
+    work = scratch[:, 5:]
     ring_overlaps(g, u_ram, v_ram, u_pile, v_pile, face, ring, T, True, rings.head_shift[0],
                   offsets[0], offsets[2])
     contact_lcp(A, g, E, active, work)
@@ -747,7 +757,8 @@ def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_
     state : numpy.ndarray
         ``S``: q at t_n and at t_n-1, shape (2 n,) [m kg^1/2].
     rings : RingState
-        The ring unit's arrays (:class:`RingState`).
+        The ring unit's arrays (:class:`RingState`); its scratch (``scratch`` beyond the active
+        sets, ``face_before``, ``ring_before``) is written, nothing else.
     u_ram : float
         Ram toe displacement [m] (positive down).
     v_ram : float
@@ -774,8 +785,11 @@ def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_
     h = P[8]
     inverse_step = 1.0 / h
     kinetic, potential = ram_face_energy(rings, h)
-    previous = np.zeros((2, K))
-    face = np.zeros((2, J))
+    face, previous = rings.face_before, rings.ring_before  # every work array is the unit's
+    for a in range(J):
+        face[0, a] = 0.0
+    for k in range(K):
+        previous[0, k] = 0.0
     for j in range(n):
         q, qp = S[j], S[n + j]
         rate = (q - qp) * inverse_step
@@ -785,12 +799,14 @@ def ring_unit_energy_at(parameters, coefficients, state, rings, u_ram, v_ram, u_
             face[0, a] += RQ[j, a] * qp
         for k in range(K):
             previous[0, k] += RP[j, k] * qp
-    g = np.empty(m)
+    g = scratch[:, 2]
     ring_overlaps(g, u_ram - h * v_ram, 0.0, u_pile - h * v_pile, 0.0, face, previous,
                   rings.dashpot_ratios, True, rings.head_shift[1], offsets[1], offsets[2])
-    F0 = np.zeros(m)
-    active = scratch[:, 0].copy()
-    contact_lcp(A, g, F0, active, np.empty((m, m + 1)))
+    active = scratch[:, 3]
+    F0 = scratch[:, 4]
+    for i in range(m):  # from the forces' active set at t_n, which stays as it is
+        active[i] = scratch[i, 0]
+    contact_lcp(A, g, F0, active, scratch[:, 5:])
     for i in range(m):
         for j in range(m):
             potential += 0.5 * E[i] * A[i, j] * F0[j]

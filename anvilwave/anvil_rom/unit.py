@@ -171,7 +171,7 @@ class AnvilUnit:
         A[J:, J:] += 0.5 * (D[0] + D[0].T)
         T = np.r_[T_ram, c.pile_damping * shares / springs]
         m = J + K
-        scratch = np.zeros((m, m + 4))
+        scratch = np.zeros((m, m + 6))
         return RingState(
             participation=np.ascontiguousarray(a.participation_rings.T), flexibility=A,
             dashpot_ratios=T, ring_shares=shares, forces=np.zeros(m), elastic_forces=np.zeros(m),
@@ -181,7 +181,8 @@ class AnvilUnit:
             face_participation=np.ascontiguousarray(RQ), face_modal=np.zeros((2, J)),
             annulus_shares=Wr, ram_coefficients=Cr, ram_participation=np.ascontiguousarray(Pr),
             ram_toe_participation=pr, ram_state=np.zeros((4, pr.size)),
-            ram_offsets=np.zeros((3, J)))
+            ram_offsets=np.zeros((3, J)), face_before=np.zeros((2, J)),
+            ring_before=np.zeros((2, K)))
 
     def set_head(self, head: tuple) -> tuple[float, float]:
         """Put the rings on a tube head and rest on it afresh.

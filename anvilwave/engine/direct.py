@@ -18,13 +18,15 @@ and its state at rest, the pile's static state, the coupled stability limit), so
 copies its start state and runs the loop. The loop is compiled per anvil model and per choice
 of recording and energy bookkeeping (the unused branches are removed at compile time, nothing
 is dispatched inside it) with the units' kernels inlined; every unit is one sweep over its
-degrees of freedom per step. It records the time series every ``record_every`` steps and the
-energies at most every ENERGY_STEPS steps; between those rows only the soil's works are summed
-(per mass), the gravity work follows from the states and the pile dashpots' work from the
-pile's exact energy balance. With ``record=False`` it keeps only the blow's summary (stress
-extremes, EMX, peak head force, toe displacement, set), computed inside the loop, so thousands
-of blows take no memory. The time stepping is compiled without fastmath; only the sums of
-the energy bookkeeping may be reassociated (:data:`anvilwave.pile.kernels.ENERGY_SUMS`).
+degrees of freedom per step, each unit's part of the step one inlined helper, and the loop runs
+without numba's reference counting (:func:`_blow`). It records the time series every
+``record_every`` steps and the energies at most every ENERGY_STEPS steps; between those rows
+only the soil's works are summed (per mass), the gravity work follows from the states and the
+pile dashpots' work from the pile's exact energy balance. With ``record=False`` it keeps only
+the blow's summary (stress extremes, EMX, peak head force, toe displacement, set), computed
+inside the loop, so thousands of blows take no memory. The time stepping is compiled without
+fastmath; only the sums of the energy bookkeeping may be reassociated
+(:data:`anvilwave.pile.kernels.ENERGY_SUMS`).
 """
 
 from __future__ import annotations
@@ -656,17 +658,29 @@ def run_blow(ram, anvil, pile, settings, records):
                  records.summary)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energies, works,
           sections, summary):
     """:func:`run_blow` with the optional parts as arguments: the master algorithm (module
-    docstring). The bundles' fields are read into locals once, before the loop (measured: with
-    the step's parts as inlined helpers reading the bundles' fields at every step, the Table 1
-    blow ran 1.3 to 1.7 times slower; presumably the reference counts of those reads)."""
+    docstring), each unit's part of a step one helper inlined into the loop (numba's IR-level
+    ``inline='always'``): the ram's (:func:`_ram_toe`, :func:`_ram_step`), the anvil unit's
+    (:func:`_anvil_contact`, :func:`_anvil_step`), the pile's (:func:`_pile_head`,
+    :func:`_pile_step`) and the records' (:func:`_summary_at`, :func:`_record_row`, the energy
+    rows). The bundles' fields are read into locals once, before the loop.
+
+    The loop is compiled without numba's reference counting (``_nrt=False``): it allocates
+    nothing, and every array it touches is held by the caller for the whole blow. Counted, each
+    array handed to an inlined helper is increfed and decrefed at every step (an atomic update
+    and an opaque call that LLVM must keep values in memory across): about 90 such calls per
+    step in the one-body loop, 140 with the helpers, which made the Table 1 blow 10-15 % slower
+    (benchmarks/bench_revisions.py); without the counting the loop has none. The functions it
+    calls that numba compiles with it (an empty cache) inherit the setting, so none of them
+    may allocate either: their work arrays are the units' (e.g. the ring unit's scratch), made
+    before the blow (tests/test_cold_compile.py compiles the loop on an empty cache)."""
     weight, inverse_mass, ram_stiffness, ram_mass = (ram.weight, ram.inverse_mass,
                                                      ram.stiffness, ram.mass)
     ram_u, ram_v, ram_nsub = ram.u, ram.v, ram.n_sub
-    modal_ram = (ram.modal_coefficients, ram.modal_state, ram.modal_toe)
+    ram_C, ram_S, ram_toe = ram.modal_coefficients, ram.modal_state, ram.modal_toe
     pile, probes, pile_sweep, soil_sweep, first_soil = (pile_bundle.parameters,
                                                         pile_bundle.probes,
                                                         pile_bundle.pile_sweep,
@@ -674,24 +688,25 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
                                                         pile_bundle.first_soil)
     pu, pv, poff, pen, pile_nsub = (pile_bundle.u, pile_bundle.v, pile_bundle.soil_offset,
                                     pile_bundle.energy, pile_bundle.n_sub)
-    start = (pile_bundle.start_u, pile_bundle.start_v, pile_bundle.start_energy)
+    start_u, start_v, start_energy = (pile_bundle.start_u, pile_bundle.start_v,
+                                      pile_bundle.start_energy)
     face0 = pile_bundle.face0
-    stresses = (pile_bundle.stress_factor, pile_bundle.largest, pile_bundle.smallest)
+    factor, largest, smallest = (pile_bundle.stress_factor, pile_bundle.largest,
+                                 pile_bundle.smallest)
     gravity, t0, h, n_steps, record_every, energy_every = settings
     toe = ram_u.shape[0] - 1
-    ram_is_modal = modal_ram[0].shape[1] > 0
+    ram_is_modal = ram_C.shape[1] > 0
     last = pu.shape[0] - 1
     extrapolation = probes[HEAD_EXTRAPOLATION]
     dt_ram = h / ram_nsub
     dt_pile = h / pile_nsub
-    head_work0 = head_face_work(probes, start[2])
+    head_work0 = head_face_work(probes, start_energy)
     pile_mass = pile[0]
     stored0 = 0.0
     if works is not None:  # the pile's kinetic and strain energy at the start
         kinetic, strain, _, _, _ = pile_energies(pile_mass, pile_sweep[2], pile_sweep[0], pu,
                                                  pv, dt_pile, pu, pv, works)
         stored0 = kinetic + strain
-    work_gauge = 0.0
     work_contact = 0.0  # dissipated by the contact dashpots since the blow started
     damped = False
     if modal is not None:
@@ -699,6 +714,7 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
     if direct is not None:
         damped = direct[1] != 0.0
     power_before = 0.0
+    work_gauge = 0.0
     emx_gauge = 0.0
     emx_head = 0.0
     max_head_force = 0.0
@@ -709,187 +725,787 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
     energy_countdown = 0
     for n in range(n_steps + 1):
         # 1. states of the neighbours at t_n
-        if ram_is_modal:
-            u_ram = modal_ram[2][0]
-            v_ram = modal_ram[2][1]
-        else:
-            u_ram = ram_u[toe]
-            v_ram = ram_v[toe]
-        u_pile = pu[0] + extrapolation * (pu[0] - pu[1]) - face0
-        v_pile = head_velocity(probes, pv)
-        # 2. contact forces at t_n (feedthrough of the anvil unit); of the three blocks the
-        # compiler keeps the one whose unit is given (an "is not None" of a None is pruned)
-        f_ram = 0.0
-        f_pile = 0.0
-        u_top = u_pile
-        u_bottom = u_pile
-        fe_ram = 0.0  # the contact forces without the dashpots (elastic parts)
-        fe_pile = 0.0
-        if modal is not None and rings is None:
-            f_ram, f_pile = modal_unit_contact(modal.parameters, modal.interface, u_ram, v_ram,
-                                               u_pile, v_pile)
-            fe_ram = f_ram
-            fe_pile = f_pile
-            if damped:
-                fe_ram, fe_pile, power = modal_unit_dashpot_power(
-                    modal.parameters, modal.interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
-                work_contact += h * power
-        if modal is not None and rings is not None:
-            f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
-            fe_ram = f_ram
-            fe_pile = f_pile
-            if damped:
-                fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile,
-                                                             v_pile)
-                work_contact += h * power
-        if classic is not None:
-            f_ram, f_pile, u_top, u_bottom = driving_system_forces(
-                classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile)
-        if direct is not None:
-            f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
-            f_pile = f_ram
-            fe_ram = f_ram
-            if damped:
-                fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
-                work_contact += h * (f_ram - fe_ram) * (v_ram - v_pile)
+        u_ram, v_ram = _ram_toe(ram_is_modal, ram_toe, ram_u, ram_v, toe)
+        u_pile, v_pile = _pile_head(probes, pu, pv, extrapolation, face0)
+        # 2. contact forces at t_n (feedthrough of the anvil unit)
+        f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated = _anvil_contact(
+            modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile)
+        if damped:
+            work_contact += dissipated
         # the blow's summary at t_n
-        f_gauge = gauge_force(pile, probes, pu, pv)
-        v_gauge = gauge_velocity(probes, pv)
-        power = f_gauge * v_gauge
-        if n > 0:
-            work_gauge += 0.5 * (power_before + power) * h
-        power_before = power
-        emx_gauge = max(emx_gauge, work_gauge)
-        emx_head = max(emx_head, head_face_work(probes, pen) - head_work0)
-        max_head_force = max(max_head_force, f_pile)
-        max_toe = max(max_toe, pu[last])
+        (f_gauge, v_gauge, power_before, work_gauge, emx_gauge, emx_head, max_head_force,
+         max_toe) = _summary_at(pile, probes, pu, pv, pen, last, n, h, f_pile, head_work0,
+                                power_before, work_gauge, emx_gauge, emx_head, max_head_force,
+                                max_toe)
         if countdown == 0:
             countdown = record_every
             row += 1
             if sections is not None:
-                idx, buf = sections
-                for j in range(idx.size):
-                    buf[j, row - 1] = pu[idx[j]] - pu[idx[j] + 1]
+                _record_sections(sections[0], sections[1], pu, row - 1)
             if out is not None:
-                if modal is not None and rings is None:
-                    P = modal.parameters
-                    u_top = modal.interface[0] + P[4] * f_ram - P[5] * f_pile
-                    u_bottom = modal.interface[2] + P[5] * f_ram - P[6] * f_pile
-                if modal is not None and rings is not None:
-                    u_top, u_bottom = ring_faces(rings)
-                out[0, row - 1] = t0 + n * h
-                out[1, row - 1] = f_ram
-                out[2, row - 1] = f_pile
-                out[3, row - 1] = v_pile
-                out[4, row - 1] = f_gauge
-                out[5, row - 1] = v_gauge
-                out[6, row - 1] = v_ram
-                out[7, row - 1] = u_top
-                out[8, row - 1] = u_bottom
-                out[9, row - 1] = u_pile + face0
-                out[10, row - 1] = pu[last]
+                u_top, u_bottom = _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom)
+                _record_row(out, row - 1, t0 + n * h, f_ram, f_pile, v_pile, f_gauge, v_gauge,
+                            v_ram, u_top, u_bottom, u_pile + face0, pu[last])
         if energies is not None:
             if energy_countdown == 0 or n == n_steps:
                 energy_countdown = energy_every
-                kin = 0.0
-                pot = 0.0
-                if modal is not None and rings is None:
-                    kin, pot = modal_unit_energy_at(modal.parameters, modal.coefficients,
-                                                    modal.state, modal.interface, u_ram, v_ram,
-                                                    u_pile, v_pile, fe_ram, fe_pile)
-                if modal is not None and rings is not None:
-                    if not damped:  # the elastic forces are the forces
-                        rings.elastic_forces[:] = rings.forces
-                    kin, pot = ring_unit_energy_at(modal.parameters, modal.coefficients,
-                                                   modal.state, rings, u_ram, v_ram, u_pile,
-                                                   v_pile)
-                    pot += rings.head_count[1]  # handed to the tube head (0 on the 1D head)
-                if classic is not None:
-                    kin, recoverable, potential = driving_system_energy(
-                        classic.parameters, classic.state, u_ram, u_pile)
-                    # the cushions' restitution losses are energy the system no longer holds
-                    pot = recoverable + potential + driving_system_losses(classic.parameters,
-                                                                          classic.state)
-                if direct is not None:
-                    pot = 0.5 * fe_ram * fe_ram / direct[0]
-                if ram_is_modal:
-                    ke, se, pe = modal_ram_energies(modal_ram[0], modal_ram[1], modal_ram[2],
-                                                    gravity, h)
-                else:
-                    ke, se, pe = leapfrog_energies(ram_mass, ram_stiffness, ram_u, ram_v,
-                                                   gravity, dt_ram)
-                kinetic, strain, grav, soil_static, soil_damping = pile_energies(
-                    pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1],
-                    works)
-                damping = _pile_damping_work(pen[WORK_HEAD] - start[2][WORK_HEAD], grav,
-                                             soil_static, soil_damping,
-                                             kinetic + strain - stored0)
-                r = energy_row
-                energies[0, r] = t0 + n * h
-                energies[1, r] = ke
-                energies[2, r] = se
-                energies[3, r] = pe
-                energies[4, r] = kin
-                energies[5, r] = pot
-                energies[6, r] = kinetic
-                energies[7, r] = strain
-                energies[8, r] = start[2][WORK_GRAVITY] + grav
-                energies[9, r] = start[2][WORK_SOIL_STATIC] + soil_static
-                energies[10, r] = start[2][WORK_SOIL_DAMPING] + soil_damping
-                energies[11, r] = start[2][WORK_PILE_DAMPING] + damping
-                energies[12, r] = pen[WORK_HEAD]
-                energies[13, r] = head_face_work(probes, pen)
-                energies[14, r] = work_contact
+                kin, pot = _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram,
+                                           u_pile, v_pile, fe_ram, fe_pile)
+                ke, se, pe = _ram_energies(ram_is_modal, ram_C, ram_S, ram_toe, ram_mass,
+                                           ram_stiffness, ram_u, ram_v, gravity, h, dt_ram)
+                kinetic, strain, grav, soil_static, soil_damping, damping = _pile_works(
+                    pile_mass, pile_sweep, pu, pv, pen, dt_pile, start_u, start_v,
+                    start_energy, works, stored0)
+                _record_energies(energies, energy_row, t0 + n * h, ke, se, pe, kin, pot,
+                                 kinetic, strain, grav, soil_static, soil_damping, damping,
+                                 pen[WORK_HEAD], head_face_work(probes, pen), work_contact)
                 energy_row += 1
             energy_countdown -= 1
         countdown -= 1
         if n == n_steps:
             break
         # 3. every unit over [t_n, t_n+1] with the forces held
-        if ram_is_modal:
-            modal_ram_advance(modal_ram[0], modal_ram[1], f_ram, h, modal_ram[2])
-        else:
-            ram_advance(weight, inverse_mass, ram_stiffness, ram_u, ram_v, f_ram, h, ram_nsub)
-        if modal is not None and rings is None:
-            modal_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, f_pile,
-                               modal.interface)
-        if modal is not None and rings is not None:
-            ring_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, rings,
-                              modal.interface)
-        if classic is not None:
-            driving_system_step(classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile, h,
-                                classic.n_sub)
-        fold_elongations(pu, stresses[1], stresses[2])
-        pile_advance(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, f_pile, h, pile_nsub,
-                     works, None)
+        _ram_step(ram_is_modal, ram_C, ram_S, ram_toe, weight, inverse_mass, ram_stiffness,
+                  ram_u, ram_v, f_ram, h, ram_nsub)
+        _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h)
+        _pile_step(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, largest, smallest,
+                   f_pile, h, pile_nsub, works)
     # the end state: its stresses, energies and works
-    factor, largest, smallest = stresses
-    fold_elongations(pu, largest, smallest)
+    _blow_summary(summary, pile, pile_mass, pile_sweep, pu, pv, pen, dt_pile, factor, largest,
+                  smallest, start_u, start_v, start_energy, works, stored0, emx_gauge,
+                  emx_head, max_head_force, max_toe)
+    return row, energy_row
+
+
+# the step's parts, each inlined into _blow: the same operations in the same order as one
+# loop body (bit-identical blows), every argument an array or a scalar the loop holds
+@njit(cache=True, inline='always')
+def _ram_toe(ram_is_modal, modal_toe, u, v, toe):
+    """The ram's toe at t_n: the modal ram unit's or the chain's last mass.
+
+    Parameters
+    ----------
+    ram_is_modal : bool
+        The modal ram unit runs (else the chain).
+    modal_toe : numpy.ndarray
+        The modal unit's toe (u, v, half), shape (3,) [m, m/s, -].
+    u : numpy.ndarray
+        The chain's displacements, shape (N,) [m].
+    v : numpy.ndarray
+        The chain's half-step velocities, shape (N,) [m/s].
+    toe : int
+        The chain's toe mass, N - 1 [-].
+
+    Returns
+    -------
+    u_ram : float
+        Toe displacement [m].
+    v_ram : float
+        Toe velocity [m/s].
+    """
+    if ram_is_modal:
+        return modal_toe[0], modal_toe[1]
+    return u[toe], v[toe]
+
+
+@njit(cache=True, inline='always')
+def _ram_step(ram_is_modal, modal_coefficients, modal_state, modal_toe, weight, inverse_mass,
+              stiffness, u, v, f_ram, h, n_sub):
+    """The ram over [t_n, t_n+1] with its toe force held, states in place.
+
+    :func:`anvilwave.hammer.modal_ram.modal_ram_advance` (the modal unit) or
+    :func:`anvilwave.hammer.ram.ram_advance` (the chain, sub-stepped).
+
+    Parameters
+    ----------
+    ram_is_modal : bool
+        The modal ram unit runs (else the chain).
+    modal_coefficients : numpy.ndarray
+        The modal unit's C.
+    modal_state : numpy.ndarray
+        Its S (written).
+    modal_toe : numpy.ndarray
+        Its toe (u, v, half), shape (3,) [m, m/s, -] (written).
+    weight : numpy.ndarray
+        The chain's weights m g, shape (N,) [N].
+    inverse_mass : numpy.ndarray
+        1 / m, shape (N,) [1/kg].
+    stiffness : numpy.ndarray
+        The chain's springs, shape (N - 1,) [N/m].
+    u : numpy.ndarray
+        Displacements, shape (N,) [m] (written).
+    v : numpy.ndarray
+        Half-step velocities, shape (N,) [m/s] (written).
+    f_ram : float
+        The ram contact force on the toe [N].
+    h : float
+        The master step [s].
+    n_sub : int
+        The chain's sub-steps [-].
+    """
+    if ram_is_modal:
+        modal_ram_advance(modal_coefficients, modal_state, f_ram, h, modal_toe)
+    else:
+        ram_advance(weight, inverse_mass, stiffness, u, v, f_ram, h, n_sub)
+
+
+@njit(cache=True, inline='always')
+def _ram_energies(ram_is_modal, modal_coefficients, modal_state, modal_toe, mass, stiffness,
+                  u, v, gravity, h, dt):
+    """The ram's energies at t_n (the modal unit's or the chain's).
+
+    Parameters
+    ----------
+    ram_is_modal : bool
+        The modal ram unit runs (else the chain).
+    modal_coefficients : numpy.ndarray
+        The modal unit's C.
+    modal_state : numpy.ndarray
+        Its S.
+    modal_toe : numpy.ndarray
+        Its toe (u, v, half), shape (3,) [m, m/s, -].
+    mass : numpy.ndarray
+        The chain's masses, shape (N,) [kg].
+    stiffness : numpy.ndarray
+        The chain's springs, shape (N - 1,) [N/m].
+    u : numpy.ndarray
+        Displacements, shape (N,) [m].
+    v : numpy.ndarray
+        Half-step velocities, shape (N,) [m/s].
+    gravity : float
+        Gravitational acceleration [m/s^2].
+    h : float
+        The master step [s].
+    dt : float
+        The chain's sub-step [s].
+
+    Returns
+    -------
+    kinetic : float
+        [J].
+    strain : float
+        [J].
+    gravity_potential : float
+        [J].
+    """
+    if ram_is_modal:
+        return modal_ram_energies(modal_coefficients, modal_state, modal_toe, gravity, h)
+    return leapfrog_energies(mass, stiffness, u, v, gravity, dt)
+
+
+@njit(cache=True, inline='always')
+def _pile_head(probes, u, v, extrapolation, face0):
+    """The pile head at t_n as the anvil unit reads it.
+
+    Parameters
+    ----------
+    probes : numpy.ndarray
+        The pile's probe array.
+    u : numpy.ndarray
+        The pile's displacements, shape (N,) [m].
+    v : numpy.ndarray
+        Its velocities, shape (N,) [m/s].
+    extrapolation : float
+        The head's extrapolation factor from the first two masses [-].
+    face0 : float
+        The head face displacement the anvil's pile input is measured from [m].
+
+    Returns
+    -------
+    u_pile : float
+        Head face displacement from ``face0`` [m].
+    v_pile : float
+        Head velocity [m/s].
+    """
+    return u[0] + extrapolation * (u[0] - u[1]) - face0, head_velocity(probes, v)
+
+
+@njit(cache=True, inline='always')
+def _pile_step(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, largest,
+               smallest, f_pile, h, n_sub, works):
+    """The pile and its soil over [t_n, t_n+1] with the head force held, states in place.
+
+    The springs' shortenings at t_n are folded into their extremes first
+    (:func:`anvilwave.pile.kernels.fold_elongations`), then
+    :func:`anvilwave.pile.kernels.pile_advance` sub-steps.
+
+    Parameters
+    ----------
+    pile_sweep : tuple
+        The pile's sweep arrays (:func:`anvilwave.pile.kernels.sweep_arrays`).
+    soil_sweep : tuple
+        The soil's sweep arrays.
+    first_soil : int
+        The first mass with soil [-].
+    u : numpy.ndarray
+        Displacements, shape (N,) [m] (written).
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s] (written).
+    soil_offset : numpy.ndarray
+        Plastic offsets, shape (N + 1,) [m] (written).
+    energy : numpy.ndarray
+        Energies and works, shape (ENERGY_SIZE,) [J] (written).
+    largest : numpy.ndarray
+        Largest shortening of each spring, shape (N - 1,) [m] (written).
+    smallest : numpy.ndarray
+        Smallest shortening of each spring, shape (N - 1,) [m] (written).
+    f_pile : float
+        The head force [N].
+    h : float
+        The master step [s].
+    n_sub : int
+        The pile's sub-steps [-].
+    works : tuple or None
+        The per-mass soil work sums [J] (None: not summed).
+    """
+    fold_elongations(u, largest, smallest)
+    pile_advance(pile_sweep, soil_sweep, first_soil, u, v, soil_offset, energy, f_pile, h,
+                 n_sub, works, None)
+
+
+@njit(cache=True, inline='always')
+def _pile_works(mass, pile_sweep, u, v, energy, dt, start_u, start_v, start_energy, works,
+                stored0):
+    """The pile's energies at t_n and its works since the blow's start, added to the start's.
+
+    Parameters
+    ----------
+    mass : numpy.ndarray
+        The pile's masses, shape (N,) [kg].
+    pile_sweep : tuple
+        The pile's sweep arrays (:func:`anvilwave.pile.kernels.sweep_arrays`).
+    u : numpy.ndarray
+        Displacements, shape (N,) [m].
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s].
+    energy : numpy.ndarray
+        Energies and works, shape (ENERGY_SIZE,) [J].
+    dt : float
+        The pile's sub-step [s].
+    start_u : numpy.ndarray
+        u at the start of the blow, shape (N,) [m].
+    start_v : numpy.ndarray
+        v at the start of the blow, shape (N,) [m/s].
+    start_energy : numpy.ndarray
+        Energies and works at the start, shape (ENERGY_SIZE,) [J].
+    works : tuple
+        The per-mass soil work sums [J].
+    stored0 : float
+        The pile's kinetic and strain energy at the start [J].
+
+    Returns
+    -------
+    kinetic : float
+        [J].
+    strain : float
+        [J].
+    gravity_work : float
+        [J].
+    soil_static_work : float
+        [J].
+    soil_damping_work : float
+        [J].
+    pile_damping_work : float
+        [J] (:func:`_pile_damping_work`).
+    """
+    kinetic, strain, grav, soil_static, soil_damping = pile_energies(
+        mass, pile_sweep[2], pile_sweep[0], u, v, dt, start_u, start_v, works)
+    damping = _pile_damping_work(energy[WORK_HEAD] - start_energy[WORK_HEAD], grav,
+                                 soil_static, soil_damping, kinetic + strain - stored0)
+    return (kinetic, strain, start_energy[WORK_GRAVITY] + grav,
+            start_energy[WORK_SOIL_STATIC] + soil_static,
+            start_energy[WORK_SOIL_DAMPING] + soil_damping,
+            start_energy[WORK_PILE_DAMPING] + damping)
+
+
+@njit(cache=True, inline='always')
+def _anvil_contact(modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile):
+    """The anvil unit's feedthrough at t_n: the two contact forces from the neighbours' states.
+
+    One of ``modal`` (with ``rings`` or not), ``classic`` and ``direct`` is given, the others
+    None; the compiler keeps the code of the given one.
+
+    Parameters
+    ----------
+    modal : LoopModalAnvil or None
+        The modal anvil unit.
+    rings : RingState or None
+        Its pile port in rings.
+    classic : LoopClassic or None
+        The classic driving system.
+    direct : numpy.ndarray or None
+        No anvil: the contact [k, c] [N/m, N s/m].
+    damped : bool
+        A contact has a dashpot.
+    h : float
+        The master step [s].
+    u_ram : float
+        Ram toe displacement [m].
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+
+    Returns
+    -------
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    fe_ram : float
+        Its elastic part, without the dashpot [N].
+    fe_pile : float
+        [N].
+    u_top : float
+        The classic driving system's top [m] (else ``u_pile``; :func:`_anvil_faces`).
+    u_bottom : float
+        Its helmet [m] (else ``u_pile``).
+    dissipated : float
+        The dashpots' work over the step, h times their power [J] (0 undamped).
+    """
+    f_ram = 0.0
+    f_pile = 0.0
+    u_top = u_pile
+    u_bottom = u_pile
+    fe_ram = 0.0
+    fe_pile = 0.0
+    dissipated = 0.0
+    if modal is not None and rings is None:
+        f_ram, f_pile = modal_unit_contact(modal.parameters, modal.interface, u_ram, v_ram,
+                                           u_pile, v_pile)
+        fe_ram = f_ram
+        fe_pile = f_pile
+        if damped:
+            fe_ram, fe_pile, power = modal_unit_dashpot_power(
+                modal.parameters, modal.interface, u_ram, v_ram, u_pile, v_pile, f_ram, f_pile)
+            dissipated = h * power
+    if modal is not None and rings is not None:
+        f_ram, f_pile = ring_contact(rings, u_ram, v_ram, u_pile, v_pile)
+        fe_ram = f_ram
+        fe_pile = f_pile
+        if damped:
+            fe_ram, fe_pile, power = ring_elastic_forces(rings, u_ram, v_ram, u_pile, v_pile)
+            dissipated = h * power
+    if classic is not None:
+        f_ram, f_pile, u_top, u_bottom = driving_system_forces(
+            classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile)
+    if direct is not None:
+        f_ram = contact_force(u_ram - u_pile, v_ram - v_pile, direct[0], direct[1])
+        f_pile = f_ram
+        fe_ram = f_ram
+        if damped:
+            fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
+            dissipated = h * (f_ram - fe_ram) * (v_ram - v_pile)
+    return f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated
+
+
+@njit(cache=True, inline='always')
+def _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom):
+    """The anvil's top and bottom faces at t_n for the records.
+
+    Parameters
+    ----------
+    modal : LoopModalAnvil or None
+        The modal anvil unit (its faces with the static correction).
+    rings : RingState or None
+        Its pile port in rings (:func:`anvilwave.anvil_rom.rings.ring_faces`).
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    u_top : float
+        The faces of the other units (:func:`_anvil_contact`) [m].
+    u_bottom : float
+        [m].
+
+    Returns
+    -------
+    u_top : float
+        Top face displacement [m].
+    u_bottom : float
+        Bottom face displacement [m].
+    """
+    if modal is not None and rings is None:
+        P = modal.parameters
+        u_top = modal.interface[0] + P[4] * f_ram - P[5] * f_pile
+        u_bottom = modal.interface[2] + P[5] * f_ram - P[6] * f_pile
+    if modal is not None and rings is not None:
+        u_top, u_bottom = ring_faces(rings)
+    return u_top, u_bottom
+
+
+@njit(cache=True, inline='always')
+def _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h):
+    """The anvil unit over [t_n, t_n+1] with the contact forces held, states in place.
+
+    Parameters
+    ----------
+    modal : LoopModalAnvil or None
+        The modal anvil unit.
+    rings : RingState or None
+        Its pile port in rings.
+    classic : LoopClassic or None
+        The classic driving system (it steps on the neighbours' states).
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    u_ram : float
+        Ram toe displacement [m].
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    h : float
+        The master step [s].
+    """
+    if modal is not None and rings is None:
+        modal_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, f_pile,
+                           modal.interface)
+    if modal is not None and rings is not None:
+        ring_unit_advance(modal.parameters, modal.coefficients, modal.state, f_ram, rings,
+                          modal.interface)
+    if classic is not None:
+        driving_system_step(classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile, h,
+                            classic.n_sub)
+
+
+@njit(cache=True, inline='always')
+def _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram, u_pile, v_pile,
+                    fe_ram, fe_pile):
+    """The anvil unit's energies at t_n, the contacts' stored energy in its potential.
+
+    Parameters
+    ----------
+    modal : LoopModalAnvil or None
+        The modal anvil unit.
+    rings : RingState or None
+        Its pile port in rings (the tube head's share in the potential).
+    classic : LoopClassic or None
+        The classic driving system (its cushions' restitution losses in the potential: energy
+        the system no longer holds).
+    direct : numpy.ndarray or None
+        No anvil: the contact [k, c] [N/m, N s/m].
+    damped : bool
+        A contact has a dashpot.
+    u_ram : float
+        Ram toe displacement [m].
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_pile : float
+        Pile head displacement [m].
+    v_pile : float
+        Pile head velocity [m/s].
+    fe_ram : float
+        The ram contact's elastic force [N].
+    fe_pile : float
+        The pile contact's elastic force [N].
+
+    Returns
+    -------
+    kinetic : float
+        [J].
+    potential : float
+        [J].
+    """
+    kin = 0.0
+    pot = 0.0
+    if modal is not None and rings is None:
+        kin, pot = modal_unit_energy_at(modal.parameters, modal.coefficients, modal.state,
+                                        modal.interface, u_ram, v_ram, u_pile, v_pile, fe_ram,
+                                        fe_pile)
+    if modal is not None and rings is not None:
+        if not damped:  # the elastic forces are the forces (element by element: the loop
+            for i in range(rings.forces.size):  # runs without reference counting)
+                rings.elastic_forces[i] = rings.forces[i]
+        kin, pot = ring_unit_energy_at(modal.parameters, modal.coefficients, modal.state, rings,
+                                       u_ram, v_ram, u_pile, v_pile)
+        pot += rings.head_count[1]  # handed to the tube head (0 on the 1D head)
+    if classic is not None:
+        kin, recoverable, potential = driving_system_energy(
+            classic.parameters, classic.state, u_ram, u_pile)
+        pot = recoverable + potential + driving_system_losses(classic.parameters,
+                                                              classic.state)
+    if direct is not None:
+        pot = 0.5 * fe_ram * fe_ram / direct[0]
+    return kin, pot
+
+
+@njit(cache=True, inline='always')
+def _summary_at(pile, probes, u, v, energy, last, n, h, f_pile, head_work0, power_before,
+                work_gauge, emx_gauge, emx_head, max_head_force, max_toe):
+    """The gauge's signals at t_n and the blow's running summary carried to t_n.
+
+    Parameters
+    ----------
+    pile : numpy.ndarray
+        The pile's parameter array.
+    probes : numpy.ndarray
+        Its probe array.
+    u : numpy.ndarray
+        Displacements, shape (N,) [m].
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s].
+    energy : numpy.ndarray
+        Energies and works, shape (ENERGY_SIZE,) [J].
+    last : int
+        The toe mass, N - 1 [-].
+    n : int
+        The step [-] (0: no work yet).
+    h : float
+        The master step [s].
+    f_pile : float
+        Pile contact force at t_n [N].
+    head_work0 : float
+        The head face's work at the blow's start [J].
+    power_before : float
+        Gauge force x velocity at t_n-1 [W].
+    work_gauge : float
+        Its trapezoidal integral to t_n-1 [J].
+    emx_gauge : float
+        Its largest value to t_n-1 [J].
+    emx_head : float
+        The head face's largest work since the start to t_n-1 [J].
+    max_head_force : float
+        Largest pile contact force to t_n-1 [N].
+    max_toe : float
+        Largest toe displacement to t_n-1 [m].
+
+    Returns
+    -------
+    f_gauge : float
+        Gauge force at t_n [N].
+    v_gauge : float
+        Gauge velocity at t_n [m/s].
+    power : float
+        Their product [W].
+    work_gauge : float
+        The gauge's work to t_n [J].
+    emx_gauge : float
+        [J], to t_n.
+    emx_head : float
+        [J], to t_n.
+    max_head_force : float
+        [N], to t_n.
+    max_toe : float
+        [m], to t_n.
+    """
+    f_gauge = gauge_force(pile, probes, u, v)
+    v_gauge = gauge_velocity(probes, v)
+    power = f_gauge * v_gauge
+    if n > 0:
+        work_gauge += 0.5 * (power_before + power) * h
+    emx_gauge = max(emx_gauge, work_gauge)
+    emx_head = max(emx_head, head_face_work(probes, energy) - head_work0)
+    max_head_force = max(max_head_force, f_pile)
+    max_toe = max(max_toe, u[last])
+    return f_gauge, v_gauge, power, work_gauge, emx_gauge, emx_head, max_head_force, max_toe
+
+
+@njit(cache=True, inline='always')
+def _record_sections(idx, buf, u, row):
+    """The elongations u_i - u_i+1 [m] of the chosen pile springs into a record row.
+
+    Parameters
+    ----------
+    idx : numpy.ndarray
+        Spring indices, shape (n_sections,) [-].
+    buf : numpy.ndarray
+        The buffer, shape (n_sections, rows) [m] (written).
+    u : numpy.ndarray
+        The pile's displacements, shape (N,) [m].
+    row : int
+        The row [-].
+    """
+    for j in range(idx.size):
+        buf[j, row] = u[idx[j]] - u[idx[j] + 1]
+
+
+@njit(cache=True, inline='always')
+def _record_row(out, row, t, f_ram, f_pile, v_pile, f_gauge, v_gauge, v_ram, u_top, u_bottom,
+                u_head, u_toe):
+    """One row of the time series (COLUMNS, in order).
+
+    Parameters
+    ----------
+    out : numpy.ndarray
+        The time series, shape (len(COLUMNS), rows) (written).
+    row : int
+        The row [-].
+    t : float
+        Time [s].
+    f_ram : float
+        Ram contact force [N].
+    f_pile : float
+        Pile contact force [N].
+    v_pile : float
+        Pile head velocity [m/s].
+    f_gauge : float
+        Gauge force [N].
+    v_gauge : float
+        Gauge velocity [m/s].
+    v_ram : float
+        Ram toe velocity [m/s].
+    u_top : float
+        Anvil top face displacement [m].
+    u_bottom : float
+        Anvil bottom face displacement [m].
+    u_head : float
+        Pile head displacement [m].
+    u_toe : float
+        Pile toe displacement [m].
+    """
+    out[0, row] = t
+    out[1, row] = f_ram
+    out[2, row] = f_pile
+    out[3, row] = v_pile
+    out[4, row] = f_gauge
+    out[5, row] = v_gauge
+    out[6, row] = v_ram
+    out[7, row] = u_top
+    out[8, row] = u_bottom
+    out[9, row] = u_head
+    out[10, row] = u_toe
+
+
+@njit(cache=True, inline='always')
+def _record_energies(energies, row, t, ram_kinetic, ram_strain, ram_gravity, anvil_kinetic,
+                     anvil_potential, pile_kinetic, pile_strain, gravity_work, soil_static,
+                     soil_damping, pile_damping, head_work, head_face, contact_damping):
+    """One row of the energy series ("time [s]" and ENERGY_COLUMNS, in order).
+
+    Parameters
+    ----------
+    energies : numpy.ndarray
+        The energy series, shape (1 + len(ENERGY_COLUMNS), rows) (written).
+    row : int
+        The row [-].
+    t : float
+        Time [s].
+    ram_kinetic : float
+        [J].
+    ram_strain : float
+        [J].
+    ram_gravity : float
+        The ram's gravity potential [J].
+    anvil_kinetic : float
+        [J].
+    anvil_potential : float
+        [J].
+    pile_kinetic : float
+        [J].
+    pile_strain : float
+        [J].
+    gravity_work : float
+        The pile's gravity work [J].
+    soil_static : float
+        The soil's static work [J].
+    soil_damping : float
+        The soil's damping work [J].
+    pile_damping : float
+        The pile dashpots' work [J].
+    head_work : float
+        The head force's work [J].
+    head_face : float
+        The head face's work [J].
+    contact_damping : float
+        The contact dashpots' work [J].
+    """
+    energies[0, row] = t
+    energies[1, row] = ram_kinetic
+    energies[2, row] = ram_strain
+    energies[3, row] = ram_gravity
+    energies[4, row] = anvil_kinetic
+    energies[5, row] = anvil_potential
+    energies[6, row] = pile_kinetic
+    energies[7, row] = pile_strain
+    energies[8, row] = gravity_work
+    energies[9, row] = soil_static
+    energies[10, row] = soil_damping
+    energies[11, row] = pile_damping
+    energies[12, row] = head_work
+    energies[13, row] = head_face
+    energies[14, row] = contact_damping
+
+
+@njit(cache=True, inline='always')
+def _blow_summary(summary, pile, mass, pile_sweep, u, v, energy, dt, factor, largest, smallest,
+                  start_u, start_v, start_energy, works, stored0, emx_gauge, emx_head,
+                  max_head_force, max_toe):
+    """The blow's end: the last shortenings folded, the stress extremes, the pile's energy and
+    (with the bookkeeping) its works since the start, and the summary.
+
+    Parameters
+    ----------
+    summary : numpy.ndarray
+        The blow's summary (S_* entries), shape (SUMMARY_SIZE,) (written).
+    pile : numpy.ndarray
+        The pile's parameter array.
+    mass : numpy.ndarray
+        The pile's masses, shape (N,) [kg].
+    pile_sweep : tuple
+        The pile's sweep arrays.
+    u : numpy.ndarray
+        Displacements, shape (N,) [m].
+    v : numpy.ndarray
+        Velocities, shape (N,) [m/s].
+    energy : numpy.ndarray
+        Energies and works, shape (ENERGY_SIZE,) [J] (written).
+    dt : float
+        The pile's sub-step [s].
+    factor : numpy.ndarray
+        The springs' stress factors, shape (N - 1,) [N/m^3].
+    largest : numpy.ndarray
+        Largest shortening of each spring, shape (N - 1,) [m] (written).
+    smallest : numpy.ndarray
+        Smallest shortening of each spring, shape (N - 1,) [m] (written).
+    start_u : numpy.ndarray
+        u at the start, shape (N,) [m].
+    start_v : numpy.ndarray
+        v at the start, shape (N,) [m/s].
+    start_energy : numpy.ndarray
+        Energies and works at the start, shape (ENERGY_SIZE,) [J].
+    works : tuple or None
+        The per-mass soil work sums [J] (None: no bookkeeping).
+    stored0 : float
+        The pile's kinetic and strain energy at the start [J].
+    emx_gauge : float
+        [J].
+    emx_head : float
+        [J].
+    max_head_force : float
+        [N].
+    max_toe : float
+        [m].
+    """
+    last = u.shape[0] - 1
+    fold_elongations(u, largest, smallest)
     compression = 0.0
     tension = 0.0
     for i in range(last):
         compression = max(compression, factor[i] * largest[i])
         tension = min(tension, factor[i] * smallest[i])
-    update_energy(pile, pu, pv, pen, dt_pile)
+    update_energy(pile, u, v, energy, dt)
     if works is not None:
-        kinetic, strain, grav, soil_static, soil_damping = pile_energies(
-            pile_mass, pile_sweep[2], pile_sweep[0], pu, pv, dt_pile, start[0], start[1], works)
-        pen[WORK_GRAVITY] = start[2][WORK_GRAVITY] + grav
-        pen[WORK_SOIL_STATIC] = start[2][WORK_SOIL_STATIC] + soil_static
-        pen[WORK_SOIL_DAMPING] = start[2][WORK_SOIL_DAMPING] + soil_damping
-        pen[WORK_PILE_DAMPING] = start[2][WORK_PILE_DAMPING] + _pile_damping_work(
-            pen[WORK_HEAD] - start[2][WORK_HEAD], grav, soil_static, soil_damping,
-            kinetic + strain - stored0)
+        _, _, grav, soil_static, soil_damping, damping = _pile_works(
+            mass, pile_sweep, u, v, energy, dt, start_u, start_v, start_energy, works, stored0)
+        energy[WORK_GRAVITY] = grav
+        energy[WORK_SOIL_STATIC] = soil_static
+        energy[WORK_SOIL_DAMPING] = soil_damping
+        energy[WORK_PILE_DAMPING] = damping
     summary[S_MAX_COMPRESSION] = compression
     summary[S_MAX_TENSION] = tension
     summary[S_EMX_GAUGE] = emx_gauge
     summary[S_EMX_HEAD] = emx_head
     summary[S_MAX_HEAD_FORCE] = max_head_force
     summary[S_MAX_TOE] = max_toe
-    summary[S_TOE_START] = start[0][last]
-    summary[S_TOE_END] = pu[last]
-    summary[S_TOE_VELOCITY_END] = pv[last]
-    return row, energy_row
+    summary[S_TOE_START] = start_u[last]
+    summary[S_TOE_END] = u[last]
+    summary[S_TOE_VELOCITY_END] = v[last]
 
 
 @njit(cache=True)
