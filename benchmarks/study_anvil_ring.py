@@ -78,6 +78,14 @@ static correction), each one approximation away from the default stack."""
 DOCS_FRICTION = (0.0, 0.1, 0.2, 0.3)
 DOCS_SLEEVE = (0.001, (0.0, 0.2))
 DOCS_SEAT_ONLY = (0.2,)
+DOCS_MESH = 0.05
+"""[m] the reference FEA's mesh in the docs' run (its penalty contacts E / h per area make its
+error first order in h: 0.1 m is 7 % off 0.05 m in the pile-head RMS, docs/validation.md)."""
+DOCS_REFERENCE_MESHES = (0.1, 0.07)
+"""[m] the coarser meshes the docs' run also runs the ROM's two reference cases on, for the
+reference's own mesh error."""
+REFERENCE_RUNS = ("ring, mu 0", "ring, mu 0.2")
+"""The runs whose FEA is repeated on the coarser meshes (the ROM's two bars)."""
 
 
 def first_crossing(t, f, level):
@@ -113,24 +121,16 @@ def summary(result):
     }
 
 
-def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
-    """The ROM stack's blow against the FEA run ``fea`` (module docstring); ``variant``:
-    keywords of :func:`stack_unit`, or ``static_correction`` of the system's anvil."""
-    start = time.perf_counter()
-    if "static_correction" in variant:
-        cfg = dataclasses.replace(cfg, anvil=dataclasses.replace(
-            cfg.anvil, static_correction=variant.pop("static_correction")))
-    blow = run_stack_blow(cfg, stack_unit(cfg, ring, seat_friction=mu, penalty_size=mesh_size,
-                                          **variant))
-    wall = time.perf_counter() - start
+def series_against_fea(t_model, pile, ram, fea):
+    """A model's pile-head and ram force series against the FEA run ``fea`` (module
+    docstring): both low-passed at 5 kHz on the FEA's grid, the peaks, the RMS of the
+    difference relative to the FEA signal's, the pile-head band-level differences."""
     t = fea.time
-    h = float(blow.time[1] - blow.time[0])
-    rom_t = blow.time - 0.5 * h  # first contact at t = 0, as the FEA
-    row = {"rom_wall_time [s]": wall}
+    row = {}
     numbers = band_numbers_between(8.9, TOP_BAND)
-    for name, rom, ref in (("pile", blow.pile_force, fea.anvil_pile_force),
-                           ("ram", blow.ram_force, fea.ram_anvil_force)):
-        r = lowpass(t, np.interp(t, rom_t, rom), CUTOFF)
+    for name, model, ref in (("pile", pile, fea.anvil_pile_force),
+                             ("ram", ram, fea.ram_anvil_force)):
+        r = lowpass(t, np.interp(t, t_model, model), CUTOFF)
         f = lowpass(t, ref, CUTOFF)
         row[f"{name}_peak_rom [N]"] = float(r.max())
         row[f"{name}_peak_fea [N]"] = float(f.max())
@@ -138,7 +138,7 @@ def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
         row[f"{name}_rms_error [-]"] = float(np.sqrt(np.mean((r - f) ** 2) / np.mean(f**2)))
         if name == "pile":
             dt = float(t[1] - t[0])
-            a = third_octave_band_energies(np.interp(t, rom_t, rom) - rom[0], dt, numbers)
+            a = third_octave_band_energies(np.interp(t, t_model, model) - model[0], dt, numbers)
             b = third_octave_band_energies(ref - ref[0], dt, numbers)
             inside = (b.lower_frequency >= b.valid_range[0]) & (b.centre_frequency <= TOP_BAND)
             deviation = np.where(inside, a.level - b.level, 0.0)
@@ -146,10 +146,79 @@ def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
             row["band_error_max [dB]"] = float(abs(deviation[worst]))
             row["band_error_at [Hz]"] = float(b.centre_frequency[worst])
             row["band_error [dB]"] = [float(x) for x in deviation]
+    return row
+
+
+def rom_against_fea(cfg, ring, mu, fea, penalty_size, **variant):
+    """The ROM stack's blow against the FEA run ``fea`` (module docstring); ``penalty_size``:
+    the FEA's penalty length [m] (its mesh size over its contact stiffness factor), the seat's;
+    ``variant``: keywords of :func:`stack_unit`, or ``static_correction`` of the system's
+    anvil."""
+    start = time.perf_counter()
+    if "static_correction" in variant:
+        cfg = dataclasses.replace(cfg, anvil=dataclasses.replace(
+            cfg.anvil, static_correction=variant.pop("static_correction")))
+    blow = run_stack_blow(cfg, stack_unit(cfg, ring, seat_friction=mu,
+                                          penalty_size=penalty_size, **variant))
+    wall = time.perf_counter() - start
+    h = float(blow.time[1] - blow.time[0])
+    rom_t = blow.time - 0.5 * h  # first contact at t = 0, as the FEA
+    row = {"rom_wall_time [s]": wall,
+           **series_against_fea(rom_t, blow.pile_force, blow.ram_force, fea)}
     row["rom_friction_energy [-]"] = blow.friction_energy / blow.input_energy
     row["rom_energy_balance [-]"] = float(np.abs(blow.energy_residual).max()
                                           / blow.input_energy)
     return row
+
+
+def reference_error(coarse: dict, fine, h_coarse: float, h_fine: float) -> dict:
+    """The reference FEA's own mesh error: the coarser mesh's runs against the study mesh's
+    (the same figures as the ROM's), and their first-order extrapolation to the study mesh's
+    error (the penalty contacts' compliance, E / h per area, is the leading error and falls as
+    h: err(h_fine) ~ d * h_fine / (h_coarse - h_fine)), per run name."""
+    scale = h_fine / (h_coarse - h_fine)
+    out = {}
+    for name, result in coarse.items():
+        d = series_against_fea(result.time, result.anvil_pile_force, result.ram_anvil_force,
+                               fine[name])
+        d = {k: v for k, v in d.items() if k != "band_error [dB]"}
+        d["estimated_error_at_study_mesh"] = {
+            key: abs(d[key]) * scale for key in ("pile_peak_error [-]", "ram_peak_error [-]",
+                                                  "pile_rms_error [-]", "ram_rms_error [-]",
+                                                  "band_error_max [dB]")}
+        out[name] = d
+    return out
+
+
+def observed_order(d1: float, d2: float, h1: float, h2: float, h: float) -> float:
+    """Order p of a difference that falls as h^p: d1 = C (h1^p - h^p), d2 = C (h2^p - h^p),
+    h1 > h2 > h, solved by bisection on p in (0, 4] (0 when the ratio is at or below its
+    p -> 0 limit, log(h1 / h) / log(h2 / h))."""
+    def ratio(p):
+        return (h1**p - h**p) / (h2**p - h**p)
+    target = d1 / d2
+    if target <= np.log(h1 / h) / np.log(h2 / h):
+        return 0.0
+    lo, hi = 1e-6, 4.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ratio(mid) < target else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def observed_orders(blocks: dict, meshes, h: float) -> dict:
+    """Observed order of the pile-head RMS difference per reference run, from the two coarser
+    meshes against the study mesh ``h``, and the study mesh's error at that order,
+    d2 h^p / (h2^p - h^p) (None at p < 0.25: not in the asymptotic range)."""
+    h1, h2 = sorted(meshes, reverse=True)
+    out = {}
+    for name in blocks[f"mesh {h1:g} m"]:
+        d1 = blocks[f"mesh {h1:g} m"][name]["pile_rms_error [-]"]
+        d2 = blocks[f"mesh {h2:g} m"][name]["pile_rms_error [-]"]
+        p = observed_order(d1, d2, h1, h2, h)
+        out[name] = {"order [-]": p, "pile_rms_error_at_study_mesh [-]":
+                     d2 * h**p / (h2**p - h**p) if p >= 0.25 else None}
+    return out
 
 
 def main(argv=None):
@@ -157,6 +226,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="results/study_ring")
     parser.add_argument("--mesh-size", type=float, default=0.1)
+    parser.add_argument("--contact-factor", type=float, default=1.0)
+    parser.add_argument("--reference-meshes", type=float, nargs="*", default=[])
     parser.add_argument("--truncate", type=float, default=10.0)
     parser.add_argument("--friction", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3])
     parser.add_argument("--sleeve", type=float, default=None)
@@ -174,10 +245,13 @@ def main(argv=None):
         args.friction, args.rom = list(DOCS_FRICTION), True
         args.sleeve, args.sleeve_friction = DOCS_SLEEVE[0], list(DOCS_SLEEVE[1])
         args.seat_only = list(DOCS_SEAT_ONLY)
+        args.mesh_size, args.reference_meshes = DOCS_MESH, list(DOCS_REFERENCE_MESHES)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    base = fea_config(load_system(EXAMPLES / "table1.toml"), mesh_size=args.mesh_size,
-                      truncate_length=args.truncate)
+    base = dataclasses.replace(
+        fea_config(load_system(EXAMPLES / "table1.toml"), mesh_size=args.mesh_size,
+                   truncate_length=args.truncate), contact_stiffness_factor=args.contact_factor)
+    penalty = args.mesh_size / args.contact_factor
     ring = load_anvil(EXAMPLES / "anvils" / "xl8_ring.toml")
     cases = {"no ring": base}
     for mu in args.friction:
@@ -195,20 +269,23 @@ def main(argv=None):
     rows = {}
     system = without_soil(load_system(EXAMPLES / "table1.toml"))
     roms = {}
+    fine = {}
     for name, config in cases.items():
         start = time.perf_counter()
         result = run_impact_fea(config)
+        if name in REFERENCE_RUNS:
+            fine[name] = result
         rows[name] = summary(result)
         print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
         if args.rom and not name.startswith("+sleeve"):
             body = None if config.ring is None else ring
             roms[name] = rom_against_fea(system, body, config.seat_friction, result,
-                                         args.mesh_size)
+                                         penalty)
             rows[name]["rom"] = roms[name]
             if name in ("ring, mu 0", "ring, mu 0.2"):
                 rows[name]["rom_variants"] = {
                     v: rom_against_fea(system, ring, config.seat_friction, result,
-                                       args.mesh_size, **kw) for v, kw in ROM_VARIANTS.items()}
+                                       penalty, **kw) for v, kw in ROM_VARIANTS.items()}
     names = list(rows)
     for name in names[1:]:
         reference = rows[names[0] if name == names[1] else names[1]]
@@ -246,7 +323,36 @@ def main(argv=None):
                   f"{v['rom_friction_energy [-]'] * 100:7.2f} % "
                   f"{v['rom_energy_balance [-]'] * 100:6.3f} %")
     study = {"mesh_size [m]": args.mesh_size, "truncate_length [m]": args.truncate,
-             "runs": rows}
+             "contact_stiffness_factor [-]": args.contact_factor, "runs": rows}
+    if args.reference_meshes:
+        study["reference_error"] = {}
+        for h in args.reference_meshes:
+            coarse = {}
+            for name in REFERENCE_RUNS:
+                if name in fine:
+                    start = time.perf_counter()
+                    coarse[name] = run_impact_fea(dataclasses.replace(
+                        cases[name], mesh_size=h))
+                    print(f"{name} at mesh {h:g} m: {time.perf_counter() - start:.0f} s",
+                          flush=True)
+            study["reference_error"][f"mesh {h:g} m"] = reference_error(
+                coarse, fine, h, args.mesh_size)
+        if len(args.reference_meshes) >= 2:
+            study["reference_order"] = observed_orders(study["reference_error"],
+                                                       args.reference_meshes[:2],
+                                                       args.mesh_size)
+            print("observed orders of the reference's pile-head RMS difference:",
+                  study["reference_order"])
+        for label, block in study["reference_error"].items():
+            for name, d in block.items():
+                e = d["estimated_error_at_study_mesh"]
+                print(f"{name} {label} against {args.mesh_size:g} m: "
+                      f"pile {d['pile_peak_error [-]'] * 100:+.2f} % "
+                      f"ram {d['ram_peak_error [-]'] * 100:+.2f} % "
+                      f"pile RMS {d['pile_rms_error [-]'] * 100:.1f} % "
+                      f"bands {d['band_error_max [dB]']:.1f} dB; estimated error of the "
+                      f"study mesh: pile RMS {e['pile_rms_error [-]'] * 100:.1f} %, "
+                      f"bands {e['band_error_max [dB]']:.1f} dB")
     (out / "study.json").write_text(json.dumps(study, indent=1))
     if args.docs:
         write_docs(study)
@@ -273,9 +379,11 @@ def _band(value, at):
     return f"{value:.1f} dB ({centre})"
 
 
-def docs_tables(runs: dict) -> dict:
-    """The two tables of docs/validation.md from study.json's runs (the FEA runs, the ROM
-    against them)."""
+def docs_tables(runs: dict, reference: dict | None = None,
+                orders: dict | None = None) -> dict:
+    """The tables of docs/validation.md from study.json's runs (the FEA runs, the ROM against
+    them) and, when given, its ``reference_error`` and ``reference_order`` (the reference
+    FEA on coarser meshes against the study mesh)."""
     fea = []
     for name, label in FEA_ROWS.items():
         if name not in runs:
@@ -299,7 +407,22 @@ def docs_tables(runs: dict) -> dict:
                    v["rom_friction_energy [-]"], v["rom_energy_balance [-]"]]
             default = text == label and name in ("ring, mu 0", "ring, mu 0.2")
             rom.append({"bold": True, "cells": row} if default else row)
-    return {
+    tables = {}
+    if reference:
+        rows = []
+        for label, block in reference.items():
+            for name, d in block.items():
+                order = (orders or {}).get(name, {}).get("order [-]")
+                rows.append([f"{name}, {label}", d["pile_peak_error [-]"],
+                             d["ram_peak_error [-]"], d["pile_rms_error [-]"],
+                             d["ram_rms_error [-]"],
+                             _band(d["band_error_max [dB]"], d["band_error_at [Hz]"]),
+                             None if order is None else f"{order:.2f}"])
+        tables["reference"] = {
+            "columns": ["reference FEA", "pile peak", "ram peak", "pile RMS", "ram RMS",
+                        "bands", "observed order"],
+            "formats": [None, "pct+", "pct+", "pct1", "pct1", None, None], "rows": rows}
+    return tables | {
         "fea": {"columns": ["stack", "pile-head peak", "rise 10-90 %", "ram peak", "bands",
                             "friction energy", "balance"],
                 "formats": [None, "MN", "ms2", "MN", None, "pctsig2", "pctsig2"],
@@ -322,7 +445,9 @@ def write_docs(study: dict, command: str | None = None) -> None:
                    "and contact friction\")",
                    inputs=[*system_inputs(EXAMPLES / "table1.toml"),
                            EXAMPLES / "anvils" / "xl8_ring.toml"],
-                   tables=docs_tables(study["runs"]), values=study, command=command)
+                   tables=docs_tables(study["runs"], study.get("reference_error"),
+                                      study.get("reference_order")),
+                   values=study, command=command)
 
 
 if __name__ == "__main__":
