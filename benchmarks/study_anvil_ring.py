@@ -3,11 +3,20 @@ Table 1 blow.
 
 Run: python benchmarks/study_anvil_ring.py [--out results/study_ring] [--mesh-size 0.1]
      [--truncate 10] [--friction 0 0.1 0.2 0.3] [--sleeve CLEARANCE]
-     [--sleeve-friction MU ...] [--seat-only MU ...] [--rom] [--docs | --docs-from STUDY_JSON]
+     [--sleeve-friction MU ...] [--seat-only MU ...] [--rom] [--contact-factor ALPHA]
+     [--reference-meshes H ...] [--docs | --docs-from STUDY_JSON]
 
 ``--docs`` runs what docs/validation.md shows (frictions 0, 0.1, 0.2, 0.3; the sleeve 1 mm off
 at 0 and 0.2; friction 0.2 on the seat only; the ROM) and writes docs/data/anvil_ring.json;
 ``--docs-from`` rewrites that file from an earlier run's study.json.
+
+``--contact-factor`` scales the FEA's penalty contacts (alpha E / h per area; the ROM's seat
+penalty then at the same length h / alpha). ``--reference-meshes`` runs the ring runs at mu 0
+and 0.2 again at those mesh sizes: the study mesh's run against the finer of each pair (the
+ROM's figures), the first-order estimate of the study mesh's own error, the observed order of
+the pile-head RMS difference from the first two, and (with ``--rom``) the ROM against each
+finer run (``reference_error``, ``reference_order`` in study.json; ``--docs`` takes 0.07 and
+0.05 m).
 
 With ``--rom`` the ring-less run is also run with the anvil unit alone (the baseline) and
 every ring run with the ROM stack
@@ -78,12 +87,11 @@ static correction), each one approximation away from the default stack."""
 DOCS_FRICTION = (0.0, 0.1, 0.2, 0.3)
 DOCS_SLEEVE = (0.001, (0.0, 0.2))
 DOCS_SEAT_ONLY = (0.2,)
-DOCS_MESH = 0.05
-"""[m] the reference FEA's mesh in the docs' run (its penalty contacts E / h per area make its
-error first order in h: 0.1 m is 7 % off 0.05 m in the pile-head RMS, docs/validation.md)."""
-DOCS_REFERENCE_MESHES = (0.1, 0.07)
-"""[m] the coarser meshes the docs' run also runs the ROM's two reference cases on, for the
-reference's own mesh error."""
+DOCS_MESH = 0.1
+"""[m] the reference FEA's mesh in the docs' run."""
+DOCS_REFERENCE_MESHES = (0.07, 0.05)
+"""[m] the finer meshes the docs' run also runs the ROM's two reference cases on: the
+reference's own mesh error, and the ROM (its seat penalty at each mesh's) against them."""
 REFERENCE_RUNS = ("ring, mu 0", "ring, mu 0.2")
 """The runs whose FEA is repeated on the coarser meshes (the ROM's two bars)."""
 
@@ -171,16 +179,18 @@ def rom_against_fea(cfg, ring, mu, fea, penalty_size, **variant):
     return row
 
 
-def reference_error(coarse: dict, fine, h_coarse: float, h_fine: float) -> dict:
-    """The reference FEA's own mesh error: the coarser mesh's runs against the study mesh's
-    (the same figures as the ROM's), and their first-order extrapolation to the study mesh's
-    error (the penalty contacts' compliance, E / h per area, is the leading error and falls as
-    h: err(h_fine) ~ d * h_fine / (h_coarse - h_fine)), per run name."""
-    scale = h_fine / (h_coarse - h_fine)
+def reference_error(other: dict, study: dict, h_other: float, h: float) -> dict:
+    """The reference FEA's own mesh error, per run name: the coarser of the two meshes' runs
+    against the finer's (the same figures as the ROM's), and their first-order extrapolation
+    to the study mesh's error (the penalty contacts' compliance, E / h per area, is the
+    leading error and falls as h: err(h) ~ d * h / |h_other - h| when ``h_other`` is finer,
+    d * h / (h_other - h) when coarser)."""
+    scale = h / abs(h_other - h)
+    coarse, fine = (study, other) if h_other < h else (other, study)
     out = {}
-    for name, result in coarse.items():
-        d = series_against_fea(result.time, result.anvil_pile_force, result.ram_anvil_force,
-                               fine[name])
+    for name in other:
+        d = series_against_fea(coarse[name].time, coarse[name].anvil_pile_force,
+                               coarse[name].ram_anvil_force, fine[name])
         d = {k: v for k, v in d.items() if k != "band_error [dB]"}
         d["estimated_error_at_study_mesh"] = {
             key: abs(d[key]) * scale for key in ("pile_peak_error [-]", "ram_peak_error [-]",
@@ -190,34 +200,32 @@ def reference_error(coarse: dict, fine, h_coarse: float, h_fine: float) -> dict:
     return out
 
 
-def observed_order(d1: float, d2: float, h1: float, h2: float, h: float) -> float:
-    """Order p of a difference that falls as h^p: d1 = C (h1^p - h^p), d2 = C (h2^p - h^p),
-    h1 > h2 > h, solved by bisection on p in (0, 4] (0 when the ratio is at or below its
-    p -> 0 limit, log(h1 / h) / log(h2 / h))."""
-    def ratio(p):
-        return (h1**p - h**p) / (h2**p - h**p)
-    target = d1 / d2
-    if target <= np.log(h1 / h) / np.log(h2 / h):
-        return 0.0
-    lo, hi = 1e-6, 4.0
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if ratio(mid) < target else (lo, mid)
-    return 0.5 * (lo + hi)
+def observed_order(pairs) -> float:
+    """Order p of differences that fall as h^p, from two (h_a, h_b, d) pairs, d = C |h_a^p -
+    h_b^p|: the p in (0, 4] whose ratio |h_a1^p - h_b1^p| / |h_a2^p - h_b2^p| is d1 / d2 (the
+    ratio is monotonic in p; the end of the range when d1 / d2 is beyond it)."""
+    (a1, b1, d1), (a2, b2, d2) = pairs
+    p = np.linspace(1e-4, 4.0, 4000)
+    ratio = np.abs(a1**p - b1**p) / np.abs(a2**p - b2**p)
+    if ratio[0] > ratio[-1]:
+        p, ratio = p[::-1], ratio[::-1]
+    return float(np.interp(d1 / d2, ratio, p))
 
 
 def observed_orders(blocks: dict, meshes, h: float) -> dict:
-    """Observed order of the pile-head RMS difference per reference run, from the two coarser
-    meshes against the study mesh ``h``, and the study mesh's error at that order,
-    d2 h^p / (h2^p - h^p) (None at p < 0.25: not in the asymptotic range)."""
-    h1, h2 = sorted(meshes, reverse=True)
+    """Observed order of the pile-head RMS difference per reference run, from the study mesh
+    ``h`` against the first two ``meshes``, and the study mesh's error at that order,
+    d1 h^p / |h^p - h1^p| with h1 the finer mesh against the finest; None at p < 0.25 (not in
+    the asymptotic range)."""
+    h1, h2 = meshes[:2]
     out = {}
     for name in blocks[f"mesh {h1:g} m"]:
         d1 = blocks[f"mesh {h1:g} m"][name]["pile_rms_error [-]"]
         d2 = blocks[f"mesh {h2:g} m"][name]["pile_rms_error [-]"]
-        p = observed_order(d1, d2, h1, h2, h)
+        p = observed_order([(h, h1, d1), (h, h2, d2)])
+        finest, d = (h1, d1) if h1 < h2 else (h2, d2)
         out[name] = {"order [-]": p, "pile_rms_error_at_study_mesh [-]":
-                     d2 * h**p / (h2**p - h**p) if p >= 0.25 else None}
+                     d * h**p / abs(h**p - finest**p) if p >= 0.25 else None}
     return out
 
 
@@ -327,16 +335,21 @@ def main(argv=None):
     if args.reference_meshes:
         study["reference_error"] = {}
         for h in args.reference_meshes:
-            coarse = {}
+            other = {}
             for name in REFERENCE_RUNS:
                 if name in fine:
                     start = time.perf_counter()
-                    coarse[name] = run_impact_fea(dataclasses.replace(
+                    other[name] = run_impact_fea(dataclasses.replace(
                         cases[name], mesh_size=h))
                     print(f"{name} at mesh {h:g} m: {time.perf_counter() - start:.0f} s",
                           flush=True)
-            study["reference_error"][f"mesh {h:g} m"] = reference_error(
-                coarse, fine, h, args.mesh_size)
+            block = reference_error(other, fine, h, args.mesh_size)
+            if args.rom and h < args.mesh_size:
+                for name, result in other.items():
+                    block[name]["rom"] = rom_against_fea(
+                        system, ring, cases[name].seat_friction, result,
+                        h / args.contact_factor)
+            study["reference_error"][f"mesh {h:g} m"] = block
         if len(args.reference_meshes) >= 2:
             study["reference_order"] = observed_orders(study["reference_error"],
                                                        args.reference_meshes[:2],
@@ -346,7 +359,7 @@ def main(argv=None):
         for label, block in study["reference_error"].items():
             for name, d in block.items():
                 e = d["estimated_error_at_study_mesh"]
-                print(f"{name} {label} against {args.mesh_size:g} m: "
+                print(f"{name} {args.mesh_size:g} m against {label}: "
                       f"pile {d['pile_peak_error [-]'] * 100:+.2f} % "
                       f"ram {d['ram_peak_error [-]'] * 100:+.2f} % "
                       f"pile RMS {d['pile_rms_error [-]'] * 100:.1f} % "
@@ -409,10 +422,16 @@ def docs_tables(runs: dict, reference: dict | None = None,
             rom.append({"bold": True, "cells": row} if default else row)
     tables = {}
     if reference:
-        rows = []
+        rows, roms = [], []
         for label, block in reference.items():
             for name, d in block.items():
                 order = (orders or {}).get(name, {}).get("order [-]")
+                if "rom" in d:
+                    v = d["rom"]
+                    roms.append([f"{name}, FEA {label}", v["pile_peak_error [-]"],
+                                 v["ram_peak_error [-]"], v["pile_rms_error [-]"],
+                                 v["ram_rms_error [-]"],
+                                 _band(v["band_error_max [dB]"], v["band_error_at [Hz]"])])
                 rows.append([f"{name}, {label}", d["pile_peak_error [-]"],
                              d["ram_peak_error [-]"], d["pile_rms_error [-]"],
                              d["ram_rms_error [-]"],
@@ -422,6 +441,11 @@ def docs_tables(runs: dict, reference: dict | None = None,
             "columns": ["reference FEA", "pile peak", "ram peak", "pile RMS", "ram RMS",
                         "bands", "observed order"],
             "formats": [None, "pct+", "pct+", "pct1", "pct1", None, None], "rows": rows}
+        if roms:
+            tables["rom_reference"] = {
+                "columns": ["ROM against", "pile peak", "ram peak", "pile RMS", "ram RMS",
+                            "bands"],
+                "formats": [None, "pct+", "pct+", "pct1", "pct1", None], "rows": roms}
     return tables | {
         "fea": {"columns": ["stack", "pile-head peak", "rise 10-90 %", "ram peak", "bands",
                             "friction energy", "balance"],
@@ -447,7 +471,25 @@ def write_docs(study: dict, command: str | None = None) -> None:
                            EXAMPLES / "anvils" / "xl8_ring.toml"],
                    tables=docs_tables(study["runs"], study.get("reference_error"),
                                       study.get("reference_order")),
-                   values=study, command=command)
+                   substitutions=docs_substitutions(study), values=study, command=command)
+
+
+def docs_substitutions(study: dict) -> dict:
+    """The numbers docs/validation.md quotes from the reference's own mesh error: the observed
+    order and the first-order pile-head RMS error of the study mesh, from the finest mesh."""
+    out = {}
+    orders = study.get("reference_order", {})
+    blocks = study.get("reference_error", {})
+    if not blocks:
+        return out
+    finest = min(blocks, key=lambda label: float(label.split()[1]))
+    for name, key in (("ring, mu 0", "mu0"), ("ring, mu 0.2", "mu02")):
+        if name in orders:
+            out[f"reference_order_{key}"] = [orders[name]["order [-]"], "f2"]
+        if name in blocks[finest]:
+            e = blocks[finest][name]["estimated_error_at_study_mesh"]["pile_rms_error [-]"]
+            out[f"reference_rms_{key}"] = [e, "pct1"]
+    return out
 
 
 if __name__ == "__main__":

@@ -104,7 +104,7 @@ def test_rom_stack_peaks_within_the_issues_bars(table1, ring, mu):
     file's FEA mesh, as the study takes it), and against the stored FEA
     stack's peaks of that run (docs/data/anvil_ring.json, the FEA of the same coefficient on
     the seat and the ring-pile contact) within the issue's bars, pile 3 % and ram 5 %. The FEA
-    is not rerun here (2 min each at 0.05 m; its own checks are tests/test_fea_ring.py); the ROM's two
+    is not rerun here (10-40 s each; its own checks are tests/test_fea_ring.py); the ROM's two
     blows take a few seconds once the bodies' modes are cached."""
     values = doc_data("anvil_ring")["values"]
     stored = values["runs"][f"ring, mu {mu:g}"]["rom"]
