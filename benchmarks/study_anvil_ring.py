@@ -3,11 +3,20 @@ Table 1 blow.
 
 Run: python benchmarks/study_anvil_ring.py [--out results/study_ring] [--mesh-size 0.1]
      [--truncate 10] [--friction 0 0.1 0.2 0.3] [--sleeve CLEARANCE]
-     [--sleeve-friction MU ...] [--seat-only MU ...] [--rom] [--docs | --docs-from STUDY_JSON]
+     [--sleeve-friction MU ...] [--seat-only MU ...] [--rom] [--contact-factor ALPHA]
+     [--reference-meshes H ...] [--docs | --docs-from STUDY_JSON]
 
 ``--docs`` runs what docs/validation.md shows (frictions 0, 0.1, 0.2, 0.3; the sleeve 1 mm off
 at 0 and 0.2; friction 0.2 on the seat only; the ROM) and writes docs/data/anvil_ring.json;
 ``--docs-from`` rewrites that file from an earlier run's study.json.
+
+``--contact-factor`` scales the FEA's penalty contacts (alpha E / h per area; the ROM's seat
+penalty then at the same length h / alpha). ``--reference-meshes`` runs the ring runs at mu 0
+and 0.2 again at those mesh sizes: the study mesh's run against the finer of each pair (the
+ROM's figures), the first-order estimate of the study mesh's own error, the observed order of
+the pile-head RMS difference from the first two, and (with ``--rom``) the ROM against each
+finer run (``reference_error``, ``reference_order`` in study.json; ``--docs`` takes 0.07 and
+0.05 m).
 
 With ``--rom`` the ring-less run is also run with the anvil unit alone (the baseline) and
 every ring run with the ROM stack
@@ -78,6 +87,13 @@ static correction), each one approximation away from the default stack."""
 DOCS_FRICTION = (0.0, 0.1, 0.2, 0.3)
 DOCS_SLEEVE = (0.001, (0.0, 0.2))
 DOCS_SEAT_ONLY = (0.2,)
+DOCS_MESH = 0.1
+"""[m] the reference FEA's mesh in the docs' run."""
+DOCS_REFERENCE_MESHES = (0.07, 0.05)
+"""[m] the finer meshes the docs' run also runs the ROM's two reference cases on: the
+reference's own mesh error, and the ROM (its seat penalty at each mesh's) against them."""
+REFERENCE_RUNS = ("ring, mu 0", "ring, mu 0.2")
+"""The runs whose FEA is repeated on the coarser meshes (the ROM's two bars)."""
 
 
 def first_crossing(t, f, level):
@@ -113,24 +129,16 @@ def summary(result):
     }
 
 
-def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
-    """The ROM stack's blow against the FEA run ``fea`` (module docstring); ``variant``:
-    keywords of :func:`stack_unit`, or ``static_correction`` of the system's anvil."""
-    start = time.perf_counter()
-    if "static_correction" in variant:
-        cfg = dataclasses.replace(cfg, anvil=dataclasses.replace(
-            cfg.anvil, static_correction=variant.pop("static_correction")))
-    blow = run_stack_blow(cfg, stack_unit(cfg, ring, seat_friction=mu, penalty_size=mesh_size,
-                                          **variant))
-    wall = time.perf_counter() - start
+def series_against_fea(t_model, pile, ram, fea):
+    """A model's pile-head and ram force series against the FEA run ``fea`` (module
+    docstring): both low-passed at 5 kHz on the FEA's grid, the peaks, the RMS of the
+    difference relative to the FEA signal's, the pile-head band-level differences."""
     t = fea.time
-    h = float(blow.time[1] - blow.time[0])
-    rom_t = blow.time - 0.5 * h  # first contact at t = 0, as the FEA
-    row = {"rom_wall_time [s]": wall}
+    row = {}
     numbers = band_numbers_between(8.9, TOP_BAND)
-    for name, rom, ref in (("pile", blow.pile_force, fea.anvil_pile_force),
-                           ("ram", blow.ram_force, fea.ram_anvil_force)):
-        r = lowpass(t, np.interp(t, rom_t, rom), CUTOFF)
+    for name, model, ref in (("pile", pile, fea.anvil_pile_force),
+                             ("ram", ram, fea.ram_anvil_force)):
+        r = lowpass(t, np.interp(t, t_model, model), CUTOFF)
         f = lowpass(t, ref, CUTOFF)
         row[f"{name}_peak_rom [N]"] = float(r.max())
         row[f"{name}_peak_fea [N]"] = float(f.max())
@@ -138,7 +146,7 @@ def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
         row[f"{name}_rms_error [-]"] = float(np.sqrt(np.mean((r - f) ** 2) / np.mean(f**2)))
         if name == "pile":
             dt = float(t[1] - t[0])
-            a = third_octave_band_energies(np.interp(t, rom_t, rom) - rom[0], dt, numbers)
+            a = third_octave_band_energies(np.interp(t, t_model, model) - model[0], dt, numbers)
             b = third_octave_band_energies(ref - ref[0], dt, numbers)
             inside = (b.lower_frequency >= b.valid_range[0]) & (b.centre_frequency <= TOP_BAND)
             deviation = np.where(inside, a.level - b.level, 0.0)
@@ -146,10 +154,79 @@ def rom_against_fea(cfg, ring, mu, fea, mesh_size, **variant):
             row["band_error_max [dB]"] = float(abs(deviation[worst]))
             row["band_error_at [Hz]"] = float(b.centre_frequency[worst])
             row["band_error [dB]"] = [float(x) for x in deviation]
+    return row
+
+
+def rom_against_fea(cfg, ring, mu, fea, penalty_size, **variant):
+    """The ROM stack's blow against the FEA run ``fea`` (module docstring); ``penalty_size``:
+    the FEA's penalty length [m] (its mesh size over its contact stiffness factor), the seat's;
+    ``variant``: keywords of :func:`stack_unit`, or ``static_correction`` of the system's
+    anvil."""
+    start = time.perf_counter()
+    if "static_correction" in variant:
+        cfg = dataclasses.replace(cfg, anvil=dataclasses.replace(
+            cfg.anvil, static_correction=variant.pop("static_correction")))
+    blow = run_stack_blow(cfg, stack_unit(cfg, ring, seat_friction=mu,
+                                          penalty_size=penalty_size, **variant))
+    wall = time.perf_counter() - start
+    h = float(blow.time[1] - blow.time[0])
+    rom_t = blow.time - 0.5 * h  # first contact at t = 0, as the FEA
+    row = {"rom_wall_time [s]": wall,
+           **series_against_fea(rom_t, blow.pile_force, blow.ram_force, fea)}
     row["rom_friction_energy [-]"] = blow.friction_energy / blow.input_energy
     row["rom_energy_balance [-]"] = float(np.abs(blow.energy_residual).max()
                                           / blow.input_energy)
     return row
+
+
+def reference_error(other: dict, study: dict, h_other: float, h: float) -> dict:
+    """The reference FEA's own mesh error, per run name: the coarser of the two meshes' runs
+    against the finer's (the same figures as the ROM's), and their first-order extrapolation
+    to the study mesh's error (the penalty contacts' compliance, E / h per area, is the
+    leading error and falls as h: err(h) ~ d * h / |h_other - h| when ``h_other`` is finer,
+    d * h / (h_other - h) when coarser)."""
+    scale = h / abs(h_other - h)
+    coarse, fine = (study, other) if h_other < h else (other, study)
+    out = {}
+    for name in other:
+        d = series_against_fea(coarse[name].time, coarse[name].anvil_pile_force,
+                               coarse[name].ram_anvil_force, fine[name])
+        d = {k: v for k, v in d.items() if k != "band_error [dB]"}
+        d["estimated_error_at_study_mesh"] = {
+            key: abs(d[key]) * scale for key in ("pile_peak_error [-]", "ram_peak_error [-]",
+                                                  "pile_rms_error [-]", "ram_rms_error [-]",
+                                                  "band_error_max [dB]")}
+        out[name] = d
+    return out
+
+
+def observed_order(pairs) -> float:
+    """Order p of differences that fall as h^p, from two (h_a, h_b, d) pairs, d = C |h_a^p -
+    h_b^p|: the p in (0, 4] whose ratio |h_a1^p - h_b1^p| / |h_a2^p - h_b2^p| is d1 / d2 (the
+    ratio is monotonic in p; the end of the range when d1 / d2 is beyond it)."""
+    (a1, b1, d1), (a2, b2, d2) = pairs
+    p = np.linspace(1e-4, 4.0, 4000)
+    ratio = np.abs(a1**p - b1**p) / np.abs(a2**p - b2**p)
+    if ratio[0] > ratio[-1]:
+        p, ratio = p[::-1], ratio[::-1]
+    return float(np.interp(d1 / d2, ratio, p))
+
+
+def observed_orders(blocks: dict, meshes, h: float) -> dict:
+    """Observed order of the pile-head RMS difference per reference run, from the study mesh
+    ``h`` against the first two ``meshes``, and the study mesh's error at that order,
+    d1 h^p / |h^p - h1^p| with h1 the finer mesh against the finest; None at p < 0.25 (not in
+    the asymptotic range)."""
+    h1, h2 = meshes[:2]
+    out = {}
+    for name in blocks[f"mesh {h1:g} m"]:
+        d1 = blocks[f"mesh {h1:g} m"][name]["pile_rms_error [-]"]
+        d2 = blocks[f"mesh {h2:g} m"][name]["pile_rms_error [-]"]
+        p = observed_order([(h, h1, d1), (h, h2, d2)])
+        finest, d = (h1, d1) if h1 < h2 else (h2, d2)
+        out[name] = {"order [-]": p, "pile_rms_error_at_study_mesh [-]":
+                     d * h**p / abs(h**p - finest**p) if p >= 0.25 else None}
+    return out
 
 
 def main(argv=None):
@@ -157,6 +234,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="results/study_ring")
     parser.add_argument("--mesh-size", type=float, default=0.1)
+    parser.add_argument("--contact-factor", type=float, default=1.0)
+    parser.add_argument("--reference-meshes", type=float, nargs="*", default=[])
     parser.add_argument("--truncate", type=float, default=10.0)
     parser.add_argument("--friction", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3])
     parser.add_argument("--sleeve", type=float, default=None)
@@ -174,10 +253,13 @@ def main(argv=None):
         args.friction, args.rom = list(DOCS_FRICTION), True
         args.sleeve, args.sleeve_friction = DOCS_SLEEVE[0], list(DOCS_SLEEVE[1])
         args.seat_only = list(DOCS_SEAT_ONLY)
+        args.mesh_size, args.reference_meshes = DOCS_MESH, list(DOCS_REFERENCE_MESHES)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    base = fea_config(load_system(EXAMPLES / "table1.toml"), mesh_size=args.mesh_size,
-                      truncate_length=args.truncate)
+    base = dataclasses.replace(
+        fea_config(load_system(EXAMPLES / "table1.toml"), mesh_size=args.mesh_size,
+                   truncate_length=args.truncate), contact_stiffness_factor=args.contact_factor)
+    penalty = args.mesh_size / args.contact_factor
     ring = load_anvil(EXAMPLES / "anvils" / "xl8_ring.toml")
     cases = {"no ring": base}
     for mu in args.friction:
@@ -195,20 +277,23 @@ def main(argv=None):
     rows = {}
     system = without_soil(load_system(EXAMPLES / "table1.toml"))
     roms = {}
+    fine = {}
     for name, config in cases.items():
         start = time.perf_counter()
         result = run_impact_fea(config)
+        if name in REFERENCE_RUNS:
+            fine[name] = result
         rows[name] = summary(result)
         print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
         if args.rom and not name.startswith("+sleeve"):
             body = None if config.ring is None else ring
             roms[name] = rom_against_fea(system, body, config.seat_friction, result,
-                                         args.mesh_size)
+                                         penalty)
             rows[name]["rom"] = roms[name]
             if name in ("ring, mu 0", "ring, mu 0.2"):
                 rows[name]["rom_variants"] = {
                     v: rom_against_fea(system, ring, config.seat_friction, result,
-                                       args.mesh_size, **kw) for v, kw in ROM_VARIANTS.items()}
+                                       penalty, **kw) for v, kw in ROM_VARIANTS.items()}
     names = list(rows)
     for name in names[1:]:
         reference = rows[names[0] if name == names[1] else names[1]]
@@ -246,7 +331,41 @@ def main(argv=None):
                   f"{v['rom_friction_energy [-]'] * 100:7.2f} % "
                   f"{v['rom_energy_balance [-]'] * 100:6.3f} %")
     study = {"mesh_size [m]": args.mesh_size, "truncate_length [m]": args.truncate,
-             "runs": rows}
+             "contact_stiffness_factor [-]": args.contact_factor, "runs": rows}
+    if args.reference_meshes:
+        study["reference_error"] = {}
+        for h in args.reference_meshes:
+            other = {}
+            for name in REFERENCE_RUNS:
+                if name in fine:
+                    start = time.perf_counter()
+                    other[name] = run_impact_fea(dataclasses.replace(
+                        cases[name], mesh_size=h))
+                    print(f"{name} at mesh {h:g} m: {time.perf_counter() - start:.0f} s",
+                          flush=True)
+            block = reference_error(other, fine, h, args.mesh_size)
+            if args.rom and h < args.mesh_size:
+                for name, result in other.items():
+                    block[name]["rom"] = rom_against_fea(
+                        system, ring, cases[name].seat_friction, result,
+                        h / args.contact_factor)
+            study["reference_error"][f"mesh {h:g} m"] = block
+        if len(args.reference_meshes) >= 2:
+            study["reference_order"] = observed_orders(study["reference_error"],
+                                                       args.reference_meshes[:2],
+                                                       args.mesh_size)
+            print("observed orders of the reference's pile-head RMS difference:",
+                  study["reference_order"])
+        for label, block in study["reference_error"].items():
+            for name, d in block.items():
+                e = d["estimated_error_at_study_mesh"]
+                print(f"{name} {args.mesh_size:g} m against {label}: "
+                      f"pile {d['pile_peak_error [-]'] * 100:+.2f} % "
+                      f"ram {d['ram_peak_error [-]'] * 100:+.2f} % "
+                      f"pile RMS {d['pile_rms_error [-]'] * 100:.1f} % "
+                      f"bands {d['band_error_max [dB]']:.1f} dB; estimated error of the "
+                      f"study mesh: pile RMS {e['pile_rms_error [-]'] * 100:.1f} %, "
+                      f"bands {e['band_error_max [dB]']:.1f} dB")
     (out / "study.json").write_text(json.dumps(study, indent=1))
     if args.docs:
         write_docs(study)
@@ -273,9 +392,11 @@ def _band(value, at):
     return f"{value:.1f} dB ({centre})"
 
 
-def docs_tables(runs: dict) -> dict:
-    """The two tables of docs/validation.md from study.json's runs (the FEA runs, the ROM
-    against them)."""
+def docs_tables(runs: dict, reference: dict | None = None,
+                orders: dict | None = None) -> dict:
+    """The tables of docs/validation.md from study.json's runs (the FEA runs, the ROM against
+    them) and, when given, its ``reference_error`` and ``reference_order`` (the reference
+    FEA on coarser meshes against the study mesh)."""
     fea = []
     for name, label in FEA_ROWS.items():
         if name not in runs:
@@ -299,7 +420,33 @@ def docs_tables(runs: dict) -> dict:
                    v["rom_friction_energy [-]"], v["rom_energy_balance [-]"]]
             default = text == label and name in ("ring, mu 0", "ring, mu 0.2")
             rom.append({"bold": True, "cells": row} if default else row)
-    return {
+    tables = {}
+    if reference:
+        rows, roms = [], []
+        for label, block in reference.items():
+            for name, d in block.items():
+                order = (orders or {}).get(name, {}).get("order [-]")
+                if "rom" in d:
+                    v = d["rom"]
+                    roms.append([f"{name}, FEA {label}", v["pile_peak_error [-]"],
+                                 v["ram_peak_error [-]"], v["pile_rms_error [-]"],
+                                 v["ram_rms_error [-]"],
+                                 _band(v["band_error_max [dB]"], v["band_error_at [Hz]"])])
+                rows.append([f"{name}, {label}", d["pile_peak_error [-]"],
+                             d["ram_peak_error [-]"], d["pile_rms_error [-]"],
+                             d["ram_rms_error [-]"],
+                             _band(d["band_error_max [dB]"], d["band_error_at [Hz]"]),
+                             None if order is None else f"{order:.2f}"])
+        tables["reference"] = {
+            "columns": ["reference FEA", "pile peak", "ram peak", "pile RMS", "ram RMS",
+                        "bands", "observed order"],
+            "formats": [None, "pct+", "pct+", "pct1", "pct1", None, None], "rows": rows}
+        if roms:
+            tables["rom_reference"] = {
+                "columns": ["ROM against", "pile peak", "ram peak", "pile RMS", "ram RMS",
+                            "bands"],
+                "formats": [None, "pct+", "pct+", "pct1", "pct1", None], "rows": roms}
+    return tables | {
         "fea": {"columns": ["stack", "pile-head peak", "rise 10-90 %", "ram peak", "bands",
                             "friction energy", "balance"],
                 "formats": [None, "MN", "ms2", "MN", None, "pctsig2", "pctsig2"],
@@ -322,7 +469,27 @@ def write_docs(study: dict, command: str | None = None) -> None:
                    "and contact friction\")",
                    inputs=[*system_inputs(EXAMPLES / "table1.toml"),
                            EXAMPLES / "anvils" / "xl8_ring.toml"],
-                   tables=docs_tables(study["runs"]), values=study, command=command)
+                   tables=docs_tables(study["runs"], study.get("reference_error"),
+                                      study.get("reference_order")),
+                   substitutions=docs_substitutions(study), values=study, command=command)
+
+
+def docs_substitutions(study: dict) -> dict:
+    """The numbers docs/validation.md quotes from the reference's own mesh error: the observed
+    order and the first-order pile-head RMS error of the study mesh, from the finest mesh."""
+    out = {}
+    orders = study.get("reference_order", {})
+    blocks = study.get("reference_error", {})
+    if not blocks:
+        return out
+    finest = min(blocks, key=lambda label: float(label.split()[1]))
+    for name, key in (("ring, mu 0", "mu0"), ("ring, mu 0.2", "mu02")):
+        if name in orders:
+            out[f"reference_order_{key}"] = [orders[name]["order [-]"], "f2"]
+        if name in blocks[finest]:
+            e = blocks[finest][name]["estimated_error_at_study_mesh"]["pile_rms_error [-]"]
+            out[f"reference_rms_{key}"] = [e, "pct1"]
+    return out
 
 
 if __name__ == "__main__":

@@ -167,6 +167,9 @@ DEFINITIONS = {
     ("validation.md", "0.125 m"): "a segment length (an input)",
     ("validation.md", "3.0 m"): "the widetop anvil's top radius (an input)",
     ("validation.md", "0.1 m"): "the FEA's mesh size along the pile (an input)",
+    **{("validation.md", q): "the anvil-ring study's reference meshes (inputs, "
+                             "benchmarks/study_anvil_ring.py DOCS_REFERENCE_MESHES)"
+       for q in ("0.05 m", "0.1 to 0.05 m")},
     ("validation.md", "5-95 %"): "a percentile range (a definition)",
     ("validation.md", "1.0 x"): "the ENTHRU ratios that select piles (0.65 or 1.0 x the energy)",
     ("impact.md", "8 times"): "the step rule: fmax sampled 8 times per period (an input)",
