@@ -152,6 +152,12 @@ DEFINITIONS = {
     **{("batch.md", q): "the example campaigns' definitions (their files)"
        for q in ("12 cases", "40 m", "10 blows", "72 cases")},
     ("pda.md", "2 %"): "the synthetic record's noise (an input of its script)",
+    **{("validation.md", q): "the illustrative ring of anvilwave/examples/anvils/xl8_ring.toml, "
+       "the study's and the tests' settings (pile cut, clearances, steps, windows), the issue's "
+       "bars and the rise's definition"
+       for q in ("52.6 t", "3.6 to 4.15 m", "0.26 m", "10 mm", "0.5 mm", "10 m", "0.55 m",
+                 "20 us", "8 ms", "10 us", "0.5 %", "3 %", "5 %", "10 %", "1.5 dB", "12 kHz",
+                 "90 %", "1 %", "7 %", "1 mm")},
     **{("fmi.md", q): "Table 1's steps: the engine's h, the SSP's h/4 and the start 2.5 of "
        "them before the contact (inputs and the SSP's definition); OMSimulator's own defaults"
        for q in ("5 µs", "5 us", "20 us", "-2.5 steps", "5e-6 s", "-12.5 us", "5000 ns", "1 s",
@@ -190,14 +196,7 @@ CHECKED = {
 }
 """Quantities a test of the suite checks where they stand: (page, quantity) -> the test."""
 
-PENDING_SECTIONS = {
-    ("validation.md", "The anvil ring and contact friction (reference FEA)"):
-        "benchmarks/study_anvil_ring.py does not write docs/data yet; another change "
-        "regenerates this section",
-    ("validation.md", "The ROM stack against the FEA stack"):
-        "benchmarks/study_anvil_ring.py --rom does not write docs/data yet; another change "
-        "regenerates this section",
-}
+PENDING_SECTIONS: dict = {}
 """Sections whose prose numbers another change regenerates: (page, heading or None for the
 whole page) -> why. A section runs to the next heading."""
 
@@ -238,7 +237,9 @@ def test_the_checker_fails_on_a_typed_number(tmp_path, monkeypatch):
     page.write_text("# Validation\n\nThe ROM is 4.8 % off in RMS, {{ demo_rom_rms_ram }} here, "
                     "on the 8 m anvil.\n\n## The ROM stack against the FEA stack\n\n3.1 % off.\n")
     monkeypatch.setattr(f"{__name__}.PAGES", [page])
-    assert typed_numbers() == ["validation.md:3 4.8 %"]
+    monkeypatch.setattr(f"{__name__}.PENDING_SECTIONS",
+                        {("validation.md", "The ROM stack against the FEA stack"): "a test"})
+    assert typed_numbers() == ["validation.md:3 4.8 %"]  # the pending section's is allowed
 
 
 def test_segment_cut_offs_are_computed():
