@@ -676,7 +676,8 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
     (benchmarks/bench_revisions.py); without the counting the loop has none. The functions it
     calls that numba compiles with it (an empty cache) inherit the setting, so none of them
     may allocate either: their work arrays are the units' (e.g. the ring unit's scratch), made
-    before the blow (tests/test_cold_compile.py compiles the loop on an empty cache)."""
+    before the blow (tests/test_cold_compile.py checks that nothing the loop reaches
+    allocates; a clean clone compiles it on an empty cache)."""
     weight, inverse_mass, ram_stiffness, ram_mass = (ram.weight, ram.inverse_mass,
                                                      ram.stiffness, ram.mass)
     ram_u, ram_v, ram_nsub = ram.u, ram.v, ram.n_sub
