@@ -18,14 +18,15 @@ import hashlib
 import numpy as np
 
 from anvilwave.anvil_rom.fem.geometry import AnvilSpec
+from anvilwave.anvil_rom.rings import RamFace
 from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.anvil_rom.stack import Face, StackBody, StackBodyData, StackUnit, stack_body_data
 from anvilwave.anvil_rom.unit import ContactParameters
-from anvilwave.config.cache import cache_dir, modal_key
+from anvilwave.config.cache import cache_dir, cached_modal_data, modal_key
 from anvilwave.config.system import SystemConfig
 from anvilwave.engine.direct import anvil_modal_data, contact_stiffnesses
 from anvilwave.fmu.units.pile_soil import PileSoilState, pile_outputs
-from anvilwave.hammer.modal_ram import ModalRamUnit
+from anvilwave.hammer.modal_ram import ModalRamUnit, modal_ram
 from anvilwave.inputs import InputError
 
 
@@ -69,12 +70,14 @@ ring's 0.05 m mesh across the 0.14 m wall)."""
 
 
 def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
-                pile_rings: int = PILE_RINGS) -> tuple[tuple[Face, ...], tuple[Face, ...]]:
+                pile_rings: int = PILE_RINGS, ram_annuli: int = 1
+                ) -> tuple[tuple[Face, ...], tuple[Face, ...]]:
     """The ports of the two bodies (:mod:`anvilwave.anvil_rom.stack`'s order).
 
     The seat is the radial overlap of the anvil's flat bottom face and the ring's flat top
     face, in ``seat_rings`` rings (axial and radial on both bodies); the anvil's ram face is
-    its file's; the ring's bottom port is the anvil file's pile ring, in ``pile_rings``.
+    its file's, in ``ram_annuli`` equal-width annuli from the axis; the ring's bottom port is
+    the anvil file's pile ring, in ``pile_rings``.
 
     Parameters
     ----------
@@ -86,11 +89,13 @@ def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
         S [-].
     pile_rings : int, default PILE_RINGS
         K [-].
+    ram_annuli : int, default 1
+        J [-].
 
     Returns
     -------
     anvil_faces : tuple of Face
-        Ram face, the seat's S axial and S radial rings.
+        Ram face (J annuli), the seat's S axial and S radial rings.
     ring_faces : tuple of Face
         The seat's S axial and S radial rings, the pile wall's K axial rings.
 
@@ -111,7 +116,7 @@ def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
                                                   "anvil's flat bottom face (the seat)")
     itf = anvil.interfaces
     wall_in, wall_out = itf.pile_ring
-    anvil_faces = (Face("axial", "top", 0.0, itf.ram_contact_radius, 1),
+    anvil_faces = (Face("axial", "top", 0.0, itf.ram_contact_radius, ram_annuli),
                    Face("axial", "bottom", inner, outer, seat_rings),
                    Face("radial", "bottom", inner, outer, seat_rings))
     ring_faces = (Face("axial", "top", inner, outer, seat_rings),
@@ -155,7 +160,7 @@ def cached_stack_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> 
 def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: float = 0.0,
                seat_stiffness: float | None = None, penalty_size: float = 0.1,
                seat_rings: int = SEAT_RINGS, pile_rings: int = PILE_RINGS,
-               ring_fmax: float | None = None) -> StackUnit:
+               ring_fmax: float | None = None, ram_annuli: int = 1) -> StackUnit:
     """The system's anvil (and ``ring``) as a :class:`StackUnit` with the system's contacts.
 
     Parameters
@@ -177,11 +182,21 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
         The ring's pile port in this many rings [-].
     ring_fmax : float or None, default None
         The ring's own truncation [Hz]; None: the system's fmax.
+    ram_annuli : int, default 1
+        The ram face in this many equal-width annuli [-] (J contacts on the anvil's top face,
+        :class:`anvilwave.anvil_rom.rings.RamFace`); J > 1 needs the ring and the system's
+        modal ram with its toe in as many annuli (:func:`with_ram_annuli`).
 
     Returns
     -------
     StackUnit
         The unit (not yet at rest).
+
+    Raises
+    ------
+    InputError
+        If J > 1 without a ring, without the modal ram's toe in J annuli, or with the ram toe
+        and the anvil's ram face of other radii (to 1 mm).
     """
     k_ram, k_pile = contact_stiffnesses(dataclasses.replace(
         cfg, hammer=dataclasses.replace(cfg.hammer, ram=dataclasses.replace(
@@ -191,11 +206,15 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
     s = cfg.anvil
     fmax = float(s.fmax)
     if ring is None:
+        if ram_annuli > 1:
+            raise InputError(cfg.source, "ram_annuli", "the ram face in annuli without a ring is "
+                                                       "the engine's ([anvil] ram_port_annuli)")
         rom = ModalAnvil.from_modal_data(anvil_modal_data(cfg), fmax=fmax,
                                          damping_ratio=s.damping_ratio,
                                          static_correction=s.static_correction)
         return StackUnit(rom, contact, gravity=cfg.gravity)
-    anvil_faces, ring_faces = stack_faces(s.spec, ring, seat_rings, pile_rings)
+    face = _ram_face(cfg, int(ram_annuli)) if ram_annuli > 1 else None
+    anvil_faces, ring_faces = stack_faces(s.spec, ring, seat_rings, pile_rings, int(ram_annuli))
     ring_fmax = fmax if ring_fmax is None else float(ring_fmax)
     anvil = StackBody.from_data(cached_stack_data(s.spec, anvil_faces, fmax), fmax,
                                 s.static_correction, _damping(s.damping_ratio, s.spec))
@@ -207,7 +226,50 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
             seat.r_out**2 - seat.r_in**2)
     return StackUnit(anvil, contact, body, seat_rings=seat_rings, pile_rings=pile_rings,
                      seat_stiffness=float(seat_stiffness), seat_friction=seat_friction,
-                     gravity=cfg.gravity)
+                     gravity=cfg.gravity, ram_face=face)
+
+
+def with_ram_annuli(cfg: SystemConfig, annuli: int) -> SystemConfig:
+    """The system with its modal ram's toe also in ``annuli`` equal-width annuli.
+
+    The ram's modes again at the anvil's fmax on the ram's default mesh, with vertices at the
+    annuli's edges (:func:`anvilwave.hammer.modal_ram.modal_ram`), so the ram unit and the
+    stack's ram face (:func:`stack_unit` with ``ram_annuli``) run the same modes.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (a modal ram).
+    annuli : int
+        J [-] (1: the system unchanged).
+
+    Returns
+    -------
+    SystemConfig
+        The system with the ram's toe modes in J annuli.
+    """
+    if annuli == 1:
+        return cfg
+    ram = modal_ram(cfg.hammer.ram, float(cfg.anvil.fmax), source=cfg.source,
+                    modes=cached_modal_data, annuli=int(annuli))
+    return dataclasses.replace(cfg, hammer=dataclasses.replace(cfg.hammer, ram=ram))
+
+
+def _ram_face(cfg: SystemConfig, annuli: int) -> RamFace:
+    """The system's modal ram toe in ``annuli`` annuli as the stack's ram face."""
+    modes = getattr(cfg.hammer.ram, "modes", None)
+    if modes is None or modes.n_annuli != annuli:
+        raise InputError(cfg.source, "ram_annuli", f"the ram face in {annuli} annuli needs the "
+                                                   "modal ram's toe in as many (with_ram_annuli)")
+    toe = 0.5 * cfg.hammer.ram.toe_diameter
+    radius = cfg.anvil.spec.interfaces.ram_contact_radius
+    if not abs(toe - radius) <= 1e-3:
+        raise InputError(cfg.source, "ram_annuli", f"the annuli are the ram toe's (radius "
+                                                   f"{toe:g} m) and the anvil's ram face's "
+                                                   f"({radius:g} m): they must be the same "
+                                                   "face (to 1 mm)")
+    return RamFace.of(modes.omega, modes.annulus_participation, modes.participation,
+                      modes.annulus_residual, modes.annulus_areas)
 
 
 def _damping(ratio: float | None, spec: AnvilSpec) -> float:

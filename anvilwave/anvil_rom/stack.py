@@ -4,7 +4,14 @@ Each body is a Mode Displacement Method ROM (its own free-free modes truncated a
 fmax, its static correction); the unit keeps the anvil's outward interface, ram in, pile out
 (DESIGN.md). Its contacts, each between a port of one side and a port of the other:
 
-* the ram on the anvil's top face (one port, compression-only, with the ram contact's dashpot);
+* the ram on the anvil's top face: one port, compression-only, with the ram contact's dashpot;
+  or J equal-width annuli from the axis (``ram_face``,
+  :class:`anvilwave.anvil_rom.rings.RamFace`), each a compression-only contact between the
+  same annulus of the ram's toe and of the anvil's top face, coupled as the anvil unit couples
+  them (:mod:`anvilwave.anvil_rom.rings`): the ram's side of annulus a sits at the ram unit's
+  toe plus its offset (:func:`anvilwave.anvil_rom.rings.ram_face_advance`, the ram's flexible
+  modes driven by the annuli's forces and by their sum), the ram's residual flexibility
+  between the annuli in G in place of the contact spring, the dashpot shared by annulus area;
 * the seat, the anvil's flat bottom face on the ring's flat top face where they overlap, in S
   equal-width rings (:func:`annulus_vectors` on both faces): per ring a compression-only normal
   contact on the two bodies' axial participations, and a Coulomb friction pair on their radial
@@ -37,9 +44,10 @@ advanced exactly with all forces held. Energy: per mode the shadow form, plus th
 energy X^T (G + diag(1 / k)) X / 2 of the massless part (contact and stick springs, residual
 flexibility); friction and dashpot dissipation are booked.
 
-Contact order: 0 the ram, 1 .. S the seat rings (inner to outer), S + 1 .. S + K the pile rings,
-then the S friction pairs. Ports: the anvil [ram face, S seat rings axial, S radial], the ring
-[S seat rings axial, S radial, K pile rings axial].
+Contact order: 0 .. J - 1 the ram (J = 1: the one port; annuli inner to outer), J .. J + S - 1
+the seat rings (inner to outer), J + S .. J + S + K - 1 the pile rings, then the S friction
+pairs. Ports: the anvil [J ram face annuli, S seat rings axial, S radial], the ring [S seat
+rings axial, S radial, K pile rings axial].
 """
 
 from __future__ import annotations
@@ -57,7 +65,7 @@ from anvilwave.anvil_rom.fem.geometry import AnvilSpec
 from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
 from anvilwave.anvil_rom.fem.modes import elastic_flexibility
 from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
-from anvilwave.anvil_rom.rings import contact_lcp
+from anvilwave.anvil_rom.rings import RamFace, contact_lcp, ram_face_advance, ram_face_energy
 from anvilwave.anvil_rom.rom import ModalAnvil, modal_transition
 from anvilwave.anvil_rom.unit import GRAVITY, AnvilUnit, ContactParameters
 from anvilwave.inputs import InputError
@@ -252,7 +260,7 @@ class StackBody:
 
 
 class StackState(NamedTuple):
-    """The stack kernels' arrays (module docstring); m contacts, N = 1 + S + K normal ones.
+    """The stack kernels' arrays (module docstring); m contacts, N = J + S + K normal ones.
 
     Parameters
     ----------
@@ -296,6 +304,19 @@ class StackState(NamedTuple):
         The normal contacts' active set (1.0: closed), shape (N,).
     work : numpy.ndarray
         Scratch, shape (N, N + 3).
+    ram_coefficients : numpy.ndarray
+        The ram's flexible modes for the face in annuli, shape (n_f, 5)
+        (:meth:`anvilwave.anvil_rom.rings.RamFace.coefficients`; n_f = 0 for one port).
+    ram_participation : numpy.ndarray
+        Their participations on the annuli, shape (n_f, J) [kg^-1/2].
+    ram_toe_participation : numpy.ndarray
+        Theirs on the whole toe (the ram unit's), shape (n_f,) [kg^-1/2].
+    ram_state : numpy.ndarray
+        T and U now and a step before, shape (4, n_f) [m kg^1/2]
+        (:func:`anvilwave.anvil_rom.rings.ram_face_advance`).
+    ram_offsets : numpy.ndarray
+        The annuli's offsets from the ram unit's toe now and a step before [m] and their rate
+        [m/s], shape (3, J) (zeros for one port).
     """
 
     parameters: np.ndarray
@@ -317,10 +338,15 @@ class StackState(NamedTuple):
     energies: np.ndarray
     active: np.ndarray
     work: np.ndarray
+    ram_coefficients: np.ndarray
+    ram_participation: np.ndarray
+    ram_toe_participation: np.ndarray
+    ram_state: np.ndarray
+    ram_offsets: np.ndarray
 
 
-def stack_incidence(seat_rings: int, pile_rings: int) -> tuple[np.ndarray, np.ndarray,
-                                                             np.ndarray]:
+def stack_incidence(seat_rings: int, pile_rings: int, ram_annuli: int = 1
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Incidence of the contacts on the two bodies' ports and the neighbours (module docstring).
 
     Parameters
@@ -329,28 +355,31 @@ def stack_incidence(seat_rings: int, pile_rings: int) -> tuple[np.ndarray, np.nd
         S [-].
     pile_rings : int
         K [-].
+    ram_annuli : int, default 1
+        J [-].
 
     Returns
     -------
     anvil : numpy.ndarray
-        B of the anvil, shape (1 + 2 S, m): -1 where the anvil is a contact's upper side,
+        B of the anvil, shape (J + 2 S, m): -1 where the anvil is a contact's upper side,
         +1 where it is the lower one.
     ring : numpy.ndarray
         B of the ring, shape (2 S + K, m).
     external : numpy.ndarray
         The ram's (+1) and the pile's (-1) share of each contact's s, shape (2, m).
     """
-    S, K = seat_rings, pile_rings
-    m = 1 + S + K + S
-    Ba, Br, ext = np.zeros((1 + 2 * S, m)), np.zeros((2 * S + K, m)), np.zeros((2, m))
-    Ba[0, 0] = 1.0
-    ext[0, 0] = 1.0
+    S, K, J = seat_rings, pile_rings, ram_annuli
+    m = J + S + K + S
+    Ba, Br, ext = np.zeros((J + 2 * S, m)), np.zeros((2 * S + K, m)), np.zeros((2, m))
+    for a in range(J):
+        Ba[a, a] = 1.0
+        ext[0, a] = 1.0
     for s in range(S):
-        Ba[1 + s, 1 + s], Br[s, 1 + s] = -1.0, 1.0  # the seat's normal contact
-        Ba[1 + S + s, 1 + S + K + s], Br[S + s, 1 + S + K + s] = -1.0, 1.0  # its friction
+        Ba[J + s, J + s], Br[s, J + s] = -1.0, 1.0  # the seat's normal contact
+        Ba[J + S + s, J + S + K + s], Br[S + s, J + S + K + s] = -1.0, 1.0  # its friction
     for k in range(K):
-        Br[2 * S + k, 1 + S + k] = -1.0
-        ext[1, 1 + S + k] = -1.0
+        Br[2 * S + k, J + S + k] = -1.0
+        ext[1, J + S + k] = -1.0
     return Ba, Br, ext
 
 
@@ -365,7 +394,7 @@ class StackUnit:
     Parameters
     ----------
     anvil : StackBody or ModalAnvil
-        The anvil, ports [ram face, S seat rings axial, S radial] (a ModalAnvil: the
+        The anvil, ports [J ram face annuli, S seat rings axial, S radial] (a ModalAnvil: the
         single-body unit, no ring).
     contact : ContactParameters
         Ram and pile contact springs and dashpots (the pile's: on the ring with one, shared by
@@ -389,12 +418,17 @@ class StackUnit:
         (as the reference FEA's pairs).
     gravity : float, default GRAVITY
         Gravitational acceleration [m/s^2].
+    ram_face : RamFace or None, default None
+        The ram's toe in J annuli (:class:`anvilwave.anvil_rom.rings.RamFace`), the anvil's
+        ram port in as many; None: the one ram port. With it the ram contacts' spring is the
+        ram's residual flexibility between the annuli (the one port's ``ram_stiffness`` is
+        the toe's), the dashpot shared by annulus area.
 
     Raises
     ------
     InputError
         If a ring is given without a positive seat stiffness, a coefficient is negative, or the
-        bodies' ports do not match the rings.
+        bodies' ports do not match the rings and the ram face.
     """
 
     anvil: StackBody | ModalAnvil
@@ -407,11 +441,14 @@ class StackUnit:
     seat_friction: float = 0.0
     tangential_stiffness: float | None = None
     gravity: float = GRAVITY
+    ram_face: RamFace | None = None
 
     def __post_init__(self):
         self._h = None
+        self.ram_annuli = 1 if self.ram_face is None else self.ram_face.n_annuli
         if self.ring is None:
-            self.single = AnvilUnit(self.anvil, self.contact, gravity=self.gravity)
+            self.single = AnvilUnit(self.anvil, self.contact, gravity=self.gravity,
+                                    ram_face=self.ram_face)
             self.state = None
             return
         self.single = None
@@ -423,21 +460,34 @@ class StackUnit:
             if not (np.isfinite(value) and value >= 0.0):
                 raise InputError("stack", key, f"must be >= 0, got {value!r}")
         S, K = int(self.seat_rings), int(self.pile_rings)
+        face = self.ram_face
+        J = 1 if face is None else face.n_annuli
         a, r, c = self.anvil, self.ring, self.contact
-        if a.participation.shape[0] != 1 + 2 * S or r.participation.shape[0] != 2 * S + K:
-            raise InputError("stack", "seat_rings", f"the bodies' ports do not match {S} seat "
-                                                    f"and {K} pile rings")
-        Ba, Br, ext = stack_incidence(S, K)
+        if a.participation.shape[0] != J + 2 * S or r.participation.shape[0] != 2 * S + K:
+            raise InputError("stack", "seat_rings", f"the bodies' ports do not match {J} ram "
+                                                    f"annuli, {S} seat and {K} pile rings")
+        Ba, Br, ext = stack_incidence(S, K, J)
         G = Ba.T @ a.residual @ Ba + Br.T @ r.residual @ Br
         seat_share = r.areas[:S] / r.areas[:S].sum()
         pile_share = r.areas[2 * S:] / r.areas[2 * S:].sum()
         kt = self.seat_stiffness if self.tangential_stiffness is None \
             else self.tangential_stiffness
-        k = np.concatenate([[c.ram_stiffness], self.seat_stiffness * seat_share,
+        if face is None:
+            k_ram = np.array([c.ram_stiffness])
+            ram_ratios = np.array([c.ram_damping]) / k_ram
+            Cr, Pr, pr = np.zeros((0, 5)), np.zeros((0, 1)), np.zeros(0)
+        else:
+            G[:J, :J] += face.residual  # the ram's side of the annuli: its contact spring
+            k_ram = np.full(J, np.inf)
+            # c_a / k_a with c_a the dashpot's area share and k_a = 1 / R_aa (the anvil unit's)
+            ram_ratios = c.ram_damping * (a.areas[:J] / a.areas[:J].sum()) * np.diag(face.residual)
+            Cr, Pr, pr = face.coefficients(1e-5), face.participation.T, face.toe
+        k = np.concatenate([k_ram, self.seat_stiffness * seat_share,
                             c.pile_stiffness * pile_share, kt * seat_share])
-        damping = np.concatenate([[c.ram_damping], self.seat_damping * seat_share,
-                                  c.pile_damping * pile_share])
-        N = 1 + S + K
+        N = J + S + K
+        ratios = np.concatenate([ram_ratios,
+                                 self.seat_damping * seat_share / k[J:J + S],
+                                 c.pile_damping * pile_share / k[J + S:N]])
         A = np.diag(1.0 / k[:N]) + G[:N, :N]
         t = np.arange(N, N + S)
         pairs = np.column_stack([np.full(S, float(self.seat_friction)),
@@ -446,8 +496,10 @@ class StackUnit:
             np.array([self.gravity, 1.0, S, K], float), _table(a), _table(r),
             np.ascontiguousarray(a.participation.T @ Ba),
             np.ascontiguousarray(r.participation.T @ Br), np.zeros(2 * a.n_modes),
-            np.zeros(2 * r.n_modes), ext, k, damping / k[:N], pairs, G, A, np.zeros(N + S),
-            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 3)))
+            np.zeros(2 * r.n_modes), ext, k, ratios, pairs, G, A, np.zeros(N + S),
+            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 3)),
+            np.ascontiguousarray(Cr), np.ascontiguousarray(Pr), np.ascontiguousarray(pr),
+            np.zeros((4, pr.size)), np.zeros((3, J)))
         self.set_step(1e-5)
 
     def set_step(self, h: float) -> None:
@@ -470,6 +522,8 @@ class StackUnit:
             if self._h is not None:
                 Q[n:] = Q[:n] - (Q[:n] - Q[n:]) * (h / self._h)
             C[:, :4] = modal_transition(body.omega, body.damping_ratio, h)
+        if self.ram_face is not None:
+            s.ram_coefficients[:] = self.ram_face.coefficients(h)
         s.parameters[1] = h
         self._h = h
 
@@ -508,13 +562,13 @@ class StackUnit:
         if self.single is not None:
             return self.single.rest_on_pile(pile_head_displacement)
         s = self.state
-        S, K = self.seat_rings, self.pile_rings
-        N = 1 + S + K
-        closed = list(range(1, N))
+        S, K, J = self.seat_rings, self.pile_rings, self.ram_annuli
+        N = J + S + K
+        closed = list(range(J, N))
         for _ in range(4 * N):
             X, q, gap = _static(self, closed, pile_head_displacement)
             opening = [i for i in closed if X[i] < 0.0]
-            closing = [i for i in range(1, N) if i not in closed and gap[i] > 0.0]
+            closing = [i for i in range(J, N) if i not in closed and gap[i] > 0.0]
             if not opening and not closing:
                 break
             closed = sorted(set(closed) - set(opening[:1]) | set(closing[:1]))
@@ -527,7 +581,10 @@ class StackUnit:
         s.active[:] = [1.0 if i in closed else 0.0 for i in range(N)]
         s.slip[:] = 0.0
         s.energies[:] = 0.0
-        return float(-gap[0]), float(X[1 + S:N].sum())
+        s.ram_state[:] = 0.0  # the ram's face from rest at the blow's start
+        s.ram_offsets[:] = 0.0
+        # the ram touches the face's highest annulus first (one port: the face's mean)
+        return float(-gap[:J].max()), float(X[J + S:N].sum())
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
@@ -586,7 +643,8 @@ class StackUnit:
         """
         if self.state is None:
             return 0.0
-        return float(self.state.forces[1:1 + self.seat_rings].sum())
+        J = self.ram_annuli
+        return float(self.state.forces[J:J + self.seat_rings].sum())
 
     @property
     def friction_energy(self) -> float:
@@ -624,7 +682,9 @@ class StackUnit:
 
         Per mode m_e ((q_n - q_n-1) / h)^2 / 2 + w^2 q_n q_n-1 / 2 - g p_grav (q_n + q_n-1) / 2,
         plus the complementary energy X^T (G + diag(1 / k)) X / 2 of the massless part at the
-        present forces (normal forces without the dashpots; module docstring).
+        present forces (normal forces without the dashpots; module docstring); with the ram
+        face in annuli also what it adds to the ram unit's energies
+        (:func:`anvilwave.anvil_rom.rings.ram_face_energy`).
 
         Parameters
         ----------
@@ -712,6 +772,11 @@ def stack_relative(state, u_ram, v_ram, u_pile, v_pile):
     for c in range(m):
         x[0, c] = ext[0, c] * u_ram + ext[1, c] * u_pile
         x[1, c] = ext[0, c] * v_ram + ext[1, c] * v_pile
+    offsets = state.ram_offsets
+    if offsets.shape[1] > 1:  # the ram face in annuli: each at the toe plus its offset
+        for a in range(offsets.shape[1]):
+            x[0, a] += offsets[0, a]
+            x[1, a] += offsets[2, a]
     for body in range(2):
         Q = state.anvil_loads if body == 0 else state.ring_loads
         S = state.anvil_state if body == 0 else state.ring_state
@@ -781,10 +846,14 @@ def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
     state.energies[3] = power  # booked over the step by stack_step
     state.forces[:N] = F
     S = int(state.parameters[2])
+    J = state.ram_offsets.shape[1]
+    ram = F[0]
+    for a in range(1, J):
+        ram += F[a]
     pile = 0.0
-    for i in range(1 + S, N):
+    for i in range(J + S, N):
         pile += F[i]
-    return F[0], pile
+    return ram, pile
 
 
 @njit(cache=True)
@@ -794,13 +863,15 @@ def stack_step(state, sweeps):
     Each pair's force by return mapping (:func:`anvilwave.anvil_rom.contact.coulomb_friction`)
     on the increment of its w under the cone mu F_seat (module docstring), ``sweeps``
     Gauss-Seidel sweeps over the pairs, the dissipation added to ``state.energies[0]``; then
-    every mode of each body by the exact step with all contact forces and gravity held.
+    every mode of each body by the exact step with all contact forces and gravity held; then,
+    with the ram face in annuli, their offsets from the ram's toe
+    (:func:`anvilwave.anvil_rom.rings.ram_face_advance`, the annuli's forces held).
 
     Parameters
     ----------
     state : StackState
         The stack's arrays after :func:`stack_forces` at t_n (states, ``forces``, ``slip``,
-        ``energies`` written).
+        ``energies``, ``ram_state``, ``ram_offsets`` written).
     sweeps : int
         Gauss-Seidel sweeps [-].
     """
@@ -808,6 +879,7 @@ def stack_step(state, sweeps):
     N = state.active.shape[0]
     m = X.shape[0]
     S = m - N
+    J = state.ram_offsets.shape[1]
     base = np.empty(S)
     for p in range(S):
         t = N + p
@@ -831,7 +903,7 @@ def stack_step(state, sweeps):
                 if u != p:
                     w -= G[N + p, N + u] * X[N + u]
             X[N + p], dissipated[p] = coulomb_friction(
-                T0[p], w - state.slip[p], X[1 + p], state.friction_pairs[p, 0],
+                T0[p], w - state.slip[p], X[J + p], state.friction_pairs[p, 0],
                 state.friction_pairs[p, 1])
     for p in range(S):
         w = base[p]
@@ -854,6 +926,8 @@ def stack_step(state, sweeps):
             q = Z[j]
             Z[j] = C[j, 0] * q + C[j, 1] * Z[n + j] + C[j, 2] * f
             Z[n + j] = q
+    if J > 1:
+        ram_face_advance(state, P[1])
 
 
 @njit(cache=True)
@@ -893,6 +967,10 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
             rate = (q - qp) / h
             kinetic += 0.5 * C[j, 3] * rate * rate
             total += 0.5 * C[j, 4] ** 2 * q * qp - P[0] * C[j, 5] * 0.5 * (q + qp)
+    if state.ram_offsets.shape[1] > 1:  # what the ram's face in annuli adds to the ram unit's
+        face_kinetic, face_strain = ram_face_energy(state, h)
+        kinetic += face_kinetic
+        total += face_strain
     stack_relative(state, u_ram, v_ram, u_pile, v_pile)
     N = state.active.shape[0]
     X = state.forces.copy()
