@@ -77,6 +77,7 @@ EXAMPLES = ROOT / "anvilwave" / "examples"
 CUTOFF = 5000.0  # [Hz] the comparison low-pass
 TOP_BAND = 4000.0  # [Hz] highest band compared
 ROM_VARIANTS = {
+    "1 ram port": {"ram_annuli": 1},
     "1 seat ring, 1 pile ring": {"seat_rings": 1, "pile_rings": 1},
     f"{SEAT_RINGS} seat rings, 1 pile ring": {"pile_rings": 1},
     "ring's modes to 12 kHz": {"ring_fmax": 12000.0},

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from anvilwave.analyses.compare import lowpass, without_soil
-from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit, with_ram_annuli
+from anvilwave.analyses.stack_blow import RAM_ANNULI, run_stack_blow, stack_unit, with_ram_annuli
 from anvilwave.anvil_rom import stack
 from anvilwave.anvil_rom.fem.geometry import load_anvil
 from anvilwave.config.system import load_system
@@ -90,8 +90,9 @@ def test_friction_zero_is_frictionless_and_coulomb_bounds_hold(table1, ring):
         unit.step(f_ram, f_pile, 2e-5)
         blow_state.append(unit.state.forces.copy())
     F = np.array(blow_state)
-    S, N = unit.seat_rings, 1 + unit.seat_rings + unit.pile_rings
-    T, seat = F[:, N:], F[:, 1:1 + S]
+    J, S = unit.ram_annuli, unit.seat_rings
+    N = J + S + unit.pile_rings
+    T, seat = F[:, N:], F[:, J:J + S]
     assert np.all(np.abs(T) <= 0.2 * seat * (1 + 1e-12))
     assert np.abs(T).max() > 0.0
 
@@ -186,9 +187,12 @@ def test_ram_face_in_annuli_rests_and_its_forces_sum_to_the_ram_force(table1_ann
     assert np.abs(unit.state.ram_offsets[0]).max() > 0.0  # the ram's face deforms
 
 
-def test_ram_face_in_annuli_needs_the_rams_annuli(table1, ring):
-    with pytest.raises(InputError, match="ram_annuli"):
-        stack_unit(table1, ring, ram_annuli=6)
+def test_ram_face_in_annuli_is_the_ring_stacks_default(table1, ring):
+    """With a ring the default is RAM_ANNULI annuli, the ram's modes in as many kept on the
+    unit; without one the ram face in annuli is the engine's, an input error here."""
+    unit = stack_unit(table1, ring)
+    assert unit.ram_annuli == RAM_ANNULI and unit.ram_modes.n_annuli == RAM_ANNULI
+    assert stack_unit(table1, ring, ram_annuli=1).ram_face is None
     with pytest.raises(InputError, match="ram_annuli"):
         stack_unit(with_ram_annuli(table1, 6), None, ram_annuli=6)
 

@@ -423,6 +423,10 @@ class StackUnit:
         ram port in as many; None: the one ram port. With it the ram contacts' spring is the
         ram's residual flexibility between the annuli (the one port's ``ram_stiffness`` is
         the toe's), the dashpot shared by annulus area.
+    ram_modes : object or None, default None
+        The modal ram's toe modes the face is of
+        (:class:`anvilwave.hammer.modal_ram.RamToeModes`), for the runner's ram unit to run
+        the same modes; None: the system's.
 
     Raises
     ------
@@ -442,6 +446,7 @@ class StackUnit:
     tangential_stiffness: float | None = None
     gravity: float = GRAVITY
     ram_face: RamFace | None = None
+    ram_modes: object | None = None
 
     def __post_init__(self):
         self._h = None
