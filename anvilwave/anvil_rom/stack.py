@@ -303,7 +303,9 @@ class StackState(NamedTuple):
     active : numpy.ndarray
         The normal contacts' active set (1.0: closed), shape (N,).
     work : numpy.ndarray
-        Scratch, shape (N, N + 3).
+        Scratch, shape (N, N + 9): the complementarity problem's (columns 0 .. N + 2) and the
+        kernels' vectors (N + 3 .. N + 8), so that no kernel allocates (the engine's blow loop
+        runs without reference counting, :func:`anvilwave.engine.direct.run_blow`).
     ram_coefficients : numpy.ndarray
         The ram's flexible modes for the face in annuli, shape (n_f, 5)
         (:meth:`anvilwave.anvil_rom.rings.RamFace.coefficients`; n_f = 0 for one port).
@@ -502,7 +504,7 @@ class StackUnit:
             np.ascontiguousarray(a.participation.T @ Ba),
             np.ascontiguousarray(r.participation.T @ Br), np.zeros(2 * a.n_modes),
             np.zeros(2 * r.n_modes), ext, k, ratios, pairs, G, A, np.zeros(N + S),
-            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 3)),
+            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 9)),
             np.ascontiguousarray(Cr), np.ascontiguousarray(Pr), np.ascontiguousarray(pr),
             np.zeros((4, pr.size)), np.zeros((3, J)))
         self.set_step(1e-5)
@@ -840,16 +842,24 @@ def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
     """
     stack_relative(state, u_ram, v_ram, u_pile, v_pile)
     N = state.active.shape[0]
-    F = np.empty(N)
+    F = state.work[:, N + 3]
     _normal_forces(state, True, F, state.active)
     power = 0.0
-    if np.any(state.ratios > 0.0):
-        Fe = np.empty(N)
-        _normal_forces(state, False, Fe, state.active.copy())
+    damped = False
+    for i in range(N):
+        if state.ratios[i] > 0.0:
+            damped = True
+    if damped:
+        Fe = state.work[:, N + 4]
+        start = state.work[:, N + 5]  # the active set, a copy (the elastic solve's own)
+        for i in range(N):
+            start[i] = state.active[i]
+        _normal_forces(state, False, Fe, start)
         for i in range(N):
             power += (F[i] - Fe[i]) * state.relative[1, i]
     state.energies[3] = power  # booked over the step by stack_step
-    state.forces[:N] = F
+    for i in range(N):
+        state.forces[i] = F[i]
     S = int(state.parameters[2])
     J = state.ram_offsets.shape[1]
     ram = F[0]
@@ -885,13 +895,16 @@ def stack_step(state, sweeps):
     m = X.shape[0]
     S = m - N
     J = state.ram_offsets.shape[1]
-    base = np.empty(S)
+    base = state.work[:S, N + 6]
+    T0 = state.work[:S, N + 7]  # the friction forces at the step's start
+    dissipated = state.work[:S, N + 8]
     for p in range(S):
         t = N + p
         base[p] = x[0, t]
         for i in range(N):
             base[p] -= G[t, i] * X[i]
-    T0 = X[N:].copy()
+        T0[p] = X[t]
+        dissipated[p] = 0.0
     if e[2] == 0.0:
         for p in range(S):
             w = base[p]
@@ -900,7 +913,6 @@ def stack_step(state, sweeps):
                     w -= G[N + p, N + u] * T0[u]
             state.slip[p] = w
         e[2] = 1.0
-    dissipated = np.zeros(S)
     for _ in range(sweeps):
         for p in range(S):
             w = base[p]
@@ -978,14 +990,17 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
         total += face_strain
     stack_relative(state, u_ram, v_ram, u_pile, v_pile)
     N = state.active.shape[0]
-    X = state.forces.copy()
-    F = np.empty(N)
-    _normal_forces(state, False, F, state.active.copy())
-    X[:N] = F
-    G, k = state.coupling, state.stiffness
+    F = state.work[:, N + 4]
+    start = state.work[:, N + 5]  # the active set, a copy (the kept one unchanged)
+    for i in range(N):
+        start[i] = state.active[i]
+    _normal_forces(state, False, F, start)
+    G, k, X = state.coupling, state.stiffness, state.forces
     m = X.shape[0]
-    for i in range(m):
-        total += 0.5 * X[i] * X[i] / k[i]
+    for i in range(m):  # X with its normal part the elastic forces F
+        xi = F[i] if i < N else X[i]
+        total += 0.5 * xi * xi / k[i]
         for j in range(m):
-            total += 0.5 * X[i] * G[i, j] * X[j]
+            xj = F[j] if j < N else X[j]
+            total += 0.5 * xi * G[i, j] * xj
     return kinetic, total
