@@ -199,6 +199,57 @@ BAD_INPUTS = [
 ]
 """The command-line bad inputs: (class, case, system extra, arguments, command, words)."""
 
+EXAMPLE_ANVILS = Path(__file__).resolve().parents[1] / "anvilwave" / "examples" / "anvils"
+ANVIL = f'[[anvil.bodies]]\nfile = "{EXAMPLE_ANVILS / "xl8.toml"}"\n'
+RING = f'[[anvil.bodies]]\nfile = "{EXAMPLE_ANVILS / "xl8_ring.toml"}"\n'
+STACK_SYSTEM = """
+[simulation]
+duration = 0.01
+
+[hammer]
+database = "illustrative_5500kj"
+{hammer}
+
+[anvil]
+model = "{model}"
+{anvil}
+
+[pile]
+segment_length = 0.5
+[[pile.sections]]
+length = 80.0
+outer_diameter = 8.0
+wall_thickness = 0.14
+"""
+
+STACK_CASES = [
+    ("file and bodies", {"anvil": f'file = "{EXAMPLE_ANVILS / "xl8.toml"}"\n' + ANVIL},
+     ["anvil.bodies", "not both"]),
+    ("three bodies", {"anvil": ANVIL + RING + RING}, ["anvil.bodies", "3 bodies"]),
+    ("ring file missing", {"anvil": ANVIL + '[[anvil.bodies]]\nfile = "no_ring.toml"\n'},
+     ["anvil.bodies[1].file", "no_ring.toml", "not found"]),
+    ("negative seat friction", {"anvil": ANVIL + RING + "seat_friction = -0.1\n"},
+     ["anvil.bodies[1].seat_friction", "-0.1"]),
+    ("no seat ring", {"anvil": ANVIL + RING + "seat_rings = 0\n"},
+     ["anvil.bodies[1].seat_rings"]),
+    ("friction on the anvil", {"anvil": ANVIL + "seat_friction = 0.1\n" + RING},
+     ["anvil.bodies[0]", "seat_friction"]),
+    ("stack with the lumped anvil", {"anvil": ANVIL + RING, "model": "lumped"},
+     ["anvil.bodies", "model = 'rom'"]),
+    ("ring off the seat", {"anvil": ANVIL + '[[anvil.bodies]]\nfile = "ring.toml"\n',
+                           "ring": [[4.2, 0.0], [4.5, 0.0], [4.5, 0.5], [4.2, 0.5]]},
+     ["anvil.bodies[1].file", "ring.toml", "seat"]),
+    ("pile wall beyond the ring", {"anvil": ANVIL + '[[anvil.bodies]]\nfile = "ring.toml"\n',
+                                   "ring": [[3.0, 0.0], [3.9, 0.0], [3.9, 0.5], [3.0, 0.5]]},
+     ["anvil.bodies[1].file", "pile ring", "3.86 to 4"]),
+    ("stack on the tube head", {"anvil": 'pile_head = "tube"\n' + ANVIL + RING},
+     ["anvil.pile_head", "tube"]),
+    ("stack with the rod ram", {"anvil": ANVIL + RING, "hammer": ""},
+     ["hammer.ram_model", "modal"]),
+]
+"""The driving stack's bad inputs ([[anvil.bodies]], test_bad_stack): (case, parts of the
+system file, words)."""
+
 OUTPUT_CASES = ["out is a file", "out below a file", "out holds another command's result",
                 "read-only folder", "folder that cannot be looked into",
                 "--force replaces another command's result whole",
@@ -251,9 +302,10 @@ EVERY_COMMAND_CASES = [
 """A missing or impossible input to every command that reads one
 (test_every_command_refuses_a_missing_input)."""
 
-CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda", "report", "missing"})
+CLASSES = sorted({c[0] for c in BAD_INPUTS} | {"output", "fault", "pda", "report", "missing",
+                                                "stack"})
 COUNT = (len(BAD_INPUTS) + len(OUTPUT_CASES) + len(FAULT_CASES) + len(PDA_CASES)
-         + len(REPORT_CASES) + len(EVERY_COMMAND_CASES))
+         + len(REPORT_CASES) + len(EVERY_COMMAND_CASES) + len(STACK_CASES))
 """Bad inputs and faults tested here."""
 
 
@@ -281,12 +333,30 @@ def test_bad_input_gives_one_line_and_exit_2(tmp_path, capsys, kind, case, extra
 
 def test_the_count_is_stated():
     """docs/system-file.md states the count and the classes of the cases tested here."""
-    assert COUNT == len(BAD_INPUTS) + 46 and COUNT >= 71
-    assert CLASSES == ["accepted", "fault", "missing", "output", "pda", "report", "traceback",
-                       "vague"]
+    assert COUNT == len(BAD_INPUTS) + len(STACK_CASES) + 46 and COUNT >= 82
+    assert CLASSES == ["accepted", "fault", "missing", "output", "pda", "report", "stack",
+                       "traceback", "vague"]
     docs = (Path(__file__).resolve().parents[1] / "docs" / "system-file.md").read_text()
-    words = {8: "eight"}
+    words = {9: "nine"}
     assert f"runs {COUNT} such cases in {words[len(CLASSES)]} classes" in " ".join(docs.split())
+
+
+@pytest.mark.parametrize("case, parts, words", STACK_CASES, ids=[c[0] for c in STACK_CASES])
+def test_bad_stack(tmp_path, capsys, case, parts, words):
+    """A bad driving stack ([[anvil.bodies]]) stops ``impact`` with one line naming the file,
+    the body's key and the rule, exit 2, before any modes are computed."""
+    if "ring" in parts:
+        points = parts["ring"]
+        (tmp_path / "ring.toml").write_text(
+            "[material]\nyoungs_modulus = 210e9\npoisson_ratio = 0.3\ndensity = 7850.0\n"
+            f"[geometry]\npoints = {points}\n[mesh]\nsize = 0.05\n")
+    system = tmp_path / "system.toml"
+    system.write_text(STACK_SYSTEM.format(hammer=parts.get("hammer", 'ram_model = "modal"'),
+                                          model=parts.get("model", "rom"),
+                                          anvil=parts["anvil"]))
+    out = tmp_path / "out"
+    code = cli.main(["impact", str(system), "--out", str(out)])
+    _assert_one_line_exit_2(code, capsys, [str(system), *words], out)
 
 
 @pytest.mark.parametrize("case", REPORT_CASES)

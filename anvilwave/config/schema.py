@@ -39,9 +39,17 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.damping_ratio": ("-", None, "modal damping ratio; default the anvil file's"),
     "anvil.static_correction": ("-", True, "residual flexibility of the truncated modes"),
     "anvil.pile_port_rings": ("-", 1, "the pile port split into rings across the wall (rom; "
-                               "anvilwave/anvil_rom/rings.py)"),
+                               "anvilwave/anvil_rom/rings.py; the ring's, default 3, in a "
+                               "stack)"),
     "anvil.ram_port_annuli": ("-", 1, "the ram port split into equal-width annuli (rom, modal "
-                               "ram, pile_port_rings >= 2; anvilwave/anvil_rom/rings.py)"),
+                               "ram, pile_port_rings >= 2; anvilwave/anvil_rom/rings.py; "
+                               "default 6 in a stack)"),
+    "anvil.bodies": ("-", None, "[[anvil.bodies]] instead of file: the driving stack, the "
+                                "anvil then the anvil ring (rom, modal ram; one body is file)"),
+    "anvil.bodies.file": ("-", REQUIRED, "the body's anvil file (the first: with [interfaces])"),
+    "anvil.bodies.seat_friction": ("-", 0.0, "the ring only: Coulomb coefficient of its seat "
+                                             "under the anvil (0 to 2)"),
+    "anvil.bodies.seat_rings": ("-", 8, "the ring only: the seat in equal-width rings"),
     "anvil.pile_head": ("-", "rod", "'rod' (the 1D pile's flat head) or 'tube' (the rings on an "
                                     "FE tube head, anvilwave/pile/head_kernel.py; "
                                     "pile_port_rings >= 2)"),

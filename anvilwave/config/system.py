@@ -37,6 +37,15 @@ A system file is TOML (every key is checked; units in brackets)::
                                 # ram's toe bar impedance A sqrt(E rho)
     pile_contact_stiffness = 1e12   # [N/m] optional, default: the pile's top half segment
 
+    [[anvil.bodies]]            # instead of file: the driving stack, top first (rom only)
+    file = "anvils/xl8.toml"    # the anvil (its [interfaces]: the ram face, the pile ring)
+    [[anvil.bodies]]
+    file = "anvils/xl8_ring.toml"   # the anvil ring, its flat top face the seat
+    seat_friction = 0.1         # [-] Coulomb coefficient of the seat (this body on the one above)
+    seat_rings = 8              # optional: the seat in this many equal-width rings (default 8)
+    # with a ring, pile_port_rings (default 3) is the ring's pile port and ram_port_annuli
+    # (default 6) the anvil's ram face; one body is the same system as file = (to the bit)
+
     [pile]      # see anvilwave/pile/pile.py          [soil]      # see
     anvilwave/pile/soil/models.py
 """
@@ -61,6 +70,44 @@ from anvilwave.inputs import InputError, Table
 from anvilwave.pile.model import PileSoil
 
 ANVIL_MODELS = ("rom", "lumped", "classic", "none")
+
+STACK_SEAT_RINGS = 8
+"""Seat rings of a stack by default: Table 1's 0.55 m seat in 0.07 m rings, at least one
+element edge each on the bodies' 0.05 m meshes (``benchmarks/study_anvil_ring.py``)."""
+
+STACK_PILE_RINGS = 3
+"""Rings of the ring's pile port by default (one element edge each on the ring's 0.05 m mesh
+across the 0.14 m wall)."""
+
+STACK_RAM_ANNULI = 6
+"""The anvil's ram face in this many annuli by default with a ring: the variant that matches
+the reference FEA stack best (``benchmarks/study_anvil_ring.py``)."""
+
+
+@dataclass(frozen=True)
+class StackSettings:
+    """The driving stack below the ram: the anvil (``AnvilSettings.spec``), then the ring.
+
+    Parameters
+    ----------
+    ring : AnvilSpec
+        The anvil ring (an outline off the axis, its flat top face the seat).
+    seat_friction : float
+        Coulomb coefficient of the anvil-ring seat [-].
+    seat_rings : int
+        The seat in this many equal-width rings [-].
+    pile_rings : int
+        The ring's pile port in this many rings across the pile wall [-].
+    ram_annuli : int
+        The anvil's ram face in this many equal-width annuli [-].
+    """
+
+    ring: AnvilSpec
+    seat_friction: float
+    seat_rings: int
+    pile_rings: int
+    ram_annuli: int
+
 RAM_MODELS = ("rod", "modal")
 
 
@@ -94,6 +141,9 @@ class AnvilSettings:
         The classic driving system (model "classic").
     pile_head : {"rod", "tube"}
         "rod" (the 1D pile's flat head) or "tube" (the rings on an FE tube head).
+    stack : StackSettings or None, default None
+        The anvil ring below the anvil (``[[anvil.bodies]]`` with two bodies); None: the
+        anvil alone.
     """
 
     model: str
@@ -108,6 +158,7 @@ class AnvilSettings:
     pile_contact_damping: float = 0.0
     classic: DrivingSystem | None = None
     pile_head: str = "rod"
+    stack: StackSettings | None = None
 
 
 @dataclass(frozen=True)
@@ -216,7 +267,8 @@ class SystemConfig:
         if model == "classic" and self.anvil.classic is None:
             raise InputError(self.source, "anvil.classic", "the 'classic' anvil needs an "
                                                            "[anvil.classic] table")
-        return replace(self, anvil=replace(self.anvil, model=model))
+        return replace(self, anvil=replace(self.anvil, model=model,
+                                           stack=self.anvil.stack if model == "rom" else None))
 
 
 def load_system(path: str | Path) -> SystemConfig:
@@ -286,6 +338,8 @@ def load_system(path: str | Path) -> SystemConfig:
         raise InputError(source, "anvil.ram_port_annuli", "the ram face in annuli is the modal "
                                                           "ram's: it needs [hammer] ram_model = "
                                                           "'modal'")
+    if anvil.stack is not None:
+        check_stack(config, ram_options["ram_model"])
     if ram_options["ram_model"] == "modal":
         config = replace(config, hammer=_modal_hammer(hammer, anvil,
                                                       ram_options["ram_mesh_size"], source))
@@ -396,6 +450,8 @@ def _modal_hammer(hammer: Hammer, anvil: AnvilSettings, mesh_size: float | None,
         fmax = anvil.spec.fmax if anvil.spec is not None else DEFAULT_FMAX
     try:
         annuli = getattr(getattr(anvil.spec, "interfaces", None), "ram_annuli", 1)
+        if anvil.stack is not None:
+            annuli = anvil.stack.ram_annuli
         ram = modal_ram(hammer.ram, fmax, mesh_size=mesh_size, source=source,
                         modes=cached_modal_data, annuli=annuli)
     except InputError as exc:
@@ -463,15 +519,21 @@ def _ram_contact_damping(table: Table, hammer: Hammer, source: str) -> float:
 def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
     model = table.string("model", choices=ANVIL_MODELS)
     spec = None
+    bodies = table.tables("bodies", required=False)
+    if table.has("file") and table.has("bodies"):
+        raise table.error("bodies", "give either file = (one anvil) or [[anvil.bodies]] (the "
+                                    "stack), not both")
+    if table.has("bodies") and not 1 <= len(bodies) <= 2:
+        raise table.error("bodies", f"{len(bodies)} bodies: give the anvil, then optionally "
+                                    "the anvil ring (one or two [[anvil.bodies]])")
     if table.has("file"):
-        path = table.path("file")
-        if not path.exists():
-            raise table.error("file", f"anvil file {path} not found")
-        spec = load_anvil(path)
-        if spec.interfaces is None:
-            raise table.error("file", f"{path} has no [interfaces]: the ROM needs them")
+        spec = _anvil_file(table)
+    elif bodies:
+        spec = _anvil_file(bodies[0])
+        bodies[0].finish()
     elif model in ("rom", "lumped"):
         raise table.error("file", f"is required for the {model!r} anvil")
+    ring_table = bodies[1] if len(bodies) == 2 else None
     classic_table = table.table("classic", required=False)
     classic = DrivingSystem.from_table(classic_table) if classic_table is not None else None
     if model == "classic" and classic is None:
@@ -489,6 +551,10 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
         pile_contact_damping=table.number("pile_contact_damping", 0.0, ge=0.0, unit="N s/m"),
         classic=classic,
     )
+    if ring_table is not None:
+        settings = replace(settings, stack=_stack(table, ring_table, model, settings, spec))
+        table.finish()
+        return settings
     rings = table.integer("pile_port_rings", 1, ge=1)
     if rings > 1:
         if model != "rom":
@@ -514,3 +580,84 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
     settings = replace(settings, pile_head=head)
     table.finish()
     return settings
+
+
+def _anvil_file(table: Table) -> AnvilSpec:
+    """The anvil file of ``table``'s ``file`` key (it must have its [interfaces])."""
+    path = table.path("file")
+    if not path.exists():
+        raise table.error("file", f"anvil file {path} not found")
+    spec = load_anvil(path)
+    if spec.interfaces is None:
+        raise table.error("file", f"{path} has no [interfaces]: the ROM needs them")
+    return spec
+
+
+def _stack(table: Table, body: Table, model: str, settings: AnvilSettings,
+           anvil: AnvilSpec) -> StackSettings:
+    """The second ``[[anvil.bodies]]`` (the ring) and the stack's port counts of ``table``."""
+    if model != "rom":
+        raise table.error("bodies", f"the stack of two bodies is the ROM's: it needs model = "
+                                    f"'rom', not {model!r}")
+    path = body.path("file")
+    if not path.exists():
+        raise body.error("file", f"anvil ring file {path} not found")
+    ring = load_anvil(path)
+    friction = body.number("seat_friction", 0.0, ge=0.0, le=2.0)
+    seat_rings = body.integer("seat_rings", STACK_SEAT_RINGS, ge=1)
+    body.finish()
+    if ring.outline is None or anvil.outline is None:
+        which, name = (body, "file") if ring.outline is None else (table, "bodies")
+        raise which.error(name, "a stack body must be an outline ([geometry] points)")
+    ring_pts = np.asarray(ring.outline, float)
+    anvil_pts = np.asarray(anvil.outline, float)
+    top = ring_pts[np.isclose(ring_pts[:, 1], ring_pts[:, 1].min())][:, 0]
+    bottom = anvil_pts[np.isclose(anvil_pts[:, 1], anvil_pts[:, 1].max())][:, 0]
+    if not min(top.max(), bottom.max()) > max(top.min(), bottom.min()):
+        raise body.error("file", f"{path}: the ring's flat top face must overlap the anvil's "
+                                 "flat bottom face (the seat)")
+    wall_in, wall_out = anvil.interfaces.pile_ring
+    if wall_in < ring_pts[:, 0].min() - 1e-9 or wall_out > ring_pts[:, 0].max() + 1e-9:
+        raise body.error("file", f"{path}: the pile ring of the anvil's [interfaces] "
+                                 f"({wall_in:g} to {wall_out:g} m) must lie under the ring's "
+                                 "bottom face")
+    rings = table.integer("pile_port_rings", STACK_PILE_RINGS, ge=1)
+    annuli = table.integer("ram_port_annuli", STACK_RAM_ANNULI, ge=1)
+    if annuli > 1 and settings.ram_contact_stiffness is not None:
+        raise table.error("ram_port_annuli", "the annuli's contacts are the modal ram's "
+                                             "residual flexibility: omit ram_contact_stiffness")
+    if table.string("pile_head", "rod", choices=("rod", "tube")) != "rod":
+        raise table.error("pile_head", "the stack bears on the 1D pile's head: 'tube' is the "
+                                       "single anvil's")
+    return StackSettings(ring, float(friction), int(seat_rings), int(rings), int(annuli))
+
+
+def check_stack(config: SystemConfig, ram_model: str) -> None:
+    """Refuse a stack the analyses cannot run (the rod ram, a ram toe off the ram face).
+
+    The stack runs the modal ram, and its ram face in annuli is the ram toe's face (to 1 mm).
+
+    Parameters
+    ----------
+    config : SystemConfig
+        The system with ``anvil.stack``.
+    ram_model : str
+        The ``[hammer] ram_model``.
+
+    Raises
+    ------
+    InputError
+        Naming ``hammer.ram_model`` or ``anvil.ram_port_annuli``.
+    """
+    if ram_model != "modal":
+        raise InputError(config.source, "hammer.ram_model", "the stack ([[anvil.bodies]] with "
+                                                            "a ring) runs the modal ram: it "
+                                                            "needs ram_model = 'modal'")
+    if config.anvil.stack.ram_annuli > 1:
+        toe = 0.5 * config.hammer.ram.toe_diameter
+        radius = config.anvil.spec.interfaces.ram_contact_radius
+        if not abs(toe - radius) <= 1e-3:
+            raise InputError(config.source, "anvil.ram_port_annuli",
+                             f"the annuli are the ram toe's (radius {toe:g} m) and the anvil's "
+                             f"ram face's ({radius:g} m): they must be the same face (to 1 mm);"
+                             " set ram_port_annuli = 1")
