@@ -70,6 +70,7 @@ MODULES_SYSTEM = (
     "anvilwave.config.install",
     "anvilwave.config.schema",
     "anvilwave.config.system",
+    "anvilwave.engine.anvils",
     "anvilwave.engine.compilation",
     "anvilwave.engine.fmi",
     "anvilwave.engine.fmus",

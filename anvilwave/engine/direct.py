@@ -55,6 +55,13 @@ from anvilwave.anvil_rom.rings import (
     ring_unit_energy_at,
 )
 from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.stack import (
+    FRICTION_SWEEPS,
+    StackState,
+    stack_energy,
+    stack_forces,
+    stack_step,
+)
 from anvilwave.anvil_rom.unit import (
     AnvilUnit,
     ContactParameters,
@@ -64,8 +71,9 @@ from anvilwave.anvil_rom.unit import (
     modal_unit_energy_at,
     modal_unit_interface,
 )
-from anvilwave.config.cache import cached_chain, cached_modal_data, cached_ring_kernel
+from anvilwave.config.cache import cached_chain, cached_ring_kernel
 from anvilwave.config.system import SystemConfig
+from anvilwave.engine.anvils import anvil_modal_data, contact_stiffnesses, stack_unit
 from anvilwave.engine.compilation import announce_compilation
 from anvilwave.hammer.driving_system import (
     driving_system_energy,
@@ -482,7 +490,7 @@ class LoopClassic(NamedTuple):
 
 
 class LoopAnvil(NamedTuple):
-    """The anvil unit: one of ``modal`` (with or without ``rings``), ``classic`` or ``direct``.
+    """The anvil unit: one of ``modal`` (with ``rings`` or not), ``classic``, ``direct``, ``stack``.
 
     The others are None, and the compiler keeps only the code of the given one.
 
@@ -496,12 +504,16 @@ class LoopAnvil(NamedTuple):
         The classic driving system.
     direct : numpy.ndarray or None
         No anvil: the contact [k, c] [N/m, N s/m] of ram toe and pile head.
+    stack : StackState or None, default None
+        The driving stack, anvil and anvil ring (:class:`anvilwave.anvil_rom.stack.StackState`,
+        ``[[anvil.bodies]]``).
     """
 
     modal: LoopModalAnvil | None
     rings: RingState | None
     classic: LoopClassic | None
     direct: np.ndarray | None
+    stack: StackState | None = None
 
 
 class LoopPile(NamedTuple):
@@ -653,14 +665,14 @@ def run_blow(ram, anvil, pile, settings, records):
     energy_row : int
         Number of rows recorded into ``records.energies`` [-].
     """
-    return _blow(ram, anvil.modal, anvil.rings, anvil.classic, anvil.direct, pile, settings,
-                 records.out, records.energies, records.works, records.sections,
+    return _blow(ram, anvil.modal, anvil.rings, anvil.classic, anvil.direct, anvil.stack, pile,
+                 settings, records.out, records.energies, records.works, records.sections,
                  records.summary)
 
 
 @njit(cache=True, _nrt=False)
-def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energies, works,
-          sections, summary):
+def _blow(ram, modal, rings, classic, direct, stack, pile_bundle, settings, out, energies,
+          works, sections, summary):
     """:func:`run_blow` with the optional parts as arguments: the master algorithm (module
     docstring), each unit's part of a step one helper inlined into the loop (numba's IR-level
     ``inline='always'``): the ram's (:func:`_ram_toe`, :func:`_ram_step`), the anvil unit's
@@ -714,6 +726,10 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
         damped = modal.parameters[1] != 0.0 or modal.parameters[3] != 0.0
     if direct is not None:
         damped = direct[1] != 0.0
+    if stack is not None:
+        for i in range(stack.ratios.shape[0]):
+            if stack.ratios[i] != 0.0:
+                damped = True
     power_before = 0.0
     work_gauge = 0.0
     emx_gauge = 0.0
@@ -730,7 +746,7 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
         u_pile, v_pile = _pile_head(probes, pu, pv, extrapolation, face0)
         # 2. contact forces at t_n (feedthrough of the anvil unit)
         f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated = _anvil_contact(
-            modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile)
+            modal, rings, classic, direct, stack, damped, h, u_ram, v_ram, u_pile, v_pile)
         if damped:
             work_contact += dissipated
         # the blow's summary at t_n
@@ -744,14 +760,15 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
             if sections is not None:
                 _record_sections(sections[0], sections[1], pu, row - 1)
             if out is not None:
-                u_top, u_bottom = _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom)
+                u_top, u_bottom = _anvil_faces(modal, rings, stack, f_ram, f_pile, u_top,
+                                               u_bottom)
                 _record_row(out, row - 1, t0 + n * h, f_ram, f_pile, v_pile, f_gauge, v_gauge,
                             v_ram, u_top, u_bottom, u_pile + face0, pu[last])
         if energies is not None:
             if energy_countdown == 0 or n == n_steps:
                 energy_countdown = energy_every
-                kin, pot = _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram,
-                                           u_pile, v_pile, fe_ram, fe_pile)
+                kin, pot = _anvil_energies(modal, rings, classic, direct, stack, damped, u_ram,
+                                           v_ram, u_pile, v_pile, fe_ram, fe_pile)
                 ke, se, pe = _ram_energies(ram_is_modal, ram_C, ram_S, ram_toe, ram_mass,
                                            ram_stiffness, ram_u, ram_v, gravity, h, dt_ram)
                 kinetic, strain, grav, soil_static, soil_damping, damping = _pile_works(
@@ -768,7 +785,8 @@ def _blow(ram, modal, rings, classic, direct, pile_bundle, settings, out, energi
         # 3. every unit over [t_n, t_n+1] with the forces held
         _ram_step(ram_is_modal, ram_C, ram_S, ram_toe, weight, inverse_mass, ram_stiffness,
                   ram_u, ram_v, f_ram, h, ram_nsub)
-        _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h)
+        _anvil_step(modal, rings, classic, stack, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile,
+                    h)
         _pile_step(pile_sweep, soil_sweep, first_soil, pu, pv, poff, pen, largest, smallest,
                    f_pile, h, pile_nsub, works)
     # the end state: its stresses, energies and works
@@ -1020,11 +1038,12 @@ def _pile_works(mass, pile_sweep, u, v, energy, dt, start_u, start_v, start_ener
 
 
 @njit(cache=True, inline='always')
-def _anvil_contact(modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pile, v_pile):
+def _anvil_contact(modal, rings, classic, direct, stack, damped, h, u_ram, v_ram, u_pile,
+                   v_pile):
     """The anvil unit's feedthrough at t_n: the two contact forces from the neighbours' states.
 
-    One of ``modal`` (with ``rings`` or not), ``classic`` and ``direct`` is given, the others
-    None; the compiler keeps the code of the given one.
+    One of ``modal`` (with ``rings`` or not), ``classic``, ``direct`` and ``stack`` is given,
+    the others None; the compiler keeps the code of the given one.
 
     Parameters
     ----------
@@ -1036,6 +1055,8 @@ def _anvil_contact(modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pil
         The classic driving system.
     direct : numpy.ndarray or None
         No anvil: the contact [k, c] [N/m, N s/m].
+    stack : StackState or None
+        The driving stack (:func:`anvilwave.anvil_rom.stack.stack_forces`).
     damped : bool
         A contact has a dashpot.
     h : float
@@ -1099,11 +1120,16 @@ def _anvil_contact(modal, rings, classic, direct, damped, h, u_ram, v_ram, u_pil
         if damped:
             fe_ram = contact_force(u_ram - u_pile, 0.0, direct[0], 0.0)
             dissipated = h * (f_ram - fe_ram) * (v_ram - v_pile)
+    if stack is not None:  # its own elastic forces in stack_energy; the dashpots' power kept
+        f_ram, f_pile = stack_forces(stack, u_ram, v_ram, u_pile, v_pile)
+        fe_ram = f_ram
+        fe_pile = f_pile
+        dissipated = h * stack.energies[3]
     return f_ram, f_pile, fe_ram, fe_pile, u_top, u_bottom, dissipated
 
 
 @njit(cache=True, inline='always')
-def _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom):
+def _anvil_faces(modal, rings, stack, f_ram, f_pile, u_top, u_bottom):
     """The anvil's top and bottom faces at t_n for the records.
 
     Parameters
@@ -1112,6 +1138,9 @@ def _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom):
         The modal anvil unit (its faces with the static correction).
     rings : RingState or None
         Its pile port in rings (:func:`anvilwave.anvil_rom.rings.ring_faces`).
+    stack : StackState or None
+        The driving stack: the anvil's ram face and the ring's pile port, each the mean of its
+        ports' modal displacements (the kept modes, without the residual flexibility's part).
     f_ram : float
         Ram contact force [N].
     f_pile : float
@@ -1134,11 +1163,25 @@ def _anvil_faces(modal, rings, f_ram, f_pile, u_top, u_bottom):
         u_bottom = modal.interface[2] + P[5] * f_ram - P[6] * f_pile
     if modal is not None and rings is not None:
         u_top, u_bottom = ring_faces(rings)
+    if stack is not None:
+        J = stack.ram_offsets.shape[1]
+        N = stack.active.shape[0]
+        S = int(stack.parameters[2])
+        n_a = stack.anvil_loads.shape[0]
+        n_r = stack.ring_loads.shape[0]
+        u_top = 0.0
+        for a in range(J):  # the anvil is the ram contacts' lower side: Q = +participation
+            for j in range(n_a):
+                u_top += stack.anvil_loads[j, a] * stack.anvil_state[j] / J
+        u_bottom = 0.0
+        for c in range(J + S, N):  # the ring is the pile contacts' upper side: Q = -part.
+            for j in range(n_r):
+                u_bottom -= stack.ring_loads[j, c] * stack.ring_state[j] / (N - J - S)
     return u_top, u_bottom
 
 
 @njit(cache=True, inline='always')
-def _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h):
+def _anvil_step(modal, rings, classic, stack, f_ram, f_pile, u_ram, v_ram, u_pile, v_pile, h):
     """The anvil unit over [t_n, t_n+1] with the contact forces held, states in place.
 
     Parameters
@@ -1149,6 +1192,9 @@ def _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pi
         Its pile port in rings.
     classic : LoopClassic or None
         The classic driving system (it steps on the neighbours' states).
+    stack : StackState or None
+        The driving stack (:func:`anvilwave.anvil_rom.stack.stack_step`, the forces of its
+        :func:`anvilwave.anvil_rom.stack.stack_forces` at t_n held).
     f_ram : float
         Ram contact force [N].
     f_pile : float
@@ -1173,10 +1219,12 @@ def _anvil_step(modal, rings, classic, f_ram, f_pile, u_ram, v_ram, u_pile, v_pi
     if classic is not None:
         driving_system_step(classic.parameters, classic.state, u_ram, v_ram, u_pile, v_pile, h,
                             classic.n_sub)
+    if stack is not None:
+        stack_step(stack, FRICTION_SWEEPS)
 
 
 @njit(cache=True, inline='always')
-def _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram, u_pile, v_pile,
+def _anvil_energies(modal, rings, classic, direct, stack, damped, u_ram, v_ram, u_pile, v_pile,
                     fe_ram, fe_pile):
     """The anvil unit's energies at t_n, the contacts' stored energy in its potential.
 
@@ -1191,6 +1239,10 @@ def _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram, u_pile,
         the system no longer holds).
     direct : numpy.ndarray or None
         No anvil: the contact [k, c] [N/m, N s/m].
+    stack : StackState or None
+        The driving stack (:func:`anvilwave.anvil_rom.stack.stack_energy`; the energy its seat
+        friction dissipated in the potential, energy the stack no longer holds, as the classic
+        cushions' losses).
     damped : bool
         A contact has a dashpot.
     u_ram : float
@@ -1233,6 +1285,9 @@ def _anvil_energies(modal, rings, classic, direct, damped, u_ram, v_ram, u_pile,
                                                               classic.state)
     if direct is not None:
         pot = 0.5 * fe_ram * fe_ram / direct[0]
+    if stack is not None:
+        kin, pot = stack_energy(stack, u_ram, v_ram, u_pile, v_pile)
+        pot += stack.energies[0]
     return kin, pot
 
 
@@ -1669,7 +1724,9 @@ class AnvilKernels:
     Parameters
     ----------
     kind : str
-        "rom", "lumped", "classic" or "none".
+        "rom", "lumped", "classic", "none" or "stack" (the anvil and the anvil ring: the
+        :class:`anvilwave.anvil_rom.stack.StackUnit` is ``unit``, its state at rest its
+        ``state``; P, C and S unused).
     P : numpy.ndarray
         The unit's parameter array (without an anvil: the contact [k, c] [N/m, N s/m]).
     C : numpy.ndarray
@@ -1684,7 +1741,8 @@ class AnvilKernels:
         Its sub-steps per master step (classic) [-].
     unit : object, default None
         The :class:`anvilwave.anvil_rom.unit.AnvilUnit` or
-        :class:`anvilwave.hammer.driving_system.DrivingSystem` (None without an anvil).
+        :class:`anvilwave.hammer.driving_system.DrivingSystem` or
+        :class:`anvilwave.anvil_rom.stack.StackUnit` (None without an anvil).
     """
 
     kind: str
@@ -1916,7 +1974,7 @@ class Engine:
             unit.start(anvil.u_top0 + t0 * velocity, velocity, h)
             modal_ram = (unit.C, unit.S, unit.toe)
         ram = LoopRam(*self._ram, ram_u, ram_v, self._ram_nsub, *modal_ram)
-        modal = classic = direct = rings = None
+        modal = classic = direct = rings = stack = None
         if anvil.kind in ("rom", "lumped"):
             S = anvil.S.copy()
             interface = np.empty(4)
@@ -1929,6 +1987,8 @@ class Engine:
                 ring_interface(anvil.C, S, rings, h)
         elif anvil.kind == "classic":
             classic = LoopClassic(anvil.P, anvil.S.copy(), anvil.n_sub)
+        elif anvil.kind == "stack":
+            stack = _copied_stack(anvil.unit.state)
         else:
             direct = anvil.P
         n_rows = n_steps // record_every + 1
@@ -1952,7 +2012,7 @@ class Engine:
                 raise ValueError("sections: spring indices out of range")
             section_args = (idx, np.full((idx.size, n_rows), np.nan))
         pile_sweep, soil_sweep, first_soil = self._sweep
-        loop = (ram, LoopAnvil(modal, rings, classic, direct),
+        loop = (ram, LoopAnvil(modal, rings, classic, direct, stack),
                 LoopPile(self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu,
                          pv, poff, pen, self._pile_nsub, start.u, start.v, start.energy, face0,
                          factor, largest, smallest),
@@ -2078,7 +2138,8 @@ def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool 
         modal=None if modal is None else modal._replace(state=modal.state.copy(),
                                                         interface=modal.interface.copy()),
         rings=None if anvil.rings is None else copy_ring_state(anvil.rings),
-        classic=None if classic is None else classic._replace(state=classic.state.copy()))
+        classic=None if classic is None else classic._replace(state=classic.state.copy()),
+        stack=None if anvil.stack is None else _copied_stack(anvil.stack))
     trial_ram = ram._replace(u=ram.u.copy(), v=ram.v.copy(), modal_state=ram.modal_state.copy(),
                              modal_toe=ram.modal_toe.copy())
     trial_pile = pile._replace(u=pile.u.copy(), v=pile.v.copy(),
@@ -2095,11 +2156,18 @@ def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool 
     _WARM.add(key)
 
 
+def _copied_stack(state: StackState) -> StackState:
+    """A stack's arrays, each copied (the loop writes its states and scratch)."""
+    return StackState(*(np.array(a, dtype=float, copy=True) for a in state))
+
+
 def _static_pile_force(anvil: AnvilKernels, gravity: float) -> float:
     if anvil.kind == "none":
         return 0.0
     if anvil.kind == "classic":
         return anvil.unit.static_pile_force(gravity)
+    if anvil.kind == "stack":
+        return anvil.unit.total_mass * gravity
     return anvil.unit.anvil.total_mass * gravity
 
 
@@ -2178,80 +2246,34 @@ def _set_step(anvil: AnvilKernels, h: float) -> AnvilKernels:
         anvil.unit.set_step(h)
         return replace(anvil, P=anvil.unit.P.copy(), C=anvil.unit.C.copy(),
                        S=anvil.unit.S.copy())
+    if anvil.kind == "stack":  # its state copied at every blow
+        anvil.unit.set_step(h)
     return anvil
 
 
-def contact_stiffnesses(cfg: SystemConfig) -> tuple[float, float]:
-    """Default (ram, pile) contact stiffnesses [N/m]: the half segments of the neighbours.
-
-    The ram toe mass and the pile top mass sit half a segment from the faces they touch, so the
-    contact springs are those half segments, 2 E A / dx (Smith 1960); a value in the system file
-    replaces them (e.g. a cushion). A rigid ram has no half segment: its contact stiffness must
-    be given.
-
-    Parameters
-    ----------
-    cfg : SystemConfig
-        The system configuration.
-
-    Returns
-    -------
-    k_ram : float
-        Ram contact stiffness [N/m].
-    k_pile : float
-        Pile contact stiffness [N/m].
-
-    Raises
-    ------
-    InputError
-        If the ram has no toe half segment (rigid, or explicit segments) and
-        ``anvil.ram_contact_stiffness`` is not given.
-    """
-    s = cfg.anvil
-    k_pile = s.pile_contact_stiffness or cfg.pile_soil.head_contact_stiffness()
-    k_ram = s.ram_contact_stiffness
-    if k_ram is None:
-        k_ram = cfg.hammer.ram.toe_stiffness
-        if not np.isfinite(k_ram):
-            raise InputError(cfg.source, "anvil.ram_contact_stiffness",
-                             "is required with a rigid ram or a ram given as explicit segments "
-                             "(there is no toe half segment to take it from)")
-    return float(k_ram), float(k_pile)
+def _stack_kernels(cfg: SystemConfig, anvil: AnvilKernels) -> AnvilKernels:
+    """The system's driving stack (``[[anvil.bodies]]``) at rest on the pile, in place of the
+    anvil alone ``anvil``, whose coupled stability limit it keeps: the ram and pile contacts are
+    the same springs on the anvil's and the ring's modes up to the same fmax (the seat's
+    complementarity problem takes the modes at t_n; Table 1's ring stack balances its energy to
+    0.4 % at 20 us, ``tests/test_stack.py``)."""
+    st = cfg.anvil.stack
+    try:
+        unit = stack_unit(cfg, st.ring, seat_friction=st.seat_friction,
+                          seat_rings=st.seat_rings, pile_rings=st.pile_rings,
+                          ram_annuli=st.ram_annuli)
+    except InputError as exc:
+        key = exc.key if exc.key.startswith("anvil.") else f"anvil.bodies.{exc.key}"
+        raise InputError(cfg.source, key, exc.rule) from None
+    u_top0, _ = unit.rest_on_pile(0.0)
+    return AnvilKernels("stack", np.zeros(0), np.zeros((0, 0)), np.zeros(0), float(u_top0),
+                        anvil.stable_step, 1, unit)
 
 
 def _contact(cfg: SystemConfig) -> ContactParameters:
     s = cfg.anvil
     k_ram, k_pile = contact_stiffnesses(cfg)
     return ContactParameters(k_ram, k_pile, s.ram_contact_damping, s.pile_contact_damping)
-
-
-def anvil_modal_data(cfg: SystemConfig):
-    """The modal data of the system's anvil, from the modal-data cache.
-
-    :func:`anvilwave.config.cache.cached_modal_data`: computed once per machine.
-
-    Parameters
-    ----------
-    cfg : SystemConfig
-        The system configuration.
-
-    Returns
-    -------
-    ModalData
-        The anvil's modes up to ``anvil.fmax``.
-
-    Raises
-    ------
-    InputError
-        If the anvil's specification or ``anvil.fmax`` is invalid.
-    """
-
-    try:
-        return cached_modal_data(cfg.anvil.spec, fmax=cfg.anvil.fmax)
-    except InputError as exc:
-        if exc.key != "fmax" or cfg.anvil.fmax is None:
-            raise
-        raise InputError(cfg.source, "anvil.fmax", exc.rule) from None
 
 
 def _modal_ram_as_chain(cfg: SystemConfig):
@@ -2330,6 +2352,8 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
     if cfg.anvil.model == "rom":
         fmax = anvil.unit.anvil.fmax
         limits["anvil fmax sampling"] = 1.0 / (STEPS_PER_PERIOD_AT_FMAX * fmax)
+    if cfg.anvil.model == "rom" and cfg.anvil.stack is not None:
+        anvil = _stack_kernels(cfg, anvil)
     stable = min(limits["ram"], limits["pile"], limits["anvil coupling"])
     if cfg.time_step is None:
         h = min(ACCURACY_FRACTION * stable, limits.get("anvil fmax sampling", np.inf))

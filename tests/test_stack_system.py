@@ -1,0 +1,111 @@
+"""The driving stack from the system file (``[[anvil.bodies]]``) in the engine's compiled blow
+loop: one body is the system of ``[anvil] file`` to the bit; with the ring the loop's blow is
+the Python runner's (:func:`anvilwave.analyses.stack_blow.run_stack_blow`) to the bit, its
+energy balances with seat friction on, and ``drive`` gives a blow count per depth."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from anvilwave.analyses.drive import drive
+from anvilwave.analyses.impact import energy_balance
+from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
+from anvilwave.config.system import load_system
+from anvilwave.engine.direct import build_engine
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "anvilwave" / "examples"
+ANVIL = f'[[anvil.bodies]]\nfile = "{EXAMPLES / "anvils" / "xl8.toml"}"\n'
+RING = f'[[anvil.bodies]]\nfile = "{EXAMPLES / "anvils" / "xl8_ring.toml"}"\n'
+
+
+def with_bodies(tmp_path: Path, example: str, bodies: str, name: str = "system.toml") -> Path:
+    """``example`` with ``[anvil] file`` replaced by ``bodies`` (its other paths absolute)."""
+    text = (EXAMPLES / example).read_text()
+    assert text.count('file = "anvils/xl8.toml"\n') == 1
+    text = text.replace('file = "anvils/xl8.toml"\n', "")
+    text = text.replace('cpt = "soil/', f'cpt = "{EXAMPLES / "soil"}/')
+    head, tail = text.split("[pile]\n", 1)
+    path = tmp_path / name
+    path.write_text(f"{head}{bodies}\n[pile]\n{tail}")
+    return path
+
+
+def test_one_body_is_the_anvil_file_to_the_bit(tmp_path):
+    """``[[anvil.bodies]]`` with the anvil alone is ``[anvil] file``: the same configuration
+    and the same Table 1 blow, every recorded column bit for bit."""
+    one = load_system(with_bodies(tmp_path, "table1.toml", ANVIL))
+    today = load_system(EXAMPLES / "table1.toml")
+    assert one.anvil.stack is None
+    assert repr(one.anvil) == repr(today.anvil)
+    a = build_engine(one).blow(duration=0.005)
+    b = build_engine(today).blow(duration=0.005)
+    assert a.columns.keys() == b.columns.keys()
+    for name in a.columns:
+        assert np.array_equal(a.columns[name], b.columns[name]), name
+
+
+@pytest.fixture(scope="module")
+def ring_system(tmp_path_factory):
+    """Table 1 with the ring, seat friction 0.3 (the study's largest)."""
+    path = with_bodies(tmp_path_factory.mktemp("stack"), "table1.toml",
+                       ANVIL + RING + "seat_friction = 0.3\n")
+    return load_system(path)
+
+
+@pytest.fixture(scope="module")
+def engine_blow(ring_system):
+    return build_engine(ring_system).blow()
+
+
+def test_the_system_file_sets_the_stack(ring_system):
+    stack = ring_system.anvil.stack
+    assert (stack.seat_friction, stack.seat_rings, stack.pile_rings, stack.ram_annuli) == (
+        0.3, 8, 3, 6)
+    assert ring_system.hammer.ram.modes.n_annuli == 6  # the ram's toe in the face's annuli
+
+
+def test_the_compiled_loop_is_the_python_runner_to_the_bit(ring_system, engine_blow):
+    """The engine's loop with the stack and the per-step Python runner on the whole 25 ms
+    blow: the same kernels (the modal ram unit's, the stack's, the pile's) on the same arrays
+    in the same order, so nothing rounds differently and the tolerance is zero. The runner
+    records from t = -h/2 on the same grid, one row fewer (the engine's last is t_N)."""
+    st = ring_system.anvil.stack
+    python = run_stack_blow(ring_system, stack_unit(
+        ring_system, st.ring, seat_friction=st.seat_friction, seat_rings=st.seat_rings,
+        pile_rings=st.pile_rings, ram_annuli=st.ram_annuli))
+    n = python.pile_force.size
+    assert engine_blow.columns["time [s]"].size == n + 1
+    assert np.array_equal(engine_blow.columns["anvil_pile_force [N]"][:n], python.pile_force)
+    assert np.array_equal(engine_blow.columns["ram_anvil_force [N]"][:n], python.ram_force)
+    assert python.friction_energy > 0.01 * python.input_energy  # the seat slides
+
+
+def test_the_compiled_loop_balances_its_energy_with_friction(engine_blow):
+    """The whole system's balance (ram, stack with its friction and dashpot losses, pile and
+    soil) within the issue's 0.5 % of the ram's energy at every energy row, mu 0.3."""
+    balance = energy_balance(engine_blow)
+    assert abs(balance["max_deviation_relative [-]"]) < 0.005
+    assert abs(balance["residual_relative [-]"]) < 0.005
+
+
+def test_drive_gives_a_blow_count_per_depth_with_the_stack(tmp_path):
+    """The XL monopile's drive with the ring stack at two depths: a finite positive blow count
+    at each, and the stack's weight (anvil and ring) on the pile head."""
+    path = with_bodies(tmp_path, "xl_monopile_drive.toml", ANVIL + RING + "seat_friction = 0.1\n")
+    text = path.read_text()
+    text = text.replace("start = 2.0 ", "start = 10.0").replace("stop = 40.0", "stop = 20.0")
+    text = text.replace("step = 1.0\n", "step = 10.0\n").replace(
+        "time_series_depths = [20.0, 40.0]\n", "")
+    path.write_text(text.split("[installation]")[0])
+    cfg = load_system(path)
+    result = drive(cfg, workers=1)
+    counts = np.array([row["blow_count [1/m]"] for row in result.rows])
+    assert counts.size == 2 and np.all(np.isfinite(counts)) and np.all(counts > 0)
+    engine = build_engine(cfg)
+    assert engine.static_head_force == pytest.approx(
+        engine.anvil.unit.total_mass * cfg.gravity, rel=1e-12)
+    assert engine.anvil.unit.total_mass > build_engine(
+        cfg.with_anvil_model("lumped")).static_head_force / cfg.gravity
