@@ -96,6 +96,7 @@ MODULES_FMU = (
     "anvilwave.fmu.units.anvil",
     "anvilwave.fmu.units.anvilwave_anvil_lumped",
     "anvilwave.fmu.units.anvilwave_anvil_rom",
+    "anvilwave.fmu.units.anvilwave_anvil_stack",
     "anvilwave.fmu.units.anvilwave_pile_soil",
     "anvilwave.fmu.units.anvilwave_ram",
     "anvilwave.fmu.units.base",

@@ -1004,3 +1004,121 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
             xj = F[j] if j < N else X[j]
             total += 0.5 * xi * G[i, j] * xj
     return kinetic, total
+
+
+@njit(cache=True)
+def stack_interface(state):
+    """The stack's outward faces at t_n: the anvil's ram face and the ring's pile port.
+
+    Each the mean over its ports of the face's displacement, the kept modes' plus the residual
+    flexibility's share under the forces of the last :func:`stack_forces` (module docstring:
+    the ram port's u_ram - s, the pile rings' u_pile + s), and of the modes' rate: the records'
+    and the FMU's ``u_top`` and ``u_bottom``; at rest ``u_top`` is where
+    :meth:`StackUnit.rest_on_pile` puts the ram's first touch (one port). With the ram face in
+    annuli the ram's own residual flexibility between them is in the same coupling, and only
+    the other contacts' share is added.
+
+    Parameters
+    ----------
+    state : StackState
+        The stack's arrays.
+
+    Returns
+    -------
+    u_top : float
+        The anvil's ram face [m] (positive down).
+    v_top : float
+        Its velocity [m/s].
+    u_bottom : float
+        The ring's pile port [m].
+    v_bottom : float
+        Its velocity [m/s].
+    """
+    h = state.parameters[1]
+    J = state.ram_offsets.shape[1]
+    N = state.active.shape[0]
+    S = int(state.parameters[2])
+    n_a = state.anvil_loads.shape[0]
+    n_r = state.ring_loads.shape[0]
+    G, X = state.coupling, state.forces
+    m = X.shape[0]
+    first = 0 if J == 1 else J
+    u_top = 0.0
+    v_top = 0.0
+    for a in range(J):  # the anvil is the ram contacts' lower side: Q = +participation
+        for j in range(n_a):
+            q = state.anvil_state[j]
+            u_top += state.anvil_loads[j, a] * q / J
+            v_top += state.anvil_loads[j, a] * (q - state.anvil_state[n_a + j]) / (h * J)
+        for c in range(first, m):
+            u_top += G[a, c] * X[c] / J
+    u_bottom = 0.0
+    v_bottom = 0.0
+    K = N - J - S
+    for c in range(J + S, N):  # the ring is the pile contacts' upper side: Q = -participation
+        for j in range(n_r):
+            q = state.ring_state[j]
+            u_bottom -= state.ring_loads[j, c] * q / K
+            v_bottom -= state.ring_loads[j, c] * (q - state.ring_state[n_r + j]) / (h * K)
+        for i in range(m):
+            u_bottom -= G[c, i] * X[i] / K
+    return u_top, v_top, u_bottom, v_bottom
+
+
+STACK_FIELDS = ("omega", "participation", "residual", "participation_gravity", "total_mass",
+                "areas", "damping_ratio")
+"""The arrays of a :class:`StackBody` in a stack data file (:func:`save_stack_data`)."""
+
+
+def save_stack_data(path, unit: StackUnit) -> None:
+    """Write a stack's bodies and seat (one ram port) to ``path`` (``.npz``), for the FMU.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file written.
+    unit : StackUnit
+        A stack with a ring and the one ram port.
+
+    Raises
+    ------
+    InputError
+        If the stack has no ring or its ram face is in annuli (the FMU's one toe port).
+    """
+    if unit.ring is None or unit.ram_face is not None:
+        raise InputError("stack", "ram_annuli", "the stack data file is of an anvil and a ring "
+                                                "with the one ram port")
+    arrays = {f"{b}_{f}": np.asarray(getattr(body, f), float)
+              for b, body in (("anvil", unit.anvil), ("ring", unit.ring)) for f in STACK_FIELDS}
+    kt = unit.seat_stiffness if unit.tangential_stiffness is None else unit.tangential_stiffness
+    np.savez(path, seat=np.array([unit.seat_rings, unit.pile_rings, unit.seat_stiffness,
+                                  unit.seat_damping, kt], float), **arrays)
+
+
+def load_stack_data(path) -> tuple[StackBody, StackBody, dict]:
+    """The bodies and seat of a stack data file (:func:`save_stack_data`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.npz`` file.
+
+    Returns
+    -------
+    anvil : StackBody
+        The anvil.
+    ring : StackBody
+        The anvil ring.
+    seat : dict
+        ``seat_rings``, ``pile_rings`` [-], ``seat_stiffness`` [N/m], ``seat_damping``
+        [N s/m], ``tangential_stiffness`` [N/m]: :class:`StackUnit`'s keywords.
+    """
+    with np.load(path) as npz:
+        bodies = [StackBody(*(float(npz[f"{b}_{f}"]) if npz[f"{b}_{f}"].ndim == 0
+                              else np.array(npz[f"{b}_{f}"]) for f in STACK_FIELDS))
+                  for b in ("anvil", "ring")]
+        seat = npz["seat"]
+    return bodies[0], bodies[1], {"seat_rings": int(seat[0]), "pile_rings": int(seat[1]),
+                                  "seat_stiffness": float(seat[2]),
+                                  "seat_damping": float(seat[3]),
+                                  "tangential_stiffness": float(seat[4])}

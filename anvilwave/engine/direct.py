@@ -60,6 +60,7 @@ from anvilwave.anvil_rom.stack import (
     StackState,
     stack_energy,
     stack_forces,
+    stack_interface,
     stack_step,
 )
 from anvilwave.anvil_rom.unit import (
@@ -1139,8 +1140,7 @@ def _anvil_faces(modal, rings, stack, f_ram, f_pile, u_top, u_bottom):
     rings : RingState or None
         Its pile port in rings (:func:`anvilwave.anvil_rom.rings.ring_faces`).
     stack : StackState or None
-        The driving stack: the anvil's ram face and the ring's pile port, each the mean of its
-        ports' modal displacements (the kept modes, without the residual flexibility's part).
+        The driving stack (:func:`anvilwave.anvil_rom.stack.stack_interface`).
     f_ram : float
         Ram contact force [N].
     f_pile : float
@@ -1164,19 +1164,7 @@ def _anvil_faces(modal, rings, stack, f_ram, f_pile, u_top, u_bottom):
     if modal is not None and rings is not None:
         u_top, u_bottom = ring_faces(rings)
     if stack is not None:
-        J = stack.ram_offsets.shape[1]
-        N = stack.active.shape[0]
-        S = int(stack.parameters[2])
-        n_a = stack.anvil_loads.shape[0]
-        n_r = stack.ring_loads.shape[0]
-        u_top = 0.0
-        for a in range(J):  # the anvil is the ram contacts' lower side: Q = +participation
-            for j in range(n_a):
-                u_top += stack.anvil_loads[j, a] * stack.anvil_state[j] / J
-        u_bottom = 0.0
-        for c in range(J + S, N):  # the ring is the pile contacts' upper side: Q = -part.
-            for j in range(n_r):
-                u_bottom -= stack.ring_loads[j, c] * stack.ring_state[j] / (N - J - S)
+        u_top, _, u_bottom, _ = stack_interface(stack)
     return u_top, u_bottom
 
 

@@ -170,6 +170,8 @@ def run_fmi(cfg: SystemConfig, out_dir_for_fmus: str | Path, anvil_model=None, *
     n_steps = int(round(duration / h))
     record_every = 1 if record_interval is None else max(1, int(round(record_interval / h)))
     kind = {"rom": "Anvil", "lumped": "AnvilLumped"}.get(cfg.anvil.model, fmus["anvil"])
+    if fmus["anvil"] == "AnvilStack":  # the system's stack (build_system_fmus)
+        kind = "AnvilStack"
 
     announce_compilation()
     with BlowMaster(fmus["Ram"], fmus[kind], fmus["PileSoil"], parameters) as master:

@@ -49,11 +49,17 @@ from typing import Any
 
 from anvilwave.anvil_rom.fem.modalfile import ModalData, load_modal_data, save_modal_data
 from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.stack import save_stack_data
 from anvilwave.anvil_rom.unit import AnvilUnit, ContactParameters
 from anvilwave.config.system import SystemConfig
 from anvilwave.engine.direct import anvil_modal_data, build_engine, contact_stiffnesses
 from anvilwave.fmu.coupling import FIRST_CONTACT_STEPS
-from anvilwave.fmu.fmi_build import build_anvil_fmu, build_pile_soil_fmu, build_ram_fmu
+from anvilwave.fmu.fmi_build import (
+    build_anvil_fmu,
+    build_anvil_stack_fmu,
+    build_pile_soil_fmu,
+    build_ram_fmu,
+)
 from anvilwave.fmu.native_build import NativeBuildError, build_native_anvil_fmu
 from anvilwave.fmu.native_units import (
     build_native_pile_soil_fmu,
@@ -216,6 +222,12 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
                          f"{cfg.anvil.pile_head!r} runs in the in-process engine only (the anvil "
                          "FMUs put the rings on the 1D head): use the direct engine "
                          "(--engine direct, compare --rom-engine direct)")
+    stack = cfg.anvil.stack if cfg.anvil.model == "rom" else None
+    if stack is not None and stack.ram_annuli > 1:
+        raise InputError(cfg.source, "anvil.ram_port_annuli",
+                         f"the stack's ram face in {stack.ram_annuli} annuli runs in the "
+                         "in-process engine only (Ram.fmu and AnvilStack.fmu have one toe "
+                         "port): set ram_port_annuli = 1 for the FMUs")
     if cfg.anvil.model == "rom" and cfg.anvil.spec.interfaces.ram_annuli > 1:
         raise InputError(cfg.source, "anvil.ram_port_annuli",
                          "the ram face in annuli runs in the in-process engine only (Ram.fmu "
@@ -230,12 +242,28 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
     modal = load_anvil_modal_data(cfg, anvil_model)
     parameters = system_parameters(cfg, modal)
     rest = parameters.pop("_rest")
+    unit = None
+    if stack is not None:  # AnvilStack.fmu: the engine's stack at rest, its weight on the pile
+        engine = build_engine(cfg, modal)
+        time_step = engine.time_step if time_step is None else time_step
+        unit = engine.anvil.unit
+        c = unit.contact
+        parameters["AnvilStack"] = {
+            **parameters["Anvil"], "ram_contact_stiffness": c.ram_stiffness,
+            "pile_contact_stiffness": c.pile_stiffness, "ram_contact_damping": c.ram_damping,
+            "pile_contact_damping": c.pile_damping, "seat_friction": stack.seat_friction}
+        for key in ("fmax", "damping_ratio", "static_correction"):  # the stack file's
+            parameters["AnvilStack"].pop(key)
+        rest["AnvilStack"] = (float(engine.anvil.u_top0), float(unit.total_mass * cfg.gravity))
+        parameters["Ram"]["contact_displacement"] = rest["AnvilStack"][0]
+        parameters["PileSoil"]["static_head_load"] = rest["AnvilStack"][1]
     if time_step is None:
 
         time_step = build_engine(cfg, modal).time_step
     out_dir = Path(out_dir)
     step = float(time_step) / SSP_STEP_DIVISOR
-    result: dict[str, Any] = {"anvil": ANVIL_FMU[cfg.anvil.model], "parameters": parameters,
+    result: dict[str, Any] = {"anvil": ANVIL_FMU[cfg.anvil.model] if unit is None
+                              else "AnvilStack", "parameters": parameters,
                               "time_step": float(time_step), "ssp_step": step,
                               "modal_data": modal, "anvil_rest": rest,
                               "anvil_implementation": "native" if native else "pythonfmu"}
@@ -282,6 +310,12 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
             result["AnvilLumped"] = build_anvil_fmu(modal_file, out_dir, lumped=True,
                                                     default_experiment=experiment,
                                                     **parameters["AnvilLumped"])
+        if unit is not None:
+            stack_file = Path(tmp) / f"{stem}_stack.npz"
+            save_stack_data(stack_file, unit)
+            result["AnvilStack"] = build_anvil_stack_fmu(stack_file, out_dir,
+                                                         default_experiment=experiment,
+                                                         **parameters["AnvilStack"])
         if native_pile:
             result["PileSoil"] = build_native_pile_soil_fmu(cfg.pile_soil,
                                                             out_dir / "PileSoil.fmu",

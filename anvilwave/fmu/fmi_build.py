@@ -112,6 +112,7 @@ FORMAT = "anvilwave-fmu-parameters"
 KINDS: dict[str, Path] = {
     "Anvil": UNITS_DIR / "anvilwave_anvil_rom.py",
     "AnvilLumped": UNITS_DIR / "anvilwave_anvil_lumped.py",
+    "AnvilStack": UNITS_DIR / "anvilwave_anvil_stack.py",
     "Ram": UNITS_DIR / "anvilwave_ram.py",
     "PileSoil": UNITS_DIR / "anvilwave_pile_soil.py",
 }
@@ -258,6 +259,35 @@ def build_anvil_fmu(modal_data_file: str | Path, out_dir: str | Path, *, lumped:
                 "damping_ratio": data.damping_ratio}
     return build_fmu("Anvil", out_dir, {**defaults, **parameters}, [path],
                      default_experiment=default_experiment)
+
+
+def build_anvil_stack_fmu(stack_data_file: str | Path, out_dir: str | Path, *,
+                          default_experiment: tuple[float, float, float] | None = None,
+                          **parameters) -> Path:
+    """``AnvilStack.fmu`` (the anvil and the anvil ring) from a stack data file.
+
+    The file (:func:`anvilwave.anvil_rom.stack.save_stack_data`) is embedded.
+
+    Parameters
+    ----------
+    stack_data_file : str or pathlib.Path
+        The stack data file (``.npz``).
+    out_dir : str or pathlib.Path
+        Folder for the ``.fmu`` (created).
+    default_experiment : tuple of float or None, optional
+        (start, stop, step) [s] of the system the FMU is built for (:func:`build_fmu`).
+    **parameters
+        Other parameters (``seat_friction`` [-], ``ram_contact_stiffness`` [N/m], ...) as
+        keywords.
+
+    Returns
+    -------
+    pathlib.Path
+        Path of the ``.fmu`` (``out_dir/AnvilStack.fmu``).
+    """
+    path = Path(stack_data_file)
+    return build_fmu("AnvilStack", out_dir, {"stack_data_file": path.name, **parameters},
+                     [path], default_experiment=default_experiment)
 
 
 HAMMER_RESOURCE = "hammer.toml"

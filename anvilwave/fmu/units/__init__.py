@@ -2,9 +2,9 @@
 
 Each FMU type has its own slave script whose module name is unique to that type
 (``anvilwave_anvil_rom.py`` -> ``Anvil.fmu``, ``anvilwave_anvil_lumped.py`` ->
-``AnvilLumped.fmu``, ``anvilwave_ram.py`` -> ``Ram.fmu``, ``anvilwave_pile_soil.py`` ->
-``PileSoil.fmu``): pythonfmu imports the script by module name, and a process runs the first
-module of a given name for every FMU that names it. The scripts only subclass the slave classes
+``AnvilLumped.fmu``, ``anvilwave_anvil_stack.py`` -> ``AnvilStack.fmu``, ``anvilwave_ram.py``
+-> ``Ram.fmu``, ``anvilwave_pile_soil.py`` -> ``PileSoil.fmu``): pythonfmu imports the script
+by module name, and a process runs the first module of a given name for every FMU that names it. The scripts only subclass the slave classes
 of this package (:mod:`anvilwave.fmu.units.anvil`, :mod:`anvilwave.fmu.units.ram`,
 :mod:`anvilwave.fmu.units.pile_soil`,
 built on :mod:`anvilwave.fmu.units.base`); the build copies those classes with what they import

@@ -4,6 +4,11 @@ Interface (DESIGN.md, the contract): inputs ``u_ram`` [m], ``v_ram`` [m/s] (ram 
 ``u_pile`` [m], ``v_pile`` [m/s] (pile head); outputs ``F_ram``, ``F_pile`` [N] (contact forces,
 compression positive) and ``u_top``, ``u_bottom`` [m] (anvil interface displacements); z down.
 
+``AnvilStack.fmu`` (:class:`AnvilStackSlave`) is the driving stack, the anvil and the anvil
+ring (:class:`anvilwave.anvil_rom.stack.StackUnit`), behind the same interface: ``F_ram`` on the
+anvil's ram face, ``F_pile`` the sum of the ring's pile rings, ``u_top`` and ``u_bottom`` the
+faces of :func:`anvilwave.anvil_rom.stack.stack_interface`.
+
 An anvil whose modal data split the pile port into rings (``pile_port_rings``,
 :mod:`anvilwave.anvil_rom.rings`) keeps this interface: ``F_pile`` is the sum of the ring forces and
 ``u_bottom`` the rings' area-weighted mean displacement.
@@ -43,6 +48,7 @@ from pythonfmu import DefaultExperiment
 from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 from anvilwave.anvil_rom.rings import ring_unit_outputs
 from anvilwave.anvil_rom.rom import ModalAnvil
+from anvilwave.anvil_rom.stack import StackUnit, load_stack_data, stack_interface
 from anvilwave.anvil_rom.unit import (
     GRAVITY,
     AnvilUnit,
@@ -447,3 +453,120 @@ class AnvilLumpedSlave(AnvilSlaveBase):
             The rigid anvil.
         """
         return ModalAnvil.rigid(self.parameters["mass"])
+
+
+class AnvilStackSlave(AnvilSlaveBase):
+    """The driving stack, anvil and anvil ring, from an embedded stack data file.
+
+    ``AnvilStack.fmu``: :func:`anvilwave.anvil_rom.stack.load_stack_data`'s bodies with the
+    seat's Coulomb coefficient ``seat_friction``; the interface of the other anvils (module
+    docstring).
+
+    Parameters
+    ----------
+    **kwargs
+        pythonfmu's ``Fmi2Slave`` arguments (``instance_name``, ``resources``, ...), passed on
+        unchanged.
+    """
+
+    kind = "AnvilStack"
+    description = ("anvilwave driving stack: the anvil and the anvil ring, two Mode "
+                   "Displacement Method ROMs with compression-only contacts and Coulomb seat "
+                   "friction (SI units, z down, compression positive)")
+    parameter_fallbacks: ClassVar[dict] = {
+        **AnvilSlaveBase.parameter_fallbacks,
+        "stack_data_file": None,
+        "seat_friction": 0.0,
+    }
+
+    def register_anvil_parameters(self) -> None:
+        """Register ``stack_data_file`` and ``seat_friction``."""
+        p = self.add_parameter
+        p("stack_data_file", None, "Stack data file (.npz, the bodies' modes on their ports); "
+                                   "a relative name is looked up in the FMU resources [-]", str)
+        p("seat_friction", "1", "Coulomb coefficient of the anvil-ring seat [-]")
+
+    def build_component(self) -> StackUnit:
+        """The stack with its contacts, seat friction and gravity.
+
+        Returns
+        -------
+        StackUnit
+            The anvil and the ring between the ram and the pile.
+
+        Raises
+        ------
+        InputError
+            If ``gravity`` is not finite, ``ram_toe_mass`` or ``seat_friction`` is negative or
+            not finite.
+        """
+        par = self.parameters
+        contact = ContactParameters(par["ram_contact_stiffness"], par["pile_contact_stiffness"],
+                                    par["ram_contact_damping"], par["pile_contact_damping"])
+        gravity = par["gravity"]
+        if not abs(gravity) < float("inf"):
+            raise InputError(self.instance_name, "gravity", f"must be finite, got {gravity!r}")
+        check_ram_toe_mass(par["ram_toe_mass"], self.instance_name)
+        anvil, ring, seat = load_stack_data(self.resource_path(par["stack_data_file"]))
+        try:
+            return StackUnit(anvil, contact, ring, seat_friction=par["seat_friction"],
+                             gravity=gravity, **seat)
+        except InputError as exc:
+            raise InputError(self.instance_name, exc.key, exc.rule) from None
+
+    def start_component(self) -> None:
+        """Initial state: at rest on the pile (``start_at_rest``), extrapolation set up."""
+        if self.parameters["start_at_rest"]:
+            self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
+        self.extrapolation = (InputExtrapolation(self.start_time,
+                                                 self.parameters["ram_toe_mass"])
+                              if self.parameters["input_extrapolation"] else None)
+        self.touched = False
+        self.last_step = 0.0
+
+    def approached(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
+        """The inputs as the contacts see them before the first contact (``approach_input``).
+
+        Parameters
+        ----------
+        u_ram : float
+            Ram toe displacement [m].
+        v_ram : float
+            Ram toe velocity [m/s].
+        u_pile : float
+            Pile head displacement [m].
+        v_pile : float
+            Pile head velocity [m/s].
+
+        Returns
+        -------
+        tuple of float
+            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        """
+        if self.touched or self.last_step == 0.0:
+            return u_ram, v_ram, u_pile, v_pile
+        u_top, v_top, _, _ = stack_interface(self.component.state)
+        u_ram, v_ram = approach_input(u_ram, v_ram, u_top, v_top, self.last_step, self.touched)
+        return u_ram, v_ram, u_pile, v_pile
+
+    def compute_outputs(self, inputs, outputs) -> None:
+        """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] from the current inputs.
+
+        Parameters
+        ----------
+        inputs : list of float
+            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
+        outputs : list of float
+            (F_ram, F_pile, u_top, u_bottom) [N, N, m, m], filled in place.
+        """
+        unit = self.component
+        x = self.extrapolation
+        state = self.approached(*(inputs if x is None else x.extrapolated(inputs)))
+        outputs[0], outputs[1] = unit.forces(*state)
+        u_top, _, u_bottom, _ = stack_interface(unit.state)
+        outputs[2], outputs[3] = u_top, u_bottom
+        if x is None:
+            return
+        x.evaluate(outputs[0], outputs[1])
+        outputs[0] += x.correction[0]
+        outputs[1] += x.correction[1]
