@@ -211,6 +211,24 @@ class AnvilSlaveBase(UnitSlave):
         InputError
             If ``gravity`` is not finite or ``ram_toe_mass`` is negative or not finite.
         """
+        contact, gravity = self.contacts()
+        return AnvilUnit(self.make_anvil(), contact, gravity)
+
+    def contacts(self) -> tuple[ContactParameters, float]:
+        """The ram and pile contacts and gravity of the parameters, checked.
+
+        Returns
+        -------
+        contact : ContactParameters
+            Springs [N/m] and dashpots [N s/m].
+        gravity : float
+            Gravitational acceleration [m/s^2].
+
+        Raises
+        ------
+        InputError
+            If ``gravity`` is not finite or ``ram_toe_mass`` is negative or not finite.
+        """
         par = self.parameters
         contact = ContactParameters(
             ram_stiffness=par["ram_contact_stiffness"],
@@ -221,7 +239,20 @@ class AnvilSlaveBase(UnitSlave):
         if not abs(gravity) < float("inf"):
             raise InputError(self.instance_name, "gravity", f"must be finite, got {gravity!r}")
         check_ram_toe_mass(par["ram_toe_mass"], self.instance_name)
-        return AnvilUnit(self.make_anvil(), contact, gravity)
+        return contact, gravity
+
+    def top_face(self) -> tuple[float, float]:
+        """The anvil's top face (the ram contact) now, without contact forces.
+
+        Returns
+        -------
+        u_top : float
+            Displacement [m].
+        v_top : float
+            Velocity [m/s].
+        """
+        u_top, v_top, _, _ = self.component.outputs(0.0, 0.0)
+        return u_top, v_top
 
     def start_component(self) -> None:
         """Initial state: at rest on the pile, the step kernel compiled, extrapolation set up.
@@ -262,7 +293,7 @@ class AnvilSlaveBase(UnitSlave):
         """
         if self.touched or self.last_step == 0.0:
             return u_ram, v_ram, u_pile, v_pile
-        u_top, v_top, _, _ = self.component.outputs(0.0, 0.0)
+        u_top, v_top = self.top_face()
         u_ram, v_ram = approach_input(u_ram, v_ram, u_top, v_top, self.last_step, self.touched)
         return u_ram, v_ram, u_pile, v_pile
 
@@ -279,18 +310,39 @@ class AnvilSlaveBase(UnitSlave):
         outputs : list of float
             (F_ram, F_pile, u_top, u_bottom) [N, N, m, m], filled in place.
         """
-        unit = self.component
         x = self.extrapolation
         state = self.approached(*(inputs if x is None else x.extrapolated(inputs)))
-        if unit.rings is not None:  # the pile port in rings: F_pile their sum
-            outputs[:] = ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings, *state)
-        else:
-            outputs[:] = anvil_outputs(unit.P, unit.C, unit.S, *state)
+        outputs[:] = self.unit_outputs(*state)
         if x is None:
             return
         x.evaluate(outputs[0], outputs[1])
         outputs[0] += x.correction[0]
         outputs[1] += x.correction[1]
+
+    def unit_outputs(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
+        """The unit's (F_ram, F_pile, u_top, u_bottom) [N, N, m, m] for these inputs.
+
+        Parameters
+        ----------
+        u_ram : float
+            Ram toe displacement [m].
+        v_ram : float
+            Ram toe velocity [m/s].
+        u_pile : float
+            Pile head displacement [m].
+        v_pile : float
+            Pile head velocity [m/s].
+
+        Returns
+        -------
+        tuple of float
+            The four outputs [N, N, m, m].
+        """
+        unit = self.component
+        if unit.rings is not None:  # the pile port in rings: F_pile their sum
+            return ring_unit_outputs(unit.P, unit.C, unit.S, unit.rings, u_ram, v_ram, u_pile,
+                                     v_pile)
+        return anvil_outputs(unit.P, unit.C, unit.S, u_ram, v_ram, u_pile, v_pile)
 
     def advance(self, h: float) -> None:
         """Advance the anvil over one step with the contact forces held (``AnvilUnit.step``).
@@ -501,12 +553,7 @@ class AnvilStackSlave(AnvilSlaveBase):
             not finite.
         """
         par = self.parameters
-        contact = ContactParameters(par["ram_contact_stiffness"], par["pile_contact_stiffness"],
-                                    par["ram_contact_damping"], par["pile_contact_damping"])
-        gravity = par["gravity"]
-        if not abs(gravity) < float("inf"):
-            raise InputError(self.instance_name, "gravity", f"must be finite, got {gravity!r}")
-        check_ram_toe_mass(par["ram_toe_mass"], self.instance_name)
+        contact, gravity = self.contacts()
         anvil, ring, seat = load_stack_data(self.resource_path(par["stack_data_file"]))
         try:
             return StackUnit(anvil, contact, ring, seat_friction=par["seat_friction"],
@@ -524,8 +571,21 @@ class AnvilStackSlave(AnvilSlaveBase):
         self.touched = False
         self.last_step = 0.0
 
-    def approached(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
-        """The inputs as the contacts see them before the first contact (``approach_input``).
+    def top_face(self) -> tuple[float, float]:
+        """The anvil's ram face now (:func:`anvilwave.anvil_rom.stack.stack_interface`).
+
+        Returns
+        -------
+        u_top : float
+            Displacement [m].
+        v_top : float
+            Velocity [m/s].
+        """
+        u_top, v_top, _, _ = stack_interface(self.component.state)
+        return u_top, v_top
+
+    def unit_outputs(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
+        """The stack's forces (:meth:`anvilwave.anvil_rom.stack.StackUnit.forces`) and faces.
 
         Parameters
         ----------
@@ -541,32 +601,9 @@ class AnvilStackSlave(AnvilSlaveBase):
         Returns
         -------
         tuple of float
-            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
-        """
-        if self.touched or self.last_step == 0.0:
-            return u_ram, v_ram, u_pile, v_pile
-        u_top, v_top, _, _ = stack_interface(self.component.state)
-        u_ram, v_ram = approach_input(u_ram, v_ram, u_top, v_top, self.last_step, self.touched)
-        return u_ram, v_ram, u_pile, v_pile
-
-    def compute_outputs(self, inputs, outputs) -> None:
-        """(F_ram, F_pile, u_top, u_bottom) [N, N, m, m] from the current inputs.
-
-        Parameters
-        ----------
-        inputs : list of float
-            (u_ram, v_ram, u_pile, v_pile) [m, m/s, m, m/s].
-        outputs : list of float
-            (F_ram, F_pile, u_top, u_bottom) [N, N, m, m], filled in place.
+            (F_ram, F_pile, u_top, u_bottom) [N, N, m, m].
         """
         unit = self.component
-        x = self.extrapolation
-        state = self.approached(*(inputs if x is None else x.extrapolated(inputs)))
-        outputs[0], outputs[1] = unit.forces(*state)
+        f_ram, f_pile = unit.forces(u_ram, v_ram, u_pile, v_pile)
         u_top, _, u_bottom, _ = stack_interface(unit.state)
-        outputs[2], outputs[3] = u_top, u_bottom
-        if x is None:
-            return
-        x.evaluate(outputs[0], outputs[1])
-        outputs[0] += x.correction[0]
-        outputs[1] += x.correction[1]
+        return f_ram, f_pile, u_top, u_bottom
