@@ -17,6 +17,7 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import re
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -304,6 +305,31 @@ def test_anvil_ring_data_file():
             e = d["estimated_error_at_study_mesh"]
             assert e["pile_rms_error [-]"] == pytest.approx(
                 d["pile_rms_error [-]"] * h / abs(other - h), rel=1e-12), (label, name)
+
+
+def test_stack_drive_data_file():
+    """docs/data/stack_drive.json (benchmarks/study_stack_drive.py --docs: four drives of the
+    XL monopile at three depths with their 20 m blow, about a minute). Checked here: the table
+    and the quoted numbers are the script's reading of the file's values, and the ring at
+    mu 0.3 is recomputed at the 20 m depth: its blow count and its pile-head peak, rise and
+    bands, within SAME_RUN of the file's."""
+    script = benchmark("study_stack_drive")
+    data = doc_data("stack_drive")
+    values = data["values"]
+    tables, subs = script.docs_tables(values)
+    assert tables == data["tables"] and subs == data["substitutions"]
+    stored = values["runs"]["ring, mu 0.3"]
+    with tempfile.TemporaryDirectory() as tmp:
+        cfg = load_system(script.stack_system(Path(tmp), 0.3))
+    settings = dataclasses.replace(cfg.drive, depths=np.array([script.SERIES_DEPTH]),
+                                   time_series_depths=(script.SERIES_DEPTH,))
+    result = anvilwave.drive(dataclasses.replace(cfg, drive=settings), workers=1)
+    (row,) = result.rows
+    assert_same_numbers(row["blow_count [1/m]"],
+                        stored["blow_count [1/m]"][f"{script.SERIES_DEPTH:g}"], "blow count")
+    figures = script.head_figures(result.time_series[script.SERIES_DEPTH])
+    assert_same_numbers(figures, {k: v for k, v in stored.items() if k != "blow_count [1/m]"},
+                        "ring, mu 0.3")
 
 
 def test_pile_port_data_file():
