@@ -136,8 +136,8 @@ def _build_fmus(args: argparse.Namespace) -> int:
         raise InputError(str(args.system), "", f"the native anvil FMU cannot be built "
                                                f"({_one_line(exc)}); --python-anvil builds "
                                                "the Python one") from None
-    names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "PileSoil",
-                                                    "ssp"))
+    names = ", ".join(Path(built[k]).name for k in ("Ram", "Anvil", "AnvilLumped", "AnvilStack",
+                                                    "PileSoil", "ssp") if k in built)
     print(f"{names} -> {args.out} (anvils: {built['anvil_implementation']}, ram: "
           f"{built['ram_implementation']}, pile/soil: {built['pile_soil_implementation']}; "
           f"system.ssp uses "

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from anvilwave.analyses.compare import fea_config
 from anvilwave.analyses.drive import drive
 from anvilwave.analyses.impact import energy_balance
 from anvilwave.analyses.stack_blow import run_stack_blow, stack_unit
@@ -67,6 +68,14 @@ def test_the_system_file_sets_the_stack(ring_system):
     assert (stack.seat_friction, stack.seat_rings, stack.pile_rings, stack.ram_annuli) == (
         0.3, 8, 3, 6)
     assert ring_system.hammer.ram.modes.n_annuli == 6  # the ram's toe in the face's annuli
+
+
+def test_the_reference_fea_of_the_system_is_the_fea_stack(ring_system):
+    """``anvilwave fea`` and ``compare`` of a system with the ring run the FEA stack: its ring
+    and seat friction are the system file's."""
+    config = fea_config(ring_system)
+    assert config.ring is ring_system.anvil.stack.ring and config.seat_friction == 0.3
+    assert fea_config(load_system(EXAMPLES / "table1.toml")).ring is None
 
 
 def test_the_compiled_loop_is_the_python_runner_to_the_bit(ring_system, engine_blow):

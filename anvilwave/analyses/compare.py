@@ -60,6 +60,9 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
                truncate_length: float | None = None, output_interval: float = 1e-5):
     """The reference FEA configuration of a system (uniform cylindrical ram, first pile section).
 
+    With the system's driving stack (``[[anvil.bodies]]``) the FEA's anvil ring and seat
+    friction are the stack's (``FeaConfig.ring``, ``seat_friction``).
+
     Parameters
     ----------
     cfg : SystemConfig
@@ -93,6 +96,9 @@ def fea_config(cfg: SystemConfig, *, mesh_size: float | None = None,
     pile_length = cfg.pile_soil.pile.length
     truncate = None if truncate_length is None else min(truncate_length, pile_length)
     duration = round(cfg.duration / output_interval) * output_interval
+    stack = cfg.anvil.stack
+    if stack is not None:
+        kwargs.update(ring=stack.ring, seat_friction=stack.seat_friction)
     return FeaConfig(
         ram_radius=0.5 * ram.toe_diameter, ram_length=ram.length,
         impact_velocity=cfg.impact_velocity, anvil=cfg.anvil.spec,
