@@ -2250,7 +2250,9 @@ def _stack_kernels(cfg: SystemConfig, anvil: AnvilKernels) -> AnvilKernels:
         unit = stack_unit(cfg, st.ring, seat_friction=st.seat_friction,
                           seat_rings=st.seat_rings, pile_rings=st.pile_rings,
                           ram_annuli=st.ram_annuli)
-    except InputError as exc:
+    except InputError as exc:  # the unit's own checks named as the system file's keys; a
+        if exc.source not in ("stack", cfg.source):  # body file's error names its file
+            raise
         key = exc.key if exc.key.startswith("anvil.") else f"anvil.bodies.{exc.key}"
         raise InputError(cfg.source, key, exc.rule) from None
     u_top0, _ = unit.rest_on_pile(0.0)
