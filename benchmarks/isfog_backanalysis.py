@@ -1805,7 +1805,7 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
     subs = {
         "points": [summary["cv_points [-]"], "int"],
         "training_foundations": [summary["cv_folds [-]"] - 1, "int"],
-        "wall_time": [summary["wall_time [s]"], "int"],
+        "cv_time": [summary["times"]["cross_validation [s]"], "int"],
         "c_gain": [score["C"] - score["B"], "int"],
         "srd_sand": [srd_d["sand"], "f2"],
         "srd_clay": [srd_d["clay"], "f2"],
