@@ -101,7 +101,18 @@ H. D with the hammer held physical: every fold's E_ref at most the S-800's ratin
 I. H + ONE factor r on Alm & Hamre's friction-fatigue rate k (the shaft friction decaying
    with the distance h from the tip as exp(-r k h); r = 1 the paper's, a weak Gaussian prior
    on log r, sd ln 4), fitted with the other parameters on the training foundations only;
-J. I stacked with the naive baseline as in G (a blend, not physics).
+J. I stacked with the naive baseline as in G (a blend, not physics);
+K. I with the hammer class a discrete choice per fold: the S-800 or a heavier ram (IHC S-1800,
+   90 t, :data:`ALTERNATIVE_HAMMERS`), each simulated on the second grid and fitted with E_ref
+   held within its own rating; the class of the least training objective is kept
+   (:func:`fit_step`);
+L. I + the soil's dynamic values per soil type as fitted parameters (:data:`DYNAMICS`): the
+   Smith shaft damping in sand and in clay, the toe's damping and quake in sand and in clay,
+   each a ratio to the model's value with a Gaussian prior on its log (sd ln 2,
+   :data:`DYNAMICS_SD`) about GRLWEAP's and Smith's customary values (quakes 2.5 mm, the coring
+   toe of an open pile; dampings 0.16 s/m sand, 0.65 s/m clay shaft, 0.5 s/m toe: Hannigan et
+   al. 2016, FHWA-NHI-16-009); they enter the surface through one more grid per group with
+   the values changed (:data:`SENSITIVITY_FACTORS`, :meth:`ResponseSurface.with_dynamics`).
 
 Cost: the blow counts of every calibration record are simulated on a grid of common SRD
 multipliers x reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD
@@ -147,7 +158,7 @@ import shlex
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -202,6 +213,26 @@ class Model:
     srd_sand: float = 1.0               # [-] multiplier of the shaft SRD in sand
     srd_clay: float = 1.0               # [-] multiplier of the shaft SRD in clay
     srd_toe: float = 1.0                # [-] multiplier of the toe SRD
+    # the toe's quake and damping where the toe stands in clay (None: quake_toe, damping_toe,
+    # the values in sand); fields added later than the cache's keys, so they enter a key only
+    # when set (:func:`model_key`)
+    quake_toe_clay: float | None = field(default=None, repr=False)   # [m]
+    damping_toe_clay: float | None = field(default=None, repr=False)  # [s/m]
+
+    def toe_dynamics(self, toe_in_sand: bool) -> tuple[float, float]:
+        """(quake [m], Smith damping [s/m]) of the toe standing in sand or clay."""
+        if toe_in_sand:
+            return self.quake_toe, self.damping_toe
+        return (self.quake_toe if self.quake_toe_clay is None else self.quake_toe_clay,
+                self.damping_toe if self.damping_toe_clay is None else self.damping_toe_clay)
+
+
+def model_key(model: Model) -> str:
+    """The text of ``model`` in a cache key: its repr, and each field left out of the repr
+    (added later) only when it is set, so that the keys of runs without it stay valid."""
+    extra = [f"{f.name}={getattr(model, f.name)!r}" for f in fields(model)
+             if not f.repr and getattr(model, f.name) is not None]
+    return repr(model) + ("" if not extra else "+" + ",".join(extra))
 
 
 @dataclass(frozen=True)
@@ -369,6 +400,21 @@ def segment_is_sand(profile, seg, pile_length: float, tip: float) -> np.ndarray:
     return np.asarray(profile.is_sand[profile.layer_index(0.5 * (top + bottom))], bool)
 
 
+def toe_in_sand(profile, tip: float) -> bool:
+    """Does the toe at ``tip`` [m] stand in sand (Robertson; the deeper layer on a
+    boundary)?"""
+    return bool(profile.is_sand[int(np.asarray(profile.layer_index(tip)).reshape(-1)[0])])
+
+
+def toe_classes(piles, model: Model) -> np.ndarray:
+    """Per record of ``piles`` (their depths in order): does the toe stand in sand."""
+    out = []
+    for p in piles:
+        profile = soil_profile(p, model)
+        out.extend(toe_in_sand(profile, float(z)) for z in p.depths)
+    return np.array(out, bool)
+
+
 def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarray,
                   model: Model) -> float:
     """Smith shaft damping of a tip depth [s/m]: the sand and clay factors weighted by the
@@ -420,12 +466,14 @@ def simulate_pile(job: tuple) -> dict:
         cap_toe = cap_toe * model.srd_toe
         shaft, toe = float(np.sum(cap_shaft)), float(cap_toe)
         j = shaft_damping(profile, seg, length, float(tip), cap_shaft, model)
+        quake_toe, damping_toe = model.toe_dynamics(toe_in_sand(profile, float(tip)))
         per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
         per_depth["srd_shaft_sand"][iz] = float(np.sum(cap_shaft[sand]))
         per_depth["damping_shaft"][iz] = j
         per_depth["run_multiplier"][iz] = weight / (shaft + toe) if shaft + toe > 0 else np.inf
         for im, m in enumerate(multipliers):
-            soil = replace(ps.soil, capacities=(m * cap_shaft, m * cap_toe), damping_shaft=j)
+            soil = replace(ps.soil, capacities=(m * cap_shaft, m * cap_toe), damping_shaft=j,
+                           quake_toe=quake_toe, damping_toe=damping_toe)
             if m * (shaft + toe) <= weight:  # the pile runs under the weight: no blows
                 out["count"][im, :, iz] = 0.0
                 continue
@@ -442,7 +490,7 @@ def simulate_pile(job: tuple) -> dict:
                     blow = eng.blow(state=start, impact_velocity=velocity,
                                     duration=model.duration, record=False, energy=False)
                     start = blow.final_state
-                count = blow_count(set_of_blow(blow, "permanent", model.quake_toe))
+                count = blow_count(set_of_blow(blow, "permanent", quake_toe))
                 out["count"][im, ie, iz] = min(count, REFUSAL_COUNT)
                 out["enthru"][im, ie, iz] = blow.emx_gauge
                 out["compression"][im, ie, iz] = blow.max_compression_stress
@@ -568,7 +616,7 @@ def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> lis
     code and the records' files)."""
     if cache is None:
         return run(piles, model, *grid)
-    key = repr((tag, model, [np.asarray(g, float).tolist() for g in grid],
+    key = repr((tag, _Raw(model_key(model)), [np.asarray(g, float).tolist() for g in grid],
                 [(p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
                   p.depths.tolist(), p.energy.tolist()) for p in piles]))
     path = Path(cache) / f"{tag}-{hashlib.sha256(key.encode()).hexdigest()[:20]}.npz"
@@ -582,6 +630,13 @@ def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> lis
     arrays = {f"{i}/{k}": np.asarray(v) for i, r in enumerate(results) for k, v in r.items()}
     np.savez(path, piles=len(results), **arrays)
     return results
+
+
+class _Raw(str):
+    """A string whose repr is itself (a model's key inside a cache key reads as its repr)."""
+
+    def __repr__(self) -> str:
+        return str(self)
 
 
 def run_shaft_by_class(piles, model: Model, rates, workers: int) -> list[dict]:
@@ -763,6 +818,27 @@ FATIGUE_RATES = tuple(2.0 ** np.arange(-4.0, 2.5, 1.0))
 """Factors on Alm & Hamre's friction-fatigue rate k at which each record's sand and clay
 shaft SRD is computed (1/16 ... 4: from almost no fatigue to a decay four times as fast);
 between them the SRD is interpolated linearly in log(factor), and the fit stays within."""
+DYNAMICS = ("damping_sand", "damping_clay", "damping_toe_sand", "damping_toe_clay",
+            "quake_toe_sand", "quake_toe_clay")
+"""The soil's dynamic values that a step may fit, each as its ratio to the model's: the Smith
+shaft damping in sand and in clay, and the toe's damping and quake where the toe stands in sand
+and in clay (the model's: GRLWEAP's and Smith's customary values, :class:`Model`)."""
+SENSITIVITY_FACTORS = {"damping_shaft": 2.0, "damping_toe": 2.0, "quake_toe": 4.0}
+"""Per group of :data:`DYNAMICS`, the factor on the model's values of the grid that gives the
+slope of log(blow count) in the log of the value (the shaft dampings of sand and clay together,
+the toe's damping, the toe's quake: 2.5 to 10 mm, towards GRLWEAP's D/120 = 21 mm of a
+plugged displacement toe)."""
+DYNAMICS_GROUP = {"damping_sand": "damping_shaft", "damping_clay": "damping_shaft",
+                  "damping_toe_sand": "damping_toe", "damping_toe_clay": "damping_toe",
+                  "quake_toe_sand": "quake_toe", "quake_toe_clay": "quake_toe"}
+DYNAMICS_SD = math.log(2.0)
+"""Prior standard deviation [-] of the log of each dynamic value's ratio to the model's: the
+customary values within a factor 2 at one standard deviation (the quakes 2.5 mm, the Smith
+dampings 0.16 s/m sand and 0.65 s/m clay on the shaft, 0.5 s/m at the toe: GRLWEAP's and
+Hannigan et al. 2016, :data:`anvilwave.pile.soil.models.SOIL_TYPE_SMITH_DAMPING`)."""
+DYNAMICS_RANGE = (0.5, None)
+"""Range of each dynamic ratio the fit may take [-]: from half the model's value (the slope
+extrapolated) to its grid's factor (:data:`SENSITIVITY_FACTORS`, interpolated)."""
 FATIGUE_SD = math.log(4.0)
 """Prior standard deviation [-] of log(fatigue rate factor) about 0 (the paper's rate): a
 weak prior, the rate within a factor 4 of the paper's at one standard deviation."""
@@ -822,16 +898,60 @@ class ResponseSurface:
         self.sand_rate = None if rates is None else np.asarray(sand_rate, float)
         self.clay_rate = None if rates is None else np.asarray(clay_rate, float)
 
+    slopes: dict | None = None
+    toe_sand: np.ndarray | None = None
+    shaft_damping: tuple = (1.0, 1.0)
+
     def subset(self, rows) -> ResponseSurface:
         """The surface of the records ``rows`` (a boolean mask or indices)."""
         s = object.__new__(ResponseSurface)
         s.le, s.lm, s.lr = self.le, self.lm, self.lr
+        s.shaft_damping = self.shaft_damping
         for k in ("lc", "run", "sand", "clay", "toe", "energy_factor", "setting"):
             setattr(s, k, getattr(self, k)[rows])
-        for k in ("sand_rate", "clay_rate"):
+        for k in ("sand_rate", "clay_rate", "toe_sand"):
             v = getattr(self, k)
             setattr(s, k, None if v is None else v[rows])
+        s.slopes = None if self.slopes is None else {k: v[rows] for k, v in self.slopes.items()}
         return s
+
+    def with_dynamics(self, perturbed: dict, toe_sand, shaft_damping) -> ResponseSurface:
+        """The surface with the soil's dynamic parameters (:data:`DYNAMICS`) as variables.
+
+        perturbed : per group of :data:`SENSITIVITY_FACTORS`, the surface of the same records
+        and grid with that group's values multiplied by its factor (direct runs); toe_sand :
+        (n,) does each record's toe stand in sand; shaft_damping : the grid's Smith shaft
+        dampings (sand, clay) [s/m]. log(blow count) is taken linear in the log of each value
+        (the slope per node from the two grids), a value entering each record as the toe's
+        (by its soil class) or as the shaft's SRD-weighted damping (:func:`shaft_damping`).
+        """
+        s = self.subset(slice(None))
+        s.slopes = {g: (perturbed[g].lc - self.lc) / math.log(SENSITIVITY_FACTORS[g])
+                    for g in perturbed}
+        s.toe_sand = np.asarray(toe_sand, bool)
+        s.shaft_damping = tuple(float(v) for v in shaft_damping)
+        return s
+
+    def exposures(self, dynamics: dict) -> dict:
+        """Per sensitivity group, the log of each record's value over the grid's [-] at the
+        ratios ``dynamics`` (name of :data:`DYNAMICS` -> value / the grid's value)."""
+        def ratio(name):
+            return float(dynamics.get(name, 1.0))
+
+        out = {}
+        if self.slopes is None:
+            return out
+        if "damping_shaft" in self.slopes:
+            js, jc = self.shaft_damping
+            base = js * self.sand + jc * self.clay
+            new = js * ratio("damping_sand") * self.sand + jc * ratio("damping_clay") * self.clay
+            out["damping_shaft"] = np.log(np.where(base > 0, new / np.where(base > 0, base, 1),
+                                                   1.0))
+        for group in ("damping_toe", "quake_toe"):
+            if group in self.slopes:
+                out[group] = np.log(np.where(self.toe_sand, ratio(f"{group}_sand"),
+                                             ratio(f"{group}_clay")))
+        return out
 
     def with_energy_factor(self, factor) -> ResponseSurface:
         s = self.subset(slice(None))
@@ -864,18 +984,25 @@ class ResponseSurface:
 
     def __call__(self, e_ref: float, m_sand: float = 1.0, m_clay: float | None = None,
                  m_toe: float | None = None, exponent: float = 1.0,
-                 rate: float | None = None) -> np.ndarray:
+                 rate: float | None = None, dynamics: dict | None = None) -> np.ndarray:
         """Blow counts [blows/m] of every record at E_ref [J] and the class multipliers [-]
         (clay and toe default to the sand one); blow energy E_ref setting^exponent; the
-        shaft at the friction-fatigue rate factor ``rate`` (None: the grid's)."""
+        shaft at the friction-fatigue rate factor ``rate`` (None: the grid's); the soil's
+        dynamic values at the ratios ``dynamics`` to the grid's (:meth:`exposures`)."""
         m = self.effective_multiplier(m_sand, m_sand if m_clay is None else m_clay,
                                       m_sand if m_toe is None else m_toe, rate)
         im, wm = self._cell(self.lm, np.log(m))
         ie, we = self._cell(self.le, np.log(e_ref * self.energy_factor)
                             + (exponent - 1.0) * np.log(self.setting))
         k = np.arange(self.lc.shape[0])
-        lc = ((1 - wm) * ((1 - we) * self.lc[k, im, ie] + we * self.lc[k, im, ie + 1])
-              + wm * ((1 - we) * self.lc[k, im + 1, ie] + we * self.lc[k, im + 1, ie + 1]))
+
+        def bilinear(a):
+            return ((1 - wm) * ((1 - we) * a[k, im, ie] + we * a[k, im, ie + 1])
+                    + wm * ((1 - we) * a[k, im + 1, ie] + we * a[k, im + 1, ie + 1]))
+
+        lc = bilinear(self.lc)
+        for group, x in (self.exposures(dynamics) if dynamics else {}).items():
+            lc = lc + x * bilinear(self.slopes[group])
         return np.where(m <= self.run, 0.0, np.exp(lc))
 
 
@@ -889,14 +1016,15 @@ def misfit(predicted, measured, space: str) -> np.ndarray:
 def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
                     space: str = "log", prior_sd: float = PRIOR_SD,
                     n_eff: float = 1.0, exponent: bool = False, fatigue: bool = False,
-                    e_max: float | None = None) -> dict:
+                    e_max: float | None = None, dynamics: tuple = ()) -> dict:
     """E_ref, a common SRD multiplier, (``classes``, a subset of :data:`CLASSES`) the
     deviations of the classes' multipliers from it, (``exponent``) the exponent b of the
-    energy law E = E_ref setting^b and (``fatigue``) the factor r on the friction-fatigue
-    rate, minimising
+    energy law E = E_ref setting^b, (``fatigue``) the factor r on the friction-fatigue
+    rate and (``dynamics``, a subset of :data:`DYNAMICS`) the ratios g of the soil's dynamic
+    values to the model's, minimising
 
         mean(r^2) / s^2 + [sum(d_c^2) / prior_sd^2 + (b - 1)^2 / EXPONENT_SD^2
-                           + log(r)^2 / FATIGUE_SD^2] / n_eff
+                           + log(r)^2 / FATIGUE_SD^2 + sum(log(g)^2) / DYNAMICS_SD^2] / n_eff
 
     with E_ref at most ``e_max`` [J] when given (the hammer's rating over the largest
     blow energy per unit E_ref of the records),
@@ -920,13 +1048,23 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
     if fatigue and surface.lr is None:
         raise ValueError("a fit of the fatigue rate needs a surface with fatigue tables")
     le_max = math.inf if e_max is None else math.log(e_max)
+    ig = ir + (1 if fatigue else 0)        # index of the first log(g)
+    if dynamics and surface.slopes is None:
+        raise ValueError("a fit of the soil's dynamics needs a surface with_dynamics")
+    g_range = [(math.log(DYNAMICS_RANGE[0]),
+                math.log(SENSITIVITY_FACTORS[DYNAMICS_GROUP[name]])) for name in dynamics]
+
+    def clipped_g(p):
+        return [min(max(float(v), lo), hi)
+                for v, (lo, hi) in zip(p[ig:ig + len(dynamics)], g_range, strict=True)]
 
     def unpack(p):
         d = dict(zip(classes, p[2:2 + nc], strict=True))
         b = float(p[ib]) if exponent else 1.0
         rate = math.exp(min(max(float(p[ir]), lr_range[0]), lr_range[1])) if fatigue else None
         return (math.exp(min(float(p[0]), le_max)),
-                *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b, rate)
+                *(math.exp(p[1] + d.get(c, 0.0)) for c in CLASSES), b, rate,
+                {name: math.exp(v) for name, v in zip(dynamics, clipped_g(p), strict=True)})
 
     def objective(p):
         r = misfit(surface(*unpack(p)), measured, space)
@@ -939,12 +1077,18 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
             # simplex back (the SRD is flat there)
             clipped = min(max(lr, lr_range[0]), lr_range[1])
             penalty += clipped ** 2 / FATIGUE_SD ** 2 + 100.0 * (lr - clipped) ** 2
+        if dynamics:
+            lg = np.asarray(p[ig:ig + len(dynamics)], float)
+            gc = np.asarray(clipped_g(p))
+            penalty += float(np.sum(gc * gc)) / DYNAMICS_SD ** 2 + 100.0 * float(
+                np.sum((lg - gc) ** 2))
         if e_max is not None and p[0] > le_max:
             penalty += 100.0 * (float(p[0]) - le_max) ** 2
         return float(np.mean(r * r)) / s2 + penalty / n_eff
 
     tail = np.r_[np.zeros(nc), [1.0] if exponent else []]
-    starts = [np.r_[min(math.log(e), le_max), math.log(m), tail, [lr0] if fatigue else []]
+    starts = [np.r_[min(math.log(e), le_max), math.log(m), tail, [lr0] if fatigue else [],
+                    np.zeros(len(dynamics))]
               for e in (250e3, 500e3, 1000e3) for m in (0.3, 0.5, 0.8)
               for lr0 in ((math.log(0.25), 0.0, math.log(2.0)) if fatigue else (0.0,))]
     res = None
@@ -953,7 +1097,7 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
         res = minimize(objective, p0 if res is None else res.x, method="Nelder-Mead",
                        options={"xatol": 1e-5, "fatol": 1e-12, "maxfev": 6000,
                                 "adaptive": True})
-    e_ref, m_sand, m_clay, m_toe, b, rate = unpack(res.x)
+    e_ref, m_sand, m_clay, m_toe, b, rate, ratios = unpack(res.x)
     at_edge = bool(not (surface.le[0] < math.log(e_ref) < surface.le[-1]))
     out = {"E_ref [J]": e_ref, "srd_sand [-]": m_sand, "srd_clay [-]": m_clay,
            "srd_toe [-]": m_toe, "energy_exponent [-]": b, "objective [-]": float(res.fun),
@@ -965,6 +1109,10 @@ def fit_regularised(surface: ResponseSurface, measured, classes: tuple = (),
         out["fatigue_rate [-]"] = rate
         out["fatigue_rate_at_table_edge"] = bool(
             not (lr_range[0] + 1e-6 < math.log(rate) < lr_range[1] - 1e-6))
+    for name, (lo, hi) in zip(dynamics, g_range, strict=True):
+        out[f"{name} [-]"] = ratios[name]
+        out[f"{name}_at_range_edge"] = bool(not (lo + 1e-6 < math.log(ratios[name])
+                                                 < hi - 1e-6))
     return out
 
 
@@ -972,7 +1120,12 @@ def predict_with(surface: ResponseSurface, fitted: dict) -> np.ndarray:
     """Blow counts [blows/m] of the surface's records at the fitted values."""
     return surface(fitted["E_ref [J]"], fitted["srd_sand [-]"], fitted["srd_clay [-]"],
                    fitted["srd_toe [-]"], fitted.get("energy_exponent [-]", 1.0),
-                   fitted.get("fatigue_rate [-]"))
+                   fitted.get("fatigue_rate [-]"), fitted_dynamics(fitted))
+
+
+def fitted_dynamics(fitted: dict) -> dict:
+    """The ratios of the soil's dynamic values to the model's in a fit (:data:`DYNAMICS`)."""
+    return {name: fitted[f"{name} [-]"] for name in DYNAMICS if f"{name} [-]" in fitted}
 
 
 def stacking_weight(physics, baseline, measured) -> float:
@@ -997,6 +1150,8 @@ class Step:
     stacked: bool = False           # blend with the depth mean of the other foundations
     energy_cap: bool = False        # the largest blow energy within the hammer's rating
     fatigue: bool = False           # fit the factor on the friction-fatigue rate
+    hammers: tuple = ()             # hammer classes chosen between per fold (their surfaces)
+    dynamics: tuple = ()            # the soil's dynamic values fitted (of DYNAMICS)
 
 
 STEPS = (
@@ -1030,8 +1185,27 @@ def largest_energy_per_e_ref(surface: ResponseSurface) -> float:
     return float(np.max(surface.energy_factor * surface.setting))
 
 
+def fit_step(step: Step, surfaces: dict, measured, n_eff: float) -> tuple[str, dict]:
+    """The fit of ``step`` on ``measured``: ``surfaces`` maps each hammer class to (its
+    :class:`ResponseSurface` of the records, its rated energy [J] or None); a step with
+    ``hammers`` fits each of them (E_ref within its own rating with ``energy_cap``) and keeps
+    the one of the least objective (the same data, misfit and priors: a discrete MAP choice),
+    else the first. Returns (the hammer class, the fit)."""
+    best = None
+    for hammer in (step.hammers or list(surfaces)[:1]):
+        surf, rated = surfaces[hammer]
+        e_max = rated / largest_energy_per_e_ref(surf) if step.energy_cap else None
+        fitted = fit_regularised(surf, measured, step.classes, step.space, n_eff=n_eff,
+                                 exponent=step.exponent, fatigue=step.fatigue, e_max=e_max,
+                                 dynamics=step.dynamics)
+        if best is None or fitted["objective [-]"] < best[1]["objective [-]"]:
+            best = (hammer, fitted)
+    return best
+
+
 def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, steps=STEPS,
-                              stress_ratio=None, rated_energy: float | None = None
+                              stress_ratio=None, rated_energy: float | None = None,
+                              hammer_surfaces: dict | None = None
                               ) -> tuple[list[dict], dict]:
     """Leave-one-foundation-out cross-validation of every step of ``steps`` on the records of
     ``piles`` (their :class:`ResponseSurface`), against the naive baseline computed the same
@@ -1040,27 +1214,29 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
     stress_ratio : per record, multi-blow / single-blow blow count (steps with
     ``residual_stress``); rated_energy : the hammer's rating [J] (steps with ``energy_cap``:
     E_ref at most the rating over the largest blow energy per unit E_ref of the training
-    records). Returns (a row per step, the predictions per step)."""
+    records); hammer_surfaces : per hammer class by name, (its surface of the same records,
+    its rating [J]), for the steps with ``hammers`` (:func:`fit_step`; the other steps fit
+    ``surface``). Returns (a row per step, the predictions per step)."""
     measured = np.concatenate([p.measured for p in piles])
     group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
     groups = sorted(set(group.tolist()))
     baseline = record_baselines(piles, groups)
     ok = np.isfinite(baseline)
     rows, predictions = [], {}
+    every = {"": (surface, rated_energy), **(hammer_surfaces or {})}
     for step in steps:
-        surf = surface.with_energy_factor(enthru_factor) if step.energy == "enthru" \
-            else surface
+        surfs = {h: (s.with_energy_factor(enthru_factor) if step.energy == "enthru" else s, r)
+                 for h, (s, r) in every.items()}
         predicted = np.full(measured.size, np.nan)
-        fits = []
+        fits, chosen = [], []
         for g in groups:
             train, test = group != g, group == g
-            sub = surf.subset(train)
-            e_max = (rated_energy / largest_energy_per_e_ref(sub) if step.energy_cap
-                     else None)
-            fitted = fit_regularised(sub, measured[train], step.classes, step.space,
-                                     n_eff=len(groups) - 1, exponent=step.exponent,
-                                     fatigue=step.fatigue, e_max=e_max)
-            pred = predict_with(surf.subset(test), fitted)
+            hammer, fitted = fit_step(step, {h: (s.subset(train), r)
+                                             for h, (s, r) in surfs.items()},
+                                      measured[train], len(groups) - 1)
+            chosen.append(hammer)
+            sub = surfs[hammer][0].subset(train)
+            pred = predict_with(surfs[hammer][0].subset(test), fitted)
             if step.residual_stress:
                 pred = pred * stress_ratio[test]
             if step.stacked:
@@ -1081,8 +1257,12 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                "rmse_baseline [blows/m]": _scores(baseline[ok], measured[ok])["rmse [blows/m]"],
                "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
                "points [-]": int(ok.sum()), "folds [-]": len(groups)}
+        if step.hammers:
+            for h in step.hammers:
+                row[f"folds with {h} [-]"] = chosen.count(h)
         for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
-                    "energy_exponent [-]", "fatigue_rate [-]", "stacking_weight [-]"):
+                    "energy_exponent [-]", "fatigue_rate [-]", "stacking_weight [-]",
+                    *(f"{name} [-]" for name in DYNAMICS)):
             if key in fits[0]:
                 values = [f[key] for f in fits]
                 row[f"{key} folds median"] = float(np.median(values))
@@ -1113,16 +1293,35 @@ PREDICTIVE_STEPS = (
     ("grid2", Step("J: I stacked with the depth mean of the other foundations",
                    classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
                    stacked=True)),
+    ("grid2", Step("K: I with the hammer class chosen per fold (S-800 or S-1800)",
+                   classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
+                   hammers=("ihc_s800", "ihc_s1800"))),
+    ("grid2", Step("L: I + Smith dampings and toe quake per soil type (priors)",
+                   classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
+                   dynamics=DYNAMICS)),
 )
 """The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
 grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`).
 The final model is :data:`FINAL_STEP`, the last physics step (no blend with the baseline)."""
 FINAL_STEP = "I"
 """The step whose all-pile fit predicts the prediction piles (direct runs)."""
+ALTERNATIVE_HAMMERS = ("ihc_s1800",)
+"""Hammer classes simulated beside the model's on the second grid (step K chooses between
+them per fold): a heavier ram (90 t against 40 t) of a larger rating."""
 GRID2_MULTIPLIERS = (0.3, 0.45, 0.65, 0.9, 1.25, 1.7)
 """Common SRD multipliers of the second grid, about the class multipliers of the first fit."""
 RESIDUAL_STRESS_BLOWS = 3
 """Blows per depth of the residual-stress runs (each from the state the last left) [-]."""
+
+
+def sensitivity_models(model: Model) -> dict:
+    """Per group of :data:`SENSITIVITY_FACTORS`, ``model`` with that group's values
+    multiplied by its factor (the grids of :meth:`ResponseSurface.with_dynamics`)."""
+    f = SENSITIVITY_FACTORS
+    return {"damping_shaft": replace(model, damping_sand=f["damping_shaft"] * model.damping_sand,
+                                     damping_clay=f["damping_shaft"] * model.damping_clay),
+            "damping_toe": replace(model, damping_toe=f["damping_toe"] * model.damping_toe),
+            "quake_toe": replace(model, quake_toe=f["quake_toe"] * model.quake_toe)}
 
 
 def record_surface(piles, results, energies, multipliers, rates=None,
@@ -1240,6 +1439,22 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     fat = cached(cache, "fatigue", shafts, calibration, model2, rates)
     times["fatigue_srd [s]"] = time.perf_counter() - t
     surf2 = record_surface(calibration, g2, e2, m2, rates, fat)
+    # the other hammer classes at the same SRD distribution (step K), and the grids with the
+    # soil's dynamic values changed that make them variables of the surface (step L)
+    t = time.perf_counter()
+    hammer_surfaces = {model.hammer: (surf2, rated)}
+    for hammer in ALTERNATIVE_HAMMERS:
+        other = replace(model2, hammer=hammer)
+        g = cached(cache, f"grid2_{hammer}", grid_runs, calibration, other, e2, m2)
+        hammer_surfaces[hammer] = (record_surface(calibration, g, e2, m2, rates, fat),
+                                   driving_system(other)["rated_energy [J]"])
+    perturbed = {}
+    for name, other in sensitivity_models(model2).items():
+        g = cached(cache, f"sens_{name}", grid_runs, calibration, other, e2, m2)
+        perturbed[name] = record_surface(calibration, g, e2, m2, rates, fat)
+    surf2 = surf2.with_dynamics(perturbed, toe_classes(calibration, model2),
+                                (model2.damping_sand, model2.damping_clay))
+    times["other_grids [s]"] = time.perf_counter() - t
     at_one = int(np.argmin(np.abs(np.log(rates))))
     fatigue_table_check = float(np.max(np.abs(surf2.sand_rate[:, at_one] + surf2.clay_rate[
         :, at_one] - surf2.sand - surf2.clay) / np.maximum(surf2.sand + surf2.clay, 1.0)))
@@ -1274,7 +1489,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     for which, step in PREDICTIVE_STEPS:
         surf = surf1 if which == "grid1" else surf2
         r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio,
-                                           rated)
+                                           rated, hammer_surfaces)
         rows += r
         if records is None:
             records = {"measured": res["measured"], "baseline": res["baseline"],
@@ -1590,7 +1805,7 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
     subs = {
         "points": [summary["cv_points [-]"], "int"],
         "training_foundations": [summary["cv_folds [-]"] - 1, "int"],
-        "wall_time": [summary["wall_time [s]"], "int"],
+        "cv_time": [summary["times"]["cross_validation [s]"], "int"],
         "c_gain": [score["C"] - score["B"], "int"],
         "srd_sand": [srd_d["sand"], "f2"],
         "srd_clay": [srd_d["clay"], "f2"],
@@ -1624,7 +1839,14 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "naive_rmse": [naive, "f1"],
         "naive_bias": [summary["naive_bias [blows/m]"], "f1+"],
         "final_minus_naive": [summary["cv_rmse [blows/m]"] - naive, "f1+"],
-        "best_physics": [min(score[k] for k in "ABCDFHI"), "f1"],
+        "best_physics": [min(score[k] for k in "ABCDFHIKL"), "f1"],
+        "k_change": [score["K"] - score["I"], "f1+"],
+        "k_heavier_folds": [steps["K"]["folds with ihc_s1800 [-]"], "int"],
+        "l_change": [score["L"] - score["I"], "f1+"],
+        "l_damping_sand": [steps["L"]["damping_sand [-] folds median"], "f2"],
+        "l_damping_clay": [steps["L"]["damping_clay [-] folds median"], "f2"],
+        "l_damping_toe_sand": [steps["L"]["damping_toe_sand [-] folds median"], "f2"],
+        "l_quake_toe_sand": [steps["L"]["quake_toe_sand [-] folds median"], "f2"],
         "j_rmse": [score["J"], "f1"],
         "piles_below_naive": [summary["piles_final_below_naive [-]"], "int"],
         "piles_scored": [summary["piles_scored [-]"], "int"],
