@@ -263,14 +263,17 @@ class AnvilSlaveBase(UnitSlave):
         """
         if self.parameters["start_at_rest"]:
             self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
-        # compile (or load) the step kernel now, on copies, not inside the first doStep
-        unit = self.component
-        modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
+        self.warm_up()
         self.extrapolation = (InputExtrapolation(self.start_time,
                                                  self.parameters["ram_toe_mass"])
                               if self.parameters["input_extrapolation"] else None)
         self.touched = False
         self.last_step = 0.0
+
+    def warm_up(self) -> None:
+        """Compile (or load) the step kernel now, on copies, not inside the first doStep."""
+        unit = self.component
+        modal_unit_step(unit.P, unit.C, unit.S.copy(), 0.0, 0.0)
 
     def approached(self, u_ram, v_ram, u_pile, v_pile) -> tuple[float, float, float, float]:
         """The inputs as the contacts see them before the first contact (``approach_input``).
@@ -561,15 +564,8 @@ class AnvilStackSlave(AnvilSlaveBase):
         except InputError as exc:
             raise InputError(self.instance_name, exc.key, exc.rule) from None
 
-    def start_component(self) -> None:
-        """Initial state: at rest on the pile (``start_at_rest``), extrapolation set up."""
-        if self.parameters["start_at_rest"]:
-            self.component.rest_on_pile(self.parameters["initial_pile_head_displacement"])
-        self.extrapolation = (InputExtrapolation(self.start_time,
-                                                 self.parameters["ram_toe_mass"])
-                              if self.parameters["input_extrapolation"] else None)
-        self.touched = False
-        self.last_step = 0.0
+    def warm_up(self) -> None:
+        """Nothing ahead: the stack's kernels compile (or load) at their first call."""
 
     def top_face(self) -> tuple[float, float]:
         """The anvil's ram face now (:func:`anvilwave.anvil_rom.stack.stack_interface`).
