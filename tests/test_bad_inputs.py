@@ -242,8 +242,9 @@ STACK_CASES = [
     ("pile wall beyond the ring", {"anvil": ANVIL + '[[anvil.bodies]]\nfile = "ring.toml"\n',
                                    "ring": [[3.0, 0.0], [3.9, 0.0], [3.9, 0.5], [3.0, 0.5]]},
      ["anvil.bodies[1].file", "pile ring", "3.86 to 4"]),
-    ("stack on the tube head", {"anvil": 'pile_head = "tube"\n' + ANVIL + RING},
-     ["anvil.pile_head", "tube"]),
+    ("stack on the tube head with one pile ring",
+     {"anvil": 'pile_head = "tube"\npile_port_rings = 1\n' + ANVIL + RING},
+     ["anvil.pile_head", "pile_port_rings >= 2"]),
     ("stack with the rod ram", {"anvil": ANVIL + RING, "hammer": ""},
      ["hammer.ram_model", "modal"]),
 ]

@@ -17,7 +17,12 @@ fmax, its static correction); the unit keeps the anvil's outward interface, ram 
   contact on the two bodies' axial participations, and a Coulomb friction pair on their radial
   participations (the two faces slide along the radius as the bodies bulge);
 * the ring's bottom face on the pile wall in K equal-width rings (compression-only, the pile's
-  contact spring and dashpot shared by ring area, on the 1D pile head).
+  contact spring and dashpot shared by ring area, on the 1D pile head); or on the tube head
+  (``[anvil] pile_head = "tube"``, :meth:`StackUnit.set_head`): the pile's top section as an
+  axisymmetric FE tube under the rings, the tube's contact springs, and what the tube adds to
+  the 1D head at each lag, D (:func:`anvilwave.pile.head_kernel.head_correction`), as the
+  single anvil's rings have it (:func:`anvilwave.anvil_rom.rings.head_push`): D[0] in A, the
+  rings' pile side moved down by the history's shift (:func:`stack_head_push`).
 
 With one seat ring and one pile ring the faces close at once over their width; in the FEA they
 close and slide unevenly (the anvil comes down tilted on the seat, the ring rocks on the pile
@@ -319,6 +324,17 @@ class StackState(NamedTuple):
     ram_offsets : numpy.ndarray
         The annuli's offsets from the ram unit's toe now and a step before [m] and their rate
         [m/s], shape (3, J) (zeros for one port).
+    head_kernel : numpy.ndarray
+        D, what the tube head adds to the 1D head under the pile rings at each lag, shape
+        (L, K, K) [m/N] (one lag of zeros on the 1D head; :func:`stack_head_push`).
+    head_history : numpy.ndarray
+        The pile rings' forces less their rest, every step of the blow, shape (L, K) [N].
+    head_shift : numpy.ndarray
+        The shift of the pile rings' pile side now and a step before, shape (2, K) [m].
+    head_rest : numpy.ndarray
+        The pile rings' forces at rest, shape (K,) [N].
+    head_count : numpy.ndarray
+        The steps in the history [-] and the work handed to the tube head [J], shape (2,).
     """
 
     parameters: np.ndarray
@@ -345,6 +361,11 @@ class StackState(NamedTuple):
     ram_toe_participation: np.ndarray
     ram_state: np.ndarray
     ram_offsets: np.ndarray
+    head_kernel: np.ndarray
+    head_history: np.ndarray
+    head_shift: np.ndarray
+    head_rest: np.ndarray
+    head_count: np.ndarray
 
 
 def stack_incidence(seat_rings: int, pile_rings: int, ram_annuli: int = 1
@@ -429,12 +450,18 @@ class StackUnit:
         The modal ram's toe modes the face is of
         (:class:`anvilwave.hammer.modal_ram.RamToeModes`), for the runner's ram unit to run
         the same modes; None: the system's.
+    head : tuple or None, default None
+        The pile rings on a tube head: (D, springs), D (L, K, K) [m/N] what the tube adds to
+        the 1D head at each lag (:func:`anvilwave.pile.head_kernel.head_correction`), springs
+        (K,) [N/m] the rings' contact springs in place of the pile's shared by area
+        (:func:`anvilwave.pile.head_kernel.tube_contact_stiffness`); None: the 1D head.
 
     Raises
     ------
     InputError
-        If a ring is given without a positive seat stiffness, a coefficient is negative, or the
-        bodies' ports do not match the rings and the ram face.
+        If a ring is given without a positive seat stiffness, a coefficient is negative, the
+        bodies' ports do not match the rings and the ram face, or ``head`` does not match the
+        pile rings.
     """
 
     anvil: StackBody | ModalAnvil
@@ -449,6 +476,7 @@ class StackUnit:
     gravity: float = GRAVITY
     ram_face: RamFace | None = None
     ram_modes: object | None = None
+    head: tuple | None = None
 
     def __post_init__(self):
         self._h = None
@@ -489,13 +517,22 @@ class StackUnit:
             # c_a / k_a with c_a the dashpot's area share and k_a = 1 / R_aa (the anvil unit's)
             ram_ratios = c.ram_damping * (a.areas[:J] / a.areas[:J].sum()) * np.diag(face.residual)
             Cr, Pr, pr = face.coefficients(1e-5), face.participation.T, face.toe
-        k = np.concatenate([k_ram, self.seat_stiffness * seat_share,
-                            c.pile_stiffness * pile_share, kt * seat_share])
+        pile_springs = c.pile_stiffness * pile_share
+        D = np.zeros((1, K, K))
+        if self.head is not None:
+            D, pile_springs = (np.ascontiguousarray(x, dtype=float) for x in self.head)
+            if D.ndim != 3 or D.shape[1:] != (K, K) or pile_springs.shape != (K,):
+                raise InputError("stack", "pile_head", f"the tube head needs ({K}, {K}) lags "
+                                                       f"and {K} springs for {K} pile rings, "
+                                                       f"got {D.shape} and {pile_springs.shape}")
+        k = np.concatenate([k_ram, self.seat_stiffness * seat_share, pile_springs,
+                            kt * seat_share])
         N = J + S + K
         ratios = np.concatenate([ram_ratios,
                                  self.seat_damping * seat_share / k[J:J + S],
                                  c.pile_damping * pile_share / k[J + S:N]])
         A = np.diag(1.0 / k[:N]) + G[:N, :N]
+        A[J + S:, J + S:] += 0.5 * (D[0] + D[0].T)  # the tube's lag 0 (zero on the 1D head)
         t = np.arange(N, N + S)
         pairs = np.column_stack([np.full(S, float(self.seat_friction)),
                                  1.0 / (1.0 / k[t] + G[t, t])])
@@ -506,8 +543,58 @@ class StackUnit:
             np.zeros(2 * r.n_modes), ext, k, ratios, pairs, G, A, np.zeros(N + S),
             np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 9)),
             np.ascontiguousarray(Cr), np.ascontiguousarray(Pr), np.ascontiguousarray(pr),
-            np.zeros((4, pr.size)), np.zeros((3, J)))
+            np.zeros((4, pr.size)), np.zeros((3, J)), D, np.zeros((D.shape[0], K)),
+            np.zeros((2, K)), np.zeros(K), np.zeros(2))
         self.set_step(1e-5)
+
+    def set_head(self, head: tuple) -> tuple[float, float]:
+        """Put the pile rings on a tube head and rest on it afresh.
+
+        Parameters
+        ----------
+        head : tuple
+            (D, springs) as the field ``head``: D (L, K, K) [m/N], springs (K,) [N/m].
+
+        Returns
+        -------
+        u_top : float
+            The anvil's top face at rest [m] (:meth:`rest_on_pile`).
+        force_pile : float
+            Pile contact force at rest [N].
+
+        Raises
+        ------
+        InputError
+            If the stack has no ring, or ``head`` does not match the pile rings.
+        """
+        if self.ring is None:
+            raise InputError("stack", "pile_head", "the stack's tube head is under the ring's "
+                                                   "pile rings: it needs the ring")
+        h = self._h
+        self.head = head
+        self.__post_init__()
+        if h is not None:
+            self.set_step(h)
+        return self.rest_on_pile(0.0)
+
+    def restart_head(self, state: StackState | None = None) -> None:
+        """Start the tube head's history afresh from the present pile-ring forces (a blow's
+        start): its changes are measured from them, the shift is -D[0] F_rest (the rest is the
+        same on the tube and the 1D head), the work handed to the tube zero.
+
+        Parameters
+        ----------
+        state : StackState or None, default None
+            The arrays to restart (written); None: the unit's own.
+        """
+        s = self.state if state is None else state
+        J, S = self.ram_annuli, self.seat_rings
+        N = J + S + self.pile_rings
+        s.head_rest[:] = s.forces[J + S:N]
+        s.head_count[:] = 0.0
+        s.head_history[:] = 0.0
+        s.head_shift[0] = -(s.head_kernel[0] @ s.head_rest)
+        s.head_shift[1] = s.head_shift[0]
 
     def set_step(self, h: float) -> None:
         """Prepare the step coefficients for a step ``h`` [s] (the half-step rates kept).
@@ -590,6 +677,7 @@ class StackUnit:
         s.energies[:] = 0.0
         s.ram_state[:] = 0.0  # the ram's face from rest at the blow's start
         s.ram_offsets[:] = 0.0
+        self.restart_head()
         # the ram touches the face's highest annulus first (one port: the face's mean)
         return float(-gap[:J].max()), float(X[J + S:N].sum())
 
@@ -784,6 +872,11 @@ def stack_relative(state, u_ram, v_ram, u_pile, v_pile):
         for a in range(offsets.shape[1]):
             x[0, a] += offsets[0, a]
             x[1, a] += offsets[2, a]
+    shift = state.head_shift
+    first = offsets.shape[1] + int(state.parameters[2])
+    if state.head_kernel.shape[0] > 1:  # the tube head: the pile rings' pile side moved down
+        for k in range(shift.shape[1]):
+            x[0, first + k] -= shift[0, k]
     for body in range(2):
         Q = state.anvil_loads if body == 0 else state.ring_loads
         S = state.anvil_state if body == 0 else state.ring_state
@@ -945,6 +1038,49 @@ def stack_step(state, sweeps):
             Z[n + j] = q
     if J > 1:
         ram_face_advance(state, P[1])
+    if state.head_kernel.shape[0] > 1:
+        stack_head_push(state)
+
+
+@njit(cache=True)
+def stack_head_push(state):
+    """After a step with the forces held: the tube head's history and its next shift.
+
+    The pile rings' forces less their rest into the history, the next shift sum over m >= 1
+    of D[m] (F_(n+1-m) - F_rest) - D[0] F_rest, and the work of the forces on the step that
+    ended (their trapezoid over its shift's change) added to ``head_count[1]``: the single
+    anvil's rule (:func:`anvilwave.anvil_rom.rings.head_push`) on the stack's pile contacts
+    J + S .. N - 1.
+
+    Parameters
+    ----------
+    state : StackState
+        The stack's arrays (``head_history``, ``head_shift``, ``head_count`` written).
+    """
+    F, D, history = state.forces, state.head_kernel, state.head_history
+    shift, rest, count = state.head_shift, state.head_rest, state.head_count
+    first = state.ram_offsets.shape[1] + int(state.parameters[2])
+    L = D.shape[0]
+    K = D.shape[1]
+    n = int(count[0])
+    if n < L:
+        for k in range(K):
+            history[n, k] = F[first + k] - rest[k]
+        n += 1
+        count[0] = n
+    work = 0.0
+    for k in range(K):
+        before = rest[k] + (history[n - 2, k] if n >= 2 else 0.0)
+        work += 0.5 * (before + F[first + k]) * (shift[0, k] - shift[1, k])
+        shift[1, k] = shift[0, k]
+        total = 0.0
+        for l in range(K):
+            total -= D[0, k, l] * rest[l]
+        for m in range(1, min(n, L - 1) + 1):
+            for l in range(K):
+                total += D[m, k, l] * history[n - m, l]
+        shift[0, k] = total
+    count[1] += work
 
 
 @njit(cache=True)
@@ -1003,6 +1139,13 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
         for j in range(m):
             xj = F[j] if j < N else X[j]
             total += 0.5 * xi * G[i, j] * xj
+    D = state.head_kernel
+    if D.shape[0] > 1:  # the tube head: its lag 0's complementary energy, the work handed on
+        first = N - D.shape[1]
+        for k in range(D.shape[1]):
+            for l in range(D.shape[1]):
+                total += 0.25 * F[first + k] * (D[0, k, l] + D[0, l, k]) * F[first + l]
+        total += state.head_count[1]
     return kinetic, total
 
 

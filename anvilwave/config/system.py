@@ -552,7 +552,12 @@ def _anvil(table: Table, hammer: Hammer, source: str) -> AnvilSettings:
         classic=classic,
     )
     if ring_table is not None:
-        settings = replace(settings, stack=_stack(table, ring_table, model, settings, spec))
+        stack = _stack(table, ring_table, model, settings, spec)
+        head = table.string("pile_head", "rod", choices=("rod", "tube"))
+        if head == "tube" and stack.pile_rings < 2:
+            raise table.error("pile_head", "'tube' puts the ring's pile rings on an FE tube "
+                                           "head: it needs pile_port_rings >= 2")
+        settings = replace(settings, stack=stack, pile_head=head)
         table.finish()
         return settings
     rings = table.integer("pile_port_rings", 1, ge=1)
@@ -626,9 +631,6 @@ def _stack(table: Table, body: Table, model: str, settings: AnvilSettings,
     if annuli > 1 and settings.ram_contact_stiffness is not None:
         raise table.error("ram_port_annuli", "the annuli's contacts are the modal ram's "
                                              "residual flexibility: omit ram_contact_stiffness")
-    if table.string("pile_head", "rod", choices=("rod", "tube")) != "rod":
-        raise table.error("pile_head", "the stack bears on the 1D pile's head: 'tube' is the "
-                                       "single anvil's")
     return StackSettings(ring, float(friction), int(seat_rings), int(rings), int(annuli))
 
 

@@ -14,12 +14,12 @@ import hashlib
 
 import numpy as np
 
-from anvilwave.anvil_rom.fem.geometry import AnvilSpec
+from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Material
 from anvilwave.anvil_rom.rings import RamFace
 from anvilwave.anvil_rom.rom import ModalAnvil
 from anvilwave.anvil_rom.stack import Face, StackBody, StackBodyData, StackUnit, stack_body_data
 from anvilwave.anvil_rom.unit import ContactParameters
-from anvilwave.config.cache import cache_dir, cached_modal_data, modal_key
+from anvilwave.config.cache import cache_dir, cached_modal_data, cached_ring_kernel, modal_key
 from anvilwave.config.system import (
     STACK_PILE_RINGS as PILE_RINGS,
 )
@@ -32,9 +32,18 @@ from anvilwave.config.system import (
 from anvilwave.config.system import SystemConfig
 from anvilwave.hammer.modal_ram import modal_ram
 from anvilwave.inputs import InputError
+from anvilwave.pile.head_kernel import (
+    echo_free_length,
+    head_correction,
+    rod_head_response,
+    tube_contact_stiffness,
+)
+from anvilwave.pile.kernels import HEAD_EXTRAPOLATION
+from anvilwave.pile.kernels import stable_time_step as pile_stable_time_step
+from anvilwave.pile.model import substeps
 
 __all__ = ["PILE_RINGS", "RAM_ANNULI", "SEAT_RINGS", "anvil_modal_data", "cached_stack_data",
-           "contact_stiffnesses", "stack_faces", "stack_unit", "with_ram_annuli"]
+           "contact_stiffnesses", "stack_faces", "stack_unit", "tube_head", "with_ram_annuli"]
 
 
 def contact_stiffnesses(cfg: SystemConfig) -> tuple[float, float]:
@@ -193,10 +202,67 @@ def cached_stack_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> 
     return data
 
 
+def tube_head(cfg: SystemConfig, arrays, ring_areas: np.ndarray, h: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """The tube head under a pile port in rings (``[anvil] pile_head = "tube"``).
+
+    The pile's top section as an axisymmetric FE tube (:mod:`anvilwave.pile.head_kernel`,
+    cached), its correction to the 1D head for the step ``h`` over the longest blow the file
+    sets (``[simulation]`` or ``[driveability] duration``), and the tube's contact springs of
+    the rings.
+
+    Parameters
+    ----------
+    cfg : SystemConfig
+        The system (its pile's top section, its durations).
+    arrays : PileSoilArrays
+        The pile/soil kernel arrays (``cfg.pile_soil.arrays()``).
+    ring_areas : numpy.ndarray
+        The pile rings' areas, shape (K,) [m^2].
+    h : float
+        Time step [s].
+
+    Returns
+    -------
+    D : numpy.ndarray
+        What the tube adds to the 1D head at each lag, shape (L, K, K) [m/N]
+        (:func:`anvilwave.pile.head_kernel.head_correction`).
+    springs : numpy.ndarray
+        The rings' contact springs, shape (K,) [N/m]
+        (:func:`anvilwave.pile.head_kernel.tube_contact_stiffness`).
+
+    Raises
+    ------
+    InputError
+        If the anvil's pile ring is not the pile's top wall (to 1 mm).
+    """
+    pile = cfg.pile_soil.pile
+    top = pile.sections[0]
+    r_out = 0.5 * top.outer_diameter
+    r_in = r_out - top.wall_thickness
+    ring = cfg.anvil.spec.interfaces.pile_ring
+    if max(abs(ring[0] - r_in), abs(ring[1] - r_out)) > 1e-3:
+        raise InputError(cfg.source, "anvil.pile_head",
+                         f"the tube head is the pile's top section (walls {r_in:g} to {r_out:g} "
+                         f"m), but the anvil's pile ring spans {ring[0]:g} to {ring[1]:g} m: "
+                         "they must be the same ring (to 1 mm)")
+    duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
+    steps = int(round(duration / h)) + 1
+    length = echo_free_length(top.wave_speed, duration)
+    material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
+    areas = np.asarray(ring_areas, float)
+    tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, areas.size)
+    n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))
+    rod = rod_head_response(pile, h, steps, n_sub, float(arrays.probes[HEAD_EXTRAPOLATION]))
+    return head_correction(tube, rod), tube_contact_stiffness(top.youngs_modulus,
+                                                              top.wall_thickness, areas)
+
+
 def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: float = 0.0,
                seat_stiffness: float | None = None, penalty_size: float = 0.1,
                seat_rings: int = SEAT_RINGS, pile_rings: int = PILE_RINGS,
-               ring_fmax: float | None = None, ram_annuli: int | None = None) -> StackUnit:
+               ring_fmax: float | None = None, ram_annuli: int | None = None,
+               pile_head: str = "rod") -> StackUnit:
     """The system's anvil (and ``ring``) as a :class:`StackUnit` with the system's contacts.
 
     Parameters
@@ -223,6 +289,9 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
         :class:`anvilwave.anvil_rom.rings.RamFace`; the modal ram's toe modes in J annuli,
         :func:`with_ram_annuli`, kept on the unit for the runner); None: :data:`RAM_ANNULI`
         with a ring, the one port without. J > 1 needs the ring.
+    pile_head : {"rod", "tube"}, default "rod"
+        The ring's pile rings on the 1D pile's head, or on the tube head (:func:`tube_head` at
+        the system's ``time_step``; the unit then at rest on it). "tube" needs the ring.
 
     Returns
     -------
@@ -232,8 +301,9 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
     Raises
     ------
     InputError
-        If J > 1 without a ring or without a modal ram, or with the ram toe and the anvil's
-        ram face of other radii (to 1 mm).
+        If J > 1 without a ring or without a modal ram, with the ram toe and the anvil's
+        ram face of other radii (to 1 mm), or ``pile_head`` "tube" without a ring or a
+        ``time_step``.
     """
     k_ram, k_pile = contact_stiffnesses(dataclasses.replace(
         cfg, hammer=dataclasses.replace(cfg.hammer, ram=dataclasses.replace(
@@ -244,6 +314,12 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
     fmax = float(s.fmax)
     if ram_annuli is None:
         ram_annuli = 1 if ring is None else RAM_ANNULI
+    if pile_head not in ("rod", "tube"):
+        raise InputError(cfg.source, "anvil.pile_head", f"'rod' or 'tube', not {pile_head!r}")
+    if pile_head == "tube" and (ring is None or cfg.time_step is None):
+        raise InputError(cfg.source, "anvil.pile_head", "the stack's tube head is under the "
+                                                        "ring at the system's time_step: it "
+                                                        "needs the ring and a time_step")
     if ring is None:
         if ram_annuli > 1:
             raise InputError(cfg.source, "ram_annuli", "the ram face in annuli without a ring is "
@@ -266,9 +342,14 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
         seat = anvil_faces[1]
         seat_stiffness = ring.material.youngs_modulus / penalty_size * np.pi * (
             seat.r_out**2 - seat.r_in**2)
-    return StackUnit(anvil, contact, body, seat_rings=seat_rings, pile_rings=pile_rings,
+    unit = StackUnit(anvil, contact, body, seat_rings=seat_rings, pile_rings=pile_rings,
                      seat_stiffness=float(seat_stiffness), seat_friction=seat_friction,
                      gravity=cfg.gravity, ram_face=face, ram_modes=modes)
+    if pile_head == "tube":
+        h = float(cfg.time_step)
+        unit.set_step(h)
+        unit.set_head(tube_head(cfg, cfg.pile_soil.arrays(), body.areas[2 * seat_rings:], h))
+    return unit
 
 
 def with_ram_annuli(cfg: SystemConfig, annuli: int) -> SystemConfig:

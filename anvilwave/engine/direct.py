@@ -41,7 +41,6 @@ from numba import njit
 
 from anvilwave.anvil_rom.arrays import aligned_copy, aligned_zeros
 from anvilwave.anvil_rom.contact import contact_force
-from anvilwave.anvil_rom.fem.geometry import STEEL, Material
 from anvilwave.anvil_rom.fem.pipeline import solid_mass
 from anvilwave.anvil_rom.rings import (
     RamFace,
@@ -72,9 +71,14 @@ from anvilwave.anvil_rom.unit import (
     modal_unit_energy_at,
     modal_unit_interface,
 )
-from anvilwave.config.cache import cached_chain, cached_ring_kernel
+from anvilwave.config.cache import cached_chain
 from anvilwave.config.system import SystemConfig
-from anvilwave.engine.anvils import anvil_modal_data, contact_stiffnesses, stack_unit
+from anvilwave.engine.anvils import (
+    anvil_modal_data,
+    contact_stiffnesses,
+    stack_unit,
+    tube_head,
+)
 from anvilwave.engine.compilation import announce_compilation
 from anvilwave.hammer.driving_system import (
     driving_system_energy,
@@ -93,12 +97,6 @@ from anvilwave.hammer.modal_ram import (
 from anvilwave.hammer.ram import leapfrog_energies, ram_advance
 from anvilwave.hammer.ram import stable_time_step as ram_stable_time_step
 from anvilwave.inputs import InputError
-from anvilwave.pile.head_kernel import (
-    echo_free_length,
-    head_correction,
-    rod_head_response,
-    tube_contact_stiffness,
-)
 from anvilwave.pile.kernels import (
     HEAD_EXTRAPOLATION,
     PILE_STIFFNESS,
@@ -1932,6 +1930,8 @@ class Engine:
         n_steps = int(round(duration / h))
         rings = getattr(self.anvil.unit, "rings", None)
         head = None if rings is None else rings.head_kernel  # the tube head's correction
+        if self.anvil.kind == "stack" and self.anvil.unit.state is not None:
+            head = self.anvil.unit.state.head_kernel
         if head is not None and head.shape[0] > 1 and n_steps >= head.shape[0]:
             raise ValueError(f"duration {duration:g} s is longer than the tube head's kernel "
                              f"({(head.shape[0] - 1) * h:g} s, [anvil] pile_head = 'tube'): "
@@ -2367,31 +2367,14 @@ def build_engine(cfg: SystemConfig, modal=None, ram_modes=None) -> Engine:
 
 
 def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> AnvilKernels:
-    """The anvil's rings put on a tube head (``[anvil] pile_head = "tube"``): the pile's top
-    section as an FE tube (:mod:`anvilwave.pile.head_kernel`, cached), its correction to the 1D
-    head for
-    the step ``h`` [s] over the longest blow the file sets (``[simulation]`` or
-    ``[driveability] duration``), the rings' contact springs the tube's; the anvil rests on it
-    afresh."""
-
+    """The anvil's rings, or the stack's pile rings, put on a tube head (``[anvil] pile_head =
+    "tube"``, :func:`anvilwave.engine.anvils.tube_head` at the step ``h`` [s]); the unit rests
+    on it afresh."""
     unit = anvil.unit
-    pile = cfg.pile_soil.pile
-    top = pile.sections[0]
-    r_out = 0.5 * top.outer_diameter
-    r_in = r_out - top.wall_thickness
-    ring = cfg.anvil.spec.interfaces.pile_ring
-    if max(abs(ring[0] - r_in), abs(ring[1] - r_out)) > 1e-3:
-        raise InputError(cfg.source, "anvil.pile_head",
-                         f"the tube head is the pile's top section (walls {r_in:g} to {r_out:g} "
-                         f"m), but the anvil's pile ring spans {ring[0]:g} to {ring[1]:g} m: "
-                         "they must be the same ring (to 1 mm)")
-    duration = max(cfg.duration, (cfg.drive.duration or 0.0) if cfg.drive is not None else 0.0)
-    steps = int(round(duration / h)) + 1
-    length = echo_free_length(top.wave_speed, duration)
-    material = Material(top.youngs_modulus, STEEL.poisson_ratio, top.density)
-    tube = cached_ring_kernel(material, r_in, r_out, length, h, steps, unit.anvil.n_rings)
-    n_sub = substeps(h, float(pile_stable_time_step(arrays.pile, arrays.soil)))
-    rod = rod_head_response(pile, h, steps, n_sub, float(arrays.probes[HEAD_EXTRAPOLATION]))
-    u_top0, _ = unit.set_head((head_correction(tube, rod), tube_contact_stiffness(
-        top.youngs_modulus, top.wall_thickness, unit.anvil.ring_areas)))
+    if anvil.kind == "stack":
+        areas = unit.ring.areas[2 * unit.seat_rings:]
+        unit.set_step(h)
+        u_top0, _ = unit.set_head(tube_head(cfg, arrays, areas, h))
+        return replace(anvil, u_top0=float(u_top0))
+    u_top0, _ = unit.set_head(tube_head(cfg, arrays, unit.anvil.ring_areas, h))
     return replace(anvil, S=unit.S.copy(), u_top0=u_top0)
