@@ -1139,13 +1139,12 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
         for j in range(m):
             xj = F[j] if j < N else X[j]
             total += 0.5 * xi * G[i, j] * xj
-    D = state.head_kernel
-    if D.shape[0] > 1:  # the tube head: its lag 0's complementary energy, the work handed on
-        first = N - D.shape[1]
-        for k in range(D.shape[1]):
-            for l in range(D.shape[1]):
-                total += 0.25 * F[first + k] * (D[0, k, l] + D[0, l, k]) * F[first + l]
-        total += state.head_count[1]
+    D = state.head_kernel  # the tube head: its lag 0's complementary energy, the work handed
+    first = N - D.shape[1]  # on (zeros on the 1D head)
+    for k in range(D.shape[1]):
+        for l in range(D.shape[1]):
+            total += 0.25 * F[first + k] * (D[0, k, l] + D[0, l, k]) * F[first + l]
+    total += state.head_count[1]
     return kinetic, total
 
 
