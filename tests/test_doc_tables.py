@@ -278,10 +278,11 @@ def test_lumped_conventions_data_file():
 def test_anvil_ring_data_file():
     """docs/data/anvil_ring.json (benchmarks/study_anvil_ring.py --docs: eight FEA stacks, 10-40
     s each, and the two ring runs again at 0.07 and 0.05 m, up to 2 min each, beyond the
-    suite's budget; the FEA's checks are tests/test_fea_ring.py, the ROM's peaks are
-    recomputed in tests/test_stack.py). Checked here: the tables are the script's reading of
-    the file's values, each stored error is its stored ROM and FEA values', and the
-    reference's first-order estimate is its stored difference scaled by h / (H - h)."""
+    suite's budget; the FEA's checks are tests/test_fea_ring.py, the ROM's reference rows are
+    recomputed against their FEA runs in tests/test_stack.py). Checked here: the tables are
+    the script's reading of the file's values, each stored error is its stored ROM and FEA
+    values', and the reference's first-order estimate is its stored difference scaled by
+    h / (H - h)."""
     script = benchmark("study_anvil_ring")
     data = doc_data("anvil_ring")
     runs = data["values"]["runs"]
@@ -298,6 +299,18 @@ def test_anvil_ring_data_file():
                     rel=1e-9, abs=1e-12), (name, part)
             deviation = np.abs(np.array(rom["band_error [dB]"]))
             assert rom["band_error_max [dB]"] == pytest.approx(deviation.max(), abs=1e-12)
+    # what docs/validation.md says of the ROM against the finer references: peaks and RMS
+    # within the issue's bars, the bands within 1.5 dB in half of the runs, over it (by less
+    # than half a dB: "slightly") in the others, at mu 0 against 0.05 m among them
+    finer = {(label, name): d["rom"] for label, block in values["reference_error"].items()
+             for name, d in block.items()}
+    for key, rom in finer.items():
+        assert abs(rom["pile_peak_error [-]"]) < 0.03 and abs(rom["ram_peak_error [-]"]) < 0.05
+        assert rom["pile_rms_error [-]"] < 0.10 and rom["ram_rms_error [-]"] < 0.10, key
+    bands = {key: rom["band_error_max [dB]"] for key, rom in finer.items()}
+    assert sum(b < 1.5 for b in bands.values()) == len(bands) // 2
+    assert max(bands.values()) < 2.0
+    assert bands[("mesh 0.05 m", "ring, mu 0")] > 1.5
     h = values["mesh_size [m]"]
     for label, block in values.get("reference_error", {}).items():
         other = float(label.split()[1])
@@ -305,6 +318,39 @@ def test_anvil_ring_data_file():
             e = d["estimated_error_at_study_mesh"]
             assert e["pile_rms_error [-]"] == pytest.approx(
                 d["pile_rms_error [-]"] * h / abs(other - h), rel=1e-12), (label, name)
+
+
+def test_anvil_ring_claims_of_the_docs():
+    """What docs/validation.md's "What the rows show" says of the ROM stack's variants, read
+    off docs/data/anvil_ring.json (the bars: pile peak 3 %, ram peak 5 %, RMS 10 %, bands
+    1.5 dB)."""
+    script = benchmark("study_anvil_ring")
+    runs = doc_data("anvil_ring")["values"]["runs"]
+    refs = [runs[name] for name in script.REFERENCE_RUNS]
+    mu0, seat = (r["rom_variants"] for r in refs)
+    both = (mu0, seat)
+    assert all(v["1D pile head"]["band_error_max [dB]"] > 1.5 for v in both)
+    assert mu0["1D pile head"]["pile_rms_error [-]"] > 0.10
+    eight = f"seat in {script.SEAT_RINGS} rings"
+    assert all(v[eight]["band_error_max [dB]"] > 1.5 for v in both)
+    for v, ref in zip(both, refs, strict=True):  # 32 (the stack's) and 64 rings: a tenth of a dB
+        assert abs(v["seat in 64 rings"]["band_error_max [dB]"]
+                   - ref["rom"]["band_error_max [dB]"]) < 0.1
+        assert abs(v["1 ram port"]["pile_peak_error [-]"]) > 0.03
+        none = v["no static correction"]
+        assert none["pile_rms_error [-]"] > 0.10 and none["band_error_max [dB]"] > 1.5
+        assert 1.8 < none["rom_energy_balance [-]"] / ref["rom"]["rom_energy_balance [-]"] < 2.5
+    fine = mu0["ring's modes to 12 kHz"]
+    assert fine["band_error_max [dB]"] > 1.5
+    assert abs(fine["pile_peak_error [-]"]) < 0.03 and abs(fine["ram_peak_error [-]"]) < 0.05
+    fmu0, fmu2 = (v[script.FMU_VARIANT] for v in both)
+    assert abs(fmu0["pile_peak_error [-]"]) < 0.03 and abs(fmu0["ram_peak_error [-]"]) < 0.05
+    assert abs(fmu2["pile_peak_error [-]"]) > 0.03 and abs(fmu2["ram_peak_error [-]"]) < 0.05
+    for f in (fmu0, fmu2):
+        assert f["pile_rms_error [-]"] > 0.10 and f["band_error_max [dB]"] > 1.5
+    also = runs["ring, mu 0.2"]["rom"]  # friction on the ring-pile contact too, in the FEA only
+    assert abs(also["pile_peak_error [-]"]) < 0.03 and abs(also["ram_peak_error [-]"]) < 0.05
+    assert also["pile_rms_error [-]"] > 0.10 and also["band_error_max [dB]"] > 1.5
 
 
 def test_stack_drive_data_file():
