@@ -156,7 +156,7 @@ DEFINITIONS = {
        "the study's and the tests' settings (pile cut, clearances, steps, windows), the issue's "
        "bars and the rise's definition"
        for q in ("52.6 t", "3.6 to 4.15 m", "0.26 m", "10 mm", "0.5 mm", "10 m", "0.55 m",
-                 "20 us", "8 ms", "10 us", "0.5 %", "3 %", "5 %", "10 %", "1.5 dB", "12 kHz",
+                 "20 us", "0.5 %", "3 %", "5 %", "10 %", "1.5 dB", "12 kHz",
                  "90 %", "1 %", "7 %", "1 mm")},
     **{("fmi.md", q): "Table 1's steps: the engine's h, the SSP's h/4 and the start 2.5 of "
        "them before the contact (inputs and the SSP's definition); OMSimulator's own defaults"
