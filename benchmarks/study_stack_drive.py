@@ -7,8 +7,11 @@ The system is anvilwave/examples/xl_monopile_drive.toml (the paper's Table 1 ham
 pile in an illustrative North Sea profile) with its ``[anvil] file`` replaced by
 ``[[anvil.bodies]]``: the anvil alone (the file's system to the bit), then the anvil and the
 illustrative ring anvilwave/examples/anvils/xl8_ring.toml with the seat friction coefficient
-mu 0, 0.1 and 0.3 (the stack's defaults otherwise: eight seat rings, three pile rings, the ram
-face in six annuli). Every case runs through ``anvilwave.drive`` (the engine's compiled loop):
+mu 0, 0.1 and 0.3 (the stack's defaults otherwise: eight seat rings, three pile rings on the 1D
+head, the ram face in six annuli), and the ring at mu 0 and 0.3 with the options of
+anvilwave/examples/table1_ring.toml (:data:`TUBE_CASES`: the seat in 32 rings, the pile rings
+on the FE tube head; the options the ROM stack meets the FEA stack with). Every case runs
+through ``anvilwave.drive`` (the engine's compiled loop):
 
 * the blow at ``SERIES_DEPTH`` (the drive's time series, one blow from rest): the pile-head
   force low-passed at 5 kHz, its peak, the peak's time after the ram's first contact, its
@@ -46,6 +49,11 @@ SYSTEM = EXAMPLES / "xl_monopile_drive.toml"
 RING = EXAMPLES / "anvils" / "xl8_ring.toml"
 CASES = {"anvil alone": None, "ring, mu 0": 0.0, "ring, mu 0.1": 0.1, "ring, mu 0.3": 0.3}
 """Case -> the seat friction coefficient (None: no ring)."""
+TUBE_CASES = {"ring, mu 0, tube head": 0.0, "ring, mu 0.3, tube head": 0.3}
+"""Case -> the seat friction coefficient, with table1_ring.toml's stack options
+(:data:`TUBE_OPTIONS`)."""
+TUBE_OPTIONS = ('pile_head = "tube"\n', "seat_rings = 32\n")
+"""The ``[anvil]`` and the ring body's lines of table1_ring.toml's stack."""
 DEPTHS = (10.0, 20.0, 30.0)
 """[m] tip depths of the blow counts."""
 SERIES_DEPTH = 20.0
@@ -54,15 +62,19 @@ CUTOFF = 5000.0  # [Hz] the low-pass of the peak and the rise (the ROM's fmax)
 TOP_BAND = 4000.0  # [Hz] the highest band compared
 
 
-def stack_system(folder: Path, mu: float | None, name: str = "system.toml") -> Path:
+def stack_system(folder: Path, mu: float | None, name: str = "system.toml",
+                 tube: bool = False) -> Path:
     """SYSTEM with ``[[anvil.bodies]]``: the anvil, and with ``mu`` the ring at that seat
-    friction; its other files named by absolute path, written into ``folder``."""
+    friction (``tube``: with :data:`TUBE_OPTIONS`); its other files named by absolute path,
+    written into ``folder``."""
     text = SYSTEM.read_text()
     anvil = 'file = "anvils/xl8.toml"\n'
     assert text.count(anvil) == 1
     bodies = f'[[anvil.bodies]]\nfile = "{EXAMPLES / "anvils" / "xl8.toml"}"\n'
     if mu is not None:
         bodies += f'[[anvil.bodies]]\nfile = "{RING}"\nseat_friction = {mu!r}\n'
+    if tube:
+        bodies = TUBE_OPTIONS[0] + bodies + TUBE_OPTIONS[1]
     text = text.replace(anvil, "").replace('cpt = "soil/', f'cpt = "{EXAMPLES / "soil"}/')
     head, tail = text.split("[anvil.classic]", 1)
     path = Path(folder) / name
@@ -143,6 +155,8 @@ def docs_tables(values: dict) -> tuple[dict, dict]:
             for name, row in runs.items()}
     subs = {"peak_change_mu0": [peak["ring, mu 0"], "pct+"],
             "peak_change_mu03": [peak["ring, mu 0.3"], "pct+"],
+            **{f"peak_change_tube_mu{m}": [peak[name], "pct+"]
+               for m, name in zip(("0", "03"), TUBE_CASES, strict=True) if name in peak},
             "blow_count_change_max": [float(np.max(np.abs(changes))), "pct"]}
     return {"cases": table}, subs
 
@@ -177,9 +191,10 @@ def main(argv=None):
     args = parser.parse_args(argv)
     runs = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, mu in CASES.items():
+        for name, mu, tube in [*((n, m, False) for n, m in CASES.items()),
+                               *((n, m, True) for n, m in TUBE_CASES.items())]:
             start = time.perf_counter()
-            runs[name] = run_case(stack_system(Path(tmp), mu, f"{len(runs)}.toml"))
+            runs[name] = run_case(stack_system(Path(tmp), mu, f"{len(runs)}.toml", tube))
             print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
     values = {"runs": runs, "depths [m]": list(DEPTHS), "series_depth [m]": SERIES_DEPTH,
               "loop_speed": loop_speed()}
@@ -187,7 +202,7 @@ def main(argv=None):
     for row in tables["cases"]["rows"]:
         change = "" if row[5] is None else f"{row[5]:+6.2f} dB @{row[6]:5.0f} Hz"
         counts = " ".join(f"{c:6.1f}" for c in row[7:])
-        print(f"{row[0]:14s} {row[1] / 1e6:7.1f} MN {row[2] * 100:+6.2f} % peak at "
+        print(f"{row[0]:24s} {row[1] / 1e6:7.1f} MN {row[2] * 100:+6.2f} % peak at "
               f"{row[3] * 1e3:5.2f} ms, rise {row[4] * 1e3:5.2f} ms {change:18s} {counts}")
     s = values["loop_speed"]
     print(f"one Table 1 ring blow: compiled loop {s['compiled_loop [s]'] * 1e3:.1f} ms, "
