@@ -419,22 +419,47 @@ def head_push(rings):
     rings : RingState
         The ring unit's arrays (:class:`RingState`); its changing fields are written.
     """
-    F, D, history = rings.forces, rings.head_kernel, rings.head_history
-    shift, rest, count = rings.head_shift, rings.head_rest, rings.head_count
-    J = rings.face_modal.shape[1]
+    head_push_forces(rings.forces, rings.face_modal.shape[1], rings.head_kernel,
+                     rings.head_history, rings.head_shift, rings.head_rest, rings.head_count)
+
+
+@njit(cache=True, inline='always')
+def head_push_forces(F, first, D, history, shift, rest, count):
+    """:func:`head_push` on the force array ``F`` whose pile rings start at index ``first``
+    (the single anvil's rings and the stack's pile rings,
+    :func:`anvilwave.anvil_rom.stack.stack_head_push`, share it).
+
+    Parameters
+    ----------
+    F : numpy.ndarray
+        The contact forces held over the step [N]; the K rings at ``first`` .. ``first + K``.
+    first : int
+        Index of the first pile ring in ``F`` [-].
+    D : numpy.ndarray
+        The tube head's correction at each lag, shape (L, K, K) [m/N].
+    history : numpy.ndarray
+        The rings' force changes since the rest, shape (L, K) [N] (written).
+    shift : numpy.ndarray
+        The rings' pile-side shift now and a step before, shape (2, K) [m] (written).
+    rest : numpy.ndarray
+        The rings' forces at rest, shape (K,) [N].
+    count : numpy.ndarray
+        The steps in the history [-] and the work handed to the tube [J], shape (2,)
+        (written).
+    """
     L = D.shape[0]
     K = D.shape[1]
     n = int(count[0])
     if n < L:
         for k in range(K):
-            history[n, k] = F[J + k] - rest[k]
+            history[n, k] = F[first + k] - rest[k]
         n += 1
         count[0] = n
     work = 0.0
     for k in range(K):
         # the interval just ended: the trapezoid of the forces before and now over its shift
         before = rest[k] + (history[n - 2, k] if n >= 2 else 0.0)
-        work += 0.5 * (before + F[J + k]) * (shift[0, k] - shift[1, k])
+        work += 0.5 * (before + F[first + k]) * (shift[0, k] - shift[1, k])
         shift[1, k] = shift[0, k]
         total = 0.0
         for l in range(K):

@@ -70,7 +70,13 @@ from anvilwave.anvil_rom.fem.geometry import AnvilSpec
 from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
 from anvilwave.anvil_rom.fem.modes import elastic_flexibility
 from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
-from anvilwave.anvil_rom.rings import RamFace, contact_lcp, ram_face_advance, ram_face_energy
+from anvilwave.anvil_rom.rings import (
+    RamFace,
+    contact_lcp,
+    head_push_forces,
+    ram_face_advance,
+    ram_face_energy,
+)
 from anvilwave.anvil_rom.rom import ModalAnvil, modal_transition
 from anvilwave.anvil_rom.unit import GRAVITY, AnvilUnit, ContactParameters
 from anvilwave.inputs import InputError
@@ -1046,41 +1052,20 @@ def stack_step(state, sweeps):
 def stack_head_push(state):
     """After a step with the forces held: the tube head's history and its next shift.
 
-    The pile rings' forces less their rest into the history, the next shift sum over m >= 1
-    of D[m] (F_(n+1-m) - F_rest) - D[0] F_rest, and the work of the forces on the step that
-    ended (their trapezoid over its shift's change) added to ``head_count[1]``: the single
-    anvil's rule (:func:`anvilwave.anvil_rom.rings.head_push`) on the stack's pile contacts
-    J + S .. N - 1.
+    The single anvil's rule (:func:`anvilwave.anvil_rom.rings.head_push`, one function:
+    :func:`anvilwave.anvil_rom.rings.head_push_forces`) on the stack's pile contacts
+    J + S .. N - 1: their forces less their rest into the history, the next shift sum over
+    m >= 1 of D[m] (F_(n+1-m) - F_rest) - D[0] F_rest, and the work of the forces on the step
+    that ended (their trapezoid over its shift's change) added to ``head_count[1]``.
 
     Parameters
     ----------
     state : StackState
         The stack's arrays (``head_history``, ``head_shift``, ``head_count`` written).
     """
-    F, D, history = state.forces, state.head_kernel, state.head_history
-    shift, rest, count = state.head_shift, state.head_rest, state.head_count
-    first = state.ram_offsets.shape[1] + int(state.parameters[2])
-    L = D.shape[0]
-    K = D.shape[1]
-    n = int(count[0])
-    if n < L:
-        for k in range(K):
-            history[n, k] = F[first + k] - rest[k]
-        n += 1
-        count[0] = n
-    work = 0.0
-    for k in range(K):
-        before = rest[k] + (history[n - 2, k] if n >= 2 else 0.0)
-        work += 0.5 * (before + F[first + k]) * (shift[0, k] - shift[1, k])
-        shift[1, k] = shift[0, k]
-        total = 0.0
-        for l in range(K):
-            total -= D[0, k, l] * rest[l]
-        for m in range(1, min(n, L - 1) + 1):
-            for l in range(K):
-                total += D[m, k, l] * history[n - m, l]
-        shift[0, k] = total
-    count[1] += work
+    head_push_forces(state.forces, state.ram_offsets.shape[1] + int(state.parameters[2]),
+                     state.head_kernel, state.head_history, state.head_shift, state.head_rest,
+                     state.head_count)
 
 
 @njit(cache=True)
