@@ -572,7 +572,7 @@ def test_docs_data_file_is_the_runs_summary():
     data = doc_data("isfog_backanalysis")
     summary = data["values"]
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKL")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLM")
     table = data["tables"]["steps"]
     assert [row[0] for row in table["rows"]] == [s["step"] for s in steps]
     assert [row[1] for row in table["rows"]] == [s["rmse [blows/m]"] for s in steps]
