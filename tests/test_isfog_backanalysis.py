@@ -189,7 +189,8 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     # one baseline for every step, computed on the same records
     assert len({(s["rmse_baseline [blows/m]"], s["points [-]"]) for s in steps}) == 1
     assert all(math.isfinite(s["rmse [blows/m]"]) for s in steps)
-    assert summary["cv_rmse [blows/m]"] == steps[8]["rmse [blows/m]"]  # I, the final step
+    final = "ABCDEFGHIJKLM".index(bench.FINAL_STEP)
+    assert summary["cv_rmse [blows/m]"] == steps[final]["rmse [blows/m]"]
     assert summary["cv_folds [-]"] == 2
     # the energy-capped steps keep every fold's largest blow within the rating: E_ref at most
     # 800 kJ over the largest energy factor x setting of the fold's training pile
@@ -586,10 +587,16 @@ def test_docs_data_file_is_the_runs_summary():
     # the quoted gains by hand: C against B, D against C
     assert subs["c_gain"][0] == steps[2]["rmse [blows/m]"] - steps[1]["rmse [blows/m]"]
     assert subs["d_gain"][0] == steps[3]["rmse [blows/m]"] - steps[2]["rmse [blows/m]"]
-    # the final step is I, scored against the same baseline
-    assert summary["cv_rmse [blows/m]"] == steps[8]["rmse [blows/m]"]
-    assert subs["final_minus_naive"][0] == (steps[8]["rmse [blows/m]"]
-                                            - steps[8]["rmse_baseline [blows/m]"])
+    # the final step, scored against the same baseline
+    final = steps["ABCDEFGHIJKLM".index(bench.FINAL_STEP)]
+    assert summary["final_step"] == final["step"]
+    assert summary["cv_rmse [blows/m]"] == final["rmse [blows/m]"]
+    assert subs["final_minus_naive"][0] == (final["rmse [blows/m]"]
+                                            - final["rmse_baseline [blows/m]"])
+    # M against I and the baseline
+    assert subs["m_change"][0] == steps[12]["rmse [blows/m]"] - steps[8]["rmse [blows/m]"]
+    assert subs["m_minus_naive"][0] == (steps[12]["rmse [blows/m]"]
+                                        - steps[12]["rmse_baseline [blows/m]"])
     # H and I keep the largest blow within the rating
     assert summary["largest_blow_energy [J]"] <= summary["hammer_rated_energy [J]"] * (1 + 1e-6)
 
