@@ -112,7 +112,16 @@ L. I + the soil's dynamic values per soil type as fitted parameters (:data:`DYNA
    :data:`DYNAMICS_SD`) about GRLWEAP's and Smith's customary values (quakes 2.5 mm, the coring
    toe of an open pile; dampings 0.16 s/m sand, 0.65 s/m clay shaft, 0.5 s/m toe: Hannigan et
    al. 2016, FHWA-NHI-16-009); they enter the surface through one more grid per group with
-   the values changed (:data:`SENSITIVITY_FACTORS`, :meth:`ResponseSurface.with_dynamics`).
+   the values changed (:data:`SENSITIVITY_FACTORS`, :meth:`ResponseSurface.with_dynamics`);
+M. I with the toe from the CPT averaged about the tip (``Step.toe_average``): where the tip
+   stands in sand, Alm & Hamre's sand toe applied to qt averaged from 1.5 D above to 1.5 D
+   below the tip (:data:`TOE_HALF_WINDOW_DIAMETERS`; the base rule of ICP-05 and UWA-05:
+   Jardine et al. 2005, Lehane et al. 2005; Schneider et al. 2008,
+   doi:10.1061/(ASCE)1090-0241(2008)134:9(1227)) instead of qt at the tip (the model's, on
+   the 0.5 m series: the base of an open pile is governed by the soil over a zone of about
+   1.5 D about the tip, not by the reading at it); a tip in clay keeps the clay toe at its own
+   qt (``AlmHamre2001(toe_qt_half_window=1.5 D)``). It fits the second grid simulated again
+   with that toe (the shaft, and so the fatigue tables, unchanged).
 
 Cost: the blow counts of every calibration record are simulated on a grid of common SRD
 multipliers x reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD
@@ -122,10 +131,11 @@ multiplier, log energy), whose error against direct runs at the final values is 
 fatigue factor enters the surface through each record's sand and clay shaft SRD computed
 (statically, :func:`shaft_by_class`) at the factors :data:`FATIGUE_RATES`: the change of the
 SRD's total, like the class multipliers; the change of its distribution along the shaft is
-what the direct runs at the final values check. The final model (step I's fit on all
-calibration piles, :data:`FINAL_STEP`: the last physics step) predicts the prediction piles
-from direct runs. Outputs: ``cross_validation_steps.csv`` (per step: CV RMSE, bias, the
-baseline's, the folds' parameter ranges), ``cross_validation_records.csv`` (every record:
+what the direct runs at the final values check. The final model (the fit of I's parameters on
+all calibration piles, on the averaged toe's grid if :data:`FINAL_STEP` has ``toe_average``:
+the last physics step) predicts the prediction piles from direct runs. Outputs:
+``cross_validation_steps.csv`` (per step: CV RMSE, bias, the baseline's, the folds' parameter
+ranges), ``cross_validation_records.csv`` (every record:
 measured, baseline, each step's prediction), ``cross_validation_piles.csv`` (per pile: RMSE
 and bias of the baseline and of every step over its scored records),
 ``prediction_piles_blowcount.csv`` (the final model's blow count, beside it the blend with the
@@ -218,6 +228,9 @@ class Model:
     # when set (:func:`model_key`)
     quake_toe_clay: float | None = field(default=None, repr=False)   # [m]
     damping_toe_clay: float | None = field(default=None, repr=False)  # [s/m]
+    # the toe from qt averaged over the tip +- this many diameters D (ICP-05 / UWA-05: 1.5;
+    # None: qt at the tip, or the full-resolution CPT's toe window), :func:`srd_source`
+    toe_qt_half_window_diameters: float | None = field(default=None, repr=False)  # [-]
 
     def toe_dynamics(self, toe_in_sand: bool) -> tuple[float, float]:
         """(quake [m], Smith damping [s/m]) of the toe standing in sand or clay."""
@@ -352,15 +365,21 @@ def soil_profile(pile: PileRecord, model: Model):
 
 def srd_source(pile: PileRecord, model: Model, profile, fatigue_rate: float | None = None):
     """The Alm & Hamre (2001) SRD source of a pile (``fatigue_rate``: the factor on the
-    friction-fatigue rate, default the model's)."""
+    friction-fatigue rate, default the model's). The unit toe resistance: the method's at qt
+    of the tip; with ``model.toe_qt_half_window_diameters`` (n) the method's toe formula at
+    the tip applied to qt averaged over the tip +- n D (ICP-05 / UWA-05 practice, n = 1.5:
+    ``AlmHamre2001(toe_qt_half_window=n D)``), else for a full-resolution CPT the unit toe
+    averaged over ``model.fullres_toe_window``."""
     from anvilwave.config.drive import SrdSource
     from anvilwave.pile.soil.profile import AlmHamre2001
 
     rate = model.fatigue_rate if fatigue_rate is None else fatigue_rate
+    n = model.toe_qt_half_window_diameters
+    half = 0.0 if n is None else n * model.outer_diameter
     return SrdSource("alm-hamre-2001", profile, AlmHamre2001(
         sand_toe_factor=model.sand_toe_factor,
-        toe_window=model.fullres_toe_window if pile.fullres else 0.0,
-        fatigue_rate_factor=rate), "coring", model.faces)
+        toe_window=model.fullres_toe_window if pile.fullres and half == 0.0 else 0.0,
+        fatigue_rate_factor=rate, toe_qt_half_window=half), "coring", model.faces)
 
 
 def shaft_by_class(job: tuple) -> dict:
@@ -1152,6 +1171,7 @@ class Step:
     fatigue: bool = False           # fit the factor on the friction-fatigue rate
     hammers: tuple = ()             # hammer classes chosen between per fold (their surfaces)
     dynamics: tuple = ()            # the soil's dynamic values fitted (of DYNAMICS)
+    toe_average: bool = False       # the toe from qt averaged over the tip +- 1.5 D (ICP-05)
 
 
 STEPS = (
@@ -1299,10 +1319,18 @@ PREDICTIVE_STEPS = (
     ("grid2", Step("L: I + Smith dampings and toe quake per soil type (priors)",
                    classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
                    dynamics=DYNAMICS)),
+    ("grid2", Step("M: I + toe from qt averaged over the tip +- 1.5 D (ICP-05 / UWA-05)",
+                   classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
+                   toe_average=True)),
 )
 """The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
-grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`).
-The final model is :data:`FINAL_STEP`, the last physics step (no blend with the baseline)."""
+grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`;
+a step with ``toe_average`` fits the second grid simulated with the toe from qt averaged over
+the tip +- :data:`TOE_HALF_WINDOW_DIAMETERS` D). The final model is :data:`FINAL_STEP`, the
+last physics step (no blend with the baseline)."""
+TOE_HALF_WINDOW_DIAMETERS = 1.5
+"""Half-window of the toe's qt average about the tip of the ``toe_average`` steps, in pile
+diameters [-] (ICP-05, UWA-05: :data:`anvilwave.pile.soil.srd_methods.ICP_05_TOE_HALF_WINDOW`)."""
 FINAL_STEP = "I"
 """The step whose all-pile fit predicts the prediction piles (direct runs)."""
 ALTERNATIVE_HAMMERS = ("ihc_s1800",)
@@ -1454,6 +1482,11 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
         perturbed[name] = record_surface(calibration, g, e2, m2, rates, fat)
     surf2 = surf2.with_dynamics(perturbed, toe_classes(calibration, model2),
                                 (model2.damping_sand, model2.damping_clay))
+    # the second grid with the toe from qt averaged over the tip +- 1.5 D (the toe_average
+    # steps; the shaft, and so the fatigue tables, are the same)
+    model2_toe = replace(model2, toe_qt_half_window_diameters=TOE_HALF_WINDOW_DIAMETERS)
+    g = cached(cache, "grid2_toe", grid_runs, calibration, model2_toe, e2, m2)
+    surf2_toe = record_surface(calibration, g, e2, m2, rates, fat)
     times["other_grids [s]"] = time.perf_counter() - t
     at_one = int(np.argmin(np.abs(np.log(rates))))
     fatigue_table_check = float(np.max(np.abs(surf2.sand_rate[:, at_one] + surf2.clay_rate[
@@ -1472,22 +1505,27 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     direct1 = np.concatenate([r["count"][0, 0] for r in one])
     directn = np.concatenate([r["count"][0, 0] for r in several])
     stress_ratio = np.where(direct1 > 0, directn / np.where(direct1 > 0, direct1, 1.0), 1.0)
-    # the final step's fit on every calibration pile and its direct runs (every pile)
-    e_max = rated / largest_energy_per_e_ref(surf2f)
-    final = fit_regularised(surf2f, measured, CLASSES, "log", n_eff=len(groups),
+    # the final step's fit on every calibration pile (I's fit: the class multipliers, the
+    # fatigue rate and E_ref within the rating; on the averaged toe's grid if the final step
+    # has toe_average) and its direct runs (every pile)
+    final_step = next(st for _, st in PREDICTIVE_STEPS if st.name.split(":")[0] == FINAL_STEP)
+    surf_final = (surf2_toe if final_step.toe_average else surf2).with_energy_factor(factor)
+    e_max = rated / largest_energy_per_e_ref(surf_final)
+    final = fit_regularised(surf_final, measured, CLASSES, "log", n_eff=len(groups),
                             fatigue=True, e_max=e_max)
-    model_f = replace(final_model(model2, final), fatigue_rate=final["fatigue_rate [-]"])
+    model_f = replace(final_model(model2_toe if final_step.toe_average else model2, final),
+                      fatigue_rate=final["fatigue_rate [-]"])
     direct_f = cached(cache, "direct_final", grid_runs, piles_e, model_f,
                       [final["E_ref [J]"]], [1.0])
     times["direct [s]"] = time.perf_counter() - t
     final_cal = np.concatenate([r["count"][0, 0] for r in direct_f[:n_cal]])
-    surface_at_final = predict_with(surf2f, final)
+    surface_at_final = predict_with(surf_final, final)
     surface_at_d = predict_with(surf2f, fit_d)
     # the steps
     t = time.perf_counter()
     rows, records = [], None
     for which, step in PREDICTIVE_STEPS:
-        surf = surf1 if which == "grid1" else surf2
+        surf = surf1 if which == "grid1" else surf2_toe if step.toe_average else surf2
         r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio,
                                            rated, hammer_surfaces)
         rows += r
@@ -1839,7 +1877,7 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "naive_rmse": [naive, "f1"],
         "naive_bias": [summary["naive_bias [blows/m]"], "f1+"],
         "final_minus_naive": [summary["cv_rmse [blows/m]"] - naive, "f1+"],
-        "best_physics": [min(score[k] for k in "ABCDFHIKL"), "f1"],
+        "best_physics": [min(score[k] for k in "ABCDFHIKLM"), "f1"],
         "k_change": [score["K"] - score["I"], "f1+"],
         "k_heavier_folds": [steps["K"]["folds with ihc_s1800 [-]"], "int"],
         "l_change": [score["L"] - score["I"], "f1+"],
@@ -1847,6 +1885,10 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "l_damping_clay": [steps["L"]["damping_clay [-] folds median"], "f2"],
         "l_damping_toe_sand": [steps["L"]["damping_toe_sand [-] folds median"], "f2"],
         "l_quake_toe_sand": [steps["L"]["quake_toe_sand [-] folds median"], "f2"],
+        "m_rmse": [score["M"], "f1"],
+        "m_bias": [steps["M"]["bias [blows/m]"], "f1+"],
+        "m_change": [score["M"] - score["I"], "f1+"],
+        "m_minus_naive": [score["M"] - naive, "f1+"],
         "j_rmse": [score["J"], "f1"],
         "piles_below_naive": [summary["piles_final_below_naive [-]"], "int"],
         "piles_scored": [summary["piles_scored [-]"], "int"],

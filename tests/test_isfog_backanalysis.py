@@ -185,17 +185,18 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     assert bench.main([*argv, "--docs-from", str(out / "isfog_backanalysis.json")]) == 0
     assert (tmp_path / "data" / "isfog_backanalysis.json").read_text() == first
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKL")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLM")
     # one baseline for every step, computed on the same records
     assert len({(s["rmse_baseline [blows/m]"], s["points [-]"]) for s in steps}) == 1
     assert all(math.isfinite(s["rmse [blows/m]"]) for s in steps)
-    assert summary["cv_rmse [blows/m]"] == steps[8]["rmse [blows/m]"]  # I, the final step
+    final = "ABCDEFGHIJKLM".index(bench.FINAL_STEP)
+    assert summary["cv_rmse [blows/m]"] == steps[final]["rmse [blows/m]"]
     assert summary["cv_folds [-]"] == 2
     # the energy-capped steps keep every fold's largest blow within the rating: E_ref at most
     # 800 kJ over the largest energy factor x setting of the fold's training pile
     cal = bench.calibration_piles(ISFOG, ["AD", "AI"])
     caps = [800e3 / float(np.max(bench.enthru_factor([p]) * p.energy)) for p in cal]
-    for step in (steps[7], steps[8], steps[9], steps[11]):  # H, I, J, L: the S-800
+    for step in (steps[7], steps[8], steps[9], steps[11], steps[12]):  # H-J, L, M: S-800
         assert step["E_ref [J] folds max"] <= max(caps) * (1 + 1e-9)
     # K: every fold chose one of the two classes, its E_ref within that class's rating
     k = steps[10]
@@ -420,6 +421,43 @@ def test_model_key_keeps_the_keys_of_earlier_runs():
     assert model.toe_dynamics(True) == model.toe_dynamics(False) == (0.0025, 0.5)
     both = bench.replace(model, quake_toe_clay=0.005, damping_toe_clay=0.3)
     assert both.toe_dynamics(False) == (0.005, 0.3) and both.toe_dynamics(True) == (0.0025, 0.5)
+    # so does the toe's qt window (step M)
+    toe = bench.replace(model, toe_qt_half_window_diameters=1.5)
+    assert bench.model_key(toe) == repr(model) + "+toe_qt_half_window_diameters=1.5"
+
+
+def test_toe_average_step_takes_qt_over_the_tip_plus_minus_1p5_diameters():
+    """Step M's toe (ICP-05 / UWA-05): the model's toe_qt_half_window_diameters gives the SRD
+    method a half-window of 1.5 D = 3.72 m about the tip, whatever the CPT; without it the
+    0.5 m series keep qt at the tip and a full-resolution CPT its 1 m toe window."""
+    from anvilwave.pile.soil import srd_methods as sm
+    from anvilwave.pile.soil.profile import Cpt, SoilLayer, SoilProfile
+
+    bench = _benchmark()
+    assert bench.TOE_HALF_WINDOW_DIAMETERS == sm.ICP_05_TOE_HALF_WINDOW
+    steps = {st.name.split(":")[0]: st for _, st in bench.PREDICTIVE_STEPS}
+    assert steps["M"].toe_average and not steps["I"].toe_average
+    assert bench.replace(steps["M"], name=steps["I"].name, toe_average=False) == steps["I"]
+    model = bench.Model()
+    toe = bench.replace(model, toe_qt_half_window_diameters=bench.TOE_HALF_WINDOW_DIAMETERS)
+    # qc 10 MPa to 4 m, 20 MPa from 6 m (a ramp between), sand throughout
+    cpt = Cpt(np.array([0.0, 4.0, 6.0, 40.0]), np.array([10e6, 10e6, 20e6, 20e6]),
+              np.full(4, 50e3), np.zeros(4))
+    profile = SoilProfile([SoilLayer(0.0, 40.0, "sand", 10e3, interface_friction_angle=29.0)],
+                          cpt, net_area_ratio=model.net_area_ratio)
+    pile = bench.PileRecord("X", "X", 0.05, 30.0, np.array([8.0]), np.ones(1), None, "", {})
+    method = bench.srd_source(pile, toe, profile).method_object
+    assert method.toe_qt_half_window == pytest.approx(1.5 * 2.48)
+    assert method.toe_window == 0.0
+    # tip 8 m, window [4.28, 11.72] m: qt 20 MPa except the ramp's last 1.72 m (mean 15.7)
+    qt_avg = (20e6 * (7.44 - 1.72) + 1.72 * 0.5 * (20e6 + (10e6 + 10e6 * 0.28 / 2.0))) / 7.44
+    assert method.unit_toe(profile, 8.0) == pytest.approx(
+        0.10 * qt_avg * (qt_avg / 80e3) ** 0.2, rel=1e-12)
+    plain = bench.srd_source(pile, model, profile).method_object
+    assert plain.toe_qt_half_window == 0.0 and plain.toe_window == 0.0
+    full = bench.replace(pile, fullres=True)
+    assert bench.srd_source(full, model, profile).method_object.toe_window == 1.0
+    assert bench.srd_source(full, toe, profile).method_object.toe_window == 0.0
 
 
 def _dynamics_surface(bench, n=60, seed=3):
@@ -535,7 +573,7 @@ def test_docs_data_file_is_the_runs_summary():
     data = doc_data("isfog_backanalysis")
     summary = data["values"]
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKL")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLM")
     table = data["tables"]["steps"]
     assert [row[0] for row in table["rows"]] == [s["step"] for s in steps]
     assert [row[1] for row in table["rows"]] == [s["rmse [blows/m]"] for s in steps]
@@ -549,10 +587,16 @@ def test_docs_data_file_is_the_runs_summary():
     # the quoted gains by hand: C against B, D against C
     assert subs["c_gain"][0] == steps[2]["rmse [blows/m]"] - steps[1]["rmse [blows/m]"]
     assert subs["d_gain"][0] == steps[3]["rmse [blows/m]"] - steps[2]["rmse [blows/m]"]
-    # the final step is I, scored against the same baseline
-    assert summary["cv_rmse [blows/m]"] == steps[8]["rmse [blows/m]"]
-    assert subs["final_minus_naive"][0] == (steps[8]["rmse [blows/m]"]
-                                            - steps[8]["rmse_baseline [blows/m]"])
+    # the final step, scored against the same baseline
+    final = steps["ABCDEFGHIJKLM".index(bench.FINAL_STEP)]
+    assert summary["final_step"] == final["step"]
+    assert summary["cv_rmse [blows/m]"] == final["rmse [blows/m]"]
+    assert subs["final_minus_naive"][0] == (final["rmse [blows/m]"]
+                                            - final["rmse_baseline [blows/m]"])
+    # M against I and the baseline
+    assert subs["m_change"][0] == steps[12]["rmse [blows/m]"] - steps[8]["rmse [blows/m]"]
+    assert subs["m_minus_naive"][0] == (steps[12]["rmse [blows/m]"]
+                                        - steps[12]["rmse_baseline [blows/m]"])
     # H and I keep the largest blow within the rating
     assert summary["largest_blow_energy [J]"] <= summary["hammer_rated_energy [J]"] * (1 + 1e-6)
 

@@ -507,3 +507,31 @@ def test_alm_hamre_srd_on_an_isfog_cpt_is_sane():
     assert shaft[-1] > 5 * shaft[4]
     # order of magnitude of a 2.48 m pin pile at 34 m in dense North Sea sand: tens of MN
     assert 10e6 < shaft[-1] + toe[-1] < 200e6
+
+
+def test_alm_hamre_toe_from_qt_averaged_about_the_tip():
+    # ICP-05 / UWA-05: the sand toe formula on qt averaged over the tip +- h (u2 = 0: qt = qc)
+    # qc 10 MPa to 4 m, rising to 20 MPa at 6 m; tip 5 m in sand, h = 3 m: qt,avg = 15 MPa
+    # (tests/test_srd_methods.py, by hand), sigma'v0 = 10 kN/m^3 x 5 m = 50 kPa
+    cpt = Cpt(np.array([0.0, 4.0, 6.0, 40.0]), np.array([10e6, 10e6, 20e6, 20e6]),
+              np.full(4, 50e3), np.zeros(4))
+    profile = SoilProfile([sand(0, 40, 10e3, 28.0)], cpt)
+    method = AlmHamre2001(sand_toe_factor=0.10, toe_qt_half_window=3.0)
+    expected = 0.10 * 15e6 * (15e6 / 50e3) ** 0.2
+    assert method.unit_toe(profile, 5.0) == pytest.approx(expected, rel=1e-12)
+    # the point toe at 5 m has the same qt here (halfway up the ramp): only the window differs
+    assert AlmHamre2001(sand_toe_factor=0.10).unit_toe(profile, 5.0) == pytest.approx(
+        expected, rel=1e-12)
+    # at 3 m the window [0, 6] m reaches the dense layer: qt,avg = (10 x 4 + 15 x 2) / 6
+    qt_avg = (10e6 * 4.0 + 15e6 * 2.0) / 6.0
+    assert method.unit_toe(profile, 3.0) == pytest.approx(
+        0.10 * qt_avg * (qt_avg / 30e3) ** 0.2, rel=1e-12)
+    # a tip in clay keeps the clay toe at its own qt (0.6 qt)
+    clay = SoilLayer(5.0, 40.0, "clay", 8e3, undrained_shear_strength=100e3)
+    layered = SoilProfile([sand(0, 5, 10e3, 28.0), clay], cpt)
+    assert method.unit_toe(layered, 7.0) == pytest.approx(0.6 * 20e6, rel=1e-12)
+    # the two averages exclude each other
+    with pytest.raises(ValueError, match="exclude"):
+        AlmHamre2001(toe_window=1.0, toe_qt_half_window=3.0)
+    with pytest.raises(ValueError):
+        AlmHamre2001(toe_qt_half_window=-1.0)

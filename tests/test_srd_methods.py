@@ -207,3 +207,39 @@ def test_stevens_and_semple_are_vectorised():
     assert sm.stevens_1982_sand_friction(sv, np.full(7, 25.0)).shape == (7,)
     assert sm.stevens_1982_sand_toe(sv[:, None], np.array([20.0, 30.0])).shape == (7, 2)
     assert sm.semple_gemeinhardt_1981_clay_friction(0.5 * sv, sv, 0.3).shape == (7,)
+
+
+# ---------------------------------------------------------------- ICP-05 / UWA-05 toe average
+def test_cone_resistance_averaged_about_the_tip_closed_form():
+    # qc = a + b z (linear between readings): the mean over a window inside the sounding is
+    # the value at its centre, a + b p, exactly (trapezoids of a linear function)
+    z = np.array([0.0, 3.0, 10.0, 20.0])
+    a, b = 4e6, 0.8e6
+    assert sm.cone_resistance_averaged_about_tip(z, a + b * z, 8.0, 3.72) == pytest.approx(
+        a + b * 8.0, rel=1e-14)
+    # clipped at the mudline: tip 1 m, h = 3 m -> the window [0, 4] m, mean a + 2 b
+    assert sm.cone_resistance_averaged_about_tip(z, a + b * z, 1.0, 3.0) == pytest.approx(
+        a + b * 2.0, rel=1e-14)
+    # a dense layer below: qc 10 MPa to 4 m, rising linearly to 20 MPa at 6 m, 20 MPa below;
+    # tip 5 m, h = 3 m, window [2, 8] m:
+    #   (10 x 2 + (10 + 20) / 2 x 2 + 20 x 2) / 6 = (20 + 30 + 40) / 6 = 15 MPa
+    z2, q2 = np.array([0.0, 4.0, 6.0, 10.0]), np.array([10e6, 10e6, 20e6, 20e6])
+    assert sm.cone_resistance_averaged_about_tip(z2, q2, 5.0, 3.0) == pytest.approx(15e6,
+                                                                                   rel=1e-14)
+    # clipped at the end of the sounding: tip 9 m, window [6, 10] m, all 20 MPa
+    assert sm.cone_resistance_averaged_about_tip(z2, q2, 9.0, 3.0) == pytest.approx(20e6,
+                                                                                   rel=1e-14)
+    # no window: the reading interpolated at the tip (halfway up the ramp)
+    assert sm.cone_resistance_averaged_about_tip(z2, q2, 5.0, 0.0) == pytest.approx(15e6)
+    assert sm.ICP_05_TOE_HALF_WINDOW == 1.5
+
+
+def test_cone_resistance_average_rejects_bad_input():
+    z, q = np.array([0.0, 5.0]), np.array([1e6, 2e6])
+    for bad in (dict(tip_depth=6.0, half_window=1.0), dict(tip_depth=2.0, half_window=-1.0)):
+        with pytest.raises(ValueError):
+            sm.cone_resistance_averaged_about_tip(z, q, **bad)
+    with pytest.raises(ValueError, match="increasing"):
+        sm.cone_resistance_averaged_about_tip(z[::-1], q, 2.0, 1.0)
+    with pytest.raises(ValueError, match="same"):
+        sm.cone_resistance_averaged_about_tip(z, q[:1], 2.0, 1.0)

@@ -513,12 +513,22 @@ class AlmHamre2001:
     fatigue_rate_factor : float, default 1.0
         Factor on the friction-fatigue shape factor k [-] (1: the paper's rate; see
         :func:`anvilwave.pile.soil.srd_methods.alm_hamre_2001_friction_fatigue_k`).
+    toe_qt_half_window : float, default 0.0
+        Half-length of the window about the tip over which qt is averaged BEFORE the sand toe
+        formula is applied (with sigma'v0 at the tip), where the tip stands in sand [m]: the
+        base rule of ICP-05 and UWA-05 (both sand methods), qc averaged from 1.5 D above to
+        1.5 D below the tip
+        (:func:`anvilwave.pile.soil.srd_methods.cone_resistance_averaged_about_tip`;
+        ``1.5 * D``). A tip in clay keeps the clay toe at its own qt (0.6 qt is calibrated on
+        the clay's qt: applied to a mean that takes in a sand layer below or above it would
+        give a clay toe far above the sand's). 0: qt at the tip. Not together with
+        ``toe_window`` (which averages the unit toe resistance itself).
 
     Raises
     ------
     ValueError
-        If ``clay_residual_floor`` is unknown, ``toe_window`` is negative or
-        ``fatigue_rate_factor`` is not positive and finite.
+        If ``clay_residual_floor`` is unknown, ``toe_window`` or ``toe_qt_half_window`` is
+        negative, both are positive, or ``fatigue_rate_factor`` is not positive and finite.
 
     References
     ----------
@@ -535,6 +545,7 @@ class AlmHamre2001:
     atmospheric_pressure: float = sm.ATMOSPHERIC_PRESSURE
     toe_window: float = 0.0
     fatigue_rate_factor: float = 1.0
+    toe_qt_half_window: float = 0.0
 
     name = "alm-hamre-2001"
 
@@ -544,6 +555,11 @@ class AlmHamre2001:
                              f"got {self.clay_residual_floor!r}")
         if self.toe_window < 0.0:
             raise ValueError("toe_window must not be negative")
+        if not self.toe_qt_half_window >= 0.0:
+            raise ValueError("toe_qt_half_window must not be negative")
+        if self.toe_window > 0.0 and self.toe_qt_half_window > 0.0:
+            raise ValueError("toe_window (the unit toe averaged) and toe_qt_half_window (qt "
+                             "averaged) exclude each other: set one of them")
         if not (np.isfinite(self.fatigue_rate_factor) and self.fatigue_rate_factor > 0.0):
             raise ValueError("fatigue_rate_factor must be positive and finite, got "
                              f"{self.fatigue_rate_factor!r}")
@@ -651,7 +667,10 @@ class AlmHamre2001:
     def unit_toe(self, profile: SoilProfile, tip_depth: float) -> float:
         """Unit toe resistance for the tip at ``tip_depth`` [Pa].
 
-        Averaged over ``toe_window`` centred on the tip, clipped to the profile and the CPT.
+        Averaged over ``toe_window`` centred on the tip, clipped to the profile and the CPT;
+        or, with ``toe_qt_half_window`` and the tip in sand, the sand toe formula applied to
+        qt averaged over the tip +- that half-window (clipped to the mudline and the CPT; qt
+        held at the first reading above it, as :meth:`SoilProfile.qt`).
 
         Parameters
         ----------
@@ -665,6 +684,8 @@ class AlmHamre2001:
         float
             Unit toe resistance [Pa].
         """
+        if self.toe_qt_half_window > 0.0:
+            return self._averaged_qt_toe(profile, tip_depth)
         if self.toe_window <= 0.0:
             return float(self.point_toe(profile, tip_depth))
         half = 0.5 * self.toe_window
@@ -674,6 +695,23 @@ class AlmHamre2001:
             return float(self.point_toe(profile, tip_depth))
         return _average(lambda z: self.point_toe(profile, z), low, high,
                         self.breakpoints(profile))
+
+    def _averaged_qt_toe(self, profile: SoilProfile, tip_depth: float) -> float:
+        """Unit toe resistance [Pa] of a tip in sand from qt averaged over the tip +-
+        ``toe_qt_half_window`` (ICP-05 / UWA-05), sigma'v0 that at the tip; a tip in clay:
+        the clay toe at the tip's qt."""
+        profile._require_cpt(np.array([tip_depth]))
+        z = np.asarray(tip_depth, dtype=float)
+        if not profile.is_sand[int(np.asarray(profile.layer_index(z)).reshape(-1)[0])]:
+            return float(self.point_toe(profile, tip_depth))
+        depth, qt = np.asarray(profile.cpt.depth, float), np.asarray(profile._qt, float)
+        if depth[0] > 0.0:  # held at the first reading up to the mudline (SoilProfile.qt)
+            depth, qt = np.concatenate(([0.0], depth)), np.concatenate((qt[:1], qt))
+        qt_avg = sm.cone_resistance_averaged_about_tip(depth, qt, min(tip_depth, depth[-1]),
+                                                       self.toe_qt_half_window)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return float(sm.alm_hamre_2001_sand_toe(
+                qt_avg, profile.vertical_effective_stress(z), self.sand_toe_factor))
 
 
 @dataclass(frozen=True)

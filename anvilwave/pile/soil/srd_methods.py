@@ -305,6 +305,74 @@ def alm_hamre_2001_clay_toe(qt):
     return 0.6 * np.asarray(qt, dtype=float)
 
 
+ICP_05_TOE_HALF_WINDOW = 1.5
+"""Half-length of the cone resistance averaging window about the pile tip, in pile
+diameters D [-]: qc averaged from 1.5 D above to 1.5 D below the tip (ICP-05, UWA-05)."""
+
+
+def cone_resistance_averaged_about_tip(depth, qc, tip_depth, half_window):
+    """Mean cone resistance over a window centred on the pile tip [Pa] (ICP-05 / UWA-05).
+
+    qc,avg = 1 / (z2 - z1) * integral of qc(z) dz from z1 to z2, z1 = max(p - h, z_0),
+    z2 = min(p + h, z_n), with qc(z) linear between the readings (z_0 the first, z_n the last
+    reading). The pile's base resistance in sand is governed by the cone resistance over a zone
+    about the tip, not by the reading at the tip; ICP-05 and UWA-05 take qc,avg over 1.5 D above
+    and below the tip (``half_window`` = :data:`ICP_05_TOE_HALF_WINDOW` x D). The window is
+    clipped to the sounding: near the mudline (or the end of the CPT) the mean is over its part
+    inside the readings.
+
+    Parameters
+    ----------
+    depth : array_like
+        (n,) increasing depths of the CPT readings below the mudline [m].
+    qc : array_like
+        (n,) cone resistance (qc, or qt) at those depths [Pa].
+    tip_depth : float
+        Tip depth p below the mudline [m].
+    half_window : float
+        Half-length h of the window [m] (>= 0; 0: qc at the tip).
+
+    Returns
+    -------
+    float
+        Mean cone resistance qc,avg over the window [Pa].
+
+    Raises
+    ------
+    ValueError
+        If ``depth`` and ``qc`` differ in length or are empty, ``depth`` is not increasing,
+        ``half_window`` is negative or the tip lies outside the readings.
+
+    References
+    ----------
+    Jardine, R.J., Chow, F.C., Overy, R.F., Standing, J.R. (2005). ICP design methods for driven
+    piles in sands and clays. Thomas Telford, London. ISBN 0 7277 3272 2.
+    Lehane, B.M., Schneider, J.A., Xu, X. (2005). The UWA-05 method for prediction of axial
+    capacity of driven piles in sand. Frontiers in Offshore Geotechnics (ISFOG 2005), Perth,
+    683-689.
+    Schneider, J.A., Xu, X., Lehane, B.M. (2008). Database assessment of CPT-based design
+    methods for axial capacity of driven piles in siliceous sands. J. Geotech. Geoenviron.
+    Eng. 134(9), 1227-1244. doi:10.1061/(ASCE)1090-0241(2008)134:9(1227)
+    """
+    z, q = np.asarray(depth, dtype=float), np.asarray(qc, dtype=float)
+    if z.ndim != 1 or z.shape != q.shape or z.size == 0:
+        raise ValueError("depth and qc must be 1-D arrays of the same, non-zero length")
+    if np.any(np.diff(z) <= 0.0):
+        raise ValueError("the CPT depths must be increasing")
+    if not half_window >= 0.0:
+        raise ValueError(f"half_window must not be negative, got {half_window!r}")
+    if not z[0] <= tip_depth <= z[-1]:
+        raise ValueError(f"tip depth {tip_depth!r} m lies outside the CPT ({z[0]:g}-"
+                         f"{z[-1]:g} m)")
+    low, high = max(tip_depth - half_window, z[0]), min(tip_depth + half_window, z[-1])
+    if high <= low:
+        return float(np.interp(tip_depth, z, q))
+    inside = (z > low) & (z < high)
+    zz = np.concatenate(([low], z[inside], [high]))
+    qq = np.interp(zz, z, q)
+    return float(np.sum(0.5 * (qq[1:] + qq[:-1]) * np.diff(zz)) / (high - low))
+
+
 # ---------------------------------------------------------------- Stevens et al. (1982)
 def stevens_1982_interface_friction_angle(friction_angle):
     """Soil-pile friction angle delta = phi' - 5 deg [deg] (Stevens et al. 1982).
