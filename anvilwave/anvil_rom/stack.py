@@ -584,9 +584,10 @@ class StackUnit:
         return self.rest_on_pile(0.0)
 
     def restart_head(self, state: StackState | None = None) -> None:
-        """Start the tube head's history afresh from the present pile-ring forces (a blow's
-        start): its changes are measured from them, the shift is -D[0] F_rest (the rest is the
-        same on the tube and the 1D head), the work handed to the tube zero.
+        """Start the tube head's history afresh from the present pile-ring forces.
+
+        At a blow's start: its changes are measured from them, the shift is -D[0] F_rest (the
+        rest is the same on the tube and the 1D head), the work handed to the tube zero.
 
         Parameters
         ----------
