@@ -425,9 +425,10 @@ def head_push(rings):
 
 @njit(cache=True, inline='always')
 def head_push_forces(F, first, D, history, shift, rest, count):
-    """:func:`head_push` on the force array ``F`` whose pile rings start at index ``first``
-    (the single anvil's rings and the stack's pile rings,
-    :func:`anvilwave.anvil_rom.stack.stack_head_push`, share it).
+    """:func:`head_push` on a force array whose pile rings start at index ``first``.
+
+    The single anvil's rings and the stack's pile rings
+    (:func:`anvilwave.anvil_rom.stack.stack_head_push`) share it.
 
     Parameters
     ----------
