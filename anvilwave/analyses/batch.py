@@ -124,7 +124,7 @@ from anvilwave.hammer.database import available_hammers, load_hammer
 from anvilwave.inputs import InputError, Table, active_record, read_toml, toml_dumps
 from anvilwave.output.campaign_plots import plot_campaign
 from anvilwave.output.plots import plot_driveability
-from anvilwave.output.progress import Step
+from anvilwave.output.progress import CtrlC, Step
 from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv
 from anvilwave.output.writer import (
@@ -1141,9 +1141,17 @@ def _run_on(client, runnable: list[Case], specs: dict, bar) -> None:
                             priority=int(case.cost))
         by_key[key] = case
         futures.append(fut)
+    with CtrlC() as ctrl_c:
+        _record(futures, as_completed, by_key, specs, bar, ctrl_c, client)
+
+
+def _record(futures, as_completed, by_key, specs, bar, ctrl_c, client) -> None:
+    """Record each case of ``futures`` as it completes (:func:`_run_on`); a Ctrl-C that the
+    client's event loop swallowed stops it at the next case."""
     ok = failed = 0
     try:
         for fut in as_completed(futures):
+            ctrl_c.check()
             case = by_key[fut.key]
             spec = specs[case.name]
             if fut.status == "finished":
@@ -1170,6 +1178,7 @@ def _run_on(client, runnable: list[Case], specs: dict, bar) -> None:
             if bar is not None:
                 bar.set_postfix(ok=ok, error=failed, refresh=False)
                 bar.update(1)
+        ctrl_c.check()
     except BaseException:
         client.cancel(futures)
         raise

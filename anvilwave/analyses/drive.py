@@ -84,7 +84,7 @@ from anvilwave.engine.direct import build_engine
 from anvilwave.hammer.impact import equivalent_stroke
 from anvilwave.inputs import InputError
 from anvilwave.output.plots import plot_driveability
-from anvilwave.output.progress import Step
+from anvilwave.output.progress import CtrlC, Step
 from anvilwave.output.progress import bar as progress_bar
 from anvilwave.output.tables import write_csv
 from anvilwave.pile.soil.models import toe_quake
@@ -470,9 +470,9 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
             try:
                 size = max(1, len(rest) // (4 * workers))
                 chunks = [rest[i:i + size] for i in range(0, len(rest), size)]
-                with ProcessPoolExecutor(workers, mp_context=mp.get_context("fork"),
-                                         initializer=die_with_parent,
-                                         initargs=(os.getpid(),)) as pool:
+                with CtrlC() as ctrl_c, ProcessPoolExecutor(
+                        workers, mp_context=mp.get_context("fork"), initializer=die_with_parent,
+                        initargs=(os.getpid(),)) as pool:
                     # futures of their own, not pool.map: on a Ctrl-C, map cancels the
                     # pending ones while the pool's thread fails them for its dead workers,
                     # and concurrent.futures then raises InvalidStateError from that thread
@@ -491,6 +491,9 @@ def run_driveability(cfg, srd: SrdSource, settings: DriveSettings, engine=None, 
                         raise
                     except BaseException:  # an error: the depths not started never start
                         pool.shutdown(wait=False, cancel_futures=True)
+                        # the workers the Ctrl-C ended may break the pool before this
+                        # process sees the interrupt: then it is the interrupt, not an error
+                        ctrl_c.check()
                         raise
             finally:
                 _WORK.clear()

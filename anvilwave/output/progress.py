@@ -121,3 +121,46 @@ def bar(total, *, enabled: bool = True, warm: int = 1, **kwargs):
             return result
 
     return _Warm(total=total, bar_format=NO_ESTIMATE if warm > 0 else final, **kwargs)
+
+
+class CtrlC:
+    """Remember a Ctrl-C (SIGINT) that a library swallows, so that the run still stops.
+
+    Inside the block SIGINT raises KeyboardInterrupt as by default and is also remembered;
+    :meth:`check` raises KeyboardInterrupt if one came, wherever it went (a worker pool that
+    reports its SIGINT-ended workers as a broken pool, an event loop that catches the
+    interrupt). Outside the main thread it does nothing (signals are the main thread's).
+    """
+
+    def __init__(self):
+        self.seen = False
+        self._previous = None
+
+    def __enter__(self) -> CtrlC:
+        import signal
+
+        if threading.current_thread() is threading.main_thread():
+            def handler(signum, frame):
+                self.seen = True
+                raise KeyboardInterrupt
+
+            self._previous = signal.signal(signal.SIGINT, handler)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        import signal
+
+        if self._previous is not None:
+            signal.signal(signal.SIGINT, self._previous)
+            self._previous = None
+
+    def check(self) -> None:
+        """Raise KeyboardInterrupt if a Ctrl-C came inside the block.
+
+        Raises
+        ------
+        KeyboardInterrupt
+            After a Ctrl-C.
+        """
+        if self.seen:
+            raise KeyboardInterrupt
