@@ -88,7 +88,7 @@ def modal_cache(tmp_path_factory) -> Path:
 HEAVY_MODULES = ("test_modal_ram", "test_ram_annuli", "test_example_numbers", "test_cache",
                  "test_driveability", "test_installation", "test_readme_outputs",
                  "test_tube_head", "test_study_pile_port", "test_compare", "test_setup",
-                 "test_campaign")
+                 "test_campaign", "test_stack")
 """Test modules with the longest tests (minutes under load): collected first, so that with
 ``--dist worksteal`` (pyproject) the two workers start on them and end together, instead of one
 starting a long test when the other is done."""
