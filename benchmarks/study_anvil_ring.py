@@ -19,7 +19,8 @@ finer run (``reference_error``, ``reference_order`` in study.json; ``--docs`` ta
 0.05 m).
 
 With ``--rom`` the ring-less run is also run with the anvil unit alone (the baseline) and
-every ring run (not the sleeve's) with the ROM stack of anvilwave/examples/table1_ring.toml
+every ring run (not the "+sleeve" ones, whose ring-pile contact has friction) with the ROM
+stack of anvilwave/examples/table1_ring.toml
 (:data:`ROM_SYSTEM`, :func:`rom_stack_options`: anvil and ring each their own modes to the
 system's 5 kHz with static correction, the ram face in six annuli, the seat in 32 rings, the
 ring's pile port in three rings on the FE tube head; the seat friction coefficient of the run,
@@ -30,9 +31,12 @@ half-step start): peak pile-head and ram force, the RMS of the difference over t
 relative to the FEA signal's RMS, the largest band-level difference from 50 Hz to 4 kHz, and
 the ROM unit's energy balance (its energy change plus friction and dashpot dissipation
 against the work the ram and the pile did on it, largest over the blow, as a fraction of the
-blow's kinetic energy). The ROM's two reference runs (:data:`REFERENCE_RUNS`: the ring at mu 0,
-and mu 0.2 on the seat only, the FEA with the ROM's contacts) are also run with one
-approximation changed at a time (:data:`ROM_VARIANTS`), against the same FEA run. The FEA runs
+blow's kinetic energy). The ROM's reference runs (:data:`REFERENCE_RUNS`: the ring at mu 0,
+and mu 0.2 on the seat only, the FEA with the ROM's contacts; with ``--sleeve`` the ring in the
+sleeve at each sleeve coefficient, on the seat and against the sleeve, the ring-pile contact
+frictionless, and the ROM's sleeve across the same clearance, each body's outer face in
+8 bands) are also run with one approximation changed at a time (:data:`ROM_VARIANTS`,
+:data:`SLEEVE_VARIANTS`), against the same FEA run. The FEA runs
 are read through the FEA cache (:func:`anvilwave.fea.cache.cached_impact_fea`): a rerun with
 the same inputs and code takes the ROM's time only.
 
@@ -43,10 +47,10 @@ and once with the illustrative anvil ring anvilwave/examples/anvils/xl8_ring.tom
 anvil and pile, for each friction coefficient (the same on the anvil-ring seat and the
 ring-pile contact; with ``--sleeve`` each ring run also once inside a rigid guiding sleeve
 that radial clearance [m] off the anvil's and ring's 4.15 m outer radius, the same coefficient
-against it). The pile is cut at ``--truncate`` m below its head with the absorbing
-"shell" boundary (a 10 m cut changes the anvil-pile force by at most 2.6 % of its peak
-against the full 80 m pile, anvilwave.fea.impact.absorbing_speeds); the window is the
-system's 25 ms.
+against it, "+sleeve", and once with the ROM's contacts, "sleeve"). The pile is cut at
+``--truncate`` m below its head with the absorbing "shell" boundary (a 10 m cut changes the
+anvil-pile force by at most 2.6 % of its peak against the full 80 m pile,
+anvilwave.fea.impact.absorbing_speeds); the window is the system's 25 ms.
 
 Per run it prints and writes (study.json): the pile-head force (the force into the pile) low-
 passed at 5 kHz, its peak, its rise (10 % to 90 % of the peak, first crossings) and the
@@ -98,6 +102,15 @@ ROM_VARIANTS = {
 """ROM variants of the reference runs (keyword -> stack_unit, or the system's static
 correction), each one approximation (or the FMU's set of them) away from :data:`ROM_SYSTEM`'s
 stack."""
+SLEEVE_VARIANTS = {
+    "sleeve in 4 bands each": {"sleeve_bands": (4, 4)},
+    "sleeve in 16 bands each": {"sleeve_bands": (16, 16)},
+    "ring's modes to 8 kHz": {"ring_fmax": 8000.0},
+    "1D pile head": {"pile_head": "rod"},
+    "1 ram port": {"ram_annuli": 1},
+}
+"""ROM variants of the reference runs in the sleeve (the sleeve's bands, the ring's own
+truncation, the pile head, the ram face), each one approximation away."""
 DOCS_FRICTION = (0.0, 0.1, 0.2, 0.3)
 DOCS_SLEEVE = (0.001, (0.0, 0.2))
 DOCS_SEAT_ONLY = (0.2,)
@@ -106,10 +119,11 @@ DOCS_MESH = 0.1
 DOCS_REFERENCE_MESHES = (0.07, 0.05)
 """[m] the finer meshes the docs' run also runs the ROM's two reference cases on: the
 reference's own mesh error, and the ROM (its seat penalty at each mesh's) against them."""
-REFERENCE_RUNS = ("ring, mu 0", "seat only, mu 0.2")
-"""The ROM's two reference runs, friction 0 and 0.2 with the ROM's contacts (the seat's
-friction; the ring-pile contact frictionless): their FEA is repeated on the other meshes, and
-the ROM is run with each of :data:`ROM_VARIANTS` against them."""
+REFERENCE_RUNS = ("ring, mu 0", "seat only, mu 0.2", "sleeve, mu 0", "sleeve, mu 0.2")
+"""The ROM's reference runs, friction 0 and 0.2 with the ROM's contacts (the seat's friction,
+and in the sleeve the sleeve's; the ring-pile contact frictionless), without and with the
+sleeve: their FEA is repeated on the other meshes, and the ROM is run with each of
+:data:`ROM_VARIANTS` (:data:`SLEEVE_VARIANTS` in the sleeve) against them."""
 
 
 def rom_stack_options(cfg) -> dict:
@@ -181,11 +195,21 @@ def series_against_fea(t_model, pile, ram, fea):
     return row
 
 
+def sleeve_options(config) -> dict:
+    """The ROM stack's sleeve keywords of an FEA configuration (:func:`stack_unit`'s: its
+    clearance off the bodies' outer radius and its coefficient; {} without a sleeve)."""
+    if config.sleeve_radius is None:
+        return {}
+    outer = float(max(config.anvil.outline[:, 0].max(), config.ring.outline[:, 0].max()))
+    return {"sleeve_clearance": config.sleeve_radius - outer,
+            "sleeve_friction": config.sleeve_friction}
+
+
 def rom_against_fea(cfg, ring, mu, fea, penalty_size, **variant):
     """The ROM stack's blow against the FEA run ``fea`` (module docstring); ``penalty_size``:
-    the FEA's penalty length [m] (its mesh size over its contact stiffness factor), the seat's;
-    ``variant``: keywords of :func:`stack_unit`, or ``static_correction`` of the system's
-    anvil."""
+    the FEA's penalty length [m] (its mesh size over its contact stiffness factor), the seat's
+    and the sleeve's; ``variant``: keywords of :func:`stack_unit` (the sleeve's among them),
+    or ``static_correction`` of the system's anvil."""
     start = time.perf_counter()
     if "static_correction" in variant:
         cfg = dataclasses.replace(cfg, anvil=dataclasses.replace(
@@ -299,6 +323,11 @@ def main(argv=None):
     for mu in args.seat_only:
         cases[f"seat only, mu {mu:g}"] = dataclasses.replace(base, ring=ring, seat_friction=mu,
                                                              pile_friction=0.0)
+    if args.sleeve is not None:
+        for mu in args.sleeve_friction or args.friction:
+            cases[f"sleeve, mu {mu:g}"] = dataclasses.replace(
+                base, ring=ring, seat_friction=mu, pile_friction=0.0,
+                sleeve_radius=outer + args.sleeve, sleeve_friction=mu)
     rows = {}
     system = without_soil(load_system(EXAMPLES / "table1.toml"))
     ring_system = without_soil(load_system(ROM_SYSTEM))
@@ -313,12 +342,15 @@ def main(argv=None):
         print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
         if args.rom and not name.startswith("+sleeve"):
             body, cfg = (None, system) if config.ring is None else (ring, ring_system)
-            roms[name] = rom_against_fea(cfg, body, config.seat_friction, result, penalty)
+            sleeve = sleeve_options(config)
+            roms[name] = rom_against_fea(cfg, body, config.seat_friction, result, penalty,
+                                         **sleeve)
             rows[name]["rom"] = roms[name]
             if name in REFERENCE_RUNS:
                 rows[name]["rom_variants"] = {
                     v: rom_against_fea(ring_system, ring, config.seat_friction, result,
-                                       penalty, **kw) for v, kw in ROM_VARIANTS.items()}
+                                       penalty, **sleeve, **kw)
+                    for v, kw in (SLEEVE_VARIANTS if sleeve else ROM_VARIANTS).items()}
     names = list(rows)
     for name in names[1:]:
         reference = rows[names[0] if name == names[1] else names[1]]
@@ -373,7 +405,7 @@ def main(argv=None):
                 for name, result in other.items():
                     block[name]["rom"] = rom_against_fea(
                         ring_system, ring, cases[name].seat_friction, result,
-                        h / args.contact_factor)
+                        h / args.contact_factor, **sleeve_options(cases[name]))
             study["reference_error"][f"mesh {h:g} m"] = block
         if len(args.reference_meshes) >= 2:
             study["reference_order"] = observed_orders(study["reference_error"],
@@ -400,13 +432,16 @@ FEA_ROWS = {"no ring": "anvil on the pile", "ring, mu 0": "ring, mu 0",
             "ring, mu 0.1": "ring, mu 0.1", "ring, mu 0.2": "ring, mu 0.2",
             "ring, mu 0.3": "ring, mu 0.3", "+sleeve, mu 0": "ring + sleeve 1 mm off, mu 0",
             "+sleeve, mu 0.2": "ring + sleeve 1 mm off, mu 0.2",
-            "seat only, mu 0.2": "ring, mu 0.2 on the seat only"}
+            "seat only, mu 0.2": "ring, mu 0.2 on the seat only",
+            "sleeve, mu 0.2": "ring + sleeve 1 mm off, mu 0.2 on the seat and the sleeve"}
 """The FEA runs of the docs' table, study name -> row label."""
 
 ROM_ROWS = {"no ring": "no ring (the anvil unit; the runner does not book its ram dashpot's "
                        "work)", "ring, mu 0": "ring, mu 0",
             "seat only, mu 0.2": "ring, mu 0.2 on the seat",
-            "ring, mu 0.2": "ring, mu 0.2 (FEA: also on the ring-pile contact)"}
+            "ring, mu 0.2": "ring, mu 0.2 (FEA: also on the ring-pile contact)",
+            "sleeve, mu 0": "ring + sleeve 1 mm off, mu 0",
+            "sleeve, mu 0.2": "ring + sleeve 1 mm off, mu 0.2 on the seat and the sleeve"}
 """The ROM comparisons of the docs' table, study name -> row label (then each ring run's
 :data:`ROM_VARIANTS` below it)."""
 

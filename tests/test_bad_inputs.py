@@ -247,6 +247,16 @@ STACK_CASES = [
      ["anvil.pile_head", "pile_port_rings >= 2"]),
     ("stack with the rod ram", {"anvil": ANVIL + RING, "hammer": ""},
      ["hammer.ram_model", "modal"]),
+    ("negative sleeve clearance", {"anvil": "sleeve_clearance = -0.001\n" + ANVIL + RING},
+     ["anvil.sleeve_clearance", "-0.001"]),
+    ("sleeve friction without a sleeve", {"anvil": "sleeve_friction = 0.2\n" + ANVIL + RING},
+     ["anvil.sleeve_friction", "sleeve_clearance"]),
+    ("sleeve bands not whole numbers",
+     {"anvil": "sleeve_clearance = 0.001\nsleeve_bands = [4.5, 4]\n" + ANVIL + RING},
+     ["anvil.sleeve_bands", "two whole numbers", "4.5"]),
+    ("sleeve without a ring",
+     {"anvil": f'sleeve_clearance = 0.001\nfile = "{EXAMPLE_ANVILS / "xl8.toml"}"\n'},
+     ["anvil.sleeve_clearance"]),
 ]
 """The driving stack's bad inputs ([[anvil.bodies]], test_bad_stack): (case, parts of the
 system file, words)."""

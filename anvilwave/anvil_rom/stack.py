@@ -22,7 +22,13 @@ fmax, its static correction); the unit keeps the anvil's outward interface, ram 
   axisymmetric FE tube under the rings, the tube's contact springs, and what the tube adds to
   the 1D head at each lag, D (:func:`anvilwave.pile.head_kernel.head_correction`), as the
   single anvil's rings have it (:func:`anvilwave.anvil_rom.rings.head_push`): D[0] in A, the
-  rings' pile side moved down by the history's shift (:func:`stack_head_push`).
+  rings' pile side moved down by the history's shift (:func:`stack_head_push`);
+* with a guiding sleeve (``sleeve_clearance``), each body's outer cylindrical face in L
+  equal-height bands (:class:`Band`, :func:`anvilwave.anvil_rom.fem.elasticity.band_vectors`):
+  per band a compression-only radial contact with the rigid, fixed sleeve across the
+  clearance (the band's mean radial displacement less the clearance; the bodies bulge into
+  it under the blow, Poisson), and a Coulomb pair on its axial participation (the bodies
+  slide down along the sleeve).
 
 With one seat ring and one pile ring the faces close at once over their width; in the FEA they
 close and slide unevenly (the anvil comes down tilted on the seat, the ring rocks on the pile
@@ -50,9 +56,11 @@ energy X^T (G + diag(1 / k)) X / 2 of the massless part (contact and stick sprin
 flexibility); friction and dashpot dissipation are booked.
 
 Contact order: 0 .. J - 1 the ram (J = 1: the one port; annuli inner to outer), J .. J + S - 1
-the seat rings (inner to outer), J + S .. J + S + K - 1 the pile rings, then the S friction
-pairs. Ports: the anvil [J ram face annuli, S seat rings axial, S radial], the ring [S seat
-rings axial, S radial, K pile rings axial].
+the seat rings (inner to outer), J + S .. J + S + K - 1 the pile rings, then the sleeve's
+normal contacts (the anvil's L_a bands, then the ring's L_r, top down): N in all; then the
+friction pairs, the S seat rings' and the L_a + L_r bands'. Ports: the anvil [J ram face
+annuli, S seat rings axial, S radial, L_a bands radial, L_a axial], the ring [S seat rings
+axial, S radial, K pile rings axial, L_r bands radial, L_r axial].
 """
 
 from __future__ import annotations
@@ -65,9 +73,9 @@ import numpy as np
 from numba import njit
 
 from anvilwave.anvil_rom.contact import coulomb_friction
-from anvilwave.anvil_rom.fem.elasticity import annulus_vectors
+from anvilwave.anvil_rom.fem.elasticity import annulus_vectors, band_vectors
 from anvilwave.anvil_rom.fem.geometry import AnvilSpec
-from anvilwave.anvil_rom.fem.mesh import split_outline_at_radii
+from anvilwave.anvil_rom.fem.mesh import split_outline_at_heights, split_outline_at_radii
 from anvilwave.anvil_rom.fem.modes import elastic_flexibility
 from anvilwave.anvil_rom.fem.pipeline import compute_anvil_modes
 from anvilwave.anvil_rom.rings import (
@@ -113,6 +121,62 @@ class Face:
 
 
 @dataclass(frozen=True)
+class Band:
+    """Ports on a body's outer cylindrical face: ``count`` equal-height bands along it.
+
+    Parameters
+    ----------
+    direction : {"radial", "axial"}
+        Uniform radial tractions (the sleeve's normal pressure) or uniform axial tractions
+        (the friction along it) on the bands.
+    radius : float
+        Radius of the face [m].
+    z_top : float
+        Its upper end [m] (z down).
+    z_bottom : float
+        Its lower end [m].
+    count : int
+        Number of bands [-].
+    """
+
+    direction: str
+    radius: float
+    z_top: float
+    z_bottom: float
+    count: int
+
+
+def outer_band_face(outline, count: int, direction: str) -> Band:
+    """The bands of an outline's outer cylindrical face (its vertical edge at the largest r).
+
+    Parameters
+    ----------
+    outline : array_like
+        Polygon vertices, rows (r, z) [m].
+    count : int
+        Number of bands [-].
+    direction : {"radial", "axial"}
+        As :class:`Band`.
+
+    Returns
+    -------
+    Band
+        The face from the top to the bottom of the edge at r = max r.
+
+    Raises
+    ------
+    ValueError
+        If the outline has no vertical edge at its largest radius.
+    """
+    pts = np.asarray(outline, float)
+    r = pts[:, 0].max()
+    z = pts[np.isclose(pts[:, 0], r), 1]
+    if not z.max() > z.min():
+        raise ValueError(f"the outline has no vertical edge at its outer radius {r:g} m")
+    return Band(direction, float(r), float(z.min()), float(z.max()), int(count))
+
+
+@dataclass(frozen=True)
 class StackBodyData:
     """A body's modes projected on its ports (the stack's modal file, cached by the caller).
 
@@ -140,7 +204,8 @@ class StackBodyData:
     areas: np.ndarray
 
 
-def stack_body_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> StackBodyData:
+def stack_body_data(spec: AnvilSpec, faces: tuple[Face | Band, ...], fmax: float
+                    ) -> StackBodyData:
     """Free-free modes of one stack body to ``fmax`` on the annuli of ``faces``.
 
     The outline gets a vertex at every annulus edge (the load vectors exact on the mesh),
@@ -153,7 +218,7 @@ def stack_body_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> St
     ----------
     spec : AnvilSpec
         The body (an outline).
-    faces : tuple of Face
+    faces : tuple of Face or Band
         Its ports, in order.
     fmax : float
         Frequency content [Hz].
@@ -173,6 +238,10 @@ def stack_body_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> St
     outline = np.asarray(spec.outline, float)
     z_top, z_bottom = outline[:, 1].min(), outline[:, 1].max()
     for f in faces:
+        if isinstance(f, Band):
+            outline = split_outline_at_heights(outline, f.radius,
+                                               np.linspace(f.z_top, f.z_bottom, f.count + 1))
+            continue
         outline = split_outline_at_radii(outline, z_top if f.side == "top" else z_bottom,
                                          np.linspace(f.r_in, f.r_out, f.count + 1))
     spec = dataclasses.replace(spec, outline=outline, interfaces=None, fmax=fmax)
@@ -180,12 +249,18 @@ def stack_body_data(spec: AnvilSpec, faces: tuple[Face, ...], fmax: float) -> St
     model, modes = result.model, result.modes
     columns, areas = [], []
     for f in faces:
-        z = model.mesh.p[1].min() if f.side == "top" else model.mesh.p[1].max()
-        B, A = annulus_vectors(model, z, f.r_in, f.r_out, f.count, radial=f.direction == "radial")
+        if isinstance(f, Band):
+            B, A = band_vectors(model, f.radius, f.z_top, f.z_bottom, f.count,
+                                radial=f.direction == "radial")
+            where = f"{f.count} bands from z {f.z_top:g} to {f.z_bottom:g} m"
+        else:
+            z = model.mesh.p[1].min() if f.side == "top" else model.mesh.p[1].max()
+            B, A = annulus_vectors(model, z, f.r_in, f.r_out, f.count,
+                                   radial=f.direction == "radial")
+            where = f"{f.count} annuli from {f.r_in:g} to {f.r_out:g} m"
         if np.any(A == 0.0):
-            raise InputError(spec.source, "mesh.size", f"{f.count} annuli from {f.r_in:g} to "
-                                                       f"{f.r_out:g} m need as many element "
-                                                       "edges: refine the mesh")
+            raise InputError(spec.source, "mesh.size", f"{where} need as many element edges: "
+                                                       "refine the mesh")
         columns.append(B)
         areas.append(A)
     B = np.column_stack(columns)
@@ -297,7 +372,7 @@ class StackState(NamedTuple):
     ratios : numpy.ndarray
         c / k of the normal contacts, shape (N,) [s].
     friction_pairs : numpy.ndarray
-        Per pair [mu, k_eff], shape (S, 2) [-, N/m].
+        Per pair [mu, k_eff, its normal contact], shape (P, 3) [-, N/m, -] (P = S + L_a + L_r).
     coupling : numpy.ndarray
         G, shape (m, m) [m/N].
     flexibility : numpy.ndarray
@@ -341,6 +416,9 @@ class StackState(NamedTuple):
         The pile rings' forces at rest, shape (K,) [N].
     head_count : numpy.ndarray
         The steps in the history [-] and the work handed to the tube head [J], shape (2,).
+    clearance : numpy.ndarray
+        Each contact's gap at zero displacement, subtracted from its s: the sleeve's radial
+        clearance on its normal contacts, 0 elsewhere, shape (m,) [m].
     """
 
     parameters: np.ndarray
@@ -372,9 +450,11 @@ class StackState(NamedTuple):
     head_shift: np.ndarray
     head_rest: np.ndarray
     head_count: np.ndarray
+    clearance: np.ndarray
 
 
-def stack_incidence(seat_rings: int, pile_rings: int, ram_annuli: int = 1
+def stack_incidence(seat_rings: int, pile_rings: int, ram_annuli: int = 1,
+                    sleeve_bands: tuple[int, int] = (0, 0)
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Incidence of the contacts on the two bodies' ports and the neighbours (module docstring).
 
@@ -386,29 +466,41 @@ def stack_incidence(seat_rings: int, pile_rings: int, ram_annuli: int = 1
         K [-].
     ram_annuli : int, default 1
         J [-].
+    sleeve_bands : tuple of int, default (0, 0)
+        L_a, L_r: the anvil's and the ring's outer faces in this many bands against the
+        sleeve [-].
 
     Returns
     -------
     anvil : numpy.ndarray
-        B of the anvil, shape (J + 2 S, m): -1 where the anvil is a contact's upper side,
-        +1 where it is the lower one.
+        B of the anvil, shape (J + 2 S + 2 L_a, m): -1 where the anvil is a contact's upper
+        side, +1 where it is the lower one.
     ring : numpy.ndarray
-        B of the ring, shape (2 S + K, m).
+        B of the ring, shape (2 S + K + 2 L_r, m).
     external : numpy.ndarray
         The ram's (+1) and the pile's (-1) share of each contact's s, shape (2, m).
     """
     S, K, J = seat_rings, pile_rings, ram_annuli
-    m = J + S + K + S
-    Ba, Br, ext = np.zeros((J + 2 * S, m)), np.zeros((2 * S + K, m)), np.zeros((2, m))
+    La, Lr = (int(n) for n in sleeve_bands)
+    N = J + S + K + La + Lr
+    m = N + S + La + Lr
+    Ba, Br = np.zeros((J + 2 * S + 2 * La, m)), np.zeros((2 * S + K + 2 * Lr, m))
+    ext = np.zeros((2, m))
     for a in range(J):
         Ba[a, a] = 1.0
         ext[0, a] = 1.0
     for s in range(S):
         Ba[J + s, J + s], Br[s, J + s] = -1.0, 1.0  # the seat's normal contact
-        Ba[J + S + s, J + S + K + s], Br[S + s, J + S + K + s] = -1.0, 1.0  # its friction
+        Ba[J + S + s, N + s], Br[S + s, N + s] = -1.0, 1.0  # its friction
     for k in range(K):
         Br[2 * S + k, J + S + k] = -1.0
         ext[1, J + S + k] = -1.0
+    for b in range(La):  # the anvil on the fixed sleeve: its upper side, radially and axially
+        Ba[J + 2 * S + b, J + S + K + b] = -1.0
+        Ba[J + 2 * S + La + b, N + S + b] = -1.0
+    for b in range(Lr):
+        Br[2 * S + K + b, J + S + K + La + b] = -1.0
+        Br[2 * S + K + Lr + b, N + S + La + b] = -1.0
     return Ba, Br, ext
 
 
@@ -461,13 +553,26 @@ class StackUnit:
         the 1D head at each lag (:func:`anvilwave.pile.head_kernel.head_correction`), springs
         (K,) [N/m] the rings' contact springs in place of the pile's shared by area
         (:func:`anvilwave.pile.head_kernel.tube_contact_stiffness`); None: the 1D head.
+    sleeve_clearance : float or None, default None
+        Radial clearance between the bodies' outer faces and a rigid, fixed guiding sleeve
+        [m] (>= 0); None: no sleeve.
+    sleeve_bands : tuple of int, default (0, 0)
+        L_a, L_r: the anvil's and the ring's outer faces in this many equal-height bands
+        against the sleeve [-] (each a compression-only radial contact across the clearance
+        and a Coulomb pair along the axis; the bodies' ports after their others: L radial,
+        then L axial).
+    sleeve_stiffness : float, default 0.0
+        The sleeve contact's penalty per unit area [N/m^3] (> 0 with a sleeve), each band's
+        spring this times its area; the stick spring the same.
+    sleeve_friction : float, default 0.0
+        Coulomb coefficient against the sleeve [-].
 
     Raises
     ------
     InputError
         If a ring is given without a positive seat stiffness, a coefficient is negative, the
-        bodies' ports do not match the rings and the ram face, or ``head`` does not match the
-        pile rings.
+        bodies' ports do not match the rings, the bands and the ram face, ``head`` does not
+        match the pile rings, or a sleeve has no bands or no positive stiffness.
     """
 
     anvil: StackBody | ModalAnvil
@@ -483,6 +588,10 @@ class StackUnit:
     ram_face: RamFace | None = None
     ram_modes: object | None = None
     head: tuple | None = None
+    sleeve_clearance: float | None = None
+    sleeve_bands: tuple[int, int] = (0, 0)
+    sleeve_stiffness: float = 0.0
+    sleeve_friction: float = 0.0
 
     def __post_init__(self):
         self._h = None
@@ -496,21 +605,37 @@ class StackUnit:
         if not (np.isfinite(self.seat_stiffness) and self.seat_stiffness > 0.0):
             raise InputError("stack", "seat_stiffness",
                              f"must be positive [N/m], got {self.seat_stiffness!r}")
-        for key in ("seat_damping", "seat_friction"):
+        for key in ("seat_damping", "seat_friction", "sleeve_friction"):
             value = getattr(self, key)
             if not (np.isfinite(value) and value >= 0.0):
                 raise InputError("stack", key, f"must be >= 0, got {value!r}")
         S, K = int(self.seat_rings), int(self.pile_rings)
+        La, Lr = (0, 0) if self.sleeve_clearance is None else (int(n) for n in self.sleeve_bands)
+        if self.sleeve_clearance is not None:
+            gap = self.sleeve_clearance
+            if not (np.isfinite(gap) and gap >= 0.0):
+                raise InputError("stack", "sleeve_clearance", f"must be >= 0 [m], got {gap!r}")
+            if min(La, Lr) < 1 or not (np.isfinite(self.sleeve_stiffness)
+                                       and self.sleeve_stiffness > 0.0):
+                raise InputError("stack", "sleeve_bands", "a sleeve needs at least one band on "
+                                                          "each body and a positive "
+                                                          "sleeve_stiffness")
+        elif self.sleeve_friction > 0.0:
+            raise InputError("stack", "sleeve_friction", "needs a sleeve (sleeve_clearance)")
         face = self.ram_face
         J = 1 if face is None else face.n_annuli
         a, r, c = self.anvil, self.ring, self.contact
-        if a.participation.shape[0] != J + 2 * S or r.participation.shape[0] != 2 * S + K:
+        if (a.participation.shape[0] != J + 2 * S + 2 * La
+                or r.participation.shape[0] != 2 * S + K + 2 * Lr):
             raise InputError("stack", "seat_rings", f"the bodies' ports do not match {J} ram "
-                                                    f"annuli, {S} seat and {K} pile rings")
-        Ba, Br, ext = stack_incidence(S, K, J)
+                                                    f"annuli, {S} seat and {K} pile rings and "
+                                                    f"{La} + {Lr} sleeve bands")
+        Ba, Br, ext = stack_incidence(S, K, J, (La, Lr))
         G = Ba.T @ a.residual @ Ba + Br.T @ r.residual @ Br
         seat_share = r.areas[:S] / r.areas[:S].sum()
-        pile_share = r.areas[2 * S:] / r.areas[2 * S:].sum()
+        pile_share = r.areas[2 * S:2 * S + K] / r.areas[2 * S:2 * S + K].sum()
+        band_areas = np.concatenate([a.areas[J + 2 * S:J + 2 * S + La],
+                                     r.areas[2 * S + K:2 * S + K + Lr]])
         kt = self.seat_stiffness if self.tangential_stiffness is None \
             else self.tangential_stiffness
         if face is None:
@@ -531,26 +656,37 @@ class StackUnit:
                 raise InputError("stack", "pile_head", f"the tube head needs ({K}, {K}) lags "
                                                        f"and {K} springs for {K} pile rings, "
                                                        f"got {D.shape} and {pile_springs.shape}")
-        k = np.concatenate([k_ram, self.seat_stiffness * seat_share, pile_springs,
-                            kt * seat_share])
-        N = J + S + K
+        k_sleeve = self.sleeve_stiffness * band_areas
+        k = np.concatenate([k_ram, self.seat_stiffness * seat_share, pile_springs, k_sleeve,
+                            kt * seat_share, k_sleeve])
+        N = J + S + K + La + Lr
+        P = S + La + Lr
         ratios = np.concatenate([ram_ratios,
                                  self.seat_damping * seat_share / k[J:J + S],
-                                 c.pile_damping * pile_share / k[J + S:N]])
+                                 c.pile_damping * pile_share / k[J + S:J + S + K],
+                                 np.zeros(La + Lr)])
         A = np.diag(1.0 / k[:N]) + G[:N, :N]
-        A[J + S:, J + S:] += 0.5 * (D[0] + D[0].T)  # the tube's lag 0 (zero on the 1D head)
-        t = np.arange(N, N + S)
-        pairs = np.column_stack([np.full(S, float(self.seat_friction)),
-                                 1.0 / (1.0 / k[t] + G[t, t])])
+        tube = slice(J + S, J + S + K)
+        A[tube, tube] += 0.5 * (D[0] + D[0].T)  # the tube's lag 0 (zero on the 1D head)
+        t = np.arange(N, N + P)
+        pairs = np.column_stack([np.repeat([float(self.seat_friction),
+                                            float(self.sleeve_friction)], [S, La + Lr]),
+                                 1.0 / (1.0 / k[t] + G[t, t]),
+                                 np.concatenate([np.arange(J, J + S),
+                                                 np.arange(J + S + K, N)]).astype(float)])
+        clearance = np.zeros(N + P)
+        if La + Lr:
+            clearance[J + S + K:N] = float(self.sleeve_clearance)
         self.state = StackState(
             np.array([self.gravity, 1.0, S, K], float), _table(a), _table(r),
             np.ascontiguousarray(a.participation.T @ Ba),
             np.ascontiguousarray(r.participation.T @ Br), np.zeros(2 * a.n_modes),
-            np.zeros(2 * r.n_modes), ext, k, ratios, pairs, G, A, np.zeros(N + S),
-            np.zeros((2, N + S)), np.zeros(S), np.zeros(4), np.zeros(N), np.zeros((N, N + 9)),
+            np.zeros(2 * r.n_modes), ext, k, ratios, pairs, G, A, np.zeros(N + P),
+            np.zeros((2, N + P)), np.zeros(P), np.zeros(4), np.zeros(N),
+            np.zeros((N, N + 9)),
             np.ascontiguousarray(Cr), np.ascontiguousarray(Pr), np.ascontiguousarray(pr),
             np.zeros((4, pr.size)), np.zeros((3, J)), D, np.zeros((D.shape[0], K)),
-            np.zeros((2, K)), np.zeros(K), np.zeros(2))
+            np.zeros((2, K)), np.zeros(K), np.zeros(2), clearance)
         self.set_step(1e-5)
 
     def set_head(self, head: tuple) -> tuple[float, float]:
@@ -664,8 +800,8 @@ class StackUnit:
             return self.single.rest_on_pile(pile_head_displacement)
         s = self.state
         S, K, J = self.seat_rings, self.pile_rings, self.ram_annuli
-        N = J + S + K
-        closed = list(range(J, N))
+        N = s.active.size
+        closed = list(range(J, J + S + K))  # the sleeve's bands start open
         for _ in range(4 * N):
             X, q, gap = _static(self, closed, pile_head_displacement)
             opening = [i for i in closed if X[i] < 0.0]
@@ -686,7 +822,7 @@ class StackUnit:
         s.ram_offsets[:] = 0.0
         self.restart_head()
         # the ram touches the face's highest annulus first (one port: the face's mean)
-        return float(-gap[:J].max()), float(X[J + S:N].sum())
+        return float(-gap[:J].max()), float(X[J + S:J + S + K].sum())
 
     def forces(self, u_ram: float, v_ram: float, u_pile: float, v_pile: float
                ) -> tuple[float, float]:
@@ -750,7 +886,7 @@ class StackUnit:
 
     @property
     def friction_energy(self) -> float:
-        """Energy the seat friction has dissipated [J].
+        """Energy the seat's and the sleeve's friction has dissipated [J].
 
         Returns
         -------
@@ -837,7 +973,7 @@ def _static(unit: StackUnit, closed: list, pile: float):
             equations.append(f[rigid][0])
             q.append(qq)
         gap = (s.external[1] * pile - s.anvil_loads.T @ q[0] - s.ring_loads.T @ q[1]
-               - s.coupling @ X)
+               - s.coupling @ X - s.clearance)
         equations.extend(X[closed] / s.stiffness[closed] - gap[closed])
         return np.array(equations), X, q, gap
 
@@ -872,7 +1008,7 @@ def stack_relative(state, u_ram, v_ram, u_pile, v_pile):
     x, ext = state.relative, state.external
     m = x.shape[1]
     for c in range(m):
-        x[0, c] = ext[0, c] * u_ram + ext[1, c] * u_pile
+        x[0, c] = ext[0, c] * u_ram + ext[1, c] * u_pile - state.clearance[c]
         x[1, c] = ext[0, c] * v_ram + ext[1, c] * v_pile
     offsets = state.ram_offsets
     if offsets.shape[1] > 1:  # the ram face in annuli: each at the toe plus its offset
@@ -966,18 +1102,19 @@ def stack_forces(state, u_ram, v_ram, u_pile, v_pile):
     for a in range(1, J):
         ram += F[a]
     pile = 0.0
-    for i in range(J + S, N):
+    for i in range(J + S, J + S + int(state.parameters[3])):
         pile += F[i]
     return ram, pile
 
 
 @njit(cache=True)
 def stack_step(state, sweeps):
-    """Update the seat friction at t_n, then advance both bodies over h with the forces held.
+    """Update the friction pairs at t_n, then advance both bodies over h with the forces held.
 
     Each pair's force by return mapping (:func:`anvilwave.anvil_rom.contact.coulomb_friction`)
-    on the increment of its w under the cone mu F_seat (module docstring), ``sweeps``
-    Gauss-Seidel sweeps over the pairs, the dissipation added to ``state.energies[0]``; then
+    on the increment of its w under the cone mu F_n of its normal contact (module docstring),
+    ``sweeps`` Gauss-Seidel sweeps over the pairs, the dissipation added to
+    ``state.energies[0]``; then
     every mode of each body by the exact step with all contact forces and gravity held; then,
     with the ram face in annuli, their offsets from the ram's toe
     (:func:`anvilwave.anvil_rom.rings.ram_face_advance`, the annuli's forces held).
@@ -993,7 +1130,7 @@ def stack_step(state, sweeps):
     P, x, X, G, e = state.parameters, state.relative, state.forces, state.coupling, state.energies
     N = state.active.shape[0]
     m = X.shape[0]
-    S = m - N
+    S = m - N  # the friction pairs, the seat's and the sleeve's
     J = state.ram_offsets.shape[1]
     base = state.work[:S, N + 6]
     T0 = state.work[:S, N + 7]  # the friction forces at the step's start
@@ -1020,8 +1157,8 @@ def stack_step(state, sweeps):
                 if u != p:
                     w -= G[N + p, N + u] * X[N + u]
             X[N + p], dissipated[p] = coulomb_friction(
-                T0[p], w - state.slip[p], X[J + p], state.friction_pairs[p, 0],
-                state.friction_pairs[p, 1])
+                T0[p], w - state.slip[p], X[int(state.friction_pairs[p, 2])],
+                state.friction_pairs[p, 0], state.friction_pairs[p, 1])
     for p in range(S):
         w = base[p]
         for u in range(S):
@@ -1126,7 +1263,7 @@ def stack_energy(state, u_ram, v_ram, u_pile, v_pile):
             xj = F[j] if j < N else X[j]
             total += 0.5 * xi * G[i, j] * xj
     D = state.head_kernel  # the tube head: its lag 0's complementary energy, the work handed
-    first = N - D.shape[1]  # on (zeros on the 1D head)
+    first = state.ram_offsets.shape[1] + int(P[2])  # on (zeros on the 1D head)
     for k in range(D.shape[1]):
         for l in range(D.shape[1]):
             total += 0.25 * F[first + k] * (D[0, k, l] + D[0, l, k]) * F[first + l]
@@ -1164,7 +1301,6 @@ def stack_interface(state):
     """
     h = state.parameters[1]
     J = state.ram_offsets.shape[1]
-    N = state.active.shape[0]
     S = int(state.parameters[2])
     n_a = state.anvil_loads.shape[0]
     n_r = state.ring_loads.shape[0]
@@ -1182,8 +1318,8 @@ def stack_interface(state):
             u_top += G[a, c] * X[c] / J
     u_bottom = 0.0
     v_bottom = 0.0
-    K = N - J - S
-    for c in range(J + S, N):  # the ring is the pile contacts' upper side: Q = -participation
+    K = int(state.parameters[3])
+    for c in range(J + S, J + S + K):  # the ring is the pile contacts' upper side: Q = -part.
         for j in range(n_r):
             q = state.ring_state[j]
             u_bottom -= state.ring_loads[j, c] * q / K
@@ -1199,7 +1335,7 @@ STACK_FIELDS = ("omega", "participation", "residual", "participation_gravity", "
 
 
 def save_stack_data(path, unit: StackUnit) -> None:
-    """Write a stack's bodies and seat (one ram port) to ``path`` (``.npz``), for the FMU.
+    """Write a stack's bodies, seat and sleeve (one ram port) to ``path`` (``.npz``), for the FMU.
 
     Parameters
     ----------
@@ -1219,8 +1355,10 @@ def save_stack_data(path, unit: StackUnit) -> None:
     arrays = {f"{b}_{f}": np.asarray(getattr(body, f), float)
               for b, body in (("anvil", unit.anvil), ("ring", unit.ring)) for f in STACK_FIELDS}
     kt = unit.seat_stiffness if unit.tangential_stiffness is None else unit.tangential_stiffness
+    gap = np.nan if unit.sleeve_clearance is None else unit.sleeve_clearance
     np.savez(path, seat=np.array([unit.seat_rings, unit.pile_rings, unit.seat_stiffness,
-                                  unit.seat_damping, kt], float), **arrays)
+                                  unit.seat_damping, kt], float),
+             sleeve=np.array([gap, *unit.sleeve_bands, unit.sleeve_stiffness], float), **arrays)
 
 
 def load_stack_data(path) -> tuple[StackBody, StackBody, dict]:
@@ -1239,14 +1377,21 @@ def load_stack_data(path) -> tuple[StackBody, StackBody, dict]:
         The anvil ring.
     seat : dict
         ``seat_rings``, ``pile_rings`` [-], ``seat_stiffness`` [N/m], ``seat_damping``
-        [N s/m], ``tangential_stiffness`` [N/m]: :class:`StackUnit`'s keywords.
+        [N s/m], ``tangential_stiffness`` [N/m], ``sleeve_clearance`` [m] (None: no sleeve),
+        ``sleeve_bands`` [-], ``sleeve_stiffness`` [N/m^3]: :class:`StackUnit`'s keywords (the
+        sleeve's friction coefficient is the caller's, as the seat's).
     """
     with np.load(path) as npz:
         bodies = [StackBody(*(float(npz[f"{b}_{f}"]) if npz[f"{b}_{f}"].ndim == 0
                               else np.array(npz[f"{b}_{f}"]) for f in STACK_FIELDS))
                   for b in ("anvil", "ring")]
         seat = npz["seat"]
+        sleeve = npz["sleeve"] if "sleeve" in npz else np.array([np.nan, 0.0, 0.0, 0.0])
     return bodies[0], bodies[1], {"seat_rings": int(seat[0]), "pile_rings": int(seat[1]),
                                   "seat_stiffness": float(seat[2]),
                                   "seat_damping": float(seat[3]),
-                                  "tangential_stiffness": float(seat[4])}
+                                  "tangential_stiffness": float(seat[4]),
+                                  "sleeve_clearance": None if np.isnan(sleeve[0])
+                                  else float(sleeve[0]),
+                                  "sleeve_bands": (int(sleeve[1]), int(sleeve[2])),
+                                  "sleeve_stiffness": float(sleeve[3])}

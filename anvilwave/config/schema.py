@@ -50,6 +50,13 @@ SYSTEM: dict[str, tuple[str, object, str]] = {
     "anvil.bodies.seat_friction": ("-", 0.0, "the ring only: Coulomb coefficient of its seat "
                                              "under the anvil (0 to 2)"),
     "anvil.bodies.seat_rings": ("-", 8, "the ring only: the seat in equal-width rings"),
+    "anvil.sleeve_clearance": ("m", None, "with [[anvil.bodies]]: a rigid guiding sleeve this "
+                                          "far off the bodies' outer faces (0 to 0.1; default "
+                                          "none)"),
+    "anvil.sleeve_friction": ("-", 0.0, "with a sleeve: Coulomb coefficient against it (0 to "
+                                        "2)"),
+    "anvil.sleeve_bands": ("-", [8, 8], "with a sleeve: the anvil's and the ring's outer faces "
+                                        "in this many equal-height bands"),
     "anvil.pile_head": ("-", "rod", "'rod' (the 1D pile's flat head) or 'tube' (the rings on an "
                                     "FE tube head, anvilwave/pile/head_kernel.py; "
                                     "pile_port_rings >= 2)"),

@@ -44,7 +44,10 @@ A system file is TOML (every key is checked; units in brackets)::
     seat_friction = 0.1         # [-] Coulomb coefficient of the seat (this body on the one above)
     seat_rings = 8              # optional: the seat in this many equal-width rings (default 8)
     # with a ring, pile_port_rings (default 3) is the ring's pile port and ram_port_annuli
-    # (default 6) the anvil's ram face; one body is the same system as file = (to the bit)
+    # (default 6) the anvil's ram face; one body is the same system as file = (to the bit);
+    # [anvil] sleeve_clearance = 0.001 [m] (optional) guides both bodies' outer faces in a
+    # rigid sleeve, sleeve_friction its Coulomb coefficient, sleeve_bands = [8, 8] the faces'
+    # bands (anvil, ring)
 
     [pile]      # see anvilwave/pile/pile.py          [soil]      # see
     anvilwave/pile/soil/models.py
@@ -79,6 +82,10 @@ STACK_PILE_RINGS = 3
 """Rings of the ring's pile port by default (one element edge each on the ring's 0.05 m mesh
 across the 0.14 m wall)."""
 
+STACK_SLEEVE_BANDS = (8, 8)
+"""The anvil's and the ring's outer faces in this many equal-height bands against a guiding
+sleeve by default (Table 1's 0.45 m and 0.5 m faces; ``benchmarks/study_anvil_ring.py``)."""
+
 STACK_RAM_ANNULI = 6
 """The anvil's ram face in this many annuli by default with a ring: the variant that matches
 the reference FEA stack best (``benchmarks/study_anvil_ring.py``)."""
@@ -100,6 +107,13 @@ class StackSettings:
         The ring's pile port in this many rings across the pile wall [-].
     ram_annuli : int
         The anvil's ram face in this many equal-width annuli [-].
+    sleeve_clearance : float or None, default None
+        Radial clearance of a rigid, fixed guiding sleeve around the anvil and the ring [m];
+        None: no sleeve.
+    sleeve_friction : float, default 0.0
+        Coulomb coefficient against the sleeve [-].
+    sleeve_bands : tuple of int, default STACK_SLEEVE_BANDS
+        The anvil's and the ring's outer faces in this many bands against it [-].
     """
 
     ring: AnvilSpec
@@ -107,6 +121,9 @@ class StackSettings:
     seat_rings: int
     pile_rings: int
     ram_annuli: int
+    sleeve_clearance: float | None = None
+    sleeve_friction: float = 0.0
+    sleeve_bands: tuple[int, int] = STACK_SLEEVE_BANDS
 
 RAM_MODELS = ("rod", "modal")
 
@@ -631,7 +648,31 @@ def _stack(table: Table, body: Table, model: str, settings: AnvilSettings,
     if annuli > 1 and settings.ram_contact_stiffness is not None:
         raise table.error("ram_port_annuli", "the annuli's contacts are the modal ram's "
                                              "residual flexibility: omit ram_contact_stiffness")
-    return StackSettings(ring, float(friction), int(seat_rings), int(rings), int(annuli))
+    clearance = table.number("sleeve_clearance", None, ge=0.0, le=0.1, unit="m")
+    sleeve_friction = table.number("sleeve_friction", 0.0, ge=0.0, le=2.0)
+    if clearance is None and sleeve_friction > 0.0:
+        raise table.error("sleeve_friction", "needs a sleeve: set sleeve_clearance")
+    bands = STACK_SLEEVE_BANDS
+    if table.has("sleeve_bands"):
+        if clearance is None:
+            raise table.error("sleeve_bands", "needs a sleeve: set sleeve_clearance")
+        values = table.array("sleeve_bands")
+        if (values.shape != (2,) or not np.all(values == np.round(values))
+                or values.min() < 1 or values.max() > 64):
+            raise table.error("sleeve_bands", "must be two whole numbers from 1 to 64 (the "
+                                              f"anvil's and the ring's), got {values.tolist()}")
+        bands = (int(values[0]), int(values[1]))
+    for spec, which in ((anvil, table), (ring, body)):
+        if clearance is not None:
+            pts = np.asarray(spec.outline, float)
+            z = pts[np.isclose(pts[:, 0], pts[:, 0].max()), 1]
+            if not z.max() > z.min():
+                raise which.error("sleeve_clearance" if which is table else "file",
+                                  f"{spec.source}: the sleeve guides the bodies' outer faces, "
+                                  "but this body has no vertical face at its outer radius")
+    return StackSettings(ring, float(friction), int(seat_rings), int(rings), int(annuli),
+                         None if clearance is None else float(clearance),
+                         float(sleeve_friction), bands)
 
 
 def check_stack(config: SystemConfig, ram_model: str) -> None:

@@ -17,7 +17,15 @@ import numpy as np
 from anvilwave.anvil_rom.fem.geometry import STEEL, AnvilSpec, Material
 from anvilwave.anvil_rom.rings import RamFace
 from anvilwave.anvil_rom.rom import ModalAnvil
-from anvilwave.anvil_rom.stack import Face, StackBody, StackBodyData, StackUnit, stack_body_data
+from anvilwave.anvil_rom.stack import (
+    Band,
+    Face,
+    StackBody,
+    StackBodyData,
+    StackUnit,
+    outer_band_face,
+    stack_body_data,
+)
 from anvilwave.anvil_rom.unit import ContactParameters
 from anvilwave.config.cache import cache_dir, cached_modal_data, cached_ring_kernel, modal_key
 from anvilwave.config.system import (
@@ -28,6 +36,9 @@ from anvilwave.config.system import (
 )
 from anvilwave.config.system import (
     STACK_SEAT_RINGS as SEAT_RINGS,
+)
+from anvilwave.config.system import (
+    STACK_SLEEVE_BANDS as SLEEVE_BANDS,
 )
 from anvilwave.config.system import SystemConfig
 from anvilwave.hammer.modal_ram import modal_ram
@@ -115,14 +126,16 @@ def anvil_modal_data(cfg: SystemConfig):
 
 
 def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
-                pile_rings: int = PILE_RINGS, ram_annuli: int = 1
-                ) -> tuple[tuple[Face, ...], tuple[Face, ...]]:
+                pile_rings: int = PILE_RINGS, ram_annuli: int = 1,
+                sleeve_bands: tuple[int, int] = (0, 0)
+                ) -> tuple[tuple[Face | Band, ...], tuple[Face | Band, ...]]:
     """The ports of the two bodies (:mod:`anvilwave.anvil_rom.stack`'s order).
 
     The seat is the radial overlap of the anvil's flat bottom face and the ring's flat top
     face, in ``seat_rings`` rings (axial and radial on both bodies); the anvil's ram face is
     its file's, in ``ram_annuli`` equal-width annuli from the axis; the ring's bottom port is
-    the anvil file's pile ring, in ``pile_rings``.
+    the anvil file's pile ring, in ``pile_rings``; with a sleeve, each body's outer
+    cylindrical face in its ``sleeve_bands`` (radial, then axial).
 
     Parameters
     ----------
@@ -136,18 +149,23 @@ def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
         K [-].
     ram_annuli : int, default 1
         J [-].
+    sleeve_bands : tuple of int, default (0, 0)
+        L_a, L_r: the bands of the anvil's and the ring's outer faces (0: no sleeve ports).
 
     Returns
     -------
-    anvil_faces : tuple of Face
-        Ram face (J annuli), the seat's S axial and S radial rings.
-    ring_faces : tuple of Face
-        The seat's S axial and S radial rings, the pile wall's K axial rings.
+    anvil_faces : tuple of Face or Band
+        Ram face (J annuli), the seat's S axial and S radial rings (then the L_a radial and
+        L_a axial bands).
+    ring_faces : tuple of Face or Band
+        The seat's S axial and S radial rings, the pile wall's K axial rings (then the L_r
+        radial and L_r axial bands).
 
     Raises
     ------
     InputError
-        If a body is not an outline or the faces do not overlap.
+        If a body is not an outline, the faces do not overlap, or a body with bands has no
+        vertical outer face.
     """
     if ring.outline is None or anvil.outline is None:
         raise InputError(ring.source, "geometry", "the stack needs both bodies as outlines")
@@ -167,6 +185,15 @@ def stack_faces(anvil: AnvilSpec, ring: AnvilSpec, seat_rings: int = SEAT_RINGS,
     ring_faces = (Face("axial", "top", inner, outer, seat_rings),
                   Face("radial", "top", inner, outer, seat_rings),
                   Face("axial", "bottom", wall_in, wall_out, pile_rings))
+    if min(sleeve_bands) > 0:
+        bands = []
+        for spec, count in ((anvil, sleeve_bands[0]), (ring, sleeve_bands[1])):
+            try:
+                bands.append(tuple(outer_band_face(spec.outline, int(count), d)
+                                   for d in ("radial", "axial")))
+            except ValueError as exc:
+                raise InputError(spec.source, "geometry", f"the sleeve's bands: {exc}") from None
+        anvil_faces, ring_faces = anvil_faces + bands[0], ring_faces + bands[1]
     return anvil_faces, ring_faces
 
 
@@ -262,7 +289,9 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
                seat_stiffness: float | None = None, penalty_size: float = 0.1,
                seat_rings: int = SEAT_RINGS, pile_rings: int = PILE_RINGS,
                ring_fmax: float | None = None, ram_annuli: int | None = None,
-               pile_head: str = "rod") -> StackUnit:
+               pile_head: str = "rod", sleeve_clearance: float | None = None,
+               sleeve_friction: float = 0.0, sleeve_bands: tuple[int, int] = SLEEVE_BANDS
+               ) -> StackUnit:
     """The system's anvil (and ``ring``) as a :class:`StackUnit` with the system's contacts.
 
     Parameters
@@ -292,6 +321,13 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
     pile_head : {"rod", "tube"}, default "rod"
         The ring's pile rings on the 1D pile's head, or on the tube head (:func:`tube_head` at
         the system's ``time_step``; the unit then at rest on it). "tube" needs the ring.
+    sleeve_clearance : float or None, default None
+        A rigid, fixed guiding sleeve this far [m] off the bodies' outer faces; None: none.
+        Its penalty per area is the seat's, E / ``penalty_size`` (the reference FEA's).
+    sleeve_friction : float, default 0.0
+        Coulomb coefficient against the sleeve [-].
+    sleeve_bands : tuple of int, default SLEEVE_BANDS
+        The anvil's and the ring's outer faces in this many bands against the sleeve [-].
 
     Returns
     -------
@@ -332,7 +368,9 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
     if ram_annuli > 1:
         modes = with_ram_annuli(cfg, int(ram_annuli)).hammer.ram.modes
         face = _ram_face(cfg, modes, int(ram_annuli))
-    anvil_faces, ring_faces = stack_faces(s.spec, ring, seat_rings, pile_rings, int(ram_annuli))
+    bands = (0, 0) if sleeve_clearance is None else tuple(int(n) for n in sleeve_bands)
+    anvil_faces, ring_faces = stack_faces(s.spec, ring, seat_rings, pile_rings, int(ram_annuli),
+                                          bands)
     ring_fmax = fmax if ring_fmax is None else float(ring_fmax)
     anvil = StackBody.from_data(cached_stack_data(s.spec, anvil_faces, fmax), fmax,
                                 s.static_correction, _damping(s.damping_ratio, s.spec))
@@ -344,11 +382,15 @@ def stack_unit(cfg: SystemConfig, ring: AnvilSpec | None, *, seat_friction: floa
             seat.r_out**2 - seat.r_in**2)
     unit = StackUnit(anvil, contact, body, seat_rings=seat_rings, pile_rings=pile_rings,
                      seat_stiffness=float(seat_stiffness), seat_friction=seat_friction,
-                     gravity=cfg.gravity, ram_face=face, ram_modes=modes)
+                     gravity=cfg.gravity, ram_face=face, ram_modes=modes,
+                     sleeve_clearance=sleeve_clearance, sleeve_bands=bands,
+                     sleeve_stiffness=ring.material.youngs_modulus / penalty_size,
+                     sleeve_friction=sleeve_friction)
     if pile_head == "tube":
         h = float(cfg.time_step)
         unit.set_step(h)
-        unit.set_head(tube_head(cfg, cfg.pile_soil.arrays(), body.areas[2 * seat_rings:], h))
+        walls = body.areas[2 * seat_rings:2 * seat_rings + pile_rings]
+        unit.set_head(tube_head(cfg, cfg.pile_soil.arrays(), walls, h))
     return unit
 
 

@@ -2249,7 +2249,8 @@ def _stack_kernels(cfg: SystemConfig, anvil: AnvilKernels) -> AnvilKernels:
     try:
         unit = stack_unit(cfg, st.ring, seat_friction=st.seat_friction,
                           seat_rings=st.seat_rings, pile_rings=st.pile_rings,
-                          ram_annuli=st.ram_annuli)
+                          ram_annuli=st.ram_annuli, sleeve_clearance=st.sleeve_clearance,
+                          sleeve_friction=st.sleeve_friction, sleeve_bands=st.sleeve_bands)
     except InputError as exc:  # the unit's own checks named as the system file's keys; a
         if exc.source not in ("stack", cfg.source):  # body file's error names its file
             raise
@@ -2372,7 +2373,7 @@ def _tube_head(cfg: SystemConfig, anvil: AnvilKernels, arrays, h: float) -> Anvi
     on it afresh."""
     unit = anvil.unit
     if anvil.kind == "stack":
-        areas = unit.ring.areas[2 * unit.seat_rings:]
+        areas = unit.ring.areas[2 * unit.seat_rings:2 * unit.seat_rings + unit.pile_rings]
         unit.set_step(h)
         u_top0, _ = unit.set_head(tube_head(cfg, arrays, areas, h))
         return replace(anvil, u_top0=float(u_top0))

@@ -251,7 +251,8 @@ def build_system_fmus(cfg: SystemConfig, out_dir: str | Path, anvil_model=None, 
         parameters["AnvilStack"] = {
             **parameters["Anvil"], "ram_contact_stiffness": c.ram_stiffness,
             "pile_contact_stiffness": c.pile_stiffness, "ram_contact_damping": c.ram_damping,
-            "pile_contact_damping": c.pile_damping, "seat_friction": stack.seat_friction}
+            "pile_contact_damping": c.pile_damping, "seat_friction": stack.seat_friction,
+            "sleeve_friction": stack.sleeve_friction}
         for key in ("fmax", "damping_ratio", "static_correction"):  # the stack file's
             parameters["AnvilStack"].pop(key)
         rest["AnvilStack"] = (float(engine.anvil.u_top0), float(unit.total_mass * cfg.gravity))

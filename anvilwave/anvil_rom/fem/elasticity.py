@@ -522,6 +522,52 @@ def annulus_vectors(model: AxisymmetricModel, z: float, r_lo: float, r_hi: float
     return np.column_stack(columns), np.array(areas)
 
 
+def band_vectors(model: AxisymmetricModel, r: float, z_top: float, z_bottom: float,
+                 count: int, radial: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Unit-resultant uniform tractions on ``count`` equal-height bands of a cylindrical face.
+
+    The boundary face at radius r [m] from z_top to z_bottom [m] (each facet to the band
+    holding its midpoint): each band's uniform radial traction 1 / A outward
+    (:func:`face_radial_vector`, the area-weighted mean radial displacement of the band, what
+    a guiding sleeve's normal pressure works on), or with ``radial`` False its uniform axial
+    traction (:func:`face_load_vector`, what a friction traction along the sleeve works on).
+
+    Parameters
+    ----------
+    model : AxisymmetricModel
+        The assembled model.
+    r : float
+        Radius of the cylindrical face [m].
+    z_top : float
+        Upper end of the face [m] (z down).
+    z_bottom : float
+        Lower end [m].
+    count : int
+        Number of bands.
+    radial : bool, default True
+        The radial tractions; False: the axial ones.
+
+    Returns
+    -------
+    B : numpy.ndarray
+        Unit-resultant tractions, shape (n_free, count).
+    areas : numpy.ndarray
+        The bands' areas 2 pi r dz, shape (count,) [m^2] (0 for a band without facet).
+    """
+    scale = max(np.ptp(model.mesh.p, axis=1).max(), 1.0)
+    tol = 1e-7 * scale
+    edges = np.linspace(z_top, z_bottom, count + 1)
+    columns, areas = [], []
+    for k in range(count):
+        lo = edges[k] - (tol if k == 0 else 0.0)
+        hi = edges[k + 1] + (tol if k == count - 1 else 0.0)
+        b, a = (face_radial_vector if radial else face_load_vector)(
+            model, lambda rr, zz, lo=lo, hi=hi: (np.abs(rr - r) < tol) & (zz >= lo) & (zz < hi))
+        columns.append(b)
+        areas.append(a)
+    return np.column_stack(columns), np.array(areas)
+
+
 def max_eigenvalue(stiffness: sp.spmatrix, mass: np.ndarray, tol: float = 1e-4) -> float:
     """Largest eigenvalue omega_max^2 of M^-1 K [rad^2/s^2], M diagonal.
 

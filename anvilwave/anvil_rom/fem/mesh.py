@@ -85,6 +85,30 @@ def split_outline_at_radii(outline: np.ndarray, z: float, radii) -> np.ndarray:
     return np.array(points, dtype=float)
 
 
+def split_outline_at_heights(outline: np.ndarray, r: float, heights) -> np.ndarray:
+    """``outline`` with a vertex inserted at each of ``heights`` [m] on its vertical edges.
+
+    The edges are those at radius ``r`` [m] (where an edge spans that height): the bands of a
+    cylindrical face (:func:`anvilwave.anvil_rom.fem.elasticity.band_vectors`).
+
+    Parameters
+    ----------
+    outline : numpy.ndarray
+        Polygon vertices, rows (r, z) [m].
+    r : float
+        Radius of the vertical edges [m].
+    heights : sequence of float
+        Heights of the new vertices [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The outline with the inserted vertices [m].
+    """
+    swapped = split_outline_at_radii(np.asarray(outline, float)[:, ::-1], r, heights)
+    return np.ascontiguousarray(swapped[:, ::-1])
+
+
 def mesh_outline(outline: np.ndarray, size: float | None, *, point_sizes=None,
                  edge_divisions: dict[int, int] | None = None) -> meshio.Mesh:
     """Mesh a closed (r, z) polygon with gmsh into quadratic (6-node) triangles.

@@ -532,14 +532,17 @@ class AnvilStackSlave(AnvilSlaveBase):
         **AnvilSlaveBase.parameter_fallbacks,
         "stack_data_file": None,
         "seat_friction": 0.0,
+        "sleeve_friction": 0.0,
     }
 
     def register_anvil_parameters(self) -> None:
-        """Register ``stack_data_file`` and ``seat_friction``."""
+        """Register ``stack_data_file``, ``seat_friction`` and ``sleeve_friction``."""
         p = self.add_parameter
         p("stack_data_file", None, "Stack data file (.npz, the bodies' modes on their ports); "
                                    "a relative name is looked up in the FMU resources [-]", str)
         p("seat_friction", "1", "Coulomb coefficient of the anvil-ring seat [-]")
+        p("sleeve_friction", "1", "Coulomb coefficient against the guiding sleeve (a stack "
+                                  "data file with a sleeve) [-]")
 
     def build_component(self) -> StackUnit:
         """The stack with its contacts, seat friction and gravity.
@@ -552,15 +555,16 @@ class AnvilStackSlave(AnvilSlaveBase):
         Raises
         ------
         InputError
-            If ``gravity`` is not finite, ``ram_toe_mass`` or ``seat_friction`` is negative or
-            not finite.
+            If ``gravity`` is not finite, ``ram_toe_mass``, ``seat_friction`` or
+            ``sleeve_friction`` is negative or not finite, or ``sleeve_friction`` is set
+            without a sleeve in the data file.
         """
         par = self.parameters
         contact, gravity = self.contacts()
         anvil, ring, seat = load_stack_data(self.resource_path(par["stack_data_file"]))
         try:
             return StackUnit(anvil, contact, ring, seat_friction=par["seat_friction"],
-                             gravity=gravity, **seat)
+                             sleeve_friction=par["sleeve_friction"], gravity=gravity, **seat)
         except InputError as exc:
             raise InputError(self.instance_name, exc.key, exc.rule) from None
 
