@@ -326,7 +326,7 @@ def test_anvil_ring_claims_of_the_docs():
     1.5 dB)."""
     script = benchmark("study_anvil_ring")
     runs = doc_data("anvil_ring")["values"]["runs"]
-    refs = [runs[name] for name in script.REFERENCE_RUNS]
+    refs = [runs[name] for name in ("ring, mu 0", "seat only, mu 0.2")]
     mu0, seat = (r["rom_variants"] for r in refs)
     both = (mu0, seat)
     assert all(v["1D pile head"]["band_error_max [dB]"] > 1.5 for v in both)
@@ -351,6 +351,43 @@ def test_anvil_ring_claims_of_the_docs():
     also = runs["ring, mu 0.2"]["rom"]  # friction on the ring-pile contact too, in the FEA only
     assert abs(also["pile_peak_error [-]"]) < 0.03 and abs(also["ram_peak_error [-]"]) < 0.05
     assert also["pile_rms_error [-]"] > 0.10 and also["band_error_max [dB]"] > 1.5
+
+
+def _within_bars(row: dict) -> dict:
+    """Which of the issue's bars a ROM-against-FEA row meets."""
+    return {"peaks": abs(row["pile_peak_error [-]"]) < 0.03 and abs(row["ram_peak_error [-]"])
+            < 0.05, "pile peak": abs(row["pile_peak_error [-]"]) < 0.03,
+            "rms": row["pile_rms_error [-]"] < 0.10 and row["ram_rms_error [-]"] < 0.10,
+            "bands": row["band_error_max [dB]"] < 1.5}
+
+
+def test_sleeve_claims_of_the_docs():
+    """What docs/validation.md ("The sleeve rows", the ROM against the finer references) and
+    docs/limitations.md say of the ROM stack in the sleeve, read off docs/data/anvil_ring.json:
+    on the study's mesh the peaks and the RMS within the bars, the bands not; the sliding along
+    the sleeve takes about a fifth of the blow in both models; four bands per face too few
+    (further off than the eight of the default), sixteen within a few tenths of a dB and a
+    percent of them; with friction every bar met on both finer meshes, at friction 0 the
+    bands on the finest, the pile-head peak at friction 0 off its bar on both."""
+    data = doc_data("anvil_ring")
+    values = data["values"]
+    runs = values["runs"]
+    for name in ("sleeve, mu 0", "sleeve, mu 0.2"):
+        rom, variants = runs[name]["rom"], runs[name]["rom_variants"]
+        bars = _within_bars(rom)
+        assert bars["peaks"] and bars["rms"] and not bars["bands"], name
+        four, sixteen = variants["sleeve in 4 bands each"], variants["sleeve in 16 bands each"]
+        assert four["band_error_max [dB]"] > rom["band_error_max [dB]"]
+        assert abs(sixteen["band_error_max [dB]"] - rom["band_error_max [dB]"]) < 0.35
+        assert abs(sixteen["pile_peak_error [-]"] - rom["pile_peak_error [-]"]) < 0.01
+    fea, rom = runs["sleeve, mu 0.2"], runs["sleeve, mu 0.2"]["rom"]
+    assert 0.15 < fea["friction_energy [-]"] < 0.25 and 0.15 < rom["rom_friction_energy [-]"] < 0.25
+    finer = values["reference_error"]
+    meshes = sorted(finer, key=lambda label: float(label.split()[1]))  # finest first
+    for label in meshes:
+        assert all(_within_bars(finer[label]["sleeve, mu 0.2"]["rom"]).values()), label
+        assert not _within_bars(finer[label]["sleeve, mu 0"]["rom"])["pile peak"], label
+    assert _within_bars(finer[meshes[0]]["sleeve, mu 0"]["rom"])["bands"]
 
 
 def test_stack_drive_data_file():

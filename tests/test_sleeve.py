@@ -4,6 +4,8 @@ reached, the energy balance with the sleeve's friction, the closing gap)."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -13,7 +15,7 @@ from anvilwave.anvil_rom.fem.elasticity import assemble, band_vectors
 from anvilwave.anvil_rom.fem.geometry import STEEL, load_anvil
 from anvilwave.anvil_rom.fem.mesh import mesh_outline, split_outline_at_heights, to_skfem
 from anvilwave.anvil_rom.fem.modes import elastic_flexibility
-from anvilwave.anvil_rom.stack import outer_band_face
+from anvilwave.anvil_rom.stack import StackUnit, outer_band_face
 from anvilwave.config.system import load_system
 from anvilwave.inputs import InputError
 from tests.conftest import EXAMPLES
@@ -82,18 +84,36 @@ def table1_ring():
     return cfg, load_anvil(EXAMPLES / "anvils" / "xl8_ring.toml")
 
 
+def _without_bands(body, ports: int):
+    """A stack body with only its first ``ports`` ports (the sleeve's bands dropped)."""
+    return dataclasses.replace(body, participation=body.participation[:ports],
+                               residual=body.residual[:ports, :ports],
+                               areas=body.areas[:ports])
+
+
 def test_a_sleeve_never_reached_changes_nothing(table1_ring):
-    """A sleeve 20 mm off the rims (the bulge is below 2 mm): its bands stay open, carry no
-    force, and the blow is the stack's without a sleeve, bit for bit (open contacts and
-    unloaded friction pairs add exact zeros); a closing one (0.5 mm) carries the rims."""
+    """A sleeve 20 mm off the rims (the bulge stays below 2 mm): its bands stay open, carry no
+    force, and the blow is that of the same bodies without the sleeve's contacts, bit for bit
+    (open contacts and unloaded friction pairs add exact zeros). The bodies' meshes have
+    vertices at the band edges; the stack of the unsplit bodies differs by that mesh change
+    only (measured 7e-4 of the peak; bounded at 5e-3). A closing sleeve (0.5 mm) carries the
+    rims, slides with friction and keeps the balance within the issue's 0.5 %."""
     cfg, ring = table1_ring
     options = {"seat_friction": 0.2, "seat_rings": 8, "ram_annuli": 1}
-    free = run_stack_blow(cfg, stack_unit(cfg, ring, **options), duration=0.008)
     far = stack_unit(cfg, ring, sleeve_clearance=0.02, sleeve_friction=0.3, **options)
     blow = run_stack_blow(cfg, far, duration=0.008)
-    assert np.array_equal(blow.pile_force, free.pile_force)
-    assert np.array_equal(blow.ram_force, free.ram_force)
-    assert blow.friction_energy == free.friction_energy
+    N = far.state.active.size
+    assert np.all(far.state.forces[N - 16:N] == 0.0)  # the 8 + 8 bands open
+    S, K = far.seat_rings, far.pile_rings
+    bare = StackUnit(_without_bands(far.anvil, 1 + 2 * S), far.contact,
+                     _without_bands(far.ring, 2 * S + K), seat_rings=S, pile_rings=K,
+                     seat_stiffness=far.seat_stiffness, seat_friction=0.2, gravity=far.gravity)
+    same = run_stack_blow(cfg, bare, duration=0.008)
+    assert np.array_equal(blow.pile_force, same.pile_force)
+    assert np.array_equal(blow.ram_force, same.ram_force)
+    assert blow.friction_energy == same.friction_energy
+    free = run_stack_blow(cfg, stack_unit(cfg, ring, **options), duration=0.008)
+    assert np.abs(blow.pile_force - free.pile_force).max() < 5e-3 * free.pile_force.max()
     close = stack_unit(cfg, ring, sleeve_clearance=5e-4, sleeve_friction=0.3, **options)
     pressed = run_stack_blow(cfg, close, duration=0.008)
     assert pressed.friction_energy > 2.0 * free.friction_energy
