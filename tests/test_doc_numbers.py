@@ -168,6 +168,8 @@ DEFINITIONS = {
        for q in ("5 cm", "1 N", "10 m", "30 m", "10 to 30 m", "0.5 day", "1 day", "48 h", "1/m",
                  "1.83 m", "43-47 h", "99-122 h")},
     ("validation.md", "1 N"): "the dB reference, re 1 N^2 s (IEC 61260-1)",
+    ("limitations.md", "1 mm"): "the anvil-ring study's sleeve clearance (an input, "
+                                "benchmarks/study_anvil_ring.py DOCS_SLEEVE)",
     ("validation.md", "~4 ms"): "the paper's figure (a citation)",
     ("validation.md", "6.16 m/s"): "the studies' impact velocity (an input)",
     ("validation.md", "0.125 m"): "a segment length (an input)",

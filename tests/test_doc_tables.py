@@ -276,8 +276,8 @@ def test_lumped_conventions_data_file():
 
 
 def test_anvil_ring_data_file():
-    """docs/data/anvil_ring.json (benchmarks/study_anvil_ring.py --docs: eight FEA stacks, 10-40
-    s each, and the two ring runs again at 0.07 and 0.05 m, up to 2 min each, beyond the
+    """docs/data/anvil_ring.json (benchmarks/study_anvil_ring.py --docs: ten FEA stacks, 10-40
+    s each, and the four reference runs again at 0.07 and 0.05 m, up to 3 min each, beyond the
     suite's budget; the FEA's checks are tests/test_fea_ring.py, the ROM's reference rows are
     recomputed against their FEA runs in tests/test_stack.py). Checked here: the tables are
     the script's reading of the file's values, each stored error is its stored ROM and FEA
@@ -299,11 +299,12 @@ def test_anvil_ring_data_file():
                     rel=1e-9, abs=1e-12), (name, part)
             deviation = np.abs(np.array(rom["band_error [dB]"]))
             assert rom["band_error_max [dB]"] == pytest.approx(deviation.max(), abs=1e-12)
-    # what docs/validation.md says of the ROM against the finer references: peaks and RMS
-    # within the issue's bars, the bands within 1.5 dB in half of the runs, over it (by less
-    # than half a dB: "slightly") in the others, at mu 0 against 0.05 m among them
+    # what docs/validation.md says of the ROM against the finer references (without the
+    # sleeve; the sleeve's: test_sleeve_claims_of_the_docs): peaks and RMS within the issue's
+    # bars, the bands within 1.5 dB in half of the runs, over it (by less than half a dB:
+    # "slightly") in the others, at mu 0 against 0.05 m among them
     finer = {(label, name): d["rom"] for label, block in values["reference_error"].items()
-             for name, d in block.items()}
+             for name, d in block.items() if not name.startswith("sleeve")}
     for key, rom in finer.items():
         assert abs(rom["pile_peak_error [-]"]) < 0.03 and abs(rom["ram_peak_error [-]"]) < 0.05
         assert rom["pile_rms_error [-]"] < 0.10 and rom["ram_rms_error [-]"] < 0.10, key
