@@ -8,6 +8,13 @@ import sys
 from importlib import metadata
 from pathlib import Path
 
+# One BLAS thread per test process, set before numpy loads OpenBLAS: the suite runs one worker
+# per core (``-n 2``), and each worker's OpenBLAS threads on every core then fight the other
+# worker's (two shift-invert Lanczos solves of the ram's 502 modes side by side: 107 s each
+# with OpenBLAS's default threads, 47-52 s with one). Subprocesses inherit it.
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
 import numpy as np
 import pytest
 from packaging.requirements import Requirement

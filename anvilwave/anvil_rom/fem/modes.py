@@ -235,7 +235,7 @@ def _sliced_lanczos(K, M, count: int, shift: float, lam_max: float, start: np.nd
     below = [0, *(sturm_count(K, M, c) for c in cuts[1:-1]), count]
     Kc, Mc = K.tocsc(), M.tocsc()
     values, vectors = [], []
-    for lo, hi, n_lo, n_hi in zip(cuts[:-1], cuts[1:], below[:-1], below[1:]):
+    for lo, hi, n_lo, n_hi in zip(cuts[:-1], cuts[1:], below[:-1], below[1:], strict=True):
         n = n_hi - n_lo
         if n == 0:
             continue
