@@ -121,7 +121,19 @@ M. I with the toe from the CPT averaged about the tip (``Step.toe_average``): wh
    the 0.5 m series: the base of an open pile is governed by the soil over a zone of about
    1.5 D about the tip, not by the reading at it); a tip in clay keeps the clay toe at its own
    qt (``AlmHamre2001(toe_qt_half_window=1.5 D)``). It fits the second grid simulated again
-   with that toe (the shaft, and so the fatigue tables, unchanged).
+   with that toe (the shaft, and so the fatigue tables, unchanged);
+N. the final step as blow-by-blow installations: every held-out pile driven with its fold's
+   fit from 0.5 m above its first record depth to 0.5 m below its last, each blow from the
+   state the last left (the residual stress kept), the blow energy the record's at the tip,
+   the SRD rebuilt every 0.1 m, the blows counted in the metre of their tip
+   (:func:`install_pile`); direct runs, scored beside the per-depth model's direct runs at
+   the same fits.
+
+What bounds them (:func:`departures_from_the_depth_mean`): the piles of one foundation share
+its CPT, so the pile-to-pile spread about their mean at each depth is beyond any model of
+the soil; and a model beats the depth mean only where its departures from its own depth
+mean follow the foundations' departures from the records' (correlation above half the ratio
+of their spreads). Both are reported for the final step.
 
 Cost: the blow counts of every calibration record are simulated on a grid of common SRD
 multipliers x reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD
@@ -446,6 +458,25 @@ def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarra
     return float(np.sum(j * shaft) / total)
 
 
+def soil_at_tip(cfg, srd, profile, model: Model, tip: float) -> tuple:
+    """The pile and soil of one tip depth [m] with the model's class multipliers and soil
+    dynamics: (PileSoil at the method's SRD, shaft capacities per segment [N] and toe
+    capacity [N] with the class multipliers, per segment: in sand, the Smith shaft damping
+    [s/m], the toe quake [m] and damping [s/m])."""
+    from anvilwave.config.drive import pile_soil_at
+
+    ps, _, _ = pile_soil_at(cfg.pile_soil, srd, tip, 1.0)
+    cap_shaft, cap_toe = ps.soil.capacities
+    seg = cfg.pile_soil.pile.discretise()
+    length = cfg.pile_soil.pile.length
+    sand = segment_is_sand(profile, seg, length, tip)
+    cap_shaft = cap_shaft * np.where(sand, model.srd_sand, model.srd_clay)
+    cap_toe = cap_toe * model.srd_toe
+    j = shaft_damping(profile, seg, length, tip, cap_shaft, model)
+    quake_toe, damping_toe = model.toe_dynamics(toe_in_sand(profile, tip))
+    return ps, cap_shaft, cap_toe, sand, j, quake_toe, damping_toe
+
+
 def simulate_pile(job: tuple) -> dict:
     """Blow counts of one pile at every depth for every (multiplier, reference energy).
 
@@ -457,7 +488,6 @@ def simulate_pile(job: tuple) -> dict:
     under its weight (the SRD scales with the multiplier, so the threshold is exact).
     """
     from anvilwave.analyses.drive import blow_count, driving_weight, set_of_blow
-    from anvilwave.config.drive import pile_soil_at
     from anvilwave.config.system import load_system
     from anvilwave.engine.direct import build_engine
 
@@ -470,22 +500,15 @@ def simulate_pile(job: tuple) -> dict:
     profile = soil_profile(pile, model)
     srd = srd_source(pile, model, profile)
     weight = driving_weight(cfg, engine.static_head_force)
-    seg = cfg.pile_soil.pile.discretise()
-    length = cfg.pile_soil.pile.length
     shape = (len(multipliers), len(energies), len(pile.depths))
     out = {k: np.full(shape, np.nan) for k in ("count", "enthru", "compression", "tension")}
     per_depth = {k: np.zeros(len(pile.depths)) for k in ("srd_shaft", "srd_toe",
                                                           "srd_shaft_sand", "damping_shaft",
                                                           "run_multiplier")}
     for iz, tip in enumerate(pile.depths):
-        ps, shaft, toe = pile_soil_at(cfg.pile_soil, srd, float(tip), 1.0)
-        cap_shaft, cap_toe = ps.soil.capacities
-        sand = segment_is_sand(profile, seg, length, float(tip))
-        cap_shaft = cap_shaft * np.where(sand, model.srd_sand, model.srd_clay)
-        cap_toe = cap_toe * model.srd_toe
+        ps, cap_shaft, cap_toe, sand, j, quake_toe, damping_toe = soil_at_tip(
+            cfg, srd, profile, model, float(tip))
         shaft, toe = float(np.sum(cap_shaft)), float(cap_toe)
-        j = shaft_damping(profile, seg, length, float(tip), cap_shaft, model)
-        quake_toe, damping_toe = model.toe_dynamics(toe_in_sand(profile, float(tip)))
         per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
         per_depth["srd_shaft_sand"][iz] = float(np.sum(cap_shaft[sand]))
         per_depth["damping_shaft"][iz] = j
@@ -519,6 +542,116 @@ def simulate_pile(job: tuple) -> dict:
 
 
 # ----------------------------------------------------------------------------- records
+INSTALL_SRD_UPDATE = 0.1
+"""Tip advance [m] after which the installation's SRD is rebuilt at the tip
+(:func:`install_pile`)."""
+INSTALL_RUN_STEP = 0.05
+"""Step [m] by which the installation's tip runs through soil that does not carry the
+weight of pile and hammer."""
+
+
+def install_pile(job: tuple) -> dict:
+    """Blow-by-blow installation of one pile over its record (the residual stress kept).
+
+    job : (PileRecord, Model, reference energy E_ref [J]). The installation starts at rest,
+    in static equilibrium under the weight of pile and hammer, 0.5 m above the first record
+    depth, and drives blow after blow, each from the state the last left (the shaft and the
+    toe keep their residual loads), to 0.5 m below the last; the blow energy at the tip is
+    the record's normalised energy (linear between its whole metres) times E_ref; the SRD
+    (the model's class multipliers and soil dynamics, :func:`soil_at_tip`) is rebuilt every
+    :data:`INSTALL_SRD_UPDATE` of penetration. Where the SRD does not carry the weight the
+    tip runs (in steps of :data:`INSTALL_RUN_STEP`, no blows) and the state restarts from
+    static equilibrium below. Returns ``count`` [blows/m] per record depth z: the blows
+    struck with the tip in [z - 0.5, z + 0.5) m (the record's whole-metre count;
+    :data:`REFUSAL_COUNT` from a window that takes more blows on), and ``blows`` [-], the
+    blows struck.
+    """
+    from anvilwave.analyses.drive import driving_weight
+    from anvilwave.config.system import load_system
+    from anvilwave.engine.direct import build_engine
+
+    pile, model, e_ref = job
+    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
+        path = Path(tmp) / f"{pile.location_id}.toml"
+        path.write_text(system_toml(pile, model))
+        cfg = load_system(path)
+    engine = build_engine(cfg)
+    profile = soil_profile(pile, model)
+    srd = srd_source(pile, model, profile)
+    weight = driving_weight(cfg, engine.static_head_force)
+    depths = np.asarray(pile.depths, float)
+    edges = np.append(depths - 0.5, depths[-1] + 0.5)
+    counts = np.zeros(depths.size)
+    tip, end = float(edges[0]), float(edges[-1])
+    eng = state = None
+    built_at = -np.inf
+    blows = 0
+    while tip < end:
+        if state is None or tip - built_at >= INSTALL_SRD_UPDATE:
+            ps, cap_shaft, cap_toe, _, j, quake_toe, damping_toe = soil_at_tip(
+                cfg, srd, profile, model, tip)
+            soil = replace(ps.soil, capacities=(cap_shaft, cap_toe), damping_shaft=j,
+                           quake_toe=quake_toe, damping_toe=damping_toe)
+            built_at = tip
+            if float(np.sum(cap_shaft)) + float(cap_toe) <= weight:
+                tip, state = tip + INSTALL_RUN_STEP, None  # the pile runs: no blow
+                continue
+            eng = engine.with_pile_soil(replace(ps, soil=soil))
+            if state is None:
+                try:
+                    state = eng.static_state()
+                except ValueError:  # no static equilibrium under the weight: a run
+                    tip += INSTALL_RUN_STEP
+                    continue
+        window = int(np.searchsorted(edges, tip, side="right")) - 1
+        if counts[window] >= REFUSAL_COUNT:
+            counts[window:] = REFUSAL_COUNT
+            break
+        energy = float(np.interp(tip, depths, pile.energy)) * e_ref
+        blow = eng.blow(state=state, impact_velocity=cfg.hammer.impact_velocity_at(energy),
+                        duration=model.duration, record=False, energy=False)
+        state = blow.final_state
+        counts[window] += 1.0
+        blows += 1
+        tip += max(float(blow.permanent_set), 0.0)
+    return {"count": counts, "blows": np.array(blows)}
+
+
+def _install(job: tuple) -> dict:
+    """:func:`install_pile`, its errors named after the pile (and picklable)."""
+    try:
+        return install_pile(job)
+    except Exception as exc:
+        raise RuntimeError(f"pile {job[0].location_id}: {type(exc).__name__}: {exc}") from None
+
+
+def cached_jobs(cache: Path | None, tag: str, function, jobs: list, workers: int) -> list[dict]:
+    """``function`` over ``jobs`` (each (PileRecord, Model, numbers...)) in ``workers``
+    processes, each job's result read from / written to ``cache`` under a name hashing its
+    inputs (as :func:`cached`, one file per job: the jobs may have different models)."""
+    def path_of(job):
+        p, model, *rest = job
+        key = repr((tag, _Raw(model_key(model)), [np.asarray(r, float).tolist() for r in rest],
+                    (p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
+                     p.depths.tolist(), p.energy.tolist())))
+        return Path(cache) / f"{tag}-{hashlib.sha256(key.encode()).hexdigest()[:20]}.npz"
+
+    paths = [path_of(j) for j in jobs] if cache is not None else [None] * len(jobs)
+    todo = [i for i, p in enumerate(paths) if p is None or not p.exists()]
+    done = dict(zip(todo, _map(function, [jobs[i] for i in todo], workers), strict=True))
+    out = []
+    for i, path in enumerate(paths):
+        if i in done:
+            if path is not None:
+                Path(cache).mkdir(parents=True, exist_ok=True)
+                np.savez(path, **{k: np.asarray(v) for k, v in done[i].items()})
+            out.append(done[i])
+        else:
+            with np.load(path) as z:
+                out.append({k: z[k] for k in z.files})
+    return out
+
+
 def _rows(path: Path) -> list[dict]:
     with open(path, newline="", encoding="utf-8") as handle:
         return list(csv.DictReader(handle))
@@ -797,6 +930,65 @@ def naive_baseline(train, held_out) -> list[np.ndarray]:
     return [np.array([float(np.mean(by_depth[round(float(z), 6)]))
                       if round(float(z), 6) in by_depth else math.nan for z in p.depths])
             for p in held_out]
+
+
+def departures_from_the_depth_mean(piles, groups, predicted) -> dict:
+    """How much of the foundations' departures from the depth mean a model's predictions
+    carry (the bound the naive baseline sets on a model of the records).
+
+    piles : the records' piles (their measured counts) in the order of ``predicted``;
+    groups : their foundations; predicted : per record, the model's blow count [blows/m]
+    (a cross-validation's: every record predicted with its foundation held out).
+
+    The departure of a record is its count minus the baseline (the mean of the other
+    foundations at its depth, :func:`record_baselines`); the model's departure is its
+    prediction minus the same mean of its own predictions of the other foundations. A
+    model that keeps its departures and takes the depth trend from the records (the
+    baseline plus its departure) beats the baseline exactly when its departures correlate
+    with the measured ones by more than half the ratio of their spreads (in the records'
+    own statistics: the mean square of d_m - d_p is below that of d_m when
+    2 cov(d_m, d_p) > var(d_p)). The piles of one foundation share its CPT: the spread of
+    their counts about the foundation's mean at each depth (pooled, n - 1 per depth) is what
+    no model of the foundation's soil can give.
+
+    Returns ``records [-]``, ``within_foundation_sd [blows/m]``, ``measured_sd``,
+    ``model_sd`` [blows/m] (the departures' RMS), ``correlation [-]`` (measured and model
+    departures), ``foundation_correlation [-]`` (the model's departure against the
+    foundation's, its piles' mean at the depth, less the baseline), ``needed_correlation [-]``
+    (model_sd / (2 measured_sd)) and ``trend_from_records_rmse [blows/m]`` (the baseline plus
+    the model's departure, against the measured counts).
+    """
+    measured = np.concatenate([p.measured for p in piles])
+    predicted = np.asarray(predicted, float)
+    split = np.split(predicted, np.cumsum([p.depths.size for p in piles])[:-1])
+    baseline = record_baselines(piles, groups)
+    model_baseline = record_baselines([replace(p, measured=v) for p, v in
+                                       zip(piles, split, strict=True)], groups)
+    ok = np.isfinite(baseline) & np.isfinite(model_baseline) & np.isfinite(predicted)
+    keys = [(p.cpt_group, round(float(z), 6)) for p in piles for z in p.depths]
+    members: dict = {}
+    for i, k in enumerate(keys):
+        members.setdefault(k, []).append(i)
+    mean_of = {k: float(np.mean(measured[v])) for k, v in members.items()}
+    foundation = np.array([mean_of[k] for k in keys])
+    spread = sum(float(np.sum((measured[v] - mean_of[k]) ** 2)) for k, v in members.items())
+    dof = sum(len(v) - 1 for v in members.values())
+    d_m = (measured - baseline)[ok]
+    d_p = (predicted - model_baseline)[ok]
+    d_f = (foundation - baseline)[ok]
+    measured_sd = float(np.sqrt(np.mean(d_m * d_m)))
+    model_sd = float(np.sqrt(np.mean(d_p * d_p)))
+
+    def corr(a, b):  # about zero, as the mean squares above (NaN: no departures)
+        scale = float(np.sqrt(np.sum(a * a) * np.sum(b * b)))
+        return float(np.sum(a * b)) / scale if scale > 0.0 else math.nan
+
+    return {"records [-]": int(ok.sum()),
+            "within_foundation_sd [blows/m]": math.sqrt(spread / dof) if dof else math.nan,
+            "measured_sd [blows/m]": measured_sd, "model_sd [blows/m]": model_sd,
+            "correlation [-]": corr(d_m, d_p), "foundation_correlation [-]": corr(d_f, d_p),
+            "needed_correlation [-]": model_sd / (2.0 * measured_sd),
+            "trend_from_records_rmse [blows/m]": rmse(baseline[ok] + d_p, measured[ok])}
 
 
 def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
@@ -1236,19 +1428,21 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
     E_ref at most the rating over the largest blow energy per unit E_ref of the training
     records); hammer_surfaces : per hammer class by name, (its surface of the same records,
     its rating [J]), for the steps with ``hammers`` (:func:`fit_step`; the other steps fit
-    ``surface``). Returns (a row per step, the predictions per step)."""
+    ``surface``). Returns (a row per step; the predictions per step, the baseline, the
+    measured counts, the records' foundations, the scored records and per step the fit of
+    every fold, foundation -> (hammer class, fit))."""
     measured = np.concatenate([p.measured for p in piles])
     group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
     groups = sorted(set(group.tolist()))
     baseline = record_baselines(piles, groups)
     ok = np.isfinite(baseline)
-    rows, predictions = [], {}
+    rows, predictions, folds = [], {}, {}
     every = {"": (surface, rated_energy), **(hammer_surfaces or {})}
     for step in steps:
         surfs = {h: (s.with_energy_factor(enthru_factor) if step.energy == "enthru" else s, r)
                  for h, (s, r) in every.items()}
         predicted = np.full(measured.size, np.nan)
-        fits, chosen = [], []
+        fits, chosen, fold_fits = [], [], {}
         for g in groups:
             train, test = group != g, group == g
             hammer, fitted = fit_step(step, {h: (s.subset(train), r)
@@ -1272,7 +1466,9 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                 pred = np.where(np.isfinite(base), base + w * (pred - base), pred)
             predicted[test] = pred
             fits.append(fitted)
+            fold_fits[g] = (hammer, fitted)
         predictions[step.name] = predicted
+        folds[step.name] = fold_fits
         row = {"step": step.name, **_scores(predicted[ok], measured[ok]),
                "rmse_baseline [blows/m]": _scores(baseline[ok], measured[ok])["rmse [blows/m]"],
                "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
@@ -1290,7 +1486,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                 row[f"{key} folds max"] = float(np.max(values))
         rows.append(row)
     return rows, {"predictions": predictions, "baseline": baseline, "measured": measured,
-                  "group": group, "scored": ok}
+                  "group": group, "scored": ok, "fits": folds}
 
 
 # ----------------------------------------------------------------------------- stepwise run
@@ -1333,6 +1529,11 @@ TOE_HALF_WINDOW_DIAMETERS = 1.5
 diameters [-] (ICP-05, UWA-05: :data:`anvilwave.pile.soil.srd_methods.ICP_05_TOE_HALF_WINDOW`)."""
 FINAL_STEP = "I"
 """The step whose all-pile fit predicts the prediction piles (direct runs)."""
+INSTALLATION_STEP = ("N: {final} as a blow-by-blow installation (residual stress kept), "
+                     "each fold's fit")
+"""The name of the step that drives every held-out pile blow by blow, from 0.5 m above its
+first record depth to 0.5 m below its last, with its fold's fit of :data:`FINAL_STEP`
+(:func:`install_pile`; direct runs, not the surface)."""
 ALTERNATIVE_HAMMERS = ("ihc_s1800",)
 """Hammer classes simulated beside the model's on the second grid (step K chooses between
 them per fold): a heavier ram (90 t against 40 t) of a larger rating."""
@@ -1387,6 +1588,15 @@ def final_model(model: Model, fitted: dict) -> Model:
     return replace(model, srd_sand=model.srd_sand * fitted["srd_sand [-]"],
                    srd_clay=model.srd_clay * fitted["srd_clay [-]"],
                    srd_toe=model.srd_toe * fitted["srd_toe [-]"])
+
+
+def fold_model(model: Model, fitted: dict) -> tuple[Model, float]:
+    """(``model`` with a fit's class multipliers and friction-fatigue rate factor, the fit's
+    E_ref [J]): what a direct run at the fit drives with."""
+    out = final_model(model, fitted)
+    if "fatigue_rate [-]" in fitted:
+        out = replace(out, fatigue_rate=fitted["fatigue_rate [-]"])
+    return out, float(fitted["E_ref [J]"])
 
 
 def _enthru_piles(piles):
@@ -1517,13 +1727,16 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
                       fatigue_rate=final["fatigue_rate [-]"])
     direct_f = cached(cache, "direct_final", grid_runs, piles_e, model_f,
                       [final["E_ref [J]"]], [1.0])
+    install_f = cached_jobs(cache, "install_final", _install,
+                            [(p, model_f, final["E_ref [J]"]) for p in piles_e], args.workers)
     times["direct [s]"] = time.perf_counter() - t
     final_cal = np.concatenate([r["count"][0, 0] for r in direct_f[:n_cal]])
+    install_cal = np.concatenate([r["count"] for r in install_f[:n_cal]])
     surface_at_final = predict_with(surf_final, final)
     surface_at_d = predict_with(surf2f, fit_d)
     # the steps
     t = time.perf_counter()
-    rows, records = [], None
+    rows, records, fold_fits = [], None, {}
     for which, step in PREDICTIVE_STEPS:
         surf = surf1 if which == "grid1" else surf2_toe if step.toe_average else surf2
         r, res = stepwise_cross_validation(calibration, surf, factor, [step], stress_ratio,
@@ -1533,12 +1746,51 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
             records = {"measured": res["measured"], "baseline": res["baseline"],
                        "scored": res["scored"], "predictions": {}}
         records["predictions"][step.name] = res["predictions"][step.name]
+        fold_fits[step.name] = res["fits"][step.name]
         print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
               f"{r[0]['bias [blows/m]']:+.1f} blows/m (naive "
               f"{r[0]['rmse_baseline [blows/m]']:.1f}, "
               f"{r[0]['bias_baseline [blows/m]']:+.1f})", flush=True)
     times["cross_validation [s]"] = time.perf_counter() - t
-    step_names = [st.name for _, st in PREDICTIVE_STEPS]
+    # the final step as blow-by-blow installations: every held-out pile driven with its
+    # fold's fit (direct runs), beside the per-depth model's direct runs at the same fits
+    t = time.perf_counter()
+    folds_final = fold_fits[final_step.name]
+    fold_models = [fold_model(model2_toe if final_step.toe_average else model2,
+                              folds_final[p.cpt_group][1]) for p in calibration]
+    installed = cached_jobs(cache, "install_cv", _install,
+                            [(p, m, e) for p, (m, e) in zip(piles_e[:n_cal], fold_models,
+                                                            strict=True)], args.workers)
+    per_depth = cached_jobs(cache, "direct_cv", _simulate,
+                            [(p, m, [e], [1.0]) for p, (m, e) in zip(piles_e[:n_cal],
+                                                                     fold_models, strict=True)],
+                            args.workers)
+    times["installation_cv [s]"] = time.perf_counter() - t
+    install_name = INSTALLATION_STEP.format(final=FINAL_STEP)
+    install_cv = np.concatenate([r["count"] for r in installed])
+    direct_cv = np.concatenate([r["count"][0, 0] for r in per_depth])
+    records["predictions"][install_name] = install_cv
+    ok_cv = records["scored"]
+    base_scores = _scores(records["baseline"][ok_cv], measured[ok_cv])
+    rows.append({"step": install_name, **_scores(install_cv[ok_cv], measured[ok_cv]),
+                 "rmse_baseline [blows/m]": base_scores["rmse [blows/m]"],
+                 "bias_baseline [blows/m]": base_scores["bias [blows/m]"],
+                 "points [-]": int(ok_cv.sum()), "folds [-]": len(groups),
+                 "blows [-]": int(sum(int(r["blows"]) for r in installed))})
+    direct_cv_scores = _scores(direct_cv[ok_cv], measured[ok_cv])
+    both = (direct_cv > 0) & (install_cv > 0)  # both driven (a run has no blows): a ratio
+    print(f"{install_name}: CV RMSE {rows[-1]['rmse [blows/m]']:.1f}, bias "
+          f"{rows[-1]['bias [blows/m]']:+.1f} blows/m (the per-depth model's direct runs at "
+          f"the same fits {direct_cv_scores['rmse [blows/m]']:.1f}, "
+          f"{direct_cv_scores['bias [blows/m]']:+.1f})", flush=True)
+    step_names = [*(st.name for _, st in PREDICTIVE_STEPS), install_name]
+    departures = departures_from_the_depth_mean(
+        calibration, groups, records["predictions"][final_step.name])
+    for row in rows:  # every step's departures against the records' (the same bound)
+        dep = departures_from_the_depth_mean(calibration, groups,
+                                             records["predictions"][row["step"]])
+        row["departure_correlation [-]"] = dep["correlation [-]"]
+        row["departure_needed_correlation [-]"] = dep["needed_correlation [-]"]
     record_rows = []
     k = 0
     for p in calibration:
@@ -1561,13 +1813,14 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     weight_g = stacking_weight(directn[good], inner[good], measured[good])
     weight = stacking_weight(final_cal[good], inner[good], measured[good])
     pred_rows = []
-    for p, r in zip(prediction, direct_f[n_cal:], strict=True):
+    for p, r, ri in zip(prediction, direct_f[n_cal:], install_f[n_cal:], strict=True):
         base = naive_baseline(calibration, [p])[0]
         physics = r["count"][0, 0]
         blend = np.where(np.isfinite(base), base + weight * (physics - base), physics)
         for i, z in enumerate(p.depths):
             pred_rows.append({"location_id": p.location_id, "z [m]": float(z),
                               "blowcount [blows/m]": float(physics[i]),
+                              "installation [blows/m]": float(ri["count"][i]),
                               "stacked [blows/m]": float(blend[i]),
                               "naive [blows/m]": float(base[i])})
     write_csv(out / "prediction_piles_blowcount.csv", pred_rows)
@@ -1597,6 +1850,14 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
                                   "toe": model_d.srd_toe},
         "final_srd_multipliers [-]": {"sand": model_f.srd_sand, "clay": model_f.srd_clay,
                                       "toe": model_f.srd_toe},
+        "installation_cv": {
+            "step": install_name,
+            "per_depth_direct_rmse [blows/m]": direct_cv_scores["rmse [blows/m]"],
+            "per_depth_direct_bias [blows/m]": direct_cv_scores["bias [blows/m]"],
+            "installation_over_per_depth_5_50_95 [-]": np.percentile(
+                install_cv[both] / direct_cv[both], [5, 50, 95]).tolist(),
+            "blows [-]": rows[-1]["blows [-]"]},
+        "departures_final": departures,
         "stacking_weight_g [-]": weight_g,
         "stacking_weight_final [-]": weight,
         "surface_vs_direct_at_d": {
@@ -1612,6 +1873,8 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
             "bias_residual_stress_d [blows/m]": float(np.mean(directn - measured)),
             "rmse_final [blows/m]": rmse(final_cal, measured),
             "bias_final [blows/m]": float(np.mean(final_cal - measured)),
+            "rmse_installation_final [blows/m]": rmse(install_cal, measured),
+            "bias_installation_final [blows/m]": float(np.mean(install_cal - measured)),
             "residual_stress_ratio_5_50_95 [-]": np.percentile(
                 stress_ratio[direct1 > 0], [5, 50, 95]).tolist()},
         "largest_blow_energy_d [J]": max_energy_d,
@@ -1838,6 +2101,8 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
     direct = summary["calibration_direct"]
     surface = summary["surface_vs_direct_at_final"]
     surface_d = summary["surface_vs_direct_at_d"]
+    installation = summary["installation_cv"]
+    departures = summary["departures_final"]
     means = summary["prediction_piles_mean_blowcount [blows/m]"]
     naive = summary["naive_rmse [blows/m]"]
     subs = {
@@ -1877,7 +2142,7 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "naive_rmse": [naive, "f1"],
         "naive_bias": [summary["naive_bias [blows/m]"], "f1+"],
         "final_minus_naive": [summary["cv_rmse [blows/m]"] - naive, "f1+"],
-        "best_physics": [min(score[k] for k in "ABCDFHIKLM"), "f1"],
+        "best_physics": [min(score[k] for k in "ABCDFHIKLMN"), "f1"],
         "k_change": [score["K"] - score["I"], "f1+"],
         "k_heavier_folds": [steps["K"]["folds with ihc_s1800 [-]"], "int"],
         "l_change": [score["L"] - score["I"], "f1+"],
@@ -1890,6 +2155,29 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "m_change": [score["M"] - score["I"], "f1+"],
         "m_minus_naive": [score["M"] - naive, "f1+"],
         "j_rmse": [score["J"], "f1"],
+        "n_rmse": [score["N"], "f1"],
+        "n_bias": [steps["N"]["bias [blows/m]"], "f1+"],
+        "n_minus_naive": [score["N"] - naive, "f1+"],
+        "n_blows": [steps["N"]["blows [-]"], "int"],
+        "n_direct_rmse": [installation["per_depth_direct_rmse [blows/m]"], "f1"],
+        "n_change_direct": [score["N"] - installation["per_depth_direct_rmse [blows/m]"],
+                            "f1+"],
+        "n_ratio_p5": [installation["installation_over_per_depth_5_50_95 [-]"][0] - 1.0,
+                       "pct+sig2"],
+        "n_ratio_p95": [installation["installation_over_per_depth_5_50_95 [-]"][2] - 1.0,
+                        "pct+sig2"],
+        "final_installation_rmse": [direct["rmse_installation_final [blows/m]"], "f1"],
+        "within_foundation_sd": [departures["within_foundation_sd [blows/m]"], "f1"],
+        "departure_sd_measured": [departures["measured_sd [blows/m]"], "f1"],
+        "departure_sd_model": [departures["model_sd [blows/m]"], "f1"],
+        "departure_correlation": [departures["correlation [-]"], "f2"],
+        "departure_correlation_foundation": [departures["foundation_correlation [-]"], "f2"],
+        "departure_needed_correlation": [departures["needed_correlation [-]"], "f2"],
+        "trend_from_records_rmse": [departures["trend_from_records_rmse [blows/m]"], "f1"],
+        "departure_correlation_physics_min": [min(
+            steps[k]["departure_correlation [-]"] for k in "ABCDFHIKLMN"), "f2"],
+        "departure_correlation_physics_max": [max(
+            steps[k]["departure_correlation [-]"] for k in "ABCDFHIKLMN"), "f2"],
         "piles_below_naive": [summary["piles_final_below_naive [-]"], "int"],
         "piles_scored": [summary["piles_scored [-]"], "int"],
         "final_direct_rmse": [direct["rmse_final [blows/m]"], "f1"],

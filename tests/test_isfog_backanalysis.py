@@ -185,11 +185,11 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     assert bench.main([*argv, "--docs-from", str(out / "isfog_backanalysis.json")]) == 0
     assert (tmp_path / "data" / "isfog_backanalysis.json").read_text() == first
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLM")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMN")
     # one baseline for every step, computed on the same records
     assert len({(s["rmse_baseline [blows/m]"], s["points [-]"]) for s in steps}) == 1
     assert all(math.isfinite(s["rmse [blows/m]"]) for s in steps)
-    final = "ABCDEFGHIJKLM".index(bench.FINAL_STEP)
+    final = "ABCDEFGHIJKLMN".index(bench.FINAL_STEP)
     assert summary["cv_rmse [blows/m]"] == steps[final]["rmse [blows/m]"]
     assert summary["cv_folds [-]"] == 2
     # the energy-capped steps keep every fold's largest blow within the rating: E_ref at most
@@ -225,6 +225,17 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     z = [float(r["z [m]"]) for r in prediction]
     assert z == list(np.arange(z[0], z[-1] + 1.0))
     assert all(float(r["blowcount [blows/m]"]) >= 0.0 for r in prediction)
+    assert all(float(r["installation [blows/m]"]) >= 0.0 for r in prediction)
+    # N, the installations: every blow struck is counted in the metre of its tip (the record
+    # depths' windows [z - 0.5, z + 0.5) tile the driven span), no pile refused here
+    n = steps[13]
+    counts = [float(x["N"]) for x in records]
+    assert all(c == int(c) and c < bench.REFUSAL_COUNT for c in counts)
+    assert sum(counts) == n["blows [-]"] == summary["installation_cv"]["blows [-]"] > 0
+    # the blow after blow and the per-depth model, the same fits: the residual stress moves
+    # the counts, it does not make another pile of them (within a factor 2 at every depth)
+    ratio = summary["installation_cv"]["installation_over_per_depth_5_50_95 [-]"]
+    assert 0.5 < ratio[0] <= ratio[1] <= ratio[2] < 2.0
 
 
 def _synthetic_piles(bench):
@@ -554,6 +565,42 @@ def test_fit_step_chooses_the_hammer_class_that_made_the_data():
     assert fitted["E_ref_max [J]"] == pytest.approx(800e3 / bench.largest_energy_per_e_ref(light))
 
 
+def test_departures_from_the_depth_mean_by_hand():
+    """The bound the depth mean sets: synthetic records, each foundation's departure known."""
+    bench = _benchmark()
+    piles = _synthetic_piles(bench)
+    groups = ["A", "B", "C"]
+    measured = np.concatenate([p.measured for p in piles])
+    # a model equal to the records: its departures are the measured ones
+    exact = bench.departures_from_the_depth_mean(piles, groups, measured)
+    assert exact["correlation [-]"] == pytest.approx(1.0)
+    assert exact["model_sd [blows/m]"] == pytest.approx(exact["measured_sd [blows/m]"])
+    assert exact["trend_from_records_rmse [blows/m]"] == pytest.approx(0.0, abs=1e-12)
+    assert exact["needed_correlation [-]"] == pytest.approx(0.5)
+    # the two piles of a foundation differ by 2 blows/m at each depth: sd sqrt(2) about
+    # their mean (one degree of freedom per depth)
+    assert exact["within_foundation_sd [blows/m]"] == pytest.approx(math.sqrt(2.0))
+    # every record has another foundation at its depth; A1 at 1 m departs from the others'
+    # mean (20 + 22 + 5 + 7) / 4 = 13.5 by 10 - 13.5
+    assert exact["records [-]"] == 16
+    baseline = bench.record_baselines(piles, groups)
+    assert baseline[0] == 13.5
+    assert exact["measured_sd [blows/m]"] == pytest.approx(bench.rmse(baseline, measured))
+    # a model that knows only the depth trend: no departures, the baseline's own score
+    trend = np.concatenate([np.full(p.depths.size, 0.0) + p.depths * 10.0 for p in piles])
+    flat = bench.departures_from_the_depth_mean(piles, groups, trend)
+    assert flat["model_sd [blows/m]"] == pytest.approx(0.0, abs=1e-12)
+    assert flat["trend_from_records_rmse [blows/m]"] == pytest.approx(
+        bench.rmse(baseline, measured))
+    # departures of twice the measured: the mean square identity of the docstring,
+    # |d_m - d_p|^2 = sd_m^2 + sd_p^2 - 2 r sd_m sd_p, with sd_p = 2 sd_m and r = 1
+    double = bench.departures_from_the_depth_mean(piles, groups, 2.0 * measured)
+    assert double["correlation [-]"] == pytest.approx(1.0)
+    assert double["needed_correlation [-]"] == pytest.approx(1.0)
+    assert double["trend_from_records_rmse [blows/m]"] == pytest.approx(
+        double["measured_sd [blows/m]"])
+
+
 def test_stacking_weight_by_hand():
     bench = _benchmark()
     base = np.array([10.0, 20.0, 30.0])
@@ -573,7 +620,7 @@ def test_docs_data_file_is_the_runs_summary():
     data = doc_data("isfog_backanalysis")
     summary = data["values"]
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLM")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMN")
     table = data["tables"]["steps"]
     assert [row[0] for row in table["rows"]] == [s["step"] for s in steps]
     assert [row[1] for row in table["rows"]] == [s["rmse [blows/m]"] for s in steps]
@@ -588,11 +635,18 @@ def test_docs_data_file_is_the_runs_summary():
     assert subs["c_gain"][0] == steps[2]["rmse [blows/m]"] - steps[1]["rmse [blows/m]"]
     assert subs["d_gain"][0] == steps[3]["rmse [blows/m]"] - steps[2]["rmse [blows/m]"]
     # the final step, scored against the same baseline
-    final = steps["ABCDEFGHIJKLM".index(bench.FINAL_STEP)]
+    final = steps["ABCDEFGHIJKLMN".index(bench.FINAL_STEP)]
     assert summary["final_step"] == final["step"]
     assert summary["cv_rmse [blows/m]"] == final["rmse [blows/m]"]
     assert subs["final_minus_naive"][0] == (final["rmse [blows/m]"]
                                             - final["rmse_baseline [blows/m]"])
+    # N, the installations, against the baseline and the per-depth model at the same fits
+    installation = summary["installation_cv"]
+    assert installation["step"] == steps[13]["step"]
+    assert subs["n_minus_naive"][0] == (steps[13]["rmse [blows/m]"]
+                                        - steps[13]["rmse_baseline [blows/m]"])
+    assert subs["n_change_direct"][0] == (steps[13]["rmse [blows/m]"]
+                                          - installation["per_depth_direct_rmse [blows/m]"])
     # M against I and the baseline
     assert subs["m_change"][0] == steps[12]["rmse [blows/m]"] - steps[8]["rmse [blows/m]"]
     assert subs["m_minus_naive"][0] == (steps[12]["rmse [blows/m]"]
