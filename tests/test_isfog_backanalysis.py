@@ -233,7 +233,8 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     assert all(c == int(c) and c < bench.REFUSAL_COUNT for c in counts)
     assert sum(counts) == n["blows [-]"] == summary["installation_cv"]["blows [-]"] > 0
     # the blow after blow and the per-depth model, the same fits: the residual stress moves
-    # the counts, it does not make another pile of them (within a factor 2 at every depth)
+    # the counts, it does not make another pile of them (their ratio within a factor 2 over
+    # 5-95 % of the records)
     ratio = summary["installation_cv"]["installation_over_per_depth_5_50_95 [-]"]
     assert 0.5 < ratio[0] <= ratio[1] <= ratio[2] < 2.0
 
@@ -587,7 +588,7 @@ def test_departures_from_the_depth_mean_by_hand():
     assert baseline[0] == 13.5
     assert exact["measured_sd [blows/m]"] == pytest.approx(bench.rmse(baseline, measured))
     # a model that knows only the depth trend: no departures, the baseline's own score
-    trend = np.concatenate([np.full(p.depths.size, 0.0) + p.depths * 10.0 for p in piles])
+    trend = np.concatenate([p.depths * 10.0 for p in piles])
     flat = bench.departures_from_the_depth_mean(piles, groups, trend)
     assert flat["model_sd [blows/m]"] == pytest.approx(0.0, abs=1e-12)
     assert flat["trend_from_records_rmse [blows/m]"] == pytest.approx(
