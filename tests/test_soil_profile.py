@@ -91,6 +91,13 @@ def test_total_cone_resistance():
     profile = SoilProfile([sand(0, 10)], cpt, net_area_ratio=0.75)
     # at 5 m: qc 15 MPa, u2 0.75 MPa -> 15 + 0.25 x 0.75 = 15.1875 MPa
     assert profile.qt(5.0) == pytest.approx(15.1875e6, rel=1e-14)
+    # at the readings: 10 + 0.25 x 0.5 and 20 + 0.25 x 1.0 MPa, read-only
+    readings = profile.qt_readings
+    assert readings == pytest.approx([10.125e6, 20.25e6], rel=1e-14)
+    with pytest.raises(ValueError):
+        readings[0] = 0.0
+    with pytest.raises(ValueError, match="needs a CPT"):
+        _ = SoilProfile([sand(0, 10)]).qt_readings
 
 
 def test_profile_and_layer_validation():

@@ -416,6 +416,20 @@ class SoilProfile:
                              f"at {self.cpt.depth[-1]:g} m, above the depth {deepest:g} m "
                              "where it is needed")
 
+    @property
+    def qt_readings(self) -> np.ndarray:
+        """Corrected cone resistance qt at the CPT's readings [Pa] (at ``cpt.depth``; read-only).
+
+        Raises
+        ------
+        ValueError
+            If the profile has no CPT.
+        """
+        self._require_cpt(np.zeros(0))
+        out = np.asarray(self._qt, dtype=float).view()
+        out.flags.writeable = False
+        return out
+
     def qt(self, depth) -> np.ndarray:
         """Corrected cone resistance at ``depth`` [Pa], linear between readings.
 
@@ -700,11 +714,11 @@ class AlmHamre2001:
         """Unit toe resistance [Pa] of a tip in sand from qt averaged over the tip +-
         ``toe_qt_half_window`` (ICP-05 / UWA-05), sigma'v0 that at the tip; a tip in clay:
         the clay toe at the tip's qt."""
-        profile._require_cpt(np.array([tip_depth]))
+        profile.qt(tip_depth)  # a CPT that reaches the tip (ValueError otherwise)
         z = np.asarray(tip_depth, dtype=float)
         if not profile.is_sand[int(np.asarray(profile.layer_index(z)).reshape(-1)[0])]:
             return float(self.point_toe(profile, tip_depth))
-        depth, qt = np.asarray(profile.cpt.depth, float), np.asarray(profile._qt, float)
+        depth, qt = np.asarray(profile.cpt.depth, float), profile.qt_readings
         if depth[0] > 0.0:  # held at the first reading up to the mudline (SoilProfile.qt)
             depth, qt = np.concatenate(([0.0], depth)), np.concatenate((qt[:1], qt))
         qt_avg = sm.cone_resistance_averaged_about_tip(depth, qt, min(tip_depth, depth[-1]),
