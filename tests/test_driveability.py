@@ -264,6 +264,17 @@ def test_stroke_and_efficiency_schedules_give_the_impact_velocity(tmp_path):
         load_system(bad)
 
 
+def test_an_empty_time_series_list_asks_for_none(tmp_path):
+    """``time_series_depths = []`` is the default said out loud: no depth's time series."""
+    from anvilwave.config.system import load_system
+
+    text = (EXAMPLES / "table1.toml").read_text().replace('file = "anvils/xl8.toml"',
+                                                          f'file = "{EXAMPLES}/anvils/xl8.toml"')
+    path = tmp_path / "none.toml"
+    path.write_text(text + "\n[driveability]\ndepths = [0.5]\ntime_series_depths = []\n")
+    assert load_system(path).drive.time_series_depths == ()
+
+
 def test_time_series_at_a_depth_without_blows(tmp_path, capsys):
     """``anvilwave drive`` asked for the time series at a tip depth where the pile runs under
     its own weight (0.5 m: Table 1's SRD there, 5 MN at the toe, is below the 27 MN of pile and

@@ -219,7 +219,7 @@ def load_drive_settings(table: Table | None, source: str) -> DriveSettings:
     multipliers = {"lower": table.number("lower_multiplier", 0.8, gt=0.0, le=1.0),
                    "best": 1.0,
                    "upper": table.number("upper_multiplier", 1.25, ge=1.0, le=5.0)}
-    series = table.array("time_series_depths", None)
+    series = table.array("time_series_depths", None, min_rows=0)  # [] writes none
     duration = table.number("duration", None, gt=0.0, le=1.0, unit="s")
     weight_rule = table.string("weight_on_soil", "all", choices=WEIGHT_RULES)
     window = table.string("window", "fixed", choices=WINDOWS)
