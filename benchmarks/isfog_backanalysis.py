@@ -402,13 +402,9 @@ def shaft_by_class(job: tuple) -> dict:
     (depths, rates), with the model's class multipliers applied as in :func:`simulate_pile`.
     """
     from anvilwave.config.drive import pile_soil_at
-    from anvilwave.config.system import load_system
 
     pile, model, rates = job
-    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
-        path = Path(tmp) / f"{pile.location_id}.toml"
-        path.write_text(system_toml(pile, model))
-        cfg = load_system(path)
+    cfg = pile_system(pile, model)
     profile = soil_profile(pile, model)
     seg = cfg.pile_soil.pile.discretise()
     length = cfg.pile_soil.pile.length
@@ -458,11 +454,33 @@ def shaft_damping(profile, seg, pile_length: float, tip: float, shaft: np.ndarra
     return float(np.sum(j * shaft) / total)
 
 
+def pile_system(pile: PileRecord, model: Model):
+    """The :class:`~anvilwave.config.system.SystemConfig` of one pile (:func:`system_toml`)."""
+    from anvilwave.config.system import load_system
+
+    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
+        path = Path(tmp) / f"{pile.location_id}.toml"
+        path.write_text(system_toml(pile, model))
+        return load_system(path)
+
+
+def pile_engine(pile: PileRecord, model: Model) -> tuple:
+    """What a pile's blows need: (its system, its engine, its soil profile, its SRD source,
+    the weight of pile and hammer on the soil [N])."""
+    from anvilwave.analyses.drive import driving_weight
+    from anvilwave.engine.direct import build_engine
+
+    cfg = pile_system(pile, model)
+    engine = build_engine(cfg)
+    profile = soil_profile(pile, model)
+    return (cfg, engine, profile, srd_source(pile, model, profile),
+            driving_weight(cfg, engine.static_head_force))
+
+
 def soil_at_tip(cfg, srd, profile, model: Model, tip: float) -> tuple:
     """The pile and soil of one tip depth [m] with the model's class multipliers and soil
-    dynamics: (PileSoil at the method's SRD, shaft capacities per segment [N] and toe
-    capacity [N] with the class multipliers, per segment: in sand, the Smith shaft damping
-    [s/m], the toe quake [m] and damping [s/m])."""
+    dynamics: (PileSoil with that soil, its shaft capacities per segment [N] and toe capacity
+    [N], per segment: in sand, the Smith shaft damping [s/m], the toe quake [m])."""
     from anvilwave.config.drive import pile_soil_at
 
     ps, _, _ = pile_soil_at(cfg.pile_soil, srd, tip, 1.0)
@@ -474,7 +492,9 @@ def soil_at_tip(cfg, srd, profile, model: Model, tip: float) -> tuple:
     cap_toe = cap_toe * model.srd_toe
     j = shaft_damping(profile, seg, length, tip, cap_shaft, model)
     quake_toe, damping_toe = model.toe_dynamics(toe_in_sand(profile, tip))
-    return ps, cap_shaft, cap_toe, sand, j, quake_toe, damping_toe
+    soil = replace(ps.soil, capacities=(cap_shaft, cap_toe), damping_shaft=j,
+                   quake_toe=quake_toe, damping_toe=damping_toe)
+    return replace(ps, soil=soil), cap_shaft, cap_toe, sand, j, quake_toe
 
 
 def simulate_pile(job: tuple) -> dict:
@@ -487,26 +507,17 @@ def simulate_pile(job: tuple) -> dict:
     [s/m] and ``run_multiplier`` [-], the SRD multiplier at and below which the pile runs
     under its weight (the SRD scales with the multiplier, so the threshold is exact).
     """
-    from anvilwave.analyses.drive import blow_count, driving_weight, set_of_blow
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
+    from anvilwave.analyses.drive import blow_count, set_of_blow
 
     pile, model, energies, multipliers = job
-    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
-        path = Path(tmp) / f"{pile.location_id}.toml"
-        path.write_text(system_toml(pile, model))
-        cfg = load_system(path)
-    engine = build_engine(cfg)
-    profile = soil_profile(pile, model)
-    srd = srd_source(pile, model, profile)
-    weight = driving_weight(cfg, engine.static_head_force)
+    cfg, engine, profile, srd, weight = pile_engine(pile, model)
     shape = (len(multipliers), len(energies), len(pile.depths))
     out = {k: np.full(shape, np.nan) for k in ("count", "enthru", "compression", "tension")}
     per_depth = {k: np.zeros(len(pile.depths)) for k in ("srd_shaft", "srd_toe",
                                                           "srd_shaft_sand", "damping_shaft",
                                                           "run_multiplier")}
     for iz, tip in enumerate(pile.depths):
-        ps, cap_shaft, cap_toe, sand, j, quake_toe, damping_toe = soil_at_tip(
+        ps, cap_shaft, cap_toe, sand, j, quake_toe = soil_at_tip(
             cfg, srd, profile, model, float(tip))
         shaft, toe = float(np.sum(cap_shaft)), float(cap_toe)
         per_depth["srd_shaft"][iz], per_depth["srd_toe"][iz] = shaft, toe
@@ -514,11 +525,10 @@ def simulate_pile(job: tuple) -> dict:
         per_depth["damping_shaft"][iz] = j
         per_depth["run_multiplier"][iz] = weight / (shaft + toe) if shaft + toe > 0 else np.inf
         for im, m in enumerate(multipliers):
-            soil = replace(ps.soil, capacities=(m * cap_shaft, m * cap_toe), damping_shaft=j,
-                           quake_toe=quake_toe, damping_toe=damping_toe)
             if m * (shaft + toe) <= weight:  # the pile runs under the weight: no blows
                 out["count"][im, :, iz] = 0.0
                 continue
+            soil = replace(ps.soil, capacities=(m * cap_shaft, m * cap_toe))
             eng = engine.with_pile_soil(replace(ps, soil=soil))
             try:
                 state = eng.static_state()
@@ -540,8 +550,6 @@ def simulate_pile(job: tuple) -> dict:
     return {**out, **per_depth}
 
 
-
-# ----------------------------------------------------------------------------- records
 INSTALL_SRD_UPDATE = 0.1
 """Tip advance [m] after which the installation's SRD is rebuilt at the tip
 (:func:`install_pile`)."""
@@ -566,19 +574,8 @@ def install_pile(job: tuple) -> dict:
     :data:`REFUSAL_COUNT` from a window that takes more blows on), and ``blows`` [-], the
     blows struck.
     """
-    from anvilwave.analyses.drive import driving_weight
-    from anvilwave.config.system import load_system
-    from anvilwave.engine.direct import build_engine
-
     pile, model, e_ref = job
-    with tempfile.TemporaryDirectory(prefix="isfog_") as tmp:
-        path = Path(tmp) / f"{pile.location_id}.toml"
-        path.write_text(system_toml(pile, model))
-        cfg = load_system(path)
-    engine = build_engine(cfg)
-    profile = soil_profile(pile, model)
-    srd = srd_source(pile, model, profile)
-    weight = driving_weight(cfg, engine.static_head_force)
+    cfg, engine, profile, srd, weight = pile_engine(pile, model)
     depths = np.asarray(pile.depths, float)
     edges = np.append(depths - 0.5, depths[-1] + 0.5)
     counts = np.zeros(depths.size)
@@ -588,15 +585,12 @@ def install_pile(job: tuple) -> dict:
     blows = 0
     while tip < end:
         if state is None or tip - built_at >= INSTALL_SRD_UPDATE:
-            ps, cap_shaft, cap_toe, _, j, quake_toe, damping_toe = soil_at_tip(
-                cfg, srd, profile, model, tip)
-            soil = replace(ps.soil, capacities=(cap_shaft, cap_toe), damping_shaft=j,
-                           quake_toe=quake_toe, damping_toe=damping_toe)
+            ps, cap_shaft, cap_toe, *_ = soil_at_tip(cfg, srd, profile, model, tip)
             built_at = tip
             if float(np.sum(cap_shaft)) + float(cap_toe) <= weight:
                 tip, state = tip + INSTALL_RUN_STEP, None  # the pile runs: no blow
                 continue
-            eng = engine.with_pile_soil(replace(ps, soil=soil))
+            eng = engine.with_pile_soil(ps)
             if state is None:
                 try:
                     state = eng.static_state()
@@ -632,8 +626,7 @@ def cached_jobs(cache: Path | None, tag: str, function, jobs: list, workers: int
     def path_of(job):
         p, model, *rest = job
         key = repr((tag, _Raw(model_key(model)), [np.asarray(r, float).tolist() for r in rest],
-                    (p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
-                     p.depths.tolist(), p.energy.tolist())))
+                    _pile_key(p)))
         return Path(cache) / f"{tag}-{hashlib.sha256(key.encode()).hexdigest()[:20]}.npz"
 
     paths = [path_of(j) for j in jobs] if cache is not None else [None] * len(jobs)
@@ -652,6 +645,7 @@ def cached_jobs(cache: Path | None, tag: str, function, jobs: list, workers: int
     return out
 
 
+# ----------------------------------------------------------------------------- records
 def _rows(path: Path) -> list[dict]:
     with open(path, newline="", encoding="utf-8") as handle:
         return list(csv.DictReader(handle))
@@ -769,8 +763,7 @@ def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> lis
     if cache is None:
         return run(piles, model, *grid)
     key = repr((tag, _Raw(model_key(model)), [np.asarray(g, float).tolist() for g in grid],
-                [(p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
-                  p.depths.tolist(), p.energy.tolist()) for p in piles]))
+                [_pile_key(p) for p in piles]))
     path = Path(cache) / f"{tag}-{hashlib.sha256(key.encode()).hexdigest()[:20]}.npz"
     if path.exists():
         with np.load(path) as z:
@@ -782,6 +775,13 @@ def cached(cache: Path | None, tag: str, run, piles, model: Model, *grid) -> lis
     arrays = {f"{i}/{k}": np.asarray(v) for i, r in enumerate(results) for k, v in r.items()}
     np.savez(path, piles=len(results), **arrays)
     return results
+
+
+def _pile_key(p: PileRecord) -> tuple:
+    """What a pile's runs depend on, in a cache key: its name, CPT file, geometry, record
+    depths and energy trace."""
+    return (p.location_id, p.cpt_file, p.final_penetration, p.wall_thickness,
+            p.depths.tolist(), p.energy.tolist())
 
 
 class _Raw(str):
@@ -1442,13 +1442,12 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
         surfs = {h: (s.with_energy_factor(enthru_factor) if step.energy == "enthru" else s, r)
                  for h, (s, r) in every.items()}
         predicted = np.full(measured.size, np.nan)
-        fits, chosen, fold_fits = [], [], {}
+        fold_fits = {}  # foundation -> (hammer class, fit)
         for g in groups:
             train, test = group != g, group == g
             hammer, fitted = fit_step(step, {h: (s.subset(train), r)
                                              for h, (s, r) in surfs.items()},
                                       measured[train], len(groups) - 1)
-            chosen.append(hammer)
             sub = surfs[hammer][0].subset(train)
             pred = predict_with(surfs[hammer][0].subset(test), fitted)
             if step.residual_stress:
@@ -1465,10 +1464,11 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                 base = baseline[test]
                 pred = np.where(np.isfinite(base), base + w * (pred - base), pred)
             predicted[test] = pred
-            fits.append(fitted)
             fold_fits[g] = (hammer, fitted)
         predictions[step.name] = predicted
         folds[step.name] = fold_fits
+        chosen = [h for h, _ in fold_fits.values()]
+        fits = [f for _, f in fold_fits.values()]
         row = {"step": step.name, **_scores(predicted[ok], measured[ok]),
                "rmse_baseline [blows/m]": _scores(baseline[ok], measured[ok])["rmse [blows/m]"],
                "bias_baseline [blows/m]": _scores(baseline[ok], measured[ok])["bias [blows/m]"],
