@@ -127,13 +127,22 @@ N. the final step as blow-by-blow installations: every held-out pile driven with
    state the last left (the residual stress kept), the blow energy the record's at the tip,
    the SRD rebuilt every 0.1 m, the blows counted in the metre of their tip
    (:func:`install_pile`); direct runs, scored beside the per-depth model's direct runs at
-   the same fits.
+   the same fits;
+O. I with the SRD at the pile estimated from its foundation's CPT and the site's: the CPT
+   stands at the foundation, not at its piles, so per soil class the foundation's SRD at the
+   tip depth is kriged towards the mean of the foundations at that depth
+   (:func:`simple_kriging_one_sample`, :meth:`ResponseSurface.with_site_weight`), with the
+   correlation between the soil at the CPT and at the piles chosen per fold among
+   0.25-1 by the training objective (1: I); a step of the surface (the prediction piles and
+   N drive with the SRD of their foundation's CPT).
 
 What bounds them (:func:`departures_from_the_depth_mean`): the piles of one foundation share
 its CPT, so the pile-to-pile spread about their mean at each depth is beyond any model of
 the soil; and a model beats the depth mean only where its departures from its own depth
 mean follow the foundations' departures from the records' (correlation above half the ratio
-of their spreads). Both are reported for the final step.
+of their spreads). Both are reported for the final step, with its departures split into the
+soil's part (the blow energy of every record at the site's mean at its depth) and the
+energy's (:func:`departure_parts`).
 
 Cost: the blow counts of every calibration record are simulated on a grid of common SRD
 multipliers x reference energies, twice (grid 1 at the method's SRD; grid 2 at the SRD
@@ -991,6 +1000,22 @@ def departures_from_the_depth_mean(piles, groups, predicted) -> dict:
             "trend_from_records_rmse [blows/m]": rmse(baseline[ok] + d_p, measured[ok])}
 
 
+def departure_parts(whole: dict, soil: dict, energy: dict) -> dict:
+    """A model's departures from its depth mean split in two parts that add up to them, the
+    soil's (the model with every record's blow energy at the site's mean at its depth) and
+    the energy's (the rest): each a :func:`departures_from_the_depth_mean` of the same
+    records. Returns each part's RMS [blows/m] and correlation with the measured departures
+    [-], and the two parts' correlation with each other [-] (from
+    var(a + b) = var(a) + var(b) + 2 cov(a, b), the departures' means about zero as there)."""
+    s, e = soil["model_sd [blows/m]"], energy["model_sd [blows/m]"]
+    w = whole["model_sd [blows/m]"]
+    return {"soil_part_sd [blows/m]": s, "soil_part_correlation [-]": soil["correlation [-]"],
+            "energy_part_sd [blows/m]": e,
+            "energy_part_correlation [-]": energy["correlation [-]"],
+            "soil_energy_correlation [-]": ((w * w - s * s - e * e) / (2.0 * s * e)
+                                            if s > 0.0 and e > 0.0 else math.nan)}
+
+
 def per_pile_table(piles, predicted: list[np.ndarray]) -> list[dict]:
     rows = []
     for p, pred in zip(piles, predicted, strict=True):
@@ -1055,6 +1080,57 @@ FATIGUE_SD = math.log(4.0)
 weak prior, the rate within a factor 4 of the paper's at one standard deviation."""
 
 
+def simple_kriging_one_sample(sample, mean, correlation):
+    """Simple kriging of a stationary random field at a point from one sample elsewhere.
+
+    The best linear unbiased estimate of the field at the point, its mean known, from one
+    reading: ``mean + correlation (sample - mean)``, with the estimation variance
+    sigma^2 (1 - correlation^2) (Fenton & Griffiths 2008, Risk Assessment in Geotechnical
+    Engineering, Wiley, ch. 4, doi:10.1002/9780470284704).
+
+    Parameters
+    ----------
+    sample : array_like
+        The reading at the sampled point [any unit].
+    mean : array_like
+        The field's mean [same unit].
+    correlation : float
+        The correlation coefficient between the field at the sample and at the point [-],
+        in [0, 1].
+
+    Returns
+    -------
+    numpy.ndarray
+        The estimate at the point [same unit].
+    """
+    if not 0.0 <= correlation <= 1.0:
+        raise ValueError(f"correlation must be in [0, 1], got {correlation!r}")
+    sample, mean = np.asarray(sample, float), np.asarray(mean, float)
+    return mean + correlation * (sample - mean)
+
+
+def site_estimate(values, group, depth, weight: float) -> np.ndarray:
+    """Per record, ``values`` (n,) or (n, k) estimated at its pile from its foundation's
+    and the site's: at each depth the foundation's value (the mean of its piles' records
+    there) kriged towards the mean of the foundations there (each foundation once) with the
+    correlation ``weight`` (:func:`simple_kriging_one_sample`); what differs between the
+    piles of one foundation (their walls) is kept. group, depth : (n,) each record's
+    foundation and depth [m]."""
+    values = np.asarray(values, float)
+    group, depth = np.asarray(group), np.round(np.asarray(depth, float), 6)
+    out = values.copy()
+    for z in np.unique(depth):
+        at = np.flatnonzero(depth == z)
+        names = np.unique(group[at])
+        foundation = {g: values[at[group[at] == g]].mean(axis=0) for g in names}
+        site = np.mean([foundation[g] for g in names], axis=0)
+        for g in names:
+            rows = at[group[at] == g]
+            out[rows] = values[rows] + (simple_kriging_one_sample(foundation[g], site, weight)
+                                        - foundation[g])
+    return out
+
+
 class ResponseSurface:
     """Blow counts of many records as a function of one reference energy and the SRD
     multipliers of sand shaft, clay shaft and toe, from a grid of direct runs.
@@ -1112,6 +1188,7 @@ class ResponseSurface:
     slopes: dict | None = None
     toe_sand: np.ndarray | None = None
     shaft_damping: tuple = (1.0, 1.0)
+    grid_total: np.ndarray | None = None  # (n,) the SRD [N] the grid's multipliers scale
 
     def subset(self, rows) -> ResponseSurface:
         """The surface of the records ``rows`` (a boolean mask or indices)."""
@@ -1120,7 +1197,7 @@ class ResponseSurface:
         s.shaft_damping = self.shaft_damping
         for k in ("lc", "run", "sand", "clay", "toe", "energy_factor", "setting"):
             setattr(s, k, getattr(self, k)[rows])
-        for k in ("sand_rate", "clay_rate", "toe_sand"):
+        for k in ("sand_rate", "clay_rate", "toe_sand", "grid_total"):
             v = getattr(self, k)
             setattr(s, k, None if v is None else v[rows])
         s.slopes = None if self.slopes is None else {k: v[rows] for k, v in self.slopes.items()}
@@ -1169,6 +1246,24 @@ class ResponseSurface:
         s.energy_factor = np.asarray(factor, float)
         return s
 
+    def with_site_weight(self, weight: float, group, depth) -> ResponseSurface:
+        """The surface with each record's SRD estimated at its pile from its foundation's CPT
+        and the site's (:func:`site_estimate`): per class (sand shaft, clay shaft at every
+        fatigue rate, toe) the foundation's SRD at the tip depth moved towards the mean of the
+        foundations at that depth, with the correlation ``weight`` [-] between the soil at
+        the foundation's CPT and at its piles (1: the CPT's soil, the surface unchanged).
+        group, depth : (n,) each record's foundation and tip depth [m]. The grid's
+        multipliers keep scaling the SRD they were simulated at (:attr:`grid_total`), so the
+        estimate enters, like the class multipliers, through the effective multiplier."""
+        s = self.subset(slice(None))
+        if s.grid_total is None:
+            s.grid_total = self.sand + self.clay + self.toe
+        for k in ("sand", "clay", "toe", "sand_rate", "clay_rate"):
+            v = getattr(self, k)
+            if v is not None:
+                setattr(s, k, np.maximum(site_estimate(v, group, depth, weight), 0.0))
+        return s
+
     def shaft_at_rate(self, rate: float | None) -> tuple[np.ndarray, np.ndarray]:
         """Sand and clay shaft SRD [N] of every record at the fatigue rate factor ``rate``
         (None: the grid's own), linear in log(rate) between the tabulated factors."""
@@ -1182,7 +1277,8 @@ class ResponseSurface:
 
     def effective_multiplier(self, m_sand: float, m_clay: float, m_toe: float,
                              rate: float | None = None) -> np.ndarray:
-        total = self.sand + self.clay + self.toe
+        total = self.sand + self.clay + self.toe if self.grid_total is None else \
+            self.grid_total
         sand, clay = self.shaft_at_rate(rate)
         return ((m_sand * sand + m_clay * clay + m_toe * self.toe)
                 / np.where(total > 0, total, 1.0))
@@ -1364,6 +1460,8 @@ class Step:
     hammers: tuple = ()             # hammer classes chosen between per fold (their surfaces)
     dynamics: tuple = ()            # the soil's dynamic values fitted (of DYNAMICS)
     toe_average: bool = False       # the toe from qt averaged over the tip +- 1.5 D (ICP-05)
+    site_weights: tuple = ()        # the SRD at the pile kriged from the foundation's and
+                                    # the site's, the correlation chosen among these per fold
 
 
 STEPS = (
@@ -1402,14 +1500,18 @@ def fit_step(step: Step, surfaces: dict, measured, n_eff: float) -> tuple[str, d
     :class:`ResponseSurface` of the records, its rated energy [J] or None); a step with
     ``hammers`` fits each of them (E_ref within its own rating with ``energy_cap``) and keeps
     the one of the least objective (the same data, misfit and priors: a discrete MAP choice),
-    else the first. Returns (the hammer class, the fit)."""
+    else the first; a step with ``site_weights`` likewise chooses among ``surfaces`` keyed
+    by the weights (:meth:`ResponseSurface.with_site_weight`), the fit keeping its weight as
+    ``site_weight [-]``. Returns (the hammer class or the weight, the fit)."""
     best = None
-    for hammer in (step.hammers or list(surfaces)[:1]):
+    for hammer in (step.hammers or step.site_weights or list(surfaces)[:1]):
         surf, rated = surfaces[hammer]
         e_max = rated / largest_energy_per_e_ref(surf) if step.energy_cap else None
         fitted = fit_regularised(surf, measured, step.classes, step.space, n_eff=n_eff,
                                  exponent=step.exponent, fatigue=step.fatigue, e_max=e_max,
                                  dynamics=step.dynamics)
+        if step.site_weights:
+            fitted["site_weight [-]"] = float(hammer)
         if best is None or fitted["objective [-]"] < best[1]["objective [-]"]:
             best = (hammer, fitted)
     return best
@@ -1433,6 +1535,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
     every fold, foundation -> (hammer class, fit))."""
     measured = np.concatenate([p.measured for p in piles])
     group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
+    depth = np.concatenate([p.depths for p in piles])
     groups = sorted(set(group.tolist()))
     baseline = record_baselines(piles, groups)
     ok = np.isfinite(baseline)
@@ -1441,6 +1544,9 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
     for step in steps:
         surfs = {h: (s.with_energy_factor(enthru_factor) if step.energy == "enthru" else s, r)
                  for h, (s, r) in every.items()}
+        if step.site_weights:  # the site's mean from every foundation's CPT (inputs all)
+            surfs = {w: (surfs[""][0].with_site_weight(w, group, depth), rated_energy)
+                     for w in step.site_weights}
         predicted = np.full(measured.size, np.nan)
         fold_fits = {}  # foundation -> (hammer class, fit)
         for g in groups:
@@ -1478,7 +1584,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                 row[f"folds with {h} [-]"] = chosen.count(h)
         for key in ("E_ref [J]", "srd_sand [-]", "srd_clay [-]", "srd_toe [-]",
                     "energy_exponent [-]", "fatigue_rate [-]", "stacking_weight [-]",
-                    *(f"{name} [-]" for name in DYNAMICS)):
+                    "site_weight [-]", *(f"{name} [-]" for name in DYNAMICS)):
             if key in fits[0]:
                 values = [f[key] for f in fits]
                 row[f"{key} folds median"] = float(np.median(values))
@@ -1518,6 +1624,10 @@ PREDICTIVE_STEPS = (
     ("grid2", Step("M: I + toe from qt averaged over the tip +- 1.5 D (ICP-05 / UWA-05)",
                    classes=CLASSES, energy="enthru", energy_cap=True, fatigue=True,
                    toe_average=True)),
+    ("grid2", Step("O: I with the SRD at the pile kriged from its foundation's CPT and the "
+                   "site's (spatial variability)", classes=CLASSES, energy="enthru",
+                   energy_cap=True, fatigue=True, site_weights=(0.25, 0.5, 0.625, 0.75,
+                                                                0.875, 1.0))),
 )
 """The steps of the stepwise back-analysis (grid1: the grid at the method's SRD; grid2: the
 grid at the SRD distribution of the all-pile fit of D, see :func:`predictive_backanalysis`;
@@ -1777,15 +1887,36 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
                  "bias_baseline [blows/m]": base_scores["bias [blows/m]"],
                  "points [-]": int(ok_cv.sum()), "folds [-]": len(groups),
                  "blows [-]": int(sum(int(r["blows"]) for r in installed))})
+    install_row = rows[-1]
     direct_cv_scores = _scores(direct_cv[ok_cv], measured[ok_cv])
     both = (direct_cv > 0) & (install_cv > 0)  # both driven (a run has no blows): a ratio
-    print(f"{install_name}: CV RMSE {rows[-1]['rmse [blows/m]']:.1f}, bias "
-          f"{rows[-1]['bias [blows/m]']:+.1f} blows/m (the per-depth model's direct runs at "
-          f"the same fits {direct_cv_scores['rmse [blows/m]']:.1f}, "
+    print(f"{install_name}: CV RMSE {install_row['rmse [blows/m]']:.1f}, bias "
+          f"{install_row['bias [blows/m]']:+.1f} blows/m (the per-depth model's direct runs "
+          f"at the same fits {direct_cv_scores['rmse [blows/m]']:.1f}, "
           f"{direct_cv_scores['bias [blows/m]']:+.1f})", flush=True)
-    step_names = [*(st.name for _, st in PREDICTIVE_STEPS), install_name]
+
+    def letter(name):
+        return name.split(":")[0]
+
+    rows.sort(key=lambda row: letter(row["step"]))  # N, the installations, before O
+    step_names = sorted([*(st.name for _, st in PREDICTIVE_STEPS), install_name], key=letter)
     departures = departures_from_the_depth_mean(
         calibration, groups, records["predictions"][final_step.name])
+    # the final step's departures split: its folds' predictions with every record's blow
+    # energy at the site's mean at its depth (the soil's part) and the rest (the energy's)
+    surf_cv = (surf2_toe if final_step.toe_average else surf2).with_energy_factor(factor)
+    group_rec = np.concatenate([[p.cpt_group] * len(p.depths) for p in calibration])
+    depth_rec = np.concatenate([p.depths for p in calibration])
+    held = site_estimate(factor * surf_cv.setting, group_rec, depth_rec, 0.0)
+    surf_held = surf_cv.with_energy_factor(held / surf_cv.setting)
+    soil_part = np.full(measured.size, np.nan)
+    for g, (_, fitted) in folds_final.items():
+        soil_part[group_rec == g] = predict_with(surf_held.subset(group_rec == g), fitted)
+    departures.update(departure_parts(
+        departures,
+        departures_from_the_depth_mean(calibration, groups, soil_part),
+        departures_from_the_depth_mean(
+            calibration, groups, records["predictions"][final_step.name] - soil_part)))
     for row in rows:  # every step's departures against the records' (the same bound)
         dep = departures_from_the_depth_mean(calibration, groups,
                                              records["predictions"][row["step"]])
@@ -1856,7 +1987,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
             "per_depth_direct_bias [blows/m]": direct_cv_scores["bias [blows/m]"],
             "installation_over_per_depth_5_50_95 [-]": np.percentile(
                 install_cv[both] / direct_cv[both], [5, 50, 95]).tolist(),
-            "blows [-]": rows[-1]["blows [-]"]},
+            "blows [-]": install_row["blows [-]"]},
         "departures_final": departures,
         "stacking_weight_g [-]": weight_g,
         "stacking_weight_final [-]": weight,
@@ -2051,6 +2182,8 @@ def plot_predictions(path: Path, piles, results, e_ref: float) -> None:
 
 
 # ----------------------------------------------------------------------------- docs data
+PHYSICS_STEPS = "ABCDFHIKLMNO"
+"""The physics steps of the back-analysis (E tried and not kept; G and J blends)."""
 DOCS_NAME = "isfog_backanalysis"
 """docs/data/isfog_backanalysis.json: the cross-validation's table and quoted numbers."""
 STEP_COLUMNS = {
@@ -2142,7 +2275,7 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "naive_rmse": [naive, "f1"],
         "naive_bias": [summary["naive_bias [blows/m]"], "f1+"],
         "final_minus_naive": [summary["cv_rmse [blows/m]"] - naive, "f1+"],
-        "best_physics": [min(score[k] for k in "ABCDFHIKLMN"), "f1"],
+        "best_physics": [min(score[k] for k in PHYSICS_STEPS), "f1"],
         "k_change": [score["K"] - score["I"], "f1+"],
         "k_heavier_folds": [steps["K"]["folds with ihc_s1800 [-]"], "int"],
         "l_change": [score["L"] - score["I"], "f1+"],
@@ -2154,6 +2287,21 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "m_bias": [steps["M"]["bias [blows/m]"], "f1+"],
         "m_change": [score["M"] - score["I"], "f1+"],
         "m_minus_naive": [score["M"] - naive, "f1+"],
+        "o_rmse": [score["O"], "f1"],
+        "o_bias": [steps["O"]["bias [blows/m]"], "f1+"],
+        "o_change": [score["O"] - score["I"], "f1+"],
+        "o_minus_naive": [score["O"] - naive, "f1+"],
+        "o_weight_median": [steps["O"]["site_weight [-] folds median"], "f3"],
+        "o_weight_min": [steps["O"]["site_weight [-] folds min"], "f3"],
+        "o_weight_max": [steps["O"]["site_weight [-] folds max"], "f3"],
+        "o_departure_correlation": [steps["O"]["departure_correlation [-]"], "f2"],
+        "o_departure_needed_correlation": [steps["O"]["departure_needed_correlation [-]"],
+                                           "f2"],
+        "soil_part_sd": [departures["soil_part_sd [blows/m]"], "f1"],
+        "soil_part_correlation": [departures["soil_part_correlation [-]"], "f2"],
+        "energy_part_sd": [departures["energy_part_sd [blows/m]"], "f1"],
+        "energy_part_correlation": [departures["energy_part_correlation [-]"], "f2+"],
+        "soil_energy_correlation": [departures["soil_energy_correlation [-]"], "f2+"],
         "j_rmse": [score["J"], "f1"],
         "n_rmse": [score["N"], "f1"],
         "n_bias": [steps["N"]["bias [blows/m]"], "f1+"],
@@ -2175,9 +2323,9 @@ def cross_validation_docs(summary: dict, groups: dict) -> tuple[dict, dict]:
         "departure_needed_correlation": [departures["needed_correlation [-]"], "f2"],
         "trend_from_records_rmse": [departures["trend_from_records_rmse [blows/m]"], "f1"],
         "departure_correlation_physics_min": [min(
-            steps[k]["departure_correlation [-]"] for k in "ABCDFHIKLMN"), "f2"],
+            steps[k]["departure_correlation [-]"] for k in PHYSICS_STEPS), "f2"],
         "departure_correlation_physics_max": [max(
-            steps[k]["departure_correlation [-]"] for k in "ABCDFHIKLMN"), "f2"],
+            steps[k]["departure_correlation [-]"] for k in PHYSICS_STEPS), "f2"],
         "piles_below_naive": [summary["piles_final_below_naive [-]"], "int"],
         "piles_scored": [summary["piles_scored [-]"], "int"],
         "final_direct_rmse": [direct["rmse_final [blows/m]"], "f1"],

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -185,11 +186,11 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     assert bench.main([*argv, "--docs-from", str(out / "isfog_backanalysis.json")]) == 0
     assert (tmp_path / "data" / "isfog_backanalysis.json").read_text() == first
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMN")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMNO")
     # one baseline for every step, computed on the same records
     assert len({(s["rmse_baseline [blows/m]"], s["points [-]"]) for s in steps}) == 1
     assert all(math.isfinite(s["rmse [blows/m]"]) for s in steps)
-    final = "ABCDEFGHIJKLMN".index(bench.FINAL_STEP)
+    final = "ABCDEFGHIJKLMNO".index(bench.FINAL_STEP)
     assert summary["cv_rmse [blows/m]"] == steps[final]["rmse [blows/m]"]
     assert summary["cv_folds [-]"] == 2
     # the energy-capped steps keep every fold's largest blow within the rating: E_ref at most
@@ -237,6 +238,15 @@ def test_stepwise_backanalysis_on_two_foundations(tmp_path, monkeypatch):
     # 5-95 % of the records)
     ratio = summary["installation_cv"]["installation_over_per_depth_5_50_95 [-]"]
     assert 0.5 < ratio[0] <= ratio[1] <= ratio[2] < 2.0
+    # O: every fold chose its weight among the step's; the final step's departures are split
+    # into the soil's and the energy's parts
+    o = steps[14]
+    weights = next(st for _, st in bench.PREDICTIVE_STEPS if st.name.startswith("O")
+                   ).site_weights
+    assert {o["site_weight [-] folds min"], o["site_weight [-] folds max"]} <= set(weights)
+    parts = summary["departures_final"]
+    assert all(math.isfinite(parts[k]) for k in (
+        "soil_part_sd [blows/m]", "energy_part_sd [blows/m]", "soil_energy_correlation [-]"))
 
 
 def _synthetic_piles(bench):
@@ -290,6 +300,86 @@ def test_stepwise_cross_validation_scores_a_perfect_model_against_the_baseline()
     expected = math.sqrt(np.mean((base - measured) ** 2))
     assert rows[0]["rmse_baseline [blows/m]"] == pytest.approx(expected)
     assert rows[0]["bias_baseline [blows/m]"] == pytest.approx(np.mean(base - measured))
+
+
+def test_simple_kriging_one_sample_by_hand():
+    bench = _benchmark()
+    # mean 10, reading 20: the estimate moves from the mean by the correlation's share
+    assert bench.simple_kriging_one_sample(20.0, 10.0, 0.3) == pytest.approx(13.0)
+    assert bench.simple_kriging_one_sample(20.0, 10.0, 1.0) == 20.0  # at the sample
+    assert bench.simple_kriging_one_sample(20.0, 10.0, 0.0) == 10.0  # no correlation
+    with pytest.raises(ValueError, match="correlation"):
+        bench.simple_kriging_one_sample(20.0, 10.0, 1.5)
+
+
+def test_site_estimate_by_hand():
+    """At 1 m foundation A's piles read 10 and 12 (mean 11), B's one pile 21: the site's
+    mean is 16, and with the correlation 0.5 A's mean goes to 13.5 and B's to 18.5, each
+    pile keeping its difference from its foundation's mean; at 2 m A alone: unchanged."""
+    bench = _benchmark()
+    values = np.array([10.0, 12.0, 21.0, 7.0])
+    group = np.array(["A", "A", "B", "A"])
+    depth = np.array([1.0, 1.0, 1.0, 2.0])
+    np.testing.assert_allclose(bench.site_estimate(values, group, depth, 0.5),
+                               [12.5, 14.5, 18.5, 7.0])
+    np.testing.assert_allclose(bench.site_estimate(values, group, depth, 1.0), values)
+    # columns (the fatigue tables) each on their own
+    two = np.stack([values, 2.0 * values], axis=1)
+    np.testing.assert_allclose(bench.site_estimate(two, group, depth, 0.0),
+                               [[15.0, 30.0], [17.0, 34.0], [16.0, 32.0], [7.0, 14.0]])
+
+
+def test_site_weight_step_finds_the_weight_the_records_were_made_with():
+    """Records made by a known law at the SRD kriged with the weight 0.5 towards the site's
+    mean: the step that chooses the weight per fold among 0.25, 0.5 and 1 takes 0.5 in every
+    fold and predicts the held-out foundations to the interpolation's error, and the weight
+    1 is the surface unchanged."""
+    bench = _benchmark()
+    piles = _synthetic_piles(bench)
+    n = sum(p.depths.size for p in piles)
+    group = np.concatenate([[p.cpt_group] * p.depths.size for p in piles])
+    depth = np.concatenate([p.depths for p in piles])
+    level = {"A": 1.0, "B": 3.0, "C": 0.4}  # the foundations' CPTs differ in level
+    total = np.array([level[g] * (1.0 + 0.3 * z) for g, z in zip(group, depth, strict=True)])
+    rng = np.random.default_rng(3)
+    share = rng.dirichlet([2.0, 2.0, 2.0], size=n) * total[:, None] * 1e6
+    energies = np.geomspace(100e3, 3200e3, 81)
+    multipliers = np.geomspace(0.05, 20.0, 121)
+    le = np.log(energies / 500e3)
+    lc = 3.0 + 2.0 * np.log(multipliers)[:, None] - le[None, :] - 0.5 * le[None, :] ** 2
+    counts = np.broadcast_to(np.exp(lc), (n, *lc.shape)).copy()
+    surface = bench.ResponseSurface(energies, multipliers, counts, np.zeros(n),
+                                    share[:, 0], share[:, 1], share[:, 2])
+    np.testing.assert_array_equal(surface.with_site_weight(1.0, group, depth)(600e3, 0.7),
+                                  surface(600e3, 0.7))
+    truth = surface.with_site_weight(0.5, group, depth)(600e3, 0.7)
+    piles = [replace(p, measured=v) for p, v in zip(
+        piles, np.split(truth, np.cumsum([p.depths.size for p in piles])[:-1]), strict=True)]
+    step = bench.Step("O", site_weights=(0.25, 0.5, 1.0))
+    rows, res = bench.stepwise_cross_validation(piles, surface, np.ones(n), [step])
+    chosen = [fit["site_weight [-]"] for _, fit in res["fits"]["O"].values()]
+    assert chosen == [0.5, 0.5, 0.5]
+    # the held-out counts to 1 % (the bilinear interpolation of the quadratic in log E on 81
+    # nodes errs by < 1e-3 in log N; the extrapolated E_ref of a two-foundation fit adds
+    # little: a tolerance of 1 %)
+    scored = res["scored"]
+    np.testing.assert_allclose(res["predictions"]["O"][scored], truth[scored], rtol=1e-2)
+    assert rows[0]["site_weight [-] folds median"] == 0.5
+
+
+def test_departure_parts_by_hand():
+    bench = _benchmark()
+
+    def dep(sd, corr=0.0):
+        return {"model_sd [blows/m]": sd, "correlation [-]": corr}
+
+    # 3 and 4 adding up to an RMS of 5: uncorrelated; to 1: opposed (-1); to 7: together
+    for whole, expected in ((5.0, 0.0), (1.0, -1.0), (7.0, 1.0)):
+        parts = bench.departure_parts(dep(whole), dep(3.0, 0.4), dep(4.0, -0.1))
+        assert parts["soil_energy_correlation [-]"] == pytest.approx(expected)
+    assert parts["soil_part_sd [blows/m]"] == 3.0
+    assert parts["soil_part_correlation [-]"] == 0.4
+    assert parts["energy_part_correlation [-]"] == -0.1
 
 
 # ---------------------------------------------------------------- the regularised fit
@@ -621,7 +711,7 @@ def test_docs_data_file_is_the_runs_summary():
     data = doc_data("isfog_backanalysis")
     summary = data["values"]
     steps = summary["steps"]
-    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMN")
+    assert [s["step"].split(":")[0] for s in steps] == list("ABCDEFGHIJKLMNO")
     table = data["tables"]["steps"]
     assert [row[0] for row in table["rows"]] == [s["step"] for s in steps]
     assert [row[1] for row in table["rows"]] == [s["rmse [blows/m]"] for s in steps]
@@ -636,7 +726,7 @@ def test_docs_data_file_is_the_runs_summary():
     assert subs["c_gain"][0] == steps[2]["rmse [blows/m]"] - steps[1]["rmse [blows/m]"]
     assert subs["d_gain"][0] == steps[3]["rmse [blows/m]"] - steps[2]["rmse [blows/m]"]
     # the final step, scored against the same baseline
-    final = steps["ABCDEFGHIJKLMN".index(bench.FINAL_STEP)]
+    final = steps["ABCDEFGHIJKLMNO".index(bench.FINAL_STEP)]
     assert summary["final_step"] == final["step"]
     assert summary["cv_rmse [blows/m]"] == final["rmse [blows/m]"]
     assert subs["final_minus_naive"][0] == (final["rmse [blows/m]"]
@@ -652,6 +742,10 @@ def test_docs_data_file_is_the_runs_summary():
     assert subs["m_change"][0] == steps[12]["rmse [blows/m]"] - steps[8]["rmse [blows/m]"]
     assert subs["m_minus_naive"][0] == (steps[12]["rmse [blows/m]"]
                                         - steps[12]["rmse_baseline [blows/m]"])
+    # O against I and the baseline
+    assert subs["o_change"][0] == steps[14]["rmse [blows/m]"] - steps[8]["rmse [blows/m]"]
+    assert subs["o_minus_naive"][0] == (steps[14]["rmse [blows/m]"]
+                                        - steps[14]["rmse_baseline [blows/m]"])
     # H and I keep the largest blow within the rating
     assert summary["largest_blow_energy [J]"] <= summary["hammer_rated_energy [J]"] * (1 + 1e-6)
 
