@@ -941,6 +941,16 @@ def naive_baseline(train, held_out) -> list[np.ndarray]:
             for p in held_out]
 
 
+def records_by_foundation_and_depth(group, depth) -> dict:
+    """(foundation, depth [m] to 1e-6 m) -> the indices of its records, in order, for records
+    of foundations ``group`` (n,) at depths ``depth`` (n,)."""
+    members: dict = {}
+    for i, key in enumerate(zip(np.asarray(group).tolist(),
+                                np.round(np.asarray(depth, float), 6).tolist(), strict=True)):
+        members.setdefault(key, []).append(i)
+    return {k: np.asarray(v) for k, v in members.items()}
+
+
 def departures_from_the_depth_mean(piles, groups, predicted) -> dict:
     """How much of the foundations' departures from the depth mean a model's predictions
     carry (the bound the naive baseline sets on a model of the records).
@@ -974,12 +984,13 @@ def departures_from_the_depth_mean(piles, groups, predicted) -> dict:
     model_baseline = record_baselines([replace(p, measured=v) for p, v in
                                        zip(piles, split, strict=True)], groups)
     ok = np.isfinite(baseline) & np.isfinite(model_baseline) & np.isfinite(predicted)
-    keys = [(p.cpt_group, round(float(z), 6)) for p in piles for z in p.depths]
-    members: dict = {}
-    for i, k in enumerate(keys):
-        members.setdefault(k, []).append(i)
+    members = records_by_foundation_and_depth(
+        np.concatenate([[p.cpt_group] * p.depths.size for p in piles]),
+        np.concatenate([p.depths for p in piles]))
     mean_of = {k: float(np.mean(measured[v])) for k, v in members.items()}
-    foundation = np.array([mean_of[k] for k in keys])
+    foundation = np.empty(measured.size)
+    for k, v in members.items():
+        foundation[v] = mean_of[k]
     spread = sum(float(np.sum((measured[v] - mean_of[k]) ** 2)) for k, v in members.items())
     dof = sum(len(v) - 1 for v in members.values())
     d_m = (measured - baseline)[ok]
@@ -1117,17 +1128,17 @@ def site_estimate(values, group, depth, weight: float) -> np.ndarray:
     piles of one foundation (their walls) is kept. group, depth : (n,) each record's
     foundation and depth [m]."""
     values = np.asarray(values, float)
-    group, depth = np.asarray(group), np.round(np.asarray(depth, float), 6)
     out = values.copy()
-    for z in np.unique(depth):
-        at = np.flatnonzero(depth == z)
-        names = np.unique(group[at])
-        foundation = {g: values[at[group[at] == g]].mean(axis=0) for g in names}
-        site = np.mean([foundation[g] for g in names], axis=0)
-        for g in names:
-            rows = at[group[at] == g]
-            out[rows] = values[rows] + (simple_kriging_one_sample(foundation[g], site, weight)
-                                        - foundation[g])
+    at_depth: dict = {}
+    members_of = records_by_foundation_and_depth(group, depth)
+    for key in sorted(members_of):  # (foundation, depth): each depth's foundations in order
+        rows = members_of[key]
+        at_depth.setdefault(key[1], []).append((rows, values[rows].mean(axis=0)))
+    for members in at_depth.values():
+        site = np.mean([foundation for _, foundation in members], axis=0)
+        for rows, foundation in members:
+            out[rows] = values[rows] + (simple_kriging_one_sample(foundation, site, weight)
+                                        - foundation)
     return out
 
 
@@ -1504,16 +1515,16 @@ def fit_step(step: Step, surfaces: dict, measured, n_eff: float) -> tuple[str, d
     by the weights (:meth:`ResponseSurface.with_site_weight`), the fit keeping its weight as
     ``site_weight [-]``. Returns (the hammer class or the weight, the fit)."""
     best = None
-    for hammer in (step.hammers or step.site_weights or list(surfaces)[:1]):
-        surf, rated = surfaces[hammer]
+    for choice in (step.hammers or step.site_weights or list(surfaces)[:1]):
+        surf, rated = surfaces[choice]
         e_max = rated / largest_energy_per_e_ref(surf) if step.energy_cap else None
         fitted = fit_regularised(surf, measured, step.classes, step.space, n_eff=n_eff,
                                  exponent=step.exponent, fatigue=step.fatigue, e_max=e_max,
                                  dynamics=step.dynamics)
         if step.site_weights:
-            fitted["site_weight [-]"] = float(hammer)
+            fitted["site_weight [-]"] = float(choice)
         if best is None or fitted["objective [-]"] < best[1]["objective [-]"]:
-            best = (hammer, fitted)
+            best = (choice, fitted)
     return best
 
 
@@ -1854,7 +1865,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
         rows += r
         if records is None:
             records = {"measured": res["measured"], "baseline": res["baseline"],
-                       "scored": res["scored"], "predictions": {}}
+                       "scored": res["scored"], "group": res["group"], "predictions": {}}
         records["predictions"][step.name] = res["predictions"][step.name]
         fold_fits[step.name] = res["fits"][step.name]
         print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
@@ -1905,7 +1916,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     # the final step's departures split: its folds' predictions with every record's blow
     # energy at the site's mean at its depth (the soil's part) and the rest (the energy's)
     surf_cv = (surf2_toe if final_step.toe_average else surf2).with_energy_factor(factor)
-    group_rec = np.concatenate([[p.cpt_group] * len(p.depths) for p in calibration])
+    group_rec = records["group"]
     depth_rec = np.concatenate([p.depths for p in calibration])
     held = site_estimate(factor * surf_cv.setting, group_rec, depth_rec, 0.0)
     surf_held = surf_cv.with_energy_factor(held / surf_cv.setting)
