@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -121,6 +122,109 @@ def test_concurrent_writers_leave_one_complete_file(cache_dir, disc_modes, monke
     from anvilwave.anvil_rom.fem.modalfile import load_modal_data
 
     assert load_modal_data(cache_dir / "same.npz").n_modes == disc_modes.n_modes
+
+
+def test_concurrent_askers_compute_an_entry_once(cache_dir):
+    """Six threads asking for one missing tube-head kernel at once (each its own open lock
+    file, as six processes would have): one computes it, the others wait on the entry's lock and
+    read what it stored; every one gets the same kernel."""
+    calls = []
+    barrier = threading.Barrier(6)
+    kernels, errors = [], []
+    original = cache.ring_kernel
+
+    def counted(*args):
+        calls.append(1)
+        time.sleep(0.3)  # long enough that the others reach the lock while it computes
+        return original(*args)
+
+    def work():
+        try:
+            barrier.wait()
+            kernels.append(cache.cached_ring_kernel(STEEL, 0.95, 1.0, 2.0, 2e-5, 20, 2))
+        except Exception as exc:  # reported below
+            errors.append(exc)
+
+    cache.ring_kernel = counted
+    try:
+        threads = [threading.Thread(target=work) for _ in range(6)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        cache.ring_kernel = original
+    assert not errors and len(kernels) == 6
+    assert len(calls) == 1
+    for kernel in kernels[1:]:
+        np.testing.assert_array_equal(kernel, kernels[0])
+
+
+LOCK_HOLDER = """
+import sys, time
+from pathlib import Path
+import numpy as np
+from anvilwave.config.cache import entry_lock, write_atomic
+path = Path(sys.argv[1])
+with entry_lock(path):
+    print("locked", flush=True)
+    if sys.argv[2] == "store":
+        time.sleep(1.0)
+        write_atomic(path, lambda fh: np.save(fh, np.arange(3.0)))
+    else:
+        time.sleep(600)
+"""
+
+
+def _read_npy(path):
+    return (lambda warn: np.load(path) if path.is_file() else None)
+
+
+def test_another_process_waits_for_the_entry_and_reads_it(cache_dir):
+    """A process computing an entry holds its lock; a second asker waits, then reads the
+    first's result instead of computing it."""
+    import subprocess
+    import sys
+
+    path = cache_dir / "entry.npy"
+    holder = subprocess.Popen([sys.executable, "-c", LOCK_HOLDER, str(path), "store"],
+                              stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+
+        def refuse():
+            raise AssertionError("computed although another process was computing it")
+
+        value = cache.cached_entry(path, _read_npy(path), refuse, lambda v: None)
+        np.testing.assert_array_equal(value, np.arange(3.0))
+    finally:
+        holder.kill()
+        holder.wait()
+
+
+def test_a_killed_process_does_not_hold_the_lock(cache_dir):
+    """The lock of a process killed while computing is released by the system: the next asker
+    computes the entry instead of waiting for ever (bounded here by a 60 s join)."""
+    import subprocess
+    import sys
+
+    path = cache_dir / "entry.npy"
+    holder = subprocess.Popen([sys.executable, "-c", LOCK_HOLDER, str(path), "hold"],
+                              stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "locked"
+    holder.kill()
+    holder.wait()
+    got = []
+
+    def ask():
+        got.append(cache.cached_entry(path, _read_npy(path), lambda: np.ones(2),
+                                      lambda v: np.save(path, v)))
+
+    thread = threading.Thread(target=ask, daemon=True)
+    thread.start()
+    thread.join(60.0)
+    assert got and np.array_equal(got[0], np.ones(2))
+    np.testing.assert_array_equal(np.load(path), np.ones(2))
 
 
 def test_the_modal_ram_chain_is_cached(cache_dir, monkeypatch):

@@ -19,9 +19,16 @@ The key (SHA-256) covers the anvil description, fmax, the damping ratio, the anv
 version, the modal-data format version, a hash of the source files of the modal analysis
 (:data:`CODE_FILES`) and the versions of gmsh and scikit-fem, so a code or mesher change
 computes afresh instead of reusing stale modes. Writes are atomic (a temporary file in the
-same directory, then ``os.replace``): concurrent workers computing the same entry each write a
-complete file and the last one wins; a reader never sees a half-written file. A file that
+same directory, then ``os.replace``): a reader never sees a half-written file. A file that
 cannot be read (truncated, foreign) counts as a miss and is replaced.
+
+An entry is computed once when several processes or threads ask for it at the same time (the
+workers of a campaign or of a test session on a cold cache): the first takes an exclusive
+lock on the entry's lock file (``<entry>.lock``, :func:`entry_lock`), the others wait on it
+and then read what it wrote. The operating system releases the lock when its process ends,
+however it ends, so a killed worker never blocks the others. Where no lock can be taken
+(Windows, a file system without ``flock``, a read-only directory) each computes its own, as
+if there were no lock, and the last complete file wins.
 """
 
 from __future__ import annotations
@@ -34,8 +41,14 @@ import tempfile
 import threading
 import warnings
 import zipfile
+from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # Windows: no entry locks (module docstring)
+    fcntl = None
 
 import numpy as np
 
@@ -159,26 +172,34 @@ def cached_modal_data(spec, fmax: float | None = None):
 
     fmax = float(spec.fmax if fmax is None else fmax)
     path = cache_dir() / (modal_key(spec, fmax) + SUFFIX)
-    if path.is_file():
+
+    def read(warn: bool):
+        if not path.is_file():
+            return None
         try:
             data = load_modal_data(path)
         except InputError:
-            data = None  # unreadable: computed again and replaced below
-        if data is not None:
-            stamp = (str(path), path.stat().st_mtime_ns, path.stat().st_size)
-            with _CHECK_LOCK:  # gmsh (meshing for the Sturm count) is not thread-safe
-                reason = None if stamp in _VERIFIED else modal_data_mismatch(data, spec, fmax)
-                if reason is None:
-                    _VERIFIED.add(stamp)
+            return None  # unreadable: computed again and replaced
+        stamp = (str(path), path.stat().st_mtime_ns, path.stat().st_size)
+        with _CHECK_LOCK:  # gmsh (meshing for the Sturm count) is not thread-safe
+            reason = None if stamp in _VERIFIED else modal_data_mismatch(data, spec, fmax)
             if reason is None:
-                return data
+                _VERIFIED.add(stamp)
+        if reason is None:
+            return data
+        if warn:
             warnings.warn(f"{path}: the cached modal data does not match its anvil "
-                          f"({reason}): computed again", stacklevel=2)
+                          f"({reason}): computed again", stacklevel=4)
+        return None
 
-    data = pipeline.compute_anvil_modes(spec, fmax=fmax).modal_data  # patchable in tests
-    if data is not None:
-        _store(data, path)
-    return data
+    def compute():
+        return pipeline.compute_anvil_modes(spec, fmax=fmax).modal_data  # patchable in tests
+
+    def store(data) -> None:
+        if data is not None:
+            _store(data, path)
+
+    return cached_entry(path, read, compute, store)
 
 
 _CHECK_LOCK = threading.Lock()
@@ -317,18 +338,22 @@ def cached_chain(omega, participation) -> tuple[np.ndarray, np.ndarray]:
     h.update(participation.tobytes())
     h.update(code_version().encode())
     path = cache_dir() / (h.hexdigest() + CHAIN_SUFFIX)
-    if path.is_file():
-        try:
-            with np.load(path, allow_pickle=False) as npz:
-                mass, stiffness = npz["mass"], npz["stiffness"]
-            if mass.ndim == 1 and stiffness.shape == (mass.size - 1,):
-                return mass, stiffness
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-            pass  # unreadable: realised again and replaced below
 
-    mass, stiffness = chain_from_modes(omega, participation)
-    write_atomic(path, lambda fh: np.savez(fh, mass=mass, stiffness=stiffness))
-    return mass, stiffness
+    def read(warn: bool):
+        if path.is_file():
+            try:
+                with np.load(path, allow_pickle=False) as npz:
+                    mass, stiffness = npz["mass"], npz["stiffness"]
+                if mass.ndim == 1 and stiffness.shape == (mass.size - 1,):
+                    return mass, stiffness
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                pass  # unreadable: realised again and replaced
+        return None
+
+    def store(chain) -> None:
+        write_atomic(path, lambda fh: np.savez(fh, mass=chain[0], stiffness=chain[1]))
+
+    return cached_entry(path, read, lambda: chain_from_modes(omega, participation), store)
 
 
 KERNEL_SUFFIX = ".head.npz"
@@ -370,17 +395,108 @@ def cached_ring_kernel(material, r_in: float, r_out: float, length: float, step:
                    hashlib.sha256(Path(head_kernel.__file__).read_bytes()).hexdigest()]
     key = hashlib.sha256(json.dumps(description).encode()).hexdigest()
     path = cache_dir() / (key + KERNEL_SUFFIX)
-    if path.is_file():
+
+    def read(warn: bool):
+        if path.is_file():
+            try:
+                with np.load(path, allow_pickle=False) as npz:
+                    kernel = npz["kernel"]
+                if kernel.shape == (int(steps), int(rings), int(rings)):
+                    return kernel
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
+                pass  # unreadable: computed again and replaced
+        return None
+
+    def store(kernel) -> None:
+        write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
+
+    return cached_entry(path, read,
+                        lambda: ring_kernel(material, r_in, r_out, length, step, steps, rings),
+                        store)
+
+
+def cached_entry(path: Path, read, compute, store):
+    """A cache entry: read, or computed and stored once among concurrent askers.
+
+    ``read(True)`` is tried first; on a miss the entry's lock is taken (:func:`entry_lock`),
+    ``read(False)`` tried again (another process may have stored it meanwhile), and only then
+    ``compute()`` called and its value handed to ``store``. ``read``'s argument says whether it
+    may warn of an entry it rejects (once, on the first try).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The entry's file.
+    read : callable
+        ``read(warn: bool)``: the stored value, or None on a miss.
+    compute : callable
+        ``compute()``: the value.
+    store : callable
+        ``store(value)``: writes it (atomically, :func:`write_atomic`).
+
+    Returns
+    -------
+    object
+        The value.
+    """
+    value = read(True)
+    if value is not None:
+        return value
+    with entry_lock(path):
+        value = read(False)
+        if value is None:
+            value = compute()
+            store(value)
+    return value
+
+
+LOCK_SUFFIX = ".lock"
+"""File name ending of an entry's lock file (``<entry>.lock``, :func:`entry_lock`)."""
+
+
+@contextmanager
+def entry_lock(path: Path):
+    """Hold the exclusive lock of the cache entry ``path`` (module docstring).
+
+    ``flock`` on ``<entry>.lock``, waited for while another process or thread holds it, and
+    released on leaving (or by the operating system when the process ends), the lock file
+    removed with it. Where no lock can be taken, nothing is held.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The entry's file.
+
+    Yields
+    ------
+    None
+        While the lock is held.
+    """
+    handle = None
+    lock = path.with_name(path.name + LOCK_SUFFIX)
+    if fcntl is not None:
         try:
-            with np.load(path, allow_pickle=False) as npz:
-                kernel = npz["kernel"]
-            if kernel.shape == (int(steps), int(rings), int(rings)):
-                return kernel
-        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile):
-            pass  # unreadable: computed again and replaced below
-    kernel = ring_kernel(material, r_in, r_out, length, step, steps, rings)
-    write_atomic(path, lambda fh: np.savez(fh, kernel=kernel))
-    return kernel
+            path.parent.mkdir(parents=True, exist_ok=True)
+            handle = open(lock, "ab")  # noqa: SIM115
+        except OSError:
+            handle = None
+        if handle is not None:
+            try:
+                fcntl.flock(handle.fileno(), fcntl.LOCK_EX)
+            except OSError:  # a file system without flock: no lock
+                handle.close()
+                handle = None
+    try:
+        yield
+    finally:
+        if handle is not None:
+            # removed while held: an asker still waiting on it then finds the entry stored
+            # (or, if it could not be stored, computes its own, as without a lock)
+            try:
+                lock.unlink(missing_ok=True)
+            except OSError:
+                pass
+            handle.close()  # releases the lock
 
 
 def write_atomic(path: Path, write) -> None:
@@ -459,7 +575,7 @@ def cache_info() -> dict:
 
 
 def clear_cache() -> tuple[int, int]:
-    """Delete every cache entry (and stale temporary files).
+    """Delete every cache entry and stale temporary file (and the entries' lock files).
 
     Returns
     -------
@@ -472,6 +588,8 @@ def clear_cache() -> tuple[int, int]:
     if not directory.is_dir():
         return 0, 0
     count = size = 0
+    for path in directory.glob("*" + LOCK_SUFFIX):  # a killed holder's (empty), not counted
+        path.unlink(missing_ok=True)
     for path in list(directory.glob("*" + SUFFIX)) + list(directory.glob("*.part")):
         try:
             size += path.stat().st_size

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from anvilwave.anvil_rom.fem.geometry import AnvilSpec
-from anvilwave.config.cache import FEA_SUFFIX, cache_dir, code_version, write_atomic
+from anvilwave.config.cache import FEA_SUFFIX, cache_dir, cached_entry, code_version, write_atomic
 from anvilwave.fea.impact import FeaConfig, FeaResult, run_impact_fea
 
 ARRAYS = ("time", "ram_anvil_force", "anvil_pile_force", "pile_head_velocity", "gauge_force",
@@ -121,23 +121,27 @@ def cached_impact_fea(config: FeaConfig, progress=None) -> FeaResult:
         The result (on a hit, the one stored: its info's tuples read back as lists).
     """
     path = cache_dir() / (fea_key(config) + FEA_SUFFIX)
-    if path.is_file():
+
+    def read(warn: bool):
+        if not path.is_file():
+            return None
         try:
             result = _read(path)
-        except Exception:  # a truncated or foreign entry is a miss, replaced below
-            pass
-        else:
-            if progress is not None:
-                progress(1.0)
-            return result
-    result = run_impact_fea(config, progress=progress)
-    buffer = io.BytesIO()
-    try:
-        _write(result, buffer)
-    except TypeError:  # an info value JSON cannot hold: not cached
+        except Exception:  # a truncated or foreign entry is a miss, replaced
+            return None
+        if progress is not None:
+            progress(1.0)
         return result
-    write_atomic(path, lambda fh: fh.write(buffer.getvalue()))
-    return result
+
+    def store(result) -> None:
+        buffer = io.BytesIO()
+        try:
+            _write(result, buffer)
+        except TypeError:  # an info value JSON cannot hold: not cached
+            return
+        write_atomic(path, lambda fh: fh.write(buffer.getvalue()))
+
+    return cached_entry(path, read, lambda: run_impact_fea(config, progress=progress), store)
 
 
 __all__ = ["cached_impact_fea", "fea_key"]
