@@ -606,28 +606,35 @@ class LoopSettings(NamedTuple):
 
 
 class LoopRecords(NamedTuple):
-    """What the loop writes besides the states (None: not kept, its code removed).
+    """What the loop writes besides the states.
+
+    The energy bookkeeping is None when not kept: its code is removed from the compiled loop
+    (it runs in the pile's inner loop). The time series and the sections are always arrays,
+    empty when not kept, so that one compiled loop serves a blow recorded or not (each None
+    would be a variant of its own, compiled separately: about half a minute each on an empty
+    numba cache).
 
     Parameters
     ----------
-    out : numpy.ndarray or None
-        The time series, shape (len(COLUMNS), rows) (written).
+    out : numpy.ndarray
+        The time series, shape (len(COLUMNS), rows) (written); no rows: not kept.
     energies : numpy.ndarray or None
         The energy series, shape (1 + len(ENERGY_COLUMNS), rows) (written).
     works : tuple or None
         The per-mass soil work sums of :func:`anvilwave.pile.kernels.pile_advance` [J] (None:
         no energy bookkeeping).
-    sections : tuple or None
+    sections : tuple
         (spring indices, buffer (n_sections, rows)): the elongation u_i - u_i+1 [m] of chosen
-        pile springs at every record row, whether ``out`` is recorded or not.
+        pile springs at every record row, whether ``out`` is recorded or not; no indices: none
+        kept.
     summary : numpy.ndarray
         The blow's summary (S_* entries), shape (SUMMARY_SIZE,) (written).
     """
 
-    out: np.ndarray | None
+    out: np.ndarray
     energies: np.ndarray | None
     works: tuple | None
-    sections: tuple | None
+    sections: tuple
     summary: np.ndarray
 
 
@@ -637,12 +644,13 @@ def run_blow(ram, anvil, pile, settings, records):
     """Advance one blow of ``settings.n_steps`` master steps, the states in place.
 
     The steps are ``settings.h`` [s] from ``settings.t0`` [s]. Records every ``record_every``
-    steps into ``records.out`` and every ``energy_every`` steps and at the last into
-    ``records.energies`` unless they are None; ``records.summary`` receives the blow's summary.
+    steps into ``records.out`` unless it has no rows and every ``energy_every`` steps and at
+    the last into ``records.energies`` unless it is None; ``records.summary`` receives the
+    blow's summary.
 
-    The optional parts (the anvil's variants and the records) are handed on as arguments of
-    their own (:func:`_blow`): the compiler removes the code of those that are None only when
-    they are arguments, not fields.
+    The optional parts (the anvil's variants and the energy bookkeeping) are handed on as
+    arguments of their own (:func:`_blow`): the compiler removes the code of those that are
+    None only when they are arguments, not fields.
 
     Parameters
     ----------
@@ -756,9 +764,8 @@ def _blow(ram, modal, rings, classic, direct, stack, pile_bundle, settings, out,
         if countdown == 0:
             countdown = record_every
             row += 1
-            if sections is not None:
-                _record_sections(sections[0], sections[1], pu, row - 1)
-            if out is not None:
+            _record_sections(sections[0], sections[1], pu, row - 1)
+            if out.shape[1] > 0:
                 u_top, u_bottom = _anvil_faces(modal, rings, stack, f_ram, f_pile, u_top,
                                                u_bottom)
                 _record_row(out, row - 1, t0 + n * h, f_ram, f_pile, v_pile, f_gauge, v_gauge,
@@ -1981,7 +1988,7 @@ class Engine:
             direct = anvil.P
         n_rows = n_steps // record_every + 1
         # filled (NaN) here: the memory is touched before the loop, not inside its timing
-        out = np.full((len(COLUMNS), n_rows), np.nan) if record else None
+        out = np.full((len(COLUMNS), n_rows if record else 0), np.nan)
         energies = (np.full((1 + len(ENERGY_COLUMNS), n_steps // energy_every + 2), np.nan)
                     if record and energy else None)
         works = None
@@ -1993,12 +2000,12 @@ class Engine:
         largest.fill(0.0)
         smallest.fill(0.0)
         summary = np.zeros(SUMMARY_SIZE)
-        section_args = None
+        idx = np.zeros(0, dtype=np.int64)
         if sections is not None:
             idx = np.ascontiguousarray(sections, dtype=np.int64)
             if idx.size and (idx.min() < 0 or idx.max() >= probes_springs(self.pile_arrays)):
                 raise ValueError("sections: spring indices out of range")
-            section_args = (idx, np.full((idx.size, n_rows), np.nan))
+        section_args = (idx, np.full((idx.size, n_rows), np.nan))
         pile_sweep, soil_sweep, first_soil = self._sweep
         loop = (ram, LoopAnvil(modal, rings, classic, direct, stack),
                 LoopPile(self.pile_arrays.pile, probes, pile_sweep, soil_sweep, first_soil, pu,
@@ -2006,11 +2013,11 @@ class Engine:
                          factor, largest, smallest),
                 LoopSettings(cfg.gravity, t0, h, n_steps, record_every, energy_every),
                 LoopRecords(out, energies, works, section_args, summary))
-        _warm_up(loop, anvil.kind, record, energy, section_args is not None)
+        _warm_up(loop, anvil.kind, energy)
         begin = time.perf_counter()
         rows, energy_rows = run_blow(*loop)
         wall = time.perf_counter() - begin
-        columns = {} if out is None else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
+        columns = {} if not record else {name: out[i, :rows] for i, name in enumerate(COLUMNS)}
         series = {}
         if energies is not None:
             series = {name: energies[i, :energy_rows]
@@ -2027,7 +2034,7 @@ class Engine:
             permanent_set=float(summary[S_TOE_END] - summary[S_TOE_START]),
             toe_velocity_end=float(summary[S_TOE_VELOCITY_END]), impact_velocity=velocity,
             initial_state=start, final_state=final,
-            section_strain=(section_args[1][:, :rows].T.copy() if section_args is not None
+            section_strain=(section_args[1][:, :rows].T.copy() if sections is not None
                             else None))
 
     def run(self, duration: float | None = None, record_interval: float | None = None,
@@ -2107,7 +2114,7 @@ def _copied(a):
     return None if a is None else a.copy()
 
 
-def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool = False) -> None:
+def _warm_up(loop: tuple, kind: str, energy: bool) -> None:
     """Compile (or load from numba's cache) this variant of the loop, once per process, and
     run it for a few steps on copies of the states, so that the blow's timing excludes the
     compilation and the first touch of the code and of the parameter arrays.
@@ -2115,8 +2122,7 @@ def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool 
     ``loop`` is :func:`run_blow`'s (ram, anvil, pile, settings, records); the trial copies,
     field by field, what the loop writes and shares the rest."""
     ram, anvil, pile, settings, records = loop
-    key = ("modal" if kind in ("rom", "lumped") else kind, record, energy, sections,
-           anvil.rings is not None)
+    key = ("modal" if kind in ("rom", "lumped") else kind, energy, anvil.rings is not None)
     if key in _WARM:
         return
 
@@ -2134,10 +2140,9 @@ def _warm_up(loop: tuple, kind: str, record: bool, energy: bool, sections: bool 
                                soil_offset=pile.soil_offset.copy(), energy=pile.energy.copy(),
                                largest=pile.largest.copy(), smallest=pile.smallest.copy())
     trial_records = records._replace(
-        out=_copied(records.out), energies=_copied(records.energies),
+        out=records.out.copy(), energies=_copied(records.energies),
         works=None if records.works is None else tuple(w.copy() for w in records.works),
-        sections=(None if records.sections is None
-                  else (records.sections[0], records.sections[1].copy())),
+        sections=(records.sections[0], records.sections[1].copy()),
         summary=records.summary.copy())
     trial_settings = settings._replace(n_steps=min(settings.n_steps, WARM_UP_STEPS))
     run_blow(trial_ram, trial_anvil, trial_pile, trial_settings, trial_records)
