@@ -1542,8 +1542,8 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
     records); hammer_surfaces : per hammer class by name, (its surface of the same records,
     its rating [J]), for the steps with ``hammers`` (:func:`fit_step`; the other steps fit
     ``surface``). Returns (a row per step; the predictions per step, the baseline, the
-    measured counts, the records' foundations, the scored records and per step the fit of
-    every fold, foundation -> (hammer class, fit))."""
+    measured counts, the records' foundations and depths [m], the scored records and per step
+    the fit of every fold, foundation -> (hammer class, fit))."""
     measured = np.concatenate([p.measured for p in piles])
     group = np.concatenate([[p.cpt_group] * len(p.depths) for p in piles])
     depth = np.concatenate([p.depths for p in piles])
@@ -1603,7 +1603,7 @@ def stepwise_cross_validation(piles, surface: ResponseSurface, enthru_factor, st
                 row[f"{key} folds max"] = float(np.max(values))
         rows.append(row)
     return rows, {"predictions": predictions, "baseline": baseline, "measured": measured,
-                  "group": group, "scored": ok, "fits": folds}
+                  "group": group, "depth": depth, "scored": ok, "fits": folds}
 
 
 # ----------------------------------------------------------------------------- stepwise run
@@ -1865,7 +1865,8 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
         rows += r
         if records is None:
             records = {"measured": res["measured"], "baseline": res["baseline"],
-                       "scored": res["scored"], "group": res["group"], "predictions": {}}
+                       "scored": res["scored"], "group": res["group"], "depth": res["depth"],
+                       "predictions": {}}
         records["predictions"][step.name] = res["predictions"][step.name]
         fold_fits[step.name] = res["fits"][step.name]
         print(f"{step.name}: CV RMSE {r[0]['rmse [blows/m]']:.1f}, bias "
@@ -1917,8 +1918,7 @@ def predictive_backanalysis(args, model: Model, calibration, prediction, out: Pa
     # energy at the site's mean at its depth (the soil's part) and the rest (the energy's)
     surf_cv = (surf2_toe if final_step.toe_average else surf2).with_energy_factor(factor)
     group_rec = records["group"]
-    depth_rec = np.concatenate([p.depths for p in calibration])
-    held = site_estimate(factor * surf_cv.setting, group_rec, depth_rec, 0.0)
+    held = site_estimate(factor * surf_cv.setting, group_rec, records["depth"], 0.0)
     surf_held = surf_cv.with_energy_factor(held / surf_cv.setting)
     soil_part = np.full(measured.size, np.nan)
     for g, (_, fitted) in folds_final.items():
